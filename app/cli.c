@@ -1,0 +1,213 @@
+#include "cli.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+enum { MAX_IMAGE_SIDE = 16384, MAX_SPP = 1 << 16 };
+static const float MAX_FOV_DEG = 179.0f; /* vertical field of view; 180 degrees has no perspective */
+
+static const char USAGE[] =
+    "usage: fathom [options]\n"
+    "  Opens the explorer window, or renders an offline shot with --output (no display needed).\n"
+    "\n"
+    "  --scene NAME|FILE     scene to load: a name from scenes/ (csg) or a scene file path [csg]\n"
+    "  --output FILE         render headless to FILE (.png 8-bit sRGB, .exr linear float) and exit\n"
+    "  --size WxH            image or window size in pixels [1280x720]\n"
+    "  --spp N               samples per pixel (progressive, jittered: anti-aliasing) [preset]\n"
+    "  --quality Q           draft | interactive | final | reference [the scene's]\n"
+    "  --camera X,Y,Z        camera position\n"
+    "  --look-at X,Y,Z       point the camera looks at\n"
+    "  --fov DEG             vertical field of view in degrees (0 < DEG < 179)\n"
+    "  --set KEY=VALUE       override any scene parameter, e.g. --set materials.glass.ior=1.33,\n"
+    "                        --set effects.fog=off, --set lights.0.intensity=40 (repeatable)\n"
+    "  --aov LIST            extra EXR channels: depth,normal,steps,exit (needs .exr output)\n"
+    "  --frames N            window mode: render N frames, then exit\n"
+    "  --print-variant       print the effects and #defines the scene compiles, then exit\n"
+    "  --list-scenes         list the shipped scenes\n"
+    "  --quiet               no progress bar\n"
+    "  --help, --version\n"
+    "\n"
+    "Window keys: WASD move, mouse look, Space/C up/down, Shift faster, scroll speed, 1-9 scenes,\n"
+    "R reload shaders, P or F12 screenshot, Esc quit.\n";
+
+const char *cli_usage(void) { return USAGE; }
+
+static bool parse_int(const char *s, long lo, long hi, int *out)
+{
+    char *end;
+    errno = 0;
+    long v = strtol(s, &end, 10);
+    if (errno || end == s || *end != '\0' || v < lo || v > hi)
+        return false;
+    *out = (int)v;
+    return true;
+}
+
+static bool parse_float(const char *s, float *out)
+{
+    char *end;
+    errno = 0;
+    float v = strtof(s, &end);
+    if (errno || end == s || *end != '\0' || !isfinite(v))
+        return false;
+    *out = v;
+    return true;
+}
+
+bool cli_parse_size(const char *s, int *w, int *h)
+{
+    const char *x = strchr(s, 'x');
+    if (!x || x == s || (size_t)(x - s) >= 16)
+        return false;
+    char left[16];
+    memcpy(left, s, (size_t)(x - s));
+    left[x - s] = '\0';
+    return parse_int(left, 1, MAX_IMAGE_SIDE, w) && parse_int(x + 1, 1, MAX_IMAGE_SIDE, h);
+}
+
+bool cli_parse_vec3(const char *s, float v[3])
+{
+    char buf[128];
+    if (strlen(s) >= sizeof buf)
+        return false;
+    strcpy(buf, s);
+    char *parts[3], *p = buf;
+    for (int i = 0; i < 3; i++) {
+        parts[i] = p;
+        char *comma = strchr(p, ',');
+        if (i < 2) {
+            if (!comma)
+                return false;
+            *comma = '\0';
+            p = comma + 1;
+        } else if (comma) {
+            return false;
+        }
+    }
+    for (int i = 0; i < 3; i++)
+        if (!parse_float(parts[i], &v[i]))
+            return false;
+    return true;
+}
+
+static bool parse_aovs(const char *s, unsigned *mask)
+{
+    static const struct { const char *name; aov_flag flag; } names[] = {
+        {"depth", AOV_DEPTH}, {"normal", AOV_NORMAL}, {"steps", AOV_STEPS}, {"exit", AOV_EXIT}};
+    *mask = 0;
+    const char *p = s;
+    while (*p) {
+        size_t n = strcspn(p, ",");
+        bool found = false;
+        for (size_t i = 0; i < sizeof names / sizeof names[0]; i++)
+            if (strlen(names[i].name) == n && strncmp(p, names[i].name, n) == 0) {
+                *mask |= names[i].flag;
+                found = true;
+            }
+        if (!found)
+            return false;
+        p += n;
+        if (*p == ',')
+            p++;
+    }
+    return *mask != 0;
+}
+
+bool cli_parse(int argc, char **argv, cli_options *o, err_t *err)
+{
+    *o = (cli_options){.scene = "csg"};
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        /* flags without a value */
+        if (!strcmp(a, "--help") || !strcmp(a, "-h")) { o->help = true; continue; }
+        if (!strcmp(a, "--version")) { o->version = true; continue; }
+        if (!strcmp(a, "--print-variant")) { o->print_variant = true; continue; }
+        if (!strcmp(a, "--list-scenes")) { o->list_scenes = true; continue; }
+        if (!strcmp(a, "--quiet")) { o->quiet = true; continue; }
+
+        /* flags with a value: "--flag value" or "--flag=value" */
+        const char *eq = strchr(a, '=');
+        char name[32];
+        const char *val;
+        if (strncmp(a, "--", 2) == 0 && eq && (size_t)(eq - a) < sizeof name) {
+            memcpy(name, a, (size_t)(eq - a));
+            name[eq - a] = '\0';
+            val = eq + 1;
+        } else {
+            if (strlen(a) >= sizeof name)
+                return err_set(err, "unknown option '%s' (see fathom --help)", a);
+            strcpy(name, a);
+            val = (i + 1 < argc) ? argv[++i] : NULL;
+        }
+        static const char *const with_value[] = {"--scene", "--output", "--size", "--spp", "--quality",
+                                                 "--camera", "--look-at", "--fov", "--set", "--aov", "--frames"};
+        bool known = false;
+        for (size_t k = 0; k < sizeof with_value / sizeof with_value[0]; k++)
+            known |= !strcmp(name, with_value[k]);
+        if (!known)
+            return err_set(err, "unknown option '%s' (see fathom --help)", name);
+        if (!val)
+            return err_set(err, "option %s needs a value (see fathom --help)", name);
+
+        if (!strcmp(name, "--scene")) {
+            o->scene = val;
+        } else if (!strcmp(name, "--output")) {
+            o->output = val;
+        } else if (!strcmp(name, "--size")) {
+            if (!cli_parse_size(val, &o->width, &o->height))
+                return err_set(err, "bad --size '%s': expected WxH with 1 <= W,H <= %d, e.g. 1920x1080",
+                               val, MAX_IMAGE_SIDE);
+        } else if (!strcmp(name, "--spp")) {
+            if (!parse_int(val, 1, MAX_SPP, &o->spp))
+                return err_set(err, "bad --spp '%s': expected a whole number from 1 to %d", val, MAX_SPP);
+        } else if (!strcmp(name, "--frames")) {
+            if (!parse_int(val, 1, 1 << 30, &o->frames))
+                return err_set(err, "bad --frames '%s': expected a whole number >= 1", val);
+        } else if (!strcmp(name, "--fov")) {
+            if (!parse_float(val, &o->fov_deg) || o->fov_deg <= 0.0f || o->fov_deg >= MAX_FOV_DEG)
+                return err_set(err, "bad --fov '%s': expected degrees, 0 < fov < %g", val, (double)MAX_FOV_DEG);
+            o->has_fov = true;
+        } else if (!strcmp(name, "--camera")) {
+            if (!cli_parse_vec3(val, o->camera))
+                return err_set(err, "bad --camera '%s': expected X,Y,Z, e.g. 0,1.5,6", val);
+            o->has_camera = true;
+        } else if (!strcmp(name, "--look-at")) {
+            if (!cli_parse_vec3(val, o->look_at))
+                return err_set(err, "bad --look-at '%s': expected X,Y,Z, e.g. 0,0.5,0", val);
+            o->has_look_at = true;
+        } else if (!strcmp(name, "--quality")) {
+            /* sugar for --set quality.preset=Q; the scene checks the name */
+            if (o->set_count == CLI_MAX_SETS)
+                return err_set(err, "too many --set/--quality options (at most %d)", CLI_MAX_SETS);
+            static char buf[64];
+            if (strlen(val) > sizeof buf - 20)
+                return err_set(err, "bad --quality '%s': use draft, interactive, final or reference", val);
+            snprintf(buf, sizeof buf, "quality.preset=%s", val);
+            o->sets[o->set_count++] = buf;
+        } else if (!strcmp(name, "--set")) {
+            if (!strchr(val, '=') || val[0] == '=')
+                return err_set(err, "bad --set '%s': expected KEY=VALUE, e.g. --set camera.fov=40", val);
+            if (o->set_count == CLI_MAX_SETS)
+                return err_set(err, "too many --set options (at most %d)", CLI_MAX_SETS);
+            o->sets[o->set_count++] = val;
+        } else if (!strcmp(name, "--aov")) {
+            if (!parse_aovs(val, &o->aovs))
+                return err_set(err, "bad --aov '%s': expected a comma list of depth, normal, steps, exit", val);
+        }
+    }
+    if (o->aovs && !o->output)
+        return err_set(err, "--aov needs an offline shot: add --output FILE.exr");
+    if (o->output) {
+        const char *dot = strrchr(o->output, '.');
+        bool png = dot && !strcmp(dot, ".png"), exr = dot && !strcmp(dot, ".exr");
+        if (!png && !exr)
+            return err_set(err, "bad --output '%s': the file name must end in .png or .exr", o->output);
+        if (o->aovs && !exr)
+            return err_set(err, "--aov channels need an EXR file: use --output %.*s.exr",
+                           (int)(dot ? dot - o->output : (long)strlen(o->output)), o->output);
+    }
+    return true;
+}

@@ -1,0 +1,49 @@
+/* cli — the command line, parsed into an options struct. Pure: no I/O but the error text.
+ *
+ *   fathom [options]              explorer window (or an offline shot with --output)
+ *   fathom --help                 usage
+ *
+ * Angles are degrees on the command line (radians inside the code); sizes are pixels.
+ */
+#ifndef FATHOM_CLI_H
+#define FATHOM_CLI_H
+
+#include <stdbool.h>
+
+#include "util.h"
+
+enum { CLI_MAX_SETS = 64 };
+
+typedef enum aov_flag {
+    AOV_DEPTH = 1u << 0,  /* distance along the normalized ray to the first hit, +inf on a miss */
+    AOV_NORMAL = 1u << 1, /* world-space unit normal at the first hit, 0 on a miss */
+    AOV_STEPS = 1u << 2,  /* march steps of the primary ray */
+    AOV_EXIT = 1u << 3,   /* direction in which the main path left the scene (debug for refraction) */
+} aov_flag;
+
+typedef struct cli_options {
+    const char *scene;  /* scene name (scenes/NAME.json) or a path to a scene file */
+    const char *output; /* NULL: window; else offline shot to .png or .exr */
+    int width, height;  /* 0: default */
+    int spp;            /* 0: the quality preset's */
+    int frames;         /* window: exit after N frames; 0: run until closed */
+    bool has_camera, has_look_at, has_fov;
+    float camera[3], look_at[3], fov_deg;
+    const char *sets[CLI_MAX_SETS]; /* "key=value" scene overrides, in order */
+    int set_count;
+    unsigned aovs; /* aov_flag bits */
+    bool print_variant, list_scenes, help, version, quiet;
+} cli_options;
+
+/* Parses argv into *o (zeroed first). False with one line in err on bad input. */
+bool cli_parse(int argc, char **argv, cli_options *o, err_t *err);
+
+/* Parses "WxH" with 1 <= W,H <= 16384. */
+bool cli_parse_size(const char *s, int *w, int *h);
+
+/* Parses "X,Y,Z" (finite floats). */
+bool cli_parse_vec3(const char *s, float v[3]);
+
+const char *cli_usage(void);
+
+#endif

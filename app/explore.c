@@ -1,0 +1,255 @@
+#include "explore.h"
+
+#include <epoxy/gl.h>
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "camera.h"
+#include "gpu.h"
+#include "hud.h"
+#include "offline.h"
+#include "render.h"
+#include "scene.h"
+
+enum { MAX_SCENES = 9, FRAME_HISTORY = 30 };
+static const float MOUSE_SENSITIVITY = 0.0025f; /* radians per pixel */
+static const float SPEED_STEP = 1.25f;          /* per scroll notch */
+static const float DEFAULT_SPEED = 2.0f;        /* m/s */
+static const float EXPOSURE = 1.0f;
+static const double IDLE_WAIT_S = 0.05;
+
+static struct {
+    scene scene;
+    bool have_scene;
+    camera cam;
+    float speed;
+    double mouse[2];
+    bool mouse_valid;
+    float scroll;
+    char names[MAX_SCENES][SCENE_NAME_MAX];
+    int scene_count;
+    int pending_scene; /* -1 none */
+    bool reload, screenshot;
+    char message[ERR_MSG_MAX];
+    double frame_ms[FRAME_HISTORY];
+    int frame_index;
+} app;
+
+static void on_key(GLFWwindow *w, int key, int scancode, int action, int mods)
+{
+    (void)scancode;
+    (void)mods;
+    if (action != GLFW_PRESS)
+        return;
+    if (key == GLFW_KEY_ESCAPE)
+        glfwSetWindowShouldClose(w, GLFW_TRUE);
+    else if (key == GLFW_KEY_R)
+        app.reload = true;
+    else if (key == GLFW_KEY_P || key == GLFW_KEY_F12)
+        app.screenshot = true;
+    else if (key >= GLFW_KEY_1 && key <= GLFW_KEY_9 && key - GLFW_KEY_1 < app.scene_count)
+        app.pending_scene = key - GLFW_KEY_1;
+}
+
+static void on_scroll(GLFWwindow *w, double dx, double dy)
+{
+    (void)w;
+    (void)dx;
+    app.scroll += (float)dy;
+}
+
+static bool load_scene(const char *name, const cli_options *opt, bool first, err_t *err)
+{
+    scene next;
+    /* --set overrides belong to the scene named on the command line */
+    if (!scene_load(name, first ? opt->sets : NULL, first ? opt->set_count : 0, &next, err))
+        return false;
+    if (opt->spp)
+        next.quality.spp = opt->spp;
+    bool same_file = app.have_scene && !strcmp(app.scene.path, next.path);
+    scene old = app.scene;
+    app.scene = next; /* the renderer keeps a pointer: hand it the stored copy */
+    if (!render_set_scene(&app.scene, NULL, err)) {
+        scene_free(&app.scene);
+        app.scene = old;
+        if (app.have_scene) {
+            err_t ignore;
+            render_set_scene(&app.scene, NULL, &ignore); /* back to the last good scene */
+        }
+        return false;
+    }
+    if (app.have_scene)
+        scene_free(&old);
+    app.have_scene = true;
+    if (!same_file) { /* a reload of the same file keeps the camera where the user flew it */
+        float fov = first && opt->has_fov ? opt->fov_deg : app.scene.cam_fov_deg;
+        const float *pos = first && opt->has_camera ? opt->camera : app.scene.cam_position;
+        const float *at = first && opt->has_look_at ? opt->look_at : app.scene.cam_look_at;
+        app.cam = camera_look_at(pos, at, fov * GLM_PIf / 180.0f);
+    }
+    return true;
+}
+
+static void screenshot(int w, int h)
+{
+    char path[128];
+    time_t now = time(NULL);
+    strftime(path, sizeof path, "fathom-%Y%m%d-%H%M%S.png", localtime(&now));
+    err_t err;
+    if (offline_write(path, w, h, 0, &err))
+        snprintf(app.message, sizeof app.message, "saved %s", path);
+    else
+        snprintf(app.message, sizeof app.message, "%s", err.msg);
+    fprintf(stderr, "%s\n", app.message);
+}
+
+static camera_input read_input(GLFWwindow *w)
+{
+    camera_input in = {0};
+    in.move[0] = (float)(glfwGetKey(w, GLFW_KEY_D) - glfwGetKey(w, GLFW_KEY_A));
+    in.move[1] = (float)(glfwGetKey(w, GLFW_KEY_SPACE) - glfwGetKey(w, GLFW_KEY_C));
+    in.move[2] = (float)(glfwGetKey(w, GLFW_KEY_W) - glfwGetKey(w, GLFW_KEY_S));
+    in.fast = glfwGetKey(w, GLFW_KEY_LEFT_SHIFT) || glfwGetKey(w, GLFW_KEY_RIGHT_SHIFT);
+    double x, y;
+    glfwGetCursorPos(w, &x, &y);
+    if (app.mouse_valid) {
+        in.look[0] = (float)(x - app.mouse[0]);
+        in.look[1] = (float)(y - app.mouse[1]);
+    }
+    app.mouse[0] = x;
+    app.mouse[1] = y;
+    app.mouse_valid = true;
+    return in;
+}
+
+static void hud(int w, int h)
+{
+    double sum = 0;
+    int n = 0;
+    for (int i = 0; i < FRAME_HISTORY; i++)
+        if (app.frame_ms[i] > 0)
+            sum += app.frame_ms[i], n++;
+    double ms = n ? sum / n : 0;
+    char text[4096];
+    const camera *c = &app.cam;
+    snprintf(text, sizeof text,
+             "%s  [%s]  %dx%d\n"
+             "%.1f ms/sample  %.1f fps  %d/%d spp\n"
+             "pos %.2f %.2f %.2f  speed %.2f m/s  fov %.0f\n"
+             "WASD move  mouse look  Space/C up/down  Shift fast  scroll speed\n"
+             "1-%d scenes  R reload  P screenshot  Esc quit\n%s",
+             app.scene.name, preset_name(app.scene.preset), w, h, ms, ms > 0 ? 1000.0 / ms : 0.0,
+             render_samples(), app.scene.quality.spp, (double)c->position[0], (double)c->position[1],
+             (double)c->position[2], (double)app.speed, (double)(c->fov_y * 180.0f / GLM_PIf), app.scene_count,
+             app.message);
+    hud_draw(text, w, h, h >= 900 ? 2.0f : 1.5f);
+}
+
+bool explore_run(const cli_options *opt, err_t *err)
+{
+    memset(&app, 0, sizeof app);
+    app.pending_scene = -1;
+    app.speed = DEFAULT_SPEED;
+    strbuf list = {0};
+    scene_list(&list);
+    for (char *line = list.data; line && *line && app.scene_count < MAX_SCENES;) {
+        char *nl = strchr(line, '\n');
+        snprintf(app.names[app.scene_count++], SCENE_NAME_MAX, "%.*s", (int)(nl ? nl - line : (long)strlen(line)), line);
+        line = nl ? nl + 1 : line + strlen(line);
+    }
+    sb_free(&list);
+
+    if (!gpu_open(&(gpu_desc){.width = opt->width, .height = opt->height, .title = "fathom"}, err))
+        return false;
+    GLFWwindow *win = gpu_window();
+    bool ok = render_init(err) && hud_init(err) && load_scene(opt->scene, opt, true, err);
+    if (!ok) {
+        render_shutdown();
+        gpu_close();
+        return false;
+    }
+    glfwSetKeyCallback(win, on_key);
+    glfwSetScrollCallback(win, on_scroll);
+    glfwSetInputMode(win, GLFW_CURSOR, GLFW_CURSOR_DISABLED);
+    fprintf(stderr, "fathom: %s\n", gpu_describe());
+
+    camera shown = {0};
+    bool first_frame = true;
+    double last = glfwGetTime();
+    for (int frame = 0; !glfwWindowShouldClose(win) && (opt->frames == 0 || frame < opt->frames); frame++) {
+        double now = glfwGetTime();
+        float dt = (float)(now - last);
+        last = now;
+        glfwPollEvents();
+        if (app.scroll != 0) {
+            app.speed *= powf(SPEED_STEP, app.scroll);
+            app.scroll = 0;
+        }
+        camera_input in = read_input(win);
+        camera_update(&app.cam, &in, dt, app.speed, MOUSE_SENSITIVITY);
+
+        if (app.pending_scene >= 0) {
+            err_t e;
+            if (!load_scene(app.names[app.pending_scene], opt, false, &e))
+                snprintf(app.message, sizeof app.message, "%s", e.msg), fprintf(stderr, "%s\n", e.msg);
+            else
+                app.message[0] = '\0';
+            app.pending_scene = -1;
+            first_frame = true;
+        }
+        if (app.reload) {
+            err_t e;
+            if (!render_reload(&e) || !load_scene(app.scene.path, opt, false, &e)) {
+                if (snprintf(app.message, sizeof app.message, "reload failed, kept the last good program:\n%s",
+                             e.msg) >= (int)sizeof app.message)
+                    app.message[sizeof app.message - 1] = '\0';
+                fprintf(stderr, "%s\n", app.message);
+            } else {
+                snprintf(app.message, sizeof app.message, "shaders and scene reloaded");
+            }
+            app.reload = false;
+            first_frame = true;
+        }
+
+        int w, h;
+        glfwGetFramebufferSize(win, &w, &h);
+        if (w <= 0 || h <= 0) { /* minimised */
+            glfwWaitEventsTimeout(IDLE_WAIT_S);
+            continue;
+        }
+        render_resize(w, h);
+        bool moved = memcmp(&shown, &app.cam, sizeof shown) != 0;
+        if (moved || first_frame || render_samples() == 0) {
+            render_begin(&app.cam);
+            shown = app.cam;
+            first_frame = false;
+        }
+        bool refining = render_samples() < app.scene.quality.spp;
+        if (refining || opt->frames) {
+            double t0 = glfwGetTime();
+            render_sample();
+            glFinish();
+            app.frame_ms[app.frame_index++ % FRAME_HISTORY] = (glfwGetTime() - t0) * 1000.0;
+        }
+        render_display(0, w, h, EXPOSURE);
+        hud(w, h);
+        if (app.screenshot) {
+            screenshot(w, h);
+            app.screenshot = false;
+        }
+        glfwSwapBuffers(win);
+        if (!refining && !moved && !opt->frames)
+            glfwWaitEventsTimeout(IDLE_WAIT_S); /* converged: do not spin */
+    }
+    hud_shutdown();
+    render_shutdown();
+    if (app.have_scene)
+        scene_free(&app.scene);
+    gpu_close();
+    return true;
+}

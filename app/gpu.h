@@ -1,0 +1,32 @@
+/* gpu — the GL 3.3 core context, from a GLFW window or headless EGL. The rest of fathom only sees
+ * "a current GL context"; the renderer does not know which backend made it.
+ *
+ * Headless order: the EGL device platform on a hardware device (real GPU drivers), else Mesa's
+ * surfaceless platform (llvmpipe on machines without a GPU). GLFW is never initialised headless,
+ * because GLFW 3.3 cannot start without a display.
+ */
+#ifndef FATHOM_GPU_H
+#define FATHOM_GPU_H
+
+#include <stdbool.h>
+
+#include "util.h"
+
+typedef struct GLFWwindow GLFWwindow;
+
+typedef struct gpu_desc {
+    bool headless;
+    int width, height; /* window size; 0 = 1280x720 */
+    const char *title;
+} gpu_desc;
+
+bool gpu_open(const gpu_desc *d, err_t *err);
+void gpu_close(void);
+
+/* "EGL surfaceless · llvmpipe (LLVM 15.0.6, 256 bits) · 4.5 (Core Profile) Mesa 22.3.6" */
+const char *gpu_describe(void);
+
+/* The window, or NULL headless. */
+GLFWwindow *gpu_window(void);
+
+#endif

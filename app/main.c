@@ -1,0 +1,95 @@
+/* fathom — a terrain and fractal ray-marching explorer.
+ * main: parse the command line, load the scene, then open the window or render offline.
+ * Exit codes: 0 done, 1 failed (bad data or environment), 2 bad command line. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+#include "explore.h"
+#include "offline.h"
+#include "render.h"
+#include "scene.h"
+
+enum { EXIT_USAGE = 2, DEFAULT_WIDTH = 1280, DEFAULT_HEIGHT = 720 };
+
+static void print_variant(const scene *s)
+{
+    printf("scene %s (%s): program %s, quality %s\n", s->name, s->path, program_name(s->program),
+           preset_name(s->preset));
+    printf("effects compiled in:");
+    for (int e = 0; e < EFFECT_COUNT; e++)
+        if (s->effects & (1u << e))
+            printf(" %s", effect_name((effect)e));
+    printf("\nleft out:");
+    for (int e = 0; e < EFFECT_COUNT; e++)
+        if (!(s->effects & (1u << e)))
+            printf(" %s", effect_name((effect)e));
+    printf("\n");
+    strbuf pre = {0};
+    render_preamble(s, NULL, &pre);
+    fputs(pre.data, stdout);
+    sb_free(&pre);
+}
+
+int main(int argc, char **argv)
+{
+    cli_options opt;
+    err_t err;
+    if (!cli_parse(argc, argv, &opt, &err)) {
+        fprintf(stderr, "fathom: %s\n", err.msg);
+        return EXIT_USAGE;
+    }
+    if (opt.help) {
+        fputs(cli_usage(), stdout);
+        return 0;
+    }
+    if (opt.version) {
+        printf("fathom 0.1\n");
+        return 0;
+    }
+    if (opt.list_scenes) {
+        strbuf names = {0};
+        scene_list(&names);
+        fputs(names.data ? names.data : "", stdout);
+        sb_free(&names);
+        return 0;
+    }
+    if (!opt.output && !opt.print_variant) {
+        bool ok = explore_run(&opt, &err);
+        if (!ok)
+            fprintf(stderr, "fathom: %s\n", err.msg);
+        return ok ? 0 : 1;
+    }
+
+    scene s;
+    if (!scene_load(opt.scene, opt.sets, opt.set_count, &s, &err)) {
+        fprintf(stderr, "fathom: %s\n", err.msg);
+        return 1;
+    }
+    if (opt.spp)
+        s.quality.spp = opt.spp;
+    int rc = 0;
+    if (opt.print_variant) {
+        print_variant(&s);
+    } else {
+        float fov = opt.has_fov ? opt.fov_deg : s.cam_fov_deg;
+        offline_desc d = {
+            .scene = &s,
+            .cam = camera_look_at(opt.has_camera ? opt.camera : s.cam_position,
+                                  opt.has_look_at ? opt.look_at : s.cam_look_at, fov * GLM_PIf / 180.0f),
+            .width = opt.width ? opt.width : DEFAULT_WIDTH,
+            .height = opt.height ? opt.height : DEFAULT_HEIGHT,
+            .spp = s.quality.spp,
+            .output = opt.output,
+            .aovs = opt.aovs,
+            .quiet = opt.quiet,
+        };
+        if (!offline_render(&d, &err)) {
+            fprintf(stderr, "fathom: %s\n", err.msg);
+            rc = 1;
+        }
+    }
+    scene_free(&s);
+    return rc;
+}

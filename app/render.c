@@ -1,0 +1,394 @@
+#include "render.h"
+
+#include <assert.h>
+#include <epoxy/gl.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "shader.h"
+#include "texture.h"
+
+enum { MAX_PROGRAMS = 64, NUM_TARGETS = 3, AOV_FLOATS = 8 };
+
+typedef struct cached_program {
+    program_kind kind;
+    char *preamble, *map; /* the key */
+    GLuint prog;
+} cached_program;
+
+static struct {
+    GLuint vao, display_prog;
+    GLuint fbo, targets[NUM_TARGETS];
+    GLuint out_fbo, out_tex; /* RGBA8 for sRGB readback */
+    int width, height, samples;
+    cached_program programs[MAX_PROGRAMS];
+    int program_count;
+    GLuint prog; /* current scene program */
+    const scene *scene;
+    GLuint textures[SCENE_MAX_TEXTURES], envmap;
+    int env_size;
+    camera cam;
+} state;
+
+static char shader_root[PATH_MAX_LEN];
+
+static GLuint build_display(err_t *err)
+{
+    return shader_build(shader_root, "fullscreen.vert", "display.frag", NULL, NULL, 0, err);
+}
+
+bool render_init(err_t *err)
+{
+    snprintf(shader_root, sizeof shader_root, "%s/shaders", util_data_dir());
+    glGenVertexArrays(1, &state.vao); /* core profile draws nothing without a bound VAO */
+    glBindVertexArray(state.vao);
+    state.display_prog = build_display(err);
+    return state.display_prog != 0;
+}
+
+static void free_targets(void)
+{
+    if (state.fbo) {
+        glDeleteFramebuffers(1, &state.fbo);
+        glDeleteTextures(NUM_TARGETS, state.targets);
+        glDeleteFramebuffers(1, &state.out_fbo);
+        glDeleteTextures(1, &state.out_tex);
+        state.fbo = state.out_fbo = 0;
+    }
+}
+
+static void free_scene_textures(void)
+{
+    glDeleteTextures(SCENE_MAX_TEXTURES, state.textures);
+    memset(state.textures, 0, sizeof state.textures);
+    if (state.envmap)
+        glDeleteTextures(1, &state.envmap);
+    state.envmap = 0;
+}
+
+void render_shutdown(void)
+{
+    free_targets();
+    free_scene_textures();
+    for (int i = 0; i < state.program_count; i++) {
+        glDeleteProgram(state.programs[i].prog);
+        free(state.programs[i].preamble);
+        free(state.programs[i].map);
+    }
+    glDeleteProgram(state.display_prog);
+    glDeleteVertexArrays(1, &state.vao);
+    memset(&state, 0, sizeof state);
+}
+
+void render_preamble(const scene *s, const char *extra_defines, strbuf *out)
+{
+    variant v = scene_variant(s);
+    variant_preamble(&v, out);
+    if (extra_defines)
+        sb_append(out, extra_defines);
+}
+
+static GLuint build_scene_program(program_kind kind, const char *preamble, const char *map, err_t *err)
+{
+    shader_virtual virt[] = {{"scene_map.glsl", map}};
+    return shader_build(shader_root, "fullscreen.vert", program_shader(kind), preamble, virt, 1, err);
+}
+
+static GLint loc(const char *name) { return glGetUniformLocation(state.prog, name); }
+
+/* Scene constants: materials, lights, environment, fog, texture units. */
+static void upload_scene_uniforms(void)
+{
+    const scene *s = state.scene;
+    glUseProgram(state.prog);
+    float base[SCENE_MAX_MATERIALS][4], params[SCENE_MAX_MATERIALS][4], absorb[SCENE_MAX_MATERIALS][4],
+        emit[SCENE_MAX_MATERIALS][3];
+    for (int i = 0; i < s->material_count; i++) {
+        const scene_material *m = &s->materials[i];
+        memcpy(base[i], m->base_color, sizeof m->base_color);
+        base[i][3] = m->metallic;
+        params[i][0] = m->roughness;
+        params[i][1] = m->transmission;
+        params[i][2] = m->ior;
+        params[i][3] = (float)m->texture;
+        memcpy(absorb[i], m->absorption, sizeof m->absorption);
+        absorb[i][3] = m->uv_scale;
+        memcpy(emit[i], m->emission, sizeof m->emission);
+    }
+    glUniform4fv(loc("uMatBase"), s->material_count, &base[0][0]);
+    glUniform4fv(loc("uMatParams"), s->material_count, &params[0][0]);
+    glUniform4fv(loc("uMatAbsorb"), s->material_count, &absorb[0][0]);
+    glUniform3fv(loc("uMatEmission"), s->material_count, &emit[0][0]);
+
+    float lvec[SCENE_MAX_LIGHTS][4], lcol[SCENE_MAX_LIGHTS][4], lsoft[SCENE_MAX_LIGHTS];
+    for (int i = 0; i < s->light_count; i++) {
+        const scene_light *l = &s->lights[i];
+        memcpy(lvec[i], l->vec, sizeof l->vec);
+        lvec[i][3] = l->type == LIGHT_DIRECTIONAL ? 1.0f : 0.0f;
+        for (int k = 0; k < 3; k++)
+            lcol[i][k] = l->color[k] * l->intensity;
+        lcol[i][3] = (float)l->shadow;
+        lsoft[i] = l->softness;
+    }
+    if (s->light_count > 0) {
+        glUniform4fv(loc("uLightVec"), s->light_count, &lvec[0][0]);
+        glUniform4fv(loc("uLightColor"), s->light_count, &lcol[0][0]);
+        glUniform1fv(loc("uLightSoftness"), s->light_count, lsoft);
+    }
+    float env[3];
+    for (int k = 0; k < 3; k++)
+        env[k] = s->env_color[k] * s->env_intensity;
+    glUniform3fv(loc("uEnvColor"), 1, env);
+    glUniform3fv(loc("uFogColor"), 1, s->fog_color);
+    glUniform1f(loc("uFogDensity"), s->fog_density);
+    static const char *const tex_names[SCENE_MAX_TEXTURES] = {"uTex0", "uTex1", "uTex2", "uTex3"};
+    for (int i = 0; i < SCENE_MAX_TEXTURES; i++)
+        glUniform1i(loc(tex_names[i]), i);
+    glUniform1i(loc("uEnvMap"), SCENE_MAX_TEXTURES);
+    glUniform1f(loc("uEnvMaxLod"), state.env_size > 0 ? log2f((float)state.env_size) : 0.0f);
+}
+
+bool render_set_scene(const scene *s, const char *extra_defines, err_t *err)
+{
+    strbuf pre = {0};
+    render_preamble(s, extra_defines, &pre);
+    GLuint prog = 0;
+    for (int i = 0; i < state.program_count && !prog; i++) {
+        cached_program *c = &state.programs[i];
+        if (c->kind == s->program && !strcmp(c->preamble, pre.data) && !strcmp(c->map, s->map_glsl))
+            prog = c->prog;
+    }
+    if (!prog) {
+        prog = build_scene_program(s->program, pre.data, s->map_glsl, err);
+        if (!prog) {
+            sb_free(&pre);
+            return false;
+        }
+        if (state.program_count == MAX_PROGRAMS) { /* evict the oldest */
+            glDeleteProgram(state.programs[0].prog);
+            free(state.programs[0].preamble);
+            free(state.programs[0].map);
+            memmove(state.programs, state.programs + 1, sizeof state.programs[0] * (MAX_PROGRAMS - 1));
+            state.program_count--;
+        }
+        state.programs[state.program_count++] =
+            (cached_program){.kind = s->program, .preamble = pre.data, .map = strdup(s->map_glsl), .prog = prog};
+    } else {
+        sb_free(&pre);
+    }
+
+    free_scene_textures();
+    for (int i = 0; i < s->texture_count; i++) {
+        state.textures[i] = texture_load_2d(s->textures[i], err);
+        if (!state.textures[i])
+            return false;
+    }
+    state.env_size = 0;
+    if (s->has_cubemap && (s->effects & (1u << EFFECT_ENVMAP))) {
+        state.envmap = texture_load_cube(s->cubemap, &state.env_size, err);
+        if (!state.envmap)
+            return false;
+    }
+    state.prog = prog;
+    state.scene = s;
+    upload_scene_uniforms();
+    return true;
+}
+
+void render_resize(int width, int height)
+{
+    assert(width > 0 && height > 0);
+    if (state.fbo && width == state.width && height == state.height)
+        return;
+    free_targets();
+    state.width = width;
+    state.height = height;
+    glGenFramebuffers(1, &state.fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, state.fbo);
+    glGenTextures(NUM_TARGETS, state.targets);
+    for (int i = 0; i < NUM_TARGETS; i++) {
+        glBindTexture(GL_TEXTURE_2D, state.targets[i]);
+        glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, width, height, 0, GL_RGBA, GL_FLOAT, NULL);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + (GLenum)i, GL_TEXTURE_2D, state.targets[i], 0);
+    }
+    assert(glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE);
+    glGenFramebuffers(1, &state.out_fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, state.out_fbo);
+    glGenTextures(1, &state.out_tex);
+    glBindTexture(GL_TEXTURE_2D, state.out_tex);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, width, height, 0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, state.out_tex, 0);
+    assert(glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    state.samples = 0;
+}
+
+void render_begin(const camera *c)
+{
+    state.cam = *c;
+    state.samples = 0;
+}
+
+int render_samples(void) { return state.samples; }
+
+/* Halton (2, 3) points, centred: low-discrepancy sub-pixel offsets. Sample 0 is the pixel centre. */
+static float halton(int i, int base)
+{
+    float f = 1.0f, r = 0.0f;
+    for (; i > 0; i /= base) {
+        f /= (float)base;
+        r += f * (float)(i % base);
+    }
+    return r;
+}
+
+void render_sample(void)
+{
+    assert(state.fbo && state.prog);
+    glBindFramebuffer(GL_FRAMEBUFFER, state.fbo);
+    glViewport(0, 0, state.width, state.height);
+    static const GLenum all[NUM_TARGETS] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
+    static const GLenum colour_only[NUM_TARGETS] = {GL_COLOR_ATTACHMENT0, GL_NONE, GL_NONE};
+    bool first = state.samples == 0;
+    glDrawBuffers(NUM_TARGETS, first ? all : colour_only);
+    if (first) {
+        glClearColor(0, 0, 0, 0);
+        glClear(GL_COLOR_BUFFER_BIT);
+    }
+    glEnablei(GL_BLEND, 0);
+    glBlendFunc(GL_ONE, GL_ONE);
+    glDisablei(GL_BLEND, 1);
+    glDisablei(GL_BLEND, 2);
+
+    glUseProgram(state.prog);
+    camera_basis b = camera_get_basis(&state.cam);
+    glUniform2f(loc("uResolution"), (float)state.width, (float)state.height);
+    glUniform3fv(loc("uCamPos"), 1, state.cam.position);
+    glUniform3fv(loc("uCamForward"), 1, b.forward);
+    glUniform3fv(loc("uCamRight"), 1, b.right);
+    glUniform3fv(loc("uCamUp"), 1, b.up);
+    glUniform1f(loc("uTanHalfFov"), tanf(0.5f * state.cam.fov_y));
+    glUniform1f(loc("uPixelAngle"), camera_pixel_angle(&state.cam, state.height));
+    bool jitter = (state.scene->effects & (1u << EFFECT_AA)) && !first;
+    glUniform2f(loc("uJitter"), jitter ? halton(state.samples, 2) - 0.5f : 0.0f,
+                jitter ? halton(state.samples, 3) - 0.5f : 0.0f);
+    for (int i = 0; i < SCENE_MAX_TEXTURES; i++) {
+        glActiveTexture(GL_TEXTURE0 + (GLenum)i);
+        glBindTexture(GL_TEXTURE_2D, state.textures[i]);
+    }
+    glActiveTexture(GL_TEXTURE0 + SCENE_MAX_TEXTURES);
+    glBindTexture(GL_TEXTURE_CUBE_MAP, state.envmap);
+    glActiveTexture(GL_TEXTURE0);
+
+    glBindVertexArray(state.vao);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glDisablei(GL_BLEND, 0);
+    state.samples++;
+}
+
+void render_display(GLuint fbo, int width, int height, float exposure)
+{
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glViewport(0, 0, width, height);
+    glUseProgram(state.display_prog);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, state.targets[0]);
+    glUniform1i(glGetUniformLocation(state.display_prog, "uAccum"), 0);
+    glUniform1f(glGetUniformLocation(state.display_prog, "uInvSamples"),
+                state.samples > 0 ? 1.0f / (float)state.samples : 0.0f);
+    glUniform1f(glGetUniformLocation(state.display_prog, "uExposure"), exposure);
+    glBindVertexArray(state.vao);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+}
+
+/* GL rows run bottom to top; files run top to bottom. */
+static void flip_rows(void *data, int height, size_t row_bytes)
+{
+    uint8_t *p = data, *tmp = malloc(row_bytes);
+    assert(tmp);
+    for (int y = 0; y < height / 2; y++) {
+        uint8_t *a = p + (size_t)y * row_bytes, *b = p + (size_t)(height - 1 - y) * row_bytes;
+        memcpy(tmp, a, row_bytes);
+        memcpy(a, b, row_bytes);
+        memcpy(b, tmp, row_bytes);
+    }
+    free(tmp);
+}
+
+static void read_target(GLuint fbo, GLenum attachment, GLenum type, void *out)
+{
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
+    glReadBuffer(attachment);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, state.width, state.height, GL_RGBA, type, out);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+}
+
+void render_read_srgb8(uint8_t *rgba, float exposure)
+{
+    render_display(state.out_fbo, state.width, state.height, exposure);
+    read_target(state.out_fbo, GL_COLOR_ATTACHMENT0, GL_UNSIGNED_BYTE, rgba);
+    flip_rows(rgba, state.height, (size_t)state.width * 4);
+}
+
+void render_read_linear(float *rgba)
+{
+    read_target(state.fbo, GL_COLOR_ATTACHMENT0, GL_FLOAT, rgba);
+    size_t n = (size_t)state.width * (size_t)state.height * 4;
+    float inv = state.samples > 0 ? 1.0f / (float)state.samples : 0.0f;
+    for (size_t i = 0; i < n; i++)
+        rgba[i] *= inv;
+    flip_rows(rgba, state.height, (size_t)state.width * 4 * sizeof(float));
+}
+
+void render_read_aovs(float *aov8)
+{
+    size_t n = (size_t)state.width * (size_t)state.height;
+    float *a = malloc(sizeof(float) * 4 * n), *b = malloc(sizeof(float) * 4 * n);
+    assert(a && b);
+    read_target(state.fbo, GL_COLOR_ATTACHMENT1, GL_FLOAT, a);
+    read_target(state.fbo, GL_COLOR_ATTACHMENT2, GL_FLOAT, b);
+    for (size_t i = 0; i < n; i++) {
+        memcpy(aov8 + i * AOV_FLOATS, a + i * 4, sizeof(float) * 4);
+        memcpy(aov8 + i * AOV_FLOATS + 4, b + i * 4, sizeof(float) * 4);
+        if (aov8[i * AOV_FLOATS + 3] < 0.0f) /* the shader marks a miss with depth −1 */
+            aov8[i * AOV_FLOATS + 3] = INFINITY;
+    }
+    free(a);
+    free(b);
+    flip_rows(aov8, state.height, (size_t)state.width * AOV_FLOATS * sizeof(float));
+}
+
+bool render_reload(err_t *err)
+{
+    /* Build everything first: one failure keeps every old program. */
+    GLuint fresh[MAX_PROGRAMS];
+    GLuint display = build_display(err);
+    if (!display)
+        return false;
+    for (int i = 0; i < state.program_count; i++) {
+        cached_program *c = &state.programs[i];
+        fresh[i] = build_scene_program(c->kind, c->preamble, c->map, err);
+        if (!fresh[i]) {
+            for (int k = 0; k < i; k++)
+                glDeleteProgram(fresh[k]);
+            glDeleteProgram(display);
+            return false;
+        }
+    }
+    glDeleteProgram(state.display_prog);
+    state.display_prog = display;
+    for (int i = 0; i < state.program_count; i++) {
+        if (state.programs[i].prog == state.prog)
+            state.prog = fresh[i];
+        glDeleteProgram(state.programs[i].prog);
+        state.programs[i].prog = fresh[i];
+    }
+    if (state.scene)
+        upload_scene_uniforms();
+    state.samples = 0;
+    return true;
+}

@@ -1,0 +1,48 @@
+/* render — draws a scene into a floating-point accumulation target, one jittered sample at a time,
+ * and turns it into display colour. Needs a current GL 3.3 core context; does not care whose.
+ *
+ * Targets (all width × height, RGBA32F): 0 accumulated linear radiance (additive blending),
+ * 1 normal.xyz + depth, 2 steps + exit direction. The first sample after render_begin() is
+ * unjittered (pixel centres) and is the only one that writes targets 1 and 2, so AOVs are exact
+ * per-pixel probes; later samples add colour only. Programs are compiled once per variant
+ * (preamble + generated map) and cached.
+ */
+#ifndef FATHOM_RENDER_H
+#define FATHOM_RENDER_H
+
+#include <epoxy/gl.h>
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "camera.h"
+#include "scene.h"
+#include "util.h"
+
+bool render_init(err_t *err);
+void render_shutdown(void);
+
+/* Makes s the scene to draw (s must outlive its use). extra_defines (may be NULL) is appended to the
+ * variant preamble: tests use it to switch a guard off. Loads textures, compiles or reuses the program. */
+bool render_set_scene(const scene *s, const char *extra_defines, err_t *err);
+
+void render_resize(int width, int height);
+void render_begin(const camera *c); /* new view: restart accumulation */
+void render_sample(void);           /* add one sample */
+int render_samples(void);
+
+/* Tone-mapped sRGB colour into framebuffer `fbo` (0 = window) of the given size. */
+void render_display(GLuint fbo, int width, int height, float exposure);
+
+/* Readback, rows top first. srgb8: RGBA 8-bit after render_display's mapping. linear: averaged RGBA.
+ * aovs: 8 floats a pixel: normal xyz, depth (+inf on a miss), steps, exit direction xyz. */
+void render_read_srgb8(uint8_t *rgba, float exposure);
+void render_read_linear(float *rgba);
+void render_read_aovs(float *aov8);
+
+/* Recompiles every cached program from the files on disk; on error keeps the old programs. */
+bool render_reload(err_t *err);
+
+/* The #define preamble of the current scene's variant (for --print-variant). */
+void render_preamble(const scene *s, const char *extra_defines, strbuf *out);
+
+#endif

@@ -1,0 +1,99 @@
+/* scene — a scene file (JSON, see scenes/README.md) turned into a scene struct. Pure: files in, data out.
+ *
+ * Conventions: right-handed world, Y up, metres. Angles in degrees in the file, radians in code.
+ * Colours are linear RGB. Point lights fall off as 1/d² (intensity is radiant intensity, W/sr-like);
+ * directional lights give irradiance `intensity` on a surface facing them.
+ *
+ * CSG: the file's "objects" tree becomes a GLSL `vec2 map(vec3 p)` (distance, material index).
+ * Every primitive is an exact signed distance; rotations and translations keep it exact; union,
+ * intersection and difference give a bound (the smooth variants a bound within k/4 of it).
+ * Material of a surface point = the material of the primitive whose surface it is.
+ */
+#ifndef FATHOM_SCENE_H
+#define FATHOM_SCENE_H
+
+#include <stdbool.h>
+
+#include "util.h"
+#include "variant.h"
+
+enum { SCENE_MAX_MATERIALS = 16, SCENE_MAX_LIGHTS = 8, SCENE_MAX_TEXTURES = 4, SCENE_NAME_MAX = 64 };
+
+typedef struct scene_material {
+    char name[SCENE_NAME_MAX];
+    float base_color[3];
+    float metallic, roughness;
+    float transmission; /* 0 opaque, 1 glass */
+    float ior;
+    float absorption[3]; /* Beer–Lambert coefficient inside, per metre */
+    float emission[3];
+    int texture;    /* index into scene.textures, -1 none; multiplies base_color */
+    float uv_scale; /* texture repeats per metre */
+} scene_material;
+
+typedef enum light_type { LIGHT_POINT, LIGHT_DIRECTIONAL } light_type;
+typedef enum shadow_mode { SHADOW_NONE, SHADOW_HARD, SHADOW_SOFT } shadow_mode;
+
+typedef struct scene_light {
+    light_type type;
+    float vec[3]; /* point: position; directional: unit direction toward the light */
+    float color[3];
+    float intensity;
+    shadow_mode shadow;
+    float softness; /* soft shadows: penumbra sharpness k (larger = harder) */
+} scene_light;
+
+typedef enum effect_mode { EFFECT_AUTO, EFFECT_ON, EFFECT_OFF } effect_mode;
+
+typedef struct scene {
+    char path[PATH_MAX_LEN], dir[PATH_MAX_LEN];
+    char name[SCENE_NAME_MAX];
+    char title[256];
+    program_kind program;
+
+    float cam_position[3], cam_look_at[3], cam_fov_deg;
+
+    float env_color[3];
+    float env_intensity;
+    bool has_cubemap;
+    char cubemap[6][PATH_MAX_LEN]; /* +X -X +Y -Y +Z -Z */
+
+    bool has_fog;
+    float fog_color[3], fog_density;
+
+    scene_material materials[SCENE_MAX_MATERIALS];
+    int material_count;
+    scene_light lights[SCENE_MAX_LIGHTS];
+    int light_count;
+    char textures[SCENE_MAX_TEXTURES][PATH_MAX_LEN];
+    int texture_count;
+
+    quality_preset preset;
+    quality quality;
+    effect_mode effect_modes[EFFECT_COUNT];
+    unsigned effects; /* derived from content, then effect_modes applied */
+
+    char *map_glsl; /* generated `vec2 map(vec3 p)`; malloc'd */
+    int primitive_count;
+} scene;
+
+/* Finds the file for a scene name ("csg" -> <data>/scenes/csg.json) or checks a path. */
+bool scene_locate(const char *name_or_path, char *out, size_t n, err_t *err);
+
+/* Parses the scene file, applies the "key=value" overrides in order, validates every key and value,
+ * derives the effect set and generates map(). Syntax errors name line and column. */
+bool scene_load(const char *name_or_path, const char *const *sets, int set_count, scene *s, err_t *err);
+
+/* The same from text already in memory (path is used for messages and relative paths). */
+bool scene_load_text(const char *text, const char *path, const char *const *sets, int set_count, scene *s,
+                     err_t *err);
+
+void scene_free(scene *s);
+
+/* The variant the scene compiles. */
+variant scene_variant(const scene *s);
+
+/* Lists scene names under <data>/scenes into out (one per line). */
+void scene_list(strbuf *out);
+
+#endif

@@ -1,0 +1,45 @@
+/* shader — GLSL assembly and compilation.
+ *
+ * Shader files hold no #version line. A program's source is
+ *     #version 330 core
+ *     <preamble: the variant's #defines>
+ *     #line 1 0
+ *     <the file, with every #include "path" expanded in place>
+ * Paths are relative to the shaders root; "virtual" files (generated text, e.g. scene_map.glsl)
+ * are looked up first. Each file is included at most once per program. Every expansion is followed
+ * by `#line N id`, with one source-string id per file, so a driver log "0:12(3): error" becomes
+ * "common/march.glsl:12: error". A failed build returns 0 and the translated log; callers keep their
+ * last good program.
+ */
+#ifndef FATHOM_SHADER_H
+#define FATHOM_SHADER_H
+
+#include <epoxy/gl.h>
+#include <stdbool.h>
+
+#include "util.h"
+
+enum { SHADER_MAX_FILES = 64, SHADER_NAME_MAX = 128 };
+
+typedef struct shader_virtual {
+    const char *name;
+    const char *text;
+} shader_virtual;
+
+typedef struct shader_files {
+    char names[SHADER_MAX_FILES][SHADER_NAME_MAX]; /* index = #line source-string id */
+    int count;
+} shader_files;
+
+/* Expands `file` into out (appends). Pure but for reading files under root. */
+bool shader_expand(const char *root, const char *file, const shader_virtual *virt, int nvirt, strbuf *out,
+                   shader_files *files, err_t *err);
+
+/* Rewrites a driver log (Mesa "S:L(C): msg" or NVIDIA "S(L) : msg") to "file:L: msg" lines. */
+void shader_translate_log(const char *log, const shader_files *files, strbuf *out);
+
+/* Compiles and links vert + frag with the preamble; 0 and err on failure. */
+GLuint shader_build(const char *root, const char *vert, const char *frag, const char *preamble,
+                    const shader_virtual *virt, int nvirt, err_t *err);
+
+#endif

@@ -1,0 +1,64 @@
+#include "texture.h"
+
+#include <stdlib.h>
+
+#include "image_io.h"
+
+GLuint texture_load_2d(const char *path, err_t *err)
+{
+    int w, h;
+    uint8_t *px;
+    if (!image_read_u8(path, 4, &w, &h, &px, err))
+        return 0;
+    GLuint tex;
+    glGenTextures(1, &tex);
+    glBindTexture(GL_TEXTURE_2D, tex);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    /* Row order does not matter for a tiling texture; keep the file's. */
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_SRGB8_ALPHA8, w, h, 0, GL_RGBA, GL_UNSIGNED_BYTE, px);
+    free(px);
+    glGenerateMipmap(GL_TEXTURE_2D);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+    return tex;
+}
+
+GLuint texture_load_cube(const char (*faces)[PATH_MAX_LEN], int *size, err_t *err)
+{
+    GLuint tex;
+    glGenTextures(1, &tex);
+    glBindTexture(GL_TEXTURE_CUBE_MAP, tex);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    int first = 0;
+    for (int i = 0; i < 6; i++) {
+        int w, h;
+        uint8_t *px;
+        if (!image_read_u8(faces[i], 4, &w, &h, &px, err)) {
+            glDeleteTextures(1, &tex);
+            return 0;
+        }
+        if (w != h || (i > 0 && w != first)) {
+            free(px);
+            glDeleteTextures(1, &tex);
+            err_set(err, "cube-map face '%s' is %dx%d: faces must be square and all the same size", faces[i], w, h);
+            return 0;
+        }
+        first = w;
+        /* GL reads the first row as t = 0, which the cube-map convention puts at the top of each side
+         * face: image files (top row first) load as they are. */
+        glTexImage2D(GL_TEXTURE_CUBE_MAP_POSITIVE_X + (GLenum)i, 0, GL_SRGB8_ALPHA8, w, h, 0, GL_RGBA,
+                     GL_UNSIGNED_BYTE, px);
+        free(px);
+    }
+    glGenerateMipmap(GL_TEXTURE_CUBE_MAP);
+    glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
+    glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
+    *size = first;
+    return tex;
+}

@@ -1,0 +1,19 @@
+/* texture — GL textures from image files: colour textures are sRGB, mipmapped and trilinear;
+ * cube maps filter seamlessly. Anisotropic filtering is done in the shader (common/material.glsl):
+ * llvmpipe's hardware-style anisotropic path measured 65× slower than trilinear at 256×144, and the
+ * shader's taps give the same image on every driver. */
+#ifndef FATHOM_TEXTURE_H
+#define FATHOM_TEXTURE_H
+
+#include <epoxy/gl.h>
+#include <stdbool.h>
+
+#include "util.h"
+
+/* 0 and err when the file cannot be read. */
+GLuint texture_load_2d(const char *path, err_t *err);
+
+/* faces in GL order +X, -X, +Y, -Y, +Z, -Z; all square and the same size. *size gets the face size. */
+GLuint texture_load_cube(const char (*faces)[PATH_MAX_LEN], int *size, err_t *err);
+
+#endif

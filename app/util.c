@@ -1,0 +1,144 @@
+#include "util.h"
+
+#include <assert.h>
+#include <errno.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+
+bool err_set(err_t *err, const char *fmt, ...)
+{
+    if (err) {
+        va_list ap;
+        va_start(ap, fmt);
+        vsnprintf(err->msg, sizeof err->msg, fmt, ap);
+        va_end(ap);
+    }
+    return false;
+}
+
+bool util_read_file(const char *path, char **out, size_t *len, err_t *err)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return err_set(err, "cannot open '%s': %s", path, strerror(errno));
+    struct stat st;
+    if (fstat(fileno(f), &st) != 0 || !S_ISREG(st.st_mode)) {
+        fclose(f);
+        return err_set(err, "'%s' is not a regular file", path);
+    }
+    size_t size = (size_t)st.st_size;
+    char *buf = malloc(size + 1);
+    assert(buf);
+    size_t got = fread(buf, 1, size, f);
+    fclose(f);
+    if (got != size) {
+        free(buf);
+        return err_set(err, "cannot read '%s': short read", path);
+    }
+    buf[size] = '\0';
+    *out = buf;
+    if (len)
+        *len = size;
+    return true;
+}
+
+bool util_dirname(const char *path, char *out, size_t n)
+{
+    const char *slash = strrchr(path, '/');
+    if (!slash)
+        return (size_t)snprintf(out, n, ".") < n;
+    size_t len = (size_t)(slash - path);
+    if (len == 0)
+        len = 1; /* "/file" -> "/" */
+    if (len + 1 > n)
+        return false;
+    memcpy(out, path, len);
+    out[len] = '\0';
+    return true;
+}
+
+bool util_join(const char *dir, const char *rel, char *out, size_t n)
+{
+    int w = (rel[0] == '/') ? snprintf(out, n, "%s", rel) : snprintf(out, n, "%s/%s", dir, rel);
+    return w >= 0 && (size_t)w < n;
+}
+
+bool util_file_exists(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) == 0 && S_ISREG(st.st_mode);
+}
+
+const char *util_data_dir(void)
+{
+    const char *env = getenv("FATHOM_DATA_DIR");
+    return (env && env[0]) ? env : FATHOM_SOURCE_DIR;
+}
+
+double util_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+void sb_appendn(strbuf *sb, const char *s, size_t n)
+{
+    if (sb->len + n + 1 > sb->cap) {
+        size_t cap = sb->cap ? sb->cap : 256;
+        while (cap < sb->len + n + 1)
+            cap *= 2;
+        sb->data = realloc(sb->data, cap);
+        assert(sb->data);
+        sb->cap = cap;
+    }
+    memcpy(sb->data + sb->len, s, n);
+    sb->len += n;
+    sb->data[sb->len] = '\0';
+}
+
+void sb_append(strbuf *sb, const char *s) { sb_appendn(sb, s, strlen(s)); }
+
+void sb_printf(strbuf *sb, const char *fmt, ...)
+{
+    va_list ap, ap2;
+    va_start(ap, fmt);
+    va_copy(ap2, ap);
+    int n = vsnprintf(NULL, 0, fmt, ap);
+    va_end(ap);
+    assert(n >= 0);
+    char *tmp = malloc((size_t)n + 1);
+    assert(tmp);
+    vsnprintf(tmp, (size_t)n + 1, fmt, ap2);
+    va_end(ap2);
+    sb_appendn(sb, tmp, (size_t)n);
+    free(tmp);
+}
+
+void sb_free(strbuf *sb)
+{
+    free(sb->data);
+    *sb = (strbuf){0};
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+double util_median(const double *v, int n)
+{
+    assert(n > 0);
+    double *c = malloc(sizeof *c * (size_t)n);
+    assert(c);
+    memcpy(c, v, sizeof *c * (size_t)n);
+    qsort(c, (size_t)n, sizeof *c, cmp_double);
+    double m = (n % 2) ? c[n / 2] : 0.5 * (c[n / 2 - 1] + c[n / 2]);
+    free(c);
+    return m;
+}

@@ -1,0 +1,57 @@
+/* util — errors, files, paths, clocks shared by every module.
+ *
+ * Errors: functions that can fail on bad data or environment return false and fill an err_t with
+ * one line (what, where, what to do). Only main() prints it and exits. Programmer mistakes assert.
+ */
+#ifndef FATHOM_UTIL_H
+#define FATHOM_UTIL_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+enum { ERR_MSG_MAX = 2048, PATH_MAX_LEN = 1024 };
+
+typedef struct err_t {
+    char msg[ERR_MSG_MAX];
+} err_t;
+
+/* Sets err->msg (printf format). Returns false so callers can `return err_set(...)`. */
+bool err_set(err_t *err, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+
+/* Reads a whole file, NUL-terminated. *out is malloc'd; the caller frees it. */
+bool util_read_file(const char *path, char **out, size_t *len, err_t *err);
+
+/* Directory part of path ("." if none), and a path resolved against a directory (absolute paths
+ * are kept). Both truncate nothing silently: they return false when out is too small. */
+bool util_dirname(const char *path, char *out, size_t n);
+bool util_join(const char *dir, const char *rel, char *out, size_t n);
+bool util_file_exists(const char *path);
+
+/* Where shaders/, scenes/ and textures/ live: $FATHOM_DATA_DIR, else the source tree. */
+const char *util_data_dir(void);
+
+/* Monotonic wall clock in seconds. */
+double util_now(void);
+
+/* Growable string. */
+typedef struct strbuf {
+    char *data;
+    size_t len, cap;
+} strbuf;
+void sb_append(strbuf *sb, const char *s);
+void sb_appendn(strbuf *sb, const char *s, size_t n);
+void sb_printf(strbuf *sb, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+void sb_free(strbuf *sb);
+
+/* Median of n doubles (sorts a copy). */
+double util_median(const double *v, int n);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

@@ -1,0 +1,75 @@
+/* variant — which GLSL program a scene compiles: the scene kind, the effect set and the quality knobs.
+ *
+ * One table (EFFECT_LIST) names every optional effect. The renderer compiles one program per
+ * distinct variant, built from a `#define` preamble that variant_preamble() writes; shader code
+ * tests `#if FX_NAME`. An effect that a scene does not use is not in its program at all.
+ */
+#ifndef FATHOM_VARIANT_H
+#define FATHOM_VARIANT_H
+
+#include <stdbool.h>
+
+#include "util.h"
+
+/*        id            name in scene files  what it simulates */
+#define EFFECT_LIST(X)                                                                              \
+    X(SHADOWS, "shadows", "hard shadow rays toward the lights, started off the surface")            \
+    X(SOFT_SHADOWS, "soft_shadows", "penumbrae from the closest miss of shadow rays")                \
+    X(AO, "ao", "ambient occlusion: distance samples along the normal")                              \
+    X(REFLECTIONS, "reflections", "traced mirror reflections on smooth materials")                   \
+    X(REFRACTION, "refraction", "glass: exact Fresnel, Snell, total internal reflection, Beer")      \
+    X(FOG, "fog", "exponential fog along primary rays")                                              \
+    X(ENVMAP, "envmap", "cube-map environment (else a constant colour)")                             \
+    X(TEXTURES, "textures", "filtered material textures (mipmaps, anisotropic)")                     \
+    X(AA, "aa", "jittered sub-pixel samples, accumulated progressively")
+
+typedef enum effect {
+#define X(id, name, what) EFFECT_##id,
+    EFFECT_LIST(X)
+#undef X
+    EFFECT_COUNT
+} effect;
+
+const char *effect_name(effect e);
+const char *effect_summary(effect e);
+bool effect_from_name(const char *name, effect *e);
+
+/* A smooth opaque material reflects a traced mirror image when its roughness is at most this. */
+#define MIRROR_ROUGHNESS 0.25f
+
+/* Scene kinds: each is one fragment shader under shaders/ that supplies its map() and materials. */
+typedef enum program_kind { PROGRAM_CSG, PROGRAM_COUNT } program_kind;
+const char *program_name(program_kind p);
+const char *program_shader(program_kind p); /* path under shaders/ */
+bool program_from_name(const char *name, program_kind *p);
+
+/* Accuracy knobs. Each is a compile-time constant in the shader (loops unroll, dead code goes). */
+typedef struct quality {
+    int max_steps;     /* sphere-tracing steps per ray */
+    float hit_k;       /* hit threshold = hit_k * t * pixel angle (pixel footprints at distance t) */
+    float step_factor; /* fraction of the distance bound taken per step (1 for exact distances) */
+    float max_dist;    /* rays give up beyond this distance */
+    int shadow_steps;  /* steps per shadow ray */
+    int ao_samples;    /* distance samples along the normal */
+    int bounces;       /* reflection / refraction path segments after the primary hit */
+    int aniso_taps;    /* texture taps along the footprint's long axis (anisotropic filtering) */
+    int spp;           /* samples per pixel for offline shots and a still window */
+} quality;
+
+typedef enum quality_preset { PRESET_DRAFT, PRESET_INTERACTIVE, PRESET_FINAL, PRESET_REFERENCE, PRESET_COUNT } quality_preset;
+const char *preset_name(quality_preset p);
+bool preset_from_name(const char *name, quality_preset *p);
+quality preset_quality(quality_preset p);
+
+typedef struct variant {
+    program_kind program;
+    unsigned effects; /* bit (1u << effect) */
+    quality q;
+    int num_lights, num_materials;
+} variant;
+
+/* The `#define` block (no #version) for v. Appends to out. Two variants compile to the same
+ * program exactly when their preambles are equal. */
+void variant_preamble(const variant *v, strbuf *out);
+
+#endif

@@ -1,0 +1,32 @@
+// The environment: light arriving from infinitely far in direction dir.
+// With FX_ENVMAP a cube map (seamless filtering), else a constant colour (the course task's
+// "environment light without a texture"). uEnvColor already includes the intensity.
+uniform vec3 uEnvColor;
+#if FX_ENVMAP
+uniform samplerCube uEnvMap;
+uniform float uEnvMaxLod; // log2 of the face size
+#endif
+
+// Cube maps follow the RenderMan (left-handed) face convention; flipping Z maps fathom's
+// right-handed world onto it so the sky is not mirrored.
+vec3 envDir(vec3 dir) { return vec3(dir.xy, -dir.z); }
+
+vec3 environment(vec3 dir)
+{
+#if FX_ENVMAP
+    return textureLod(uEnvMap, envDir(dir), 0.0).rgb * uEnvColor;
+#else
+    return uEnvColor;
+#endif
+}
+
+// Radiance seen in a lobe: the cube map's coarser levels stand in for a pre-filtered map
+// (roughness 1 → the 4×4 level, whose texels cover about a hemisphere's worth of directions).
+vec3 environmentBlurred(vec3 dir, float roughness)
+{
+#if FX_ENVMAP
+    return textureLod(uEnvMap, envDir(dir), roughness * (uEnvMaxLod - 2.0)).rgb * uEnvColor;
+#else
+    return uEnvColor;
+#endif
+}

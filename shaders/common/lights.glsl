@@ -1,0 +1,43 @@
+// Direct light from point lights (radiant intensity, 1/d² falloff as the course task insists) and
+// directional lights (irradiance), each with its own shadow mode.
+uniform vec4 uLightVec[NUM_LIGHTS];   // xyz: position (point) or unit direction toward it; w: 0 point, 1 directional
+uniform vec4 uLightColor[NUM_LIGHTS]; // rgb: colour × intensity; w: shadow mode 0 none, 1 hard, 2 soft
+uniform float uLightSoftness[NUM_LIGHTS];
+
+vec3 directLight(vec3 p, vec3 n, vec3 v, Material m, vec3 F0, float pathT)
+{
+    vec3 sum = vec3(0.0);
+    for (int i = 0; i < NUM_LIGHTS; i++) {
+        vec3 l;
+        float dist;
+        vec3 radiance = uLightColor[i].rgb;
+        if (uLightVec[i].w < 0.5) {
+            vec3 toLight = uLightVec[i].xyz - p;
+            float d2 = max(dot(toLight, toLight), 1e-8);
+            dist = sqrt(d2);
+            l = toLight / dist;
+            radiance /= d2;
+        } else {
+            l = uLightVec[i].xyz;
+            dist = float(MAX_DIST);
+        }
+        vec3 f = cookTorrance(n, v, l, m.albedo, m.metallic, m.roughness, F0);
+        if (all(lessThanEqual(f, vec3(0.0))))
+            continue;
+        float vis = 1.0;
+#if FX_SHADOWS
+        int mode = int(uLightColor[i].w + 0.5);
+        if (mode > 0) {
+            vec3 ro = p + n * (SURFACE_OFFSET_K * hitEps(pathT));
+#if FX_SOFT_SHADOWS
+            if (mode == 2)
+                vis = softShadow(ro, l, dist, uLightSoftness[i], pathT);
+            else
+#endif
+                vis = hardShadow(ro, l, dist, pathT);
+        }
+#endif
+        sum += f * radiance * vis;
+    }
+    return sum;
+}

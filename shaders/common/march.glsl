@@ -1,0 +1,55 @@
+// Sphere tracing against the scene's map(). Needs: vec2 map(vec3 p) -> (distance, material).
+//
+// Hit threshold: a ray has hit when the distance bound drops below eps(t) = HIT_K * t * pixel angle,
+// i.e. HIT_K pixel footprints at the distance travelled, so the image keeps its character at any
+// resolution. HIT_EPS_MIN keeps eps above float resolution near the eye.
+
+#ifndef HIT_EPS_MIN
+#define HIT_EPS_MIN 1e-5
+#endif
+// New rays (shadow, reflection, refraction) start this many hit thresholds off the surface, along the
+// normal: the point we hit lies up to eps from the surface, so a ray started there would hit it again
+// at once (self-shadowing "acne"; the shadows chapter's epsilon offset).
+#ifndef SURFACE_OFFSET_K
+#define SURFACE_OFFSET_K 4.0
+#endif
+
+float hitEps(float t) { return max(float(HIT_K) * uPixelAngle * t, HIT_EPS_MIN); }
+
+struct Hit {
+    bool hit;
+    float t;   // distance along the ray from its origin
+    float mat; // material index
+    int steps;
+};
+
+// side = +1 marches outside solids, -1 inside (refraction); pathT = path length before this ray,
+// so thresholds keep growing with the total distance from the eye.
+Hit castRay(vec3 ro, vec3 rd, float tmax, float side, float pathT)
+{
+    Hit h = Hit(false, 0.0, -1.0, 0);
+    float t = 0.0;
+    for (int i = 0; i < MAX_STEPS; i++) {
+        h.steps = i + 1;
+        vec2 d = map(ro + rd * t);
+        float dist = side * d.x;
+        if (dist < hitEps(pathT + t)) {
+            h.hit = true;
+            h.mat = d.y;
+            break;
+        }
+        t += dist * float(STEP_FACTOR);
+        if (t > tmax)
+            break;
+    }
+    h.t = t;
+    return h;
+}
+
+// Gradient of the distance by the tetrahedron of central differences (four map() calls).
+vec3 calcNormal(vec3 p, float eps)
+{
+    const vec2 k = vec2(1.0, -1.0);
+    return normalize(k.xyy * map(p + k.xyy * eps).x + k.yyx * map(p + k.yyx * eps).x +
+                     k.yxy * map(p + k.yxy * eps).x + k.xxx * map(p + k.xxx * eps).x);
+}

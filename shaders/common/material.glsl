@@ -1,0 +1,85 @@
+// Materials: metal/roughness PBR parameters from uniform arrays filled by app/render.c.
+uniform vec4 uMatBase[NUM_MATERIALS];     // rgb base colour, a = metallic
+uniform vec4 uMatParams[NUM_MATERIALS];   // roughness, transmission, ior, texture index (-1 none)
+uniform vec4 uMatAbsorb[NUM_MATERIALS];   // rgb Beer–Lambert coefficient per metre, a = uv scale
+uniform vec3 uMatEmission[NUM_MATERIALS];
+
+struct Material {
+    vec3 albedo;
+    float metallic, roughness, transmission, ior;
+    vec3 absorption, emission;
+};
+
+#if FX_TEXTURES
+uniform sampler2D uTex0, uTex1, uTex2, uTex3;
+
+// GLSL 330 indexes sampler arrays only with constants, hence the branches.
+vec3 texSample(int i, vec2 uv, vec2 dx, vec2 dy)
+{
+    if (i == 0) return textureGrad(uTex0, uv, dx, dy).rgb;
+    if (i == 1) return textureGrad(uTex1, uv, dx, dy).rgb;
+    if (i == 2) return textureGrad(uTex2, uv, dx, dy).rgb;
+    return textureGrad(uTex3, uv, dx, dy).rgb;
+}
+
+// Anisotropic filtering by several trilinear taps spread along the footprint's major axis, each
+// filtering 1/n of it (McCormack et al., "Feline: fast elliptical lines for anisotropic texture
+// mapping", SIGGRAPH 1999). n = the footprint's axis ratio, at most ANISO_TAPS.
+vec3 texAniso(int i, vec2 uv, vec2 dx, vec2 dy)
+{
+#if ANISO_TAPS > 1
+    float lx = dot(dx, dx), ly = dot(dy, dy);
+    vec2 major = lx > ly ? dx : dy, minor = lx > ly ? dy : dx;
+    float ratio = sqrt(max(lx, ly) / max(min(lx, ly), 1e-20));
+    int n = int(clamp(ceil(ratio), 1.0, float(ANISO_TAPS)));
+    vec2 step = major / float(n);
+    vec3 c = vec3(0.0);
+    for (int k = 0; k < ANISO_TAPS; k++) {
+        if (k >= n)
+            break;
+        c += texSample(i, uv + step * (float(k) + 0.5 - 0.5 * float(n)), step, minor);
+    }
+    return c / float(n);
+#else
+    return texSample(i, uv, dx, dy);
+#endif
+}
+
+// Triplanar projection: each axis plane contributes by |n|^4. The texture gradients come from the
+// ray differentials (dpdx, dpdy: surface offset to the neighbouring pixels' hits), so filtering
+// (mipmaps + anisotropic taps) works after any number of steps and bounces.
+vec3 triplanar(int i, vec3 p, vec3 n, vec3 dpdx, vec3 dpdy, float scale)
+{
+    const float MIN_WEIGHT = 0.02;
+    vec3 w = n * n;
+    w *= w;
+    w /= w.x + w.y + w.z;
+    vec3 c = vec3(0.0);
+    p *= scale;
+    dpdx *= scale;
+    dpdy *= scale;
+    if (w.x > MIN_WEIGHT) c += w.x * texAniso(i, p.zy, dpdx.zy, dpdy.zy);
+    if (w.y > MIN_WEIGHT) c += w.y * texAniso(i, p.xz, dpdx.xz, dpdy.xz);
+    if (w.z > MIN_WEIGHT) c += w.z * texAniso(i, p.xy, dpdx.xy, dpdy.xy);
+    return c / max(dot(w, vec3(greaterThan(w, vec3(MIN_WEIGHT)))), 1e-6);
+}
+#endif
+
+Material getMaterial(float id, vec3 p, vec3 n, vec3 dpdx, vec3 dpdy)
+{
+    int i = clamp(int(id + 0.5), 0, NUM_MATERIALS - 1);
+    Material m;
+    m.albedo = uMatBase[i].rgb;
+    m.metallic = uMatBase[i].a;
+    m.roughness = uMatParams[i].x;
+    m.transmission = uMatParams[i].y;
+    m.ior = uMatParams[i].z;
+    m.absorption = uMatAbsorb[i].rgb;
+    m.emission = uMatEmission[i];
+#if FX_TEXTURES
+    int tex = int(uMatParams[i].w);
+    if (tex >= 0)
+        m.albedo *= triplanar(tex, p, n, dpdx, dpdy, uMatAbsorb[i].a);
+#endif
+    return m;
+}

@@ -1,0 +1,141 @@
+// main() for every distance-field program: the scene program defines map() and includes this.
+//
+// One path per sample: the primary ray, then up to BOUNCES further segments through mirrors
+// (reflection) and glass (refraction). Glass splits the path: the reflected part (Fresnel F) takes
+// the environment, the transmitted part (1 − F) goes on; inside, Beer–Lambert absorption e^(−σ l)
+// (droplets paper); total internal reflection turns the path back inside.
+//
+// Outputs (sample 0 of each frame writes the AOVs; later samples only add colour):
+//   0: linear RGB radiance, alpha 1 (accumulated by additive blending)
+//   1: world normal of the first hit, depth along the unit ray (−1 on a miss: C turns it into +inf)
+//   2: primary-ray march steps, direction in which the path left the scene
+
+#include "common/uniforms.glsl"
+#include "common/camera.glsl"
+#include "common/march.glsl"
+#include "common/brdf.glsl"
+#include "common/env.glsl"
+#include "common/material.glsl"
+#include "common/shadow.glsl"
+#include "common/lights.glsl"
+#if FX_AO
+#include "common/ao.glsl"
+#endif
+#if FX_FOG
+#include "common/fog.glsl"
+#endif
+
+layout(location = 0) out vec4 oColor;
+layout(location = 1) out vec4 oNormalDepth;
+layout(location = 2) out vec4 oAux;
+
+// Opaque surfaces: direct light + environment light (diffuse, and specular unless traced).
+vec3 shadeSurface(vec3 p, vec3 n, vec3 v, Material m, vec3 F0, float pathT, bool tracedMirror)
+{
+    vec3 col = m.emission + directLight(p, n, v, m, F0, pathT);
+    float ao = 1.0;
+#if FX_AO
+    ao = calcAO(p, n);
+#endif
+    float NdotV = max(dot(n, v), MIN_COSINE);
+    vec3 F = fresnelSchlick(NdotV, F0);
+    col += (1.0 - F) * (1.0 - m.metallic) * m.albedo * environmentBlurred(n, 1.0) * ao;
+    if (!tracedMirror)
+        col += F * environmentBlurred(reflect(-v, n), m.roughness) * ao;
+    return col;
+}
+
+void main()
+{
+    Ray ray = primaryRay(gl_FragCoord.xy);
+    vec3 ro = ray.o, rd = ray.d;
+    vec3 radiance = vec3(0.0), throughput = vec3(1.0);
+    float pathT = 0.0;     // path length so far: sets thresholds and texture footprints
+    float side = 1.0;      // +1 outside solids, −1 inside glass
+    float firstT = -1.0, primaryT = float(MAX_DIST);
+    vec3 firstN = vec3(0.0);
+    int firstSteps = 0;
+    bool escaped = false;
+
+    for (int bounce = 0; bounce <= BOUNCES; bounce++) {
+        Hit h = castRay(ro, rd, float(MAX_DIST) - pathT, side, pathT);
+        if (bounce == 0)
+            firstSteps = h.steps;
+        if (!h.hit) {
+            radiance += throughput * environment(rd);
+            escaped = true;
+            break;
+        }
+        vec3 p = ro + rd * h.t;
+        float T = pathT + h.t;
+        float eps = hitEps(T);
+        vec3 nOut = calcNormal(p, eps); // outward normal of the solid
+        if (bounce == 0) {
+            firstT = h.t;
+            primaryT = h.t;
+            firstN = nOut;
+        }
+        // Where the neighbouring pixels' rays meet the tangent plane (texture filtering).
+        float dn = dot(rd, nOut);
+        dn = sign(dn) * max(abs(dn), 1e-3) + (dn == 0.0 ? 1e-3 : 0.0);
+        vec3 dpdx = T * (ray.dDdx - rd * dot(ray.dDdx, nOut) / dn);
+        vec3 dpdy = T * (ray.dDdy - rd * dot(ray.dDdy, nOut) / dn);
+        Material m = getMaterial(h.mat, p, nOut, dpdx, dpdy);
+
+        if (side < 0.0) // the segment just travelled was inside glass
+            throughput *= exp(-m.absorption * h.t);
+
+#if FX_REFRACTION
+        if (m.transmission > 0.0) {
+            bool entering = dot(rd, nOut) < 0.0;
+            vec3 n = entering ? nOut : -nOut;        // faces the incoming ray
+            float eta = entering ? 1.0 / m.ior : m.ior;
+            float cosI = -dot(rd, n);
+            float F = fresnelDielectric(cosI, eta);
+            vec3 refl = reflect(rd, n);
+            pathT = T;
+            if (F >= 1.0) { // total internal reflection: stay on this side
+                rd = refl;
+                ro = p + n * (SURFACE_OFFSET_K * eps);
+                continue;
+            }
+            if (entering) // reflected part: the environment (one level; the path follows the light inside)
+                radiance += throughput * F * m.transmission * environment(refl);
+            vec3 F0 = vec3(pow((m.ior - 1.0) / (m.ior + 1.0), 2.0));
+            if (entering && m.transmission < 1.0)
+                radiance += throughput * (1.0 - m.transmission) * shadeSurface(p, n, -rd, m, F0, T, false);
+            throughput *= (1.0 - F) * m.transmission;
+            rd = refract(rd, n, eta);
+            ro = p - n * (SURFACE_OFFSET_K * eps);
+            side = -side;
+            continue;
+        }
+#endif
+        vec3 v = -rd;
+        vec3 n = nOut;
+        if (dot(n, v) < 0.0) // camera inside a solid or a ray along the surface: light the side we see
+            n = -n;
+        float ior = max(m.ior, 1.0);
+        vec3 F0 = mix(vec3(pow((ior - 1.0) / (ior + 1.0), 2.0)), m.albedo, m.metallic);
+        bool mirror = false;
+#if FX_REFLECTIONS
+        mirror = m.transmission == 0.0 && m.roughness <= MIRROR_ROUGHNESS && bounce < BOUNCES;
+#endif
+        radiance += throughput * shadeSurface(p, n, v, m, F0, T, mirror);
+        if (!mirror)
+            break;
+        throughput *= fresnelSchlick(max(dot(n, v), MIN_COSINE), F0);
+        rd = reflect(rd, n);
+        ro = p + n * (SURFACE_OFFSET_K * eps);
+        pathT = T;
+    }
+    if (!escaped && side < 0.0) // the path ran out of bounces inside glass: let it leave unbent
+        radiance += throughput * environment(rd);
+
+#if FX_FOG
+    radiance = applyFog(radiance, primaryT);
+#endif
+    oColor = vec4(radiance, 1.0);
+    oNormalDepth = vec4(firstN, firstT);
+    oAux = vec4(float(firstSteps), rd);
+}

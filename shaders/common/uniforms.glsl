@@ -1,0 +1,8 @@
+// Per-frame inputs shared by every scene program. Set by app/render.c.
+// World: right-handed, Y up, metres. Rays: see app/camera.h for the pixel → direction convention.
+uniform vec2 uResolution;   // pixels
+uniform vec3 uCamPos;
+uniform vec3 uCamForward, uCamRight, uCamUp; // orthonormal basis
+uniform float uTanHalfFov;  // tan(vertical fov / 2)
+uniform float uPixelAngle;  // 2 tan(fov/2) / height: the angle one pixel spans
+uniform vec2 uJitter;       // sub-pixel offset of this sample, pixels; (0,0) for the first
