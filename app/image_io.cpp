@@ -54,6 +54,7 @@ extern "C" bool image_write_u8(const char *path, int width, int height, int chan
 {
     ImageSpec spec(width, height, channels, TypeDesc::UINT8);
     spec.attribute("oiio:ColorSpace", "sRGB");
+    spec.attribute("oiio:UnassociatedAlpha", 1); /* our alpha is straight: write it as it is */
     return write_image(path, spec, TypeDesc::UINT8, pixels, err);
 }
 
@@ -83,7 +84,10 @@ template <typename T>
 static bool read_image(const char *path, int want_channels, int *width, int *height, int *channels, T **pixels,
                        TypeDesc type, err_t *err)
 {
-    auto in = ImageInput::open(path);
+    /* Keep colour as stored: OpenImageIO would otherwise premultiply a PNG's colour by its alpha. */
+    ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    auto in = ImageInput::open(path, &config);
     if (!in)
         return err_set(err, "cannot read image '%s': %s", path, OIIO::geterror().c_str());
     const ImageSpec &spec = in->spec();

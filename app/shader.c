@@ -40,6 +40,7 @@ static bool expand(const char *root, const char *file, const shader_virtual *vir
         }
         src = text;
     }
+    sb_printf(out, "#line 1 %d\n", id);
     int line = 1;
     for (const char *p = src; *p;) {
         const char *eol = strchr(p, '\n');
@@ -79,7 +80,6 @@ static bool expand(const char *root, const char *file, const shader_virtual *vir
 bool shader_expand(const char *root, const char *file, const shader_virtual *virt, int nvirt, strbuf *out,
                    shader_files *files, err_t *err)
 {
-    sb_printf(out, "#line 1 %d\n", files->count);
     return expand(root, file, virt, nvirt, out, files, 0, NULL, 0, err);
 }
 

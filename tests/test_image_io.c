@@ -1,0 +1,129 @@
+/* Image files round trip exactly; asymmetric sizes and per-channel values catch flips and swaps;
+ * failed writes leave no file behind. */
+#include <dirent.h>
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include <cmocka.h>
+
+#include "image_io.h"
+
+enum { W = 7, H = 5 };
+static char dir[64];
+
+static int setup(void **st)
+{
+    (void)st;
+    strcpy(dir, "/tmp/fathom-io-XXXXXX");
+    return mkdtemp(dir) ? 0 : -1;
+}
+
+/* A value no other pixel or channel shares, so any flip or swap shows. */
+static uint8_t u8_at(int x, int y, int c) { return (uint8_t)(y * 50 + x * 7 + c * 2 + 1); }
+
+static void png_round_trip(void **st)
+{
+    (void)st;
+    for (int channels = 3; channels <= 4; channels++) {
+        uint8_t px[W * H * 4];
+        for (int y = 0; y < H; y++)
+            for (int x = 0; x < W; x++)
+                for (int c = 0; c < channels; c++)
+                    px[(y * W + x) * channels + c] = u8_at(x, y, c);
+        char path[128];
+        snprintf(path, sizeof path, "%s/rt%d.png", dir, channels);
+        err_t e;
+        if (!image_write_u8(path, W, H, channels, px, &e))
+            fail_msg("%s", e.msg);
+        int w, h;
+        uint8_t *back;
+        if (!image_read_u8(path, 4, &w, &h, &back, &e))
+            fail_msg("%s", e.msg);
+        assert_int_equal(w, W);
+        assert_int_equal(h, H);
+        for (int y = 0; y < H; y++)
+            for (int x = 0; x < W; x++)
+                for (int c = 0; c < 4; c++) {
+                    uint8_t want = c < channels ? u8_at(x, y, c) : 255;
+                    if (back[(y * W + x) * 4 + c] != want)
+                        fail_msg("%d channels: pixel (%d,%d) channel %d: %d != %d", channels, x, y, c,
+                                 back[(y * W + x) * 4 + c], want);
+                }
+        free(back);
+    }
+}
+
+static void exr_round_trip(void **st)
+{
+    (void)st;
+    enum { C = 6 };
+    const char *names[C] = {"R", "G", "B", "A", "Z", "steps"};
+    float px[W * H * C];
+    for (int i = 0; i < W * H * C; i++)
+        px[i] = (float)(i % 13) * -0.37f + (float)i * 1e-3f;
+    px[4] = INFINITY;     /* depth of a miss */
+    px[C + 4] = 1e-30f;   /* tiny, stays tiny in 32-bit float */
+    px[2 * C + 1] = 3e30f;
+    char path[128];
+    snprintf(path, sizeof path, "%s/rt.exr", dir);
+    err_t e;
+    if (!image_write_f32(path, W, H, C, names, px, &e))
+        fail_msg("%s", e.msg);
+    int w, h, c;
+    float *back;
+    if (!image_read_f32(path, &w, &h, &c, &back, &e))
+        fail_msg("%s", e.msg);
+    assert_int_equal(w, W);
+    assert_int_equal(h, H);
+    assert_int_equal(c, C);
+    /* R, G, B, A first, the rest by name: the order we wrote */
+    for (int i = 0; i < W * H * C; i++)
+        if (!(back[i] == px[i] || (isinf(px[i]) && isinf(back[i]) && back[i] > 0)))
+            fail_msg("pixel %d channel %s: %g read back as %g", i / C, names[i % C], (double)px[i], (double)back[i]);
+    free(back);
+}
+
+static int count_files(void)
+{
+    int n = 0;
+    DIR *d = opendir(dir);
+    for (struct dirent *e; (e = readdir(d));)
+        n += e->d_name[0] != '.' || strstr(e->d_name, ".tmp") != NULL;
+    closedir(d);
+    return n;
+}
+
+static void failed_writes_leave_nothing(void **st)
+{
+    (void)st;
+    int before = count_files();
+    uint8_t px[W * H * 3] = {0};
+    err_t e;
+    char path[128];
+    snprintf(path, sizeof path, "%s/no/such/folder/x.png", dir);
+    assert_false(image_can_write(path, &e));
+    assert_non_null(strstr(e.msg, "does not exist"));
+    assert_false(image_write_u8(path, W, H, 3, px, &e));
+    snprintf(path, sizeof path, "%s/x.unknownformat", dir);
+    assert_false(image_write_u8(path, W, H, 3, px, &e));
+    assert_int_equal(count_files(), before);
+    assert_false(image_read_u8("/nonexistent.png", 4, &(int){0}, &(int){0}, &(uint8_t *){NULL}, &e));
+    assert_non_null(strstr(e.msg, "/nonexistent.png"));
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(png_round_trip),
+        cmocka_unit_test(exr_round_trip),
+        cmocka_unit_test(failed_writes_leave_nothing),
+    };
+    return cmocka_run_group_tests(tests, setup, NULL);
+}

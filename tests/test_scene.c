@@ -1,0 +1,274 @@
+/* Scene files: the shipped scene's content, syntax and value errors, overrides, effect derivation
+ * and the CSG → GLSL code generation. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "check.h"
+
+#include "scene.h"
+
+#define FX(e) (1u << EFFECT_##e)
+
+static const char MINIMAL[] =
+    "{\n"
+    "  \"program\": \"csg\",\n"
+    "  \"materials\": { \"a\": { \"base_color\": [0.5, 0.5, 0.5] } },\n"
+    "  \"objects\": [ { \"shape\": \"sphere\", \"radius\": 1, \"material\": \"a\" } ]\n"
+    "}\n";
+
+static bool load(const char *text, const char *const *sets, int n, scene *s, err_t *e)
+{
+    return scene_load_text(text, "/tmp/test.json", sets, n, s, e);
+}
+
+static void expect_error(const char *text, const char *const *sets, int n, const char *needle)
+{
+    scene s;
+    err_t e = {{0}};
+    assert_false(load(text, sets, n, &s, &e));
+    if (!strstr(e.msg, needle))
+        fail_msg("error '%s' does not mention '%s'", e.msg, needle);
+}
+
+static int count(const char *hay, const char *needle)
+{
+    int n = 0;
+    for (const char *p = strstr(hay, needle); p; p = strstr(p + 1, needle))
+        n++;
+    return n;
+}
+
+static void shipped_csg_scene(void **st)
+{
+    (void)st;
+    scene s;
+    err_t e;
+    if (!scene_load("csg", NULL, 0, &s, &e))
+        fail_msg("%s", e.msg);
+    assert_int_equal(s.program, PROGRAM_CSG);
+    /* the bar: >= 8 primitives of >= 5 types, >= 4 materials, >= 2 lights + environment */
+    assert_true(s.primitive_count >= 8);
+    static const char *const kinds[] = {"sdSphere(", "sdBox(", "sdRoundBox(", "sdTorus(", "sdCylinder(",
+                                        "sdCapsule(", "sdCappedCone(", "sdPlane("};
+    int types = 0;
+    for (size_t i = 0; i < sizeof kinds / sizeof kinds[0]; i++)
+        types += strstr(s.map_glsl, kinds[i]) != NULL;
+    assert_true(types >= 5);
+    static const char *const ops[] = {"opUnion(", "opIntersection(", "opDifference(", "opSmoothUnion(",
+                                      "opSmoothDifference("};
+    for (size_t i = 0; i < sizeof ops / sizeof ops[0]; i++)
+        if (!strstr(s.map_glsl, ops[i]))
+            fail_msg("shipped scene lacks %s", ops[i]);
+    bool metal = false, rough = false, mirror = false, glass = false;
+    for (int i = 0; i < s.material_count; i++) {
+        const scene_material *m = &s.materials[i];
+        metal |= m->metallic == 1 && m->roughness > 0 && m->roughness <= MIRROR_ROUGHNESS;
+        rough |= m->metallic == 0 && m->transmission == 0 && m->roughness >= 0.4f;
+        mirror |= m->metallic == 1 && m->roughness == 0;
+        glass |= m->transmission == 1 && m->ior > 1;
+    }
+    assert_true(metal && rough && mirror && glass);
+    assert_true(s.light_count >= 2);
+    assert_true(s.has_cubemap);
+    assert_int_equal(s.texture_count, 1);
+    unsigned want = FX(SHADOWS) | FX(SOFT_SHADOWS) | FX(AO) | FX(REFLECTIONS) | FX(REFRACTION) | FX(ENVMAP) |
+                    FX(TEXTURES) | FX(AA);
+    assert_int_equal(s.effects, want); /* and no fog: the scene has none */
+    scene_free(&s);
+}
+
+static void minimal_defaults(void **st)
+{
+    (void)st;
+    scene s;
+    err_t e;
+    assert_true(load(MINIMAL, NULL, 0, &s, &e));
+    assert_int_equal(s.preset, PRESET_INTERACTIVE);
+    assert_int_equal(s.quality.max_steps, preset_quality(PRESET_INTERACTIVE).max_steps);
+    assert_near(s.materials[0].roughness, 0.5f, 0);
+    assert_near(s.materials[0].ior, 1.5f, 0);
+    assert_int_equal(s.materials[0].texture, -1);
+    /* no lights: no shadows; constant environment: AO yes, envmap no; 4 spp (interactive): AA */
+    assert_int_equal(s.effects, FX(AO) | FX(AA));
+    assert_string_equal(s.name, "test");
+    scene_free(&s);
+}
+
+static void syntax_error_has_line_and_column(void **st)
+{
+    (void)st;
+    static const char text[] = "{\n  \"program\": \"csg\",\n  \"materials\": {\n    \"a\": { \"roughness\": 0.5,, }\n";
+    expect_error(text, NULL, 0, "/tmp/test.json:4:");
+    expect_error("", NULL, 0, "/tmp/test.json:1:1");
+}
+
+static void value_errors_name_the_key(void **st)
+{
+    (void)st;
+    const char *cases[][2] = {
+        {"\"rouhgness\": 0.5", "materials.a.rouhgness: unknown key 'rouhgness' (allowed here: base_color,"},
+        {"\"roughness\": 1.5", "materials.a.roughness: expected a number from 0 to 1"},
+        {"\"roughness\": \"high\"", "materials.a.roughness"},
+        {"\"base_color\": [1, 1]", "materials.a.base_color: expected three numbers"},
+        {"\"ior\": 0.5", "materials.a.ior"},
+        {"\"texture\": \"nope.png\"", "materials.a.texture: file '/tmp/nope.png' not found"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        char text[1024];
+        snprintf(text, sizeof text,
+                 "{\"program\": \"csg\", \"materials\": {\"a\": {%s}},"
+                 " \"objects\": [{\"shape\": \"sphere\", \"material\": \"a\"}]}",
+                 cases[i][0]);
+        expect_error(text, NULL, 0, cases[i][1]);
+    }
+    expect_error("{\"program\": \"terrain9\"}", NULL, 0, "unknown program 'terrain9'");
+    expect_error("{\"materials\": {}}", NULL, 0, "program");
+    expect_error("{\"program\": \"csg\", \"materials\": {\"a\": {}}, \"objects\": [{\"shape\": \"blob\", "
+                 "\"material\": \"a\"}]}", NULL, 0, "objects.0.shape: unknown shape 'blob'");
+    expect_error("{\"program\": \"csg\", \"materials\": {\"a\": {}}, \"objects\": [{\"shape\": \"sphere\", "
+                 "\"material\": \"b\"}]}", NULL, 0, "no material named 'b'");
+    expect_error("{\"program\": \"csg\", \"materials\": {\"a\": {}}, \"objects\": [{\"op\": \"union\", "
+                 "\"children\": [{\"shape\": \"sphere\", \"material\": \"a\"}]}]}", NULL, 0,
+                 "objects.0.children: expected an array of at least two");
+    expect_error("{\"program\": \"csg\", \"materials\": {\"a\": {}}, \"objects\": [{\"op\": \"smooth_union\", "
+                 "\"children\": [{\"shape\": \"sphere\", \"material\": \"a\"}, {\"shape\": \"sphere\", "
+                 "\"material\": \"a\"}]}]}", NULL, 0, "needs a blend radius");
+    expect_error("{\"program\": \"csg\", \"materials\": {\"a\": {}}, \"lights\": [{\"type\": \"spot\"}], "
+                 "\"objects\": [{\"shape\": \"sphere\", \"material\": \"a\"}]}", NULL, 0,
+                 "lights.0.type: unknown light type 'spot'");
+}
+
+static void overrides(void **st)
+{
+    (void)st;
+    scene s;
+    err_t e;
+    const char *sets[] = {"materials.a.roughness=0.1", "quality.preset=final", "quality.max_steps=300",
+                          "camera.position=1,2,3", "effects.fog=on", "title=\"hello world\""};
+    if (!load(MINIMAL, sets, 6, &s, &e))
+        fail_msg("%s", e.msg);
+    assert_near(s.materials[0].roughness, 0.1f, 1e-7);
+    assert_int_equal(s.preset, PRESET_FINAL);
+    assert_int_equal(s.quality.max_steps, 300);
+    assert_int_equal(s.quality.spp, preset_quality(PRESET_FINAL).spp);
+    assert_near(s.cam_position[2], 3.0f, 0);
+    assert_true(s.effects & FX(FOG));
+    assert_string_equal(s.title, "hello world");
+    scene_free(&s);
+
+    const char *typo[] = {"materials.a.rouhgness=0.1"};
+    expect_error(MINIMAL, typo, 1, "(from --set)");
+    const char *bad_index[] = {"objects.5.radius=2"};
+    expect_error(MINIMAL, bad_index, 1, "not an index");
+    const char *bad_preset[] = {"quality.preset=ultra"};
+    expect_error(MINIMAL, bad_preset, 1, "unknown preset 'ultra'");
+    const char *bad_mode[] = {"effects.fog=maybe"};
+    expect_error(MINIMAL, bad_mode, 1, "\"auto\", \"on\" or \"off\"");
+}
+
+static void effects_follow_content(void **st)
+{
+    (void)st;
+    static const char text[] =
+        "{\"program\": \"csg\", \"fog\": {\"density\": 0.1},"
+        " \"lights\": [{\"position\": [0, 3, 0], \"shadow\": \"soft\"}],"
+        " \"materials\": {\"glass\": {\"transmission\": 1}, \"chrome\": {\"metallic\": 1, \"roughness\": 0.05}},"
+        " \"objects\": [{\"shape\": \"sphere\", \"material\": \"glass\"}]}";
+    scene s;
+    err_t e;
+    assert_true(load(text, NULL, 0, &s, &e));
+    assert_int_equal(s.effects,
+                     FX(SHADOWS) | FX(SOFT_SHADOWS) | FX(AO) | FX(REFLECTIONS) | FX(REFRACTION) | FX(FOG) | FX(AA));
+    scene_free(&s);
+    /* switching shadows off takes their penumbrae too; no bounces leaves nothing to refract or reflect */
+    const char *sets[] = {"effects.shadows=off", "quality.bounces=0", "effects.envmap=on", "quality.spp=1"};
+    assert_true(load(text, sets, 4, &s, &e));
+    assert_int_equal(s.effects, FX(AO) | FX(FOG) | FX(ENVMAP));
+    scene_free(&s);
+}
+
+/* Reads the nine numbers of the first `mat3(` in code. */
+static void first_mat3(const char *code, double m[9])
+{
+    const char *p = strstr(code, "mat3(");
+    assert_non_null(p);
+    p += 5;
+    for (int i = 0; i < 9; i++) {
+        char *end;
+        m[i] = strtod(p, &end);
+        assert_true(end != p);
+        p = end + strspn(end, ", ");
+    }
+}
+
+static void csg_codegen(void **st)
+{
+    (void)st;
+    static const char text[] =
+        "{\"program\": \"csg\", \"materials\": {\"a\": {}, \"b\": {}},"
+        " \"objects\": [{\"op\": \"difference\", \"position\": [1, 2, 3], \"children\": ["
+        "   {\"shape\": \"box\", \"size\": [2, 4, 6], \"rotation\": [0, 90, 0], \"material\": \"a\"},"
+        "   {\"shape\": \"sphere\", \"radius\": 0.5, \"material\": \"b\"}]},"
+        "  {\"op\": \"smooth_intersection\", \"k\": 0.25, \"children\": ["
+        "   {\"shape\": \"torus\", \"major\": 1, \"minor\": 0.2, \"material\": \"b\"},"
+        "   {\"shape\": \"cone\", \"radius_bottom\": 1, \"height\": 2, \"material\": \"a\"}]}]}";
+    scene s;
+    err_t e;
+    if (!load(text, NULL, 0, &s, &e))
+        fail_msg("%s", e.msg);
+    const char *c = s.map_glsl;
+    assert_int_equal(s.primitive_count, 4);
+    assert_non_null(strstr(c, "vec2 map(vec3 p)"));
+    assert_non_null(strstr(c, "p - vec3(1, 2, 3)"));   /* the group's translation */
+    assert_non_null(strstr(c, "vec3(1, 2, 3))"));      /* box half extents */
+    assert_non_null(strstr(c, "sdSphere("));
+    assert_non_null(strstr(c, ", 0.5), 1.0)"));         /* the sphere carries material b = 1 */
+    assert_non_null(strstr(c, "sdTorus("));
+    assert_non_null(strstr(c, "sdCappedCone("));
+    assert_int_equal(count(c, "opDifference("), 1);
+    assert_int_equal(count(c, "opSmoothIntersection("), 1);
+    assert_non_null(strstr(c, ", 0.25);"));
+    assert_int_equal(count(c, "opUnion("), 1); /* the two top-level nodes */
+    /* 90° about Y: R maps +X to −Z. The shader needs world→object = Rᵀ; mat3() takes columns,
+     * so its nine numbers are R's rows: (0,0,1), (0,1,0), (−1,0,0). */
+    double m[9];
+    first_mat3(c, m);
+    static const double want[9] = {0, 0, 1, 0, 1, 0, -1, 0, 0};
+    for (int i = 0; i < 9; i++)
+        assert_near(m[i], want[i], 1e-7);
+    scene_free(&s);
+}
+
+static void locate(void **st)
+{
+    (void)st;
+    char path[PATH_MAX_LEN];
+    err_t e;
+    assert_true(scene_locate("csg", path, sizeof path, &e));
+    assert_non_null(strstr(path, "scenes/csg.json"));
+    assert_false(scene_locate("nosuchscene", path, sizeof path, &e));
+    assert_non_null(strstr(e.msg, "unknown scene 'nosuchscene' (known: csg"));
+    assert_false(scene_locate("/tmp/does/not/exist.json", path, sizeof path, &e));
+    assert_non_null(strstr(e.msg, "not found"));
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(shipped_csg_scene),
+        cmocka_unit_test(minimal_defaults),
+        cmocka_unit_test(syntax_error_has_line_and_column),
+        cmocka_unit_test(value_errors_name_the_key),
+        cmocka_unit_test(overrides),
+        cmocka_unit_test(effects_follow_content),
+        cmocka_unit_test(csg_codegen),
+        cmocka_unit_test(locate),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,120 @@
+/* Shader assembly without GL: #include expansion with #line, and driver logs mapped back to files. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cmocka.h>
+
+#include "shader.h"
+
+static char root[64];
+
+static void put(const char *name, const char *text)
+{
+    char path[256];
+    snprintf(path, sizeof path, "%s/%s", root, name);
+    FILE *f = fopen(path, "w");
+    assert_non_null(f);
+    fputs(text, f);
+    fclose(f);
+}
+
+static int setup(void **st)
+{
+    (void)st;
+    strcpy(root, "/tmp/fathom-shader-XXXXXX");
+    if (!mkdtemp(root))
+        return -1;
+    char dir[128];
+    snprintf(dir, sizeof dir, "%s/common", root);
+    mkdir(dir, 0755);
+    put("main.frag", "// line 1\n#include \"common/a.glsl\"\nfloat x = A;\n#include \"gen.glsl\"\n#include \"common/a.glsl\"\nvoid main() {}\n");
+    put("common/a.glsl", "#define A 1.0\n#include \"common/b.glsl\"\nfloat a = B;\n");
+    put("common/b.glsl", "#define B 2.0\n");
+    put("broken.frag", "#include \"common/missing.glsl\"\n");
+    put("bad_syntax.frag", "\n\n  #include common/a.glsl\n");
+    return 0;
+}
+
+static void expands_with_line_directives(void **st)
+{
+    (void)st;
+    strbuf out = {0};
+    shader_files files = {0};
+    shader_virtual virt[] = {{"gen.glsl", "float g = 3.0;\n"}};
+    err_t e;
+    if (!shader_expand(root, "main.frag", virt, 1, &out, &files, &e))
+        fail_msg("%s", e.msg);
+    static const char want[] =
+        "#line 1 0\n"
+        "// line 1\n"
+        "#line 1 1\n"
+        "#define A 1.0\n"
+        "#line 1 2\n"
+        "#define B 2.0\n"
+        "#line 3 1\n"
+        "float a = B;\n"
+        "#line 3 0\n"
+        "float x = A;\n"
+        "#line 1 3\n"
+        "float g = 3.0;\n"
+        "#line 5 0\n"
+        "\n" /* the second include of common/a.glsl: already in, so an empty line keeps numbering */
+        "void main() {}\n";
+    assert_string_equal(out.data, want);
+    assert_int_equal(files.count, 4);
+    assert_string_equal(files.names[0], "main.frag");
+    assert_string_equal(files.names[1], "common/a.glsl");
+    assert_string_equal(files.names[2], "common/b.glsl");
+    assert_string_equal(files.names[3], "gen.glsl");
+    sb_free(&out);
+}
+
+static void include_errors_name_file_and_line(void **st)
+{
+    (void)st;
+    strbuf out = {0};
+    shader_files files = {0};
+    err_t e;
+    assert_false(shader_expand(root, "broken.frag", NULL, 0, &out, &files, &e));
+    assert_non_null(strstr(e.msg, "broken.frag:1: cannot include \"common/missing.glsl\""));
+    sb_free(&out);
+    files.count = 0;
+    assert_false(shader_expand(root, "bad_syntax.frag", NULL, 0, &out, &files, &e));
+    assert_non_null(strstr(e.msg, "bad_syntax.frag:3: malformed #include"));
+    sb_free(&out);
+    files.count = 0;
+    assert_false(shader_expand(root, "nope.frag", NULL, 0, &out, &files, &e));
+    assert_non_null(strstr(e.msg, "nope.frag"));
+    sb_free(&out);
+}
+
+static void translates_driver_logs(void **st)
+{
+    (void)st;
+    shader_files files = {.count = 2};
+    strcpy(files.names[0], "csg.frag");
+    strcpy(files.names[1], "common/march.glsl");
+    strbuf out = {0};
+    shader_translate_log("1:12(5): error: `foo' undeclared\n0:3(1): warning: unused\n", &files, &out);
+    assert_string_equal(out.data, "common/march.glsl:12: error: `foo' undeclared\ncsg.frag:3: warning: unused\n");
+    sb_free(&out);
+    shader_translate_log("1(40) : error C1008: undefined variable \"foo\"\nplain line", &files, &out);
+    assert_string_equal(out.data, "common/march.glsl:40: error C1008: undefined variable \"foo\"\nplain line\n");
+    sb_free(&out);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(expands_with_line_directives),
+        cmocka_unit_test(include_errors_name_file_and_line),
+        cmocka_unit_test(translates_driver_logs),
+    };
+    return cmocka_run_group_tests(tests, setup, NULL);
+}
