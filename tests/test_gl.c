@@ -1,1 +1,613 @@
-int main(void) { return 0; }
+/* The renderer on llvmpipe through headless EGL, at small odd sizes, probed against independent
+ * double-precision references (tests/reference.c). */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include <cmocka.h>
+#include <epoxy/gl.h>
+
+#include "check.h"
+#include "gpu.h"
+#include "image_io.h"
+#include "offline.h"
+#include "reference.h"
+#include "render.h"
+#include "scene.h"
+
+enum { W = 97, H = 61, AOV = 8 };
+#define DEG2RAD (GLM_PI / 180.0)
+
+static int setup(void **st)
+{
+    (void)st;
+    err_t e;
+    if (!gpu_open(&(gpu_desc){.headless = true}, &e) || !render_init(&e)) {
+        fprintf(stderr, "GL setup failed: %s\n", e.msg);
+        return -1;
+    }
+    fprintf(stderr, "GL: %s\n", gpu_describe());
+    return 0;
+}
+
+static int teardown(void **st)
+{
+    (void)st;
+    render_shutdown();
+    gpu_close();
+    return 0;
+}
+
+static void load_text(const char *json, const char *const *sets, int nsets, scene *s)
+{
+    err_t e;
+    char path[PATH_MAX_LEN];
+    snprintf(path, sizeof path, "%s/tests/probe.json", FATHOM_SOURCE_DIR);
+    if (!scene_load_text(json, path, sets, nsets, s, &e))
+        fail_msg("scene: %s", e.msg);
+}
+
+/* Renders `spp` samples of s; fills aov (W*H*8, top row first) and rgba (W*H*4) when not NULL. */
+static void draw(const scene *s, const camera *cam, int w, int h, int spp, const char *extra, float *aov, float *rgba)
+{
+    err_t e;
+    if (!render_set_scene(s, extra, &e))
+        fail_msg("render_set_scene: %s", e.msg);
+    render_resize(w, h);
+    render_begin(cam);
+    for (int i = 0; i < spp; i++)
+        render_sample();
+    if (aov)
+        render_read_aovs(aov);
+    if (rgba)
+        render_read_linear(rgba);
+    assert_int_equal(glGetError(), GL_NO_ERROR);
+}
+
+static camera cam_at(double ex, double ey, double ez, double tx, double ty, double tz, double fov_deg)
+{
+    return camera_look_at((vec3){(float)ex, (float)ey, (float)ez}, (vec3){(float)tx, (float)ty, (float)tz},
+                          (float)(fov_deg * DEG2RAD));
+}
+
+/* The primary ray of pixel (x, row) with row 0 at the top, in double (camera.h's convention). */
+static dray pixel_ray(const camera *c, int x, int row, int w, int h)
+{
+    camera_basis b = camera_get_basis(c);
+    double t = tan(0.5 * (double)c->fov_y);
+    double sx = (2.0 * (x + 0.5) / w - 1.0) * t * w / h;
+    double sy = (2.0 * ((h - 1 - row) + 0.5) / h - 1.0) * t;
+    dray r;
+    double len = 0;
+    for (int i = 0; i < 3; i++) {
+        r.o[i] = c->position[i];
+        r.d[i] = b.forward[i] + sx * b.right[i] + sy * b.up[i];
+        len += r.d[i] * r.d[i];
+    }
+    for (int i = 0; i < 3; i++)
+        r.d[i] /= sqrt(len);
+    return r;
+}
+
+/* ---- every variant the shipped scenes can ask for compiles and links ---------------------------- */
+
+static void variants_compile(void **st)
+{
+    (void)st;
+    strbuf names = {0};
+    scene_list(&names);
+    int compiled = 0;
+    for (char *name = names.data; name && *name;) {
+        char *nl = strchr(name, '\n');
+        *nl = '\0';
+        /* every preset as shipped, then each effect forced on and off, then all off and all on */
+        char sets[2 + 2 * EFFECT_COUNT][EFFECT_COUNT + 1][64];
+        int nsets[2 + 2 * EFFECT_COUNT + PRESET_COUNT] = {0};
+        int cases = 0;
+        for (int e = 0; e < EFFECT_COUNT; e++)
+            for (int on = 0; on < 2; on++, cases++) {
+                snprintf(sets[cases][0], 64, "effects.%s=%s", effect_name((effect)e), on ? "on" : "off");
+                nsets[cases] = 1;
+            }
+        for (int all = 0; all < 2; all++, cases++) {
+            for (int e = 0; e < EFFECT_COUNT; e++)
+                snprintf(sets[cases][e], 64, "effects.%s=%s", effect_name((effect)e), all ? "on" : "off");
+            nsets[cases] = EFFECT_COUNT;
+        }
+        for (int p = -1; p < cases + PRESET_COUNT; p++) {
+            const char *list[EFFECT_COUNT + 1];
+            int n = 0;
+            char preset[64];
+            if (p >= cases) {
+                snprintf(preset, sizeof preset, "quality.preset=%s", preset_name((quality_preset)(p - cases)));
+                list[n++] = preset;
+            } else if (p >= 0) {
+                for (int k = 0; k < nsets[p]; k++)
+                    list[n++] = sets[p][k];
+            }
+            scene s;
+            err_t e;
+            if (!scene_load(name, list, n, &s, &e))
+                fail_msg("%s: %s", name, e.msg);
+            if (!render_set_scene(&s, NULL, &e))
+                fail_msg("scene %s, case %d: %s", name, p, e.msg);
+            scene_free(&s);
+            compiled++;
+        }
+        name = nl + 1;
+    }
+    sb_free(&names);
+    assert_true(compiled >= 1 + 2 * EFFECT_COUNT + 2 + PRESET_COUNT);
+    fprintf(stderr, "compiled and linked %d variants\n", compiled);
+}
+
+/* ---- depth and normal probes against analytic intersections ---------------------------------- */
+
+typedef struct probe_case {
+    const char *name;
+    const char *objects; /* JSON array */
+    double min_radius;   /* smallest radius of curvature: bounds the normal error from a depth error */
+    dhit (*ref)(const dray *r);
+    bool (*on_surface)(const double p[3], double tol); /* p within tol of the solid's boundary */
+} probe_case;
+
+static const double SPH_C[3] = {0.3, 0.6, -0.2}, SPH_R = 0.8;
+static dhit ref_case_sphere(const dray *r) { return ref_first(ref_sphere(r, SPH_C, SPH_R)); }
+static bool on_sphere(const double p[3], double tol) { return fabs(ref_sd_sphere(p, SPH_C, SPH_R)) <= tol; }
+
+static const double BOX_C[3] = {-0.2, 0.5, 0.0}, BOX_HALF[3] = {0.6, 0.4, 0.5}, BOX_ROT[3] = {20, 35, 10};
+static dhit ref_case_box(const dray *r)
+{
+    double R[3][3];
+    ref_rotation(BOX_ROT, R);
+    dhit h = ref_first(ref_box(r, BOX_C, R, BOX_HALF));
+    if (h.hit)
+        h.crease = ref_box_crease(r, h.t, BOX_C, R, BOX_HALF);
+    return h;
+}
+
+static bool on_box(const double p[3], double tol)
+{
+    double R[3][3];
+    ref_rotation(BOX_ROT, R);
+    return fabs(ref_sd_box(p, BOX_C, R, BOX_HALF)) <= tol;
+}
+
+static const double TOR_C[3] = {0.0, 0.5, 0.0}, TOR_ROT[3] = {60, 20, 0}, TOR_MAJOR = 0.8, TOR_MINOR = 0.25;
+static dhit ref_case_torus(const dray *r)
+{
+    double R[3][3];
+    ref_rotation(TOR_ROT, R);
+    return ref_torus(r, TOR_C, R, TOR_MAJOR, TOR_MINOR, 20.0);
+}
+
+static bool on_torus(const double p[3], double tol)
+{
+    double R[3][3];
+    ref_rotation(TOR_ROT, R);
+    return fabs(ref_sd_torus(p, TOR_C, R, TOR_MAJOR, TOR_MINOR)) <= tol;
+}
+
+/* Distance from p to the sphere's surface: how far a CSG hit lies from the seam with the sphere. */
+static double seam(const dray *r, const dhit *h, const double c[3], double radius)
+{
+    double p[3], d = 0;
+    for (int i = 0; i < 3; i++) {
+        p[i] = r->o[i] + r->d[i] * h->t - c[i];
+        d += p[i] * p[i];
+    }
+    return fabs(sqrt(d) - radius);
+}
+
+static const double CSG_C[3] = {0.0, 0.5, 0.0};
+static const double DIF_HALF[3] = {0.7, 0.7, 0.7}, DIF_ROT[3] = {0, 30, 0}, DIF_R = 0.9;
+static dhit ref_case_difference(const dray *r)
+{
+    double R[3][3];
+    ref_rotation(DIF_ROT, R);
+    dhit h = ref_difference(ref_box(r, CSG_C, R, DIF_HALF), ref_sphere(r, CSG_C, DIF_R));
+    if (h.hit) /* on the box: the seam is where the sphere cuts it; in the bowl: where the bowl meets a face */
+        h.crease = fmin(seam(r, &h, CSG_C, DIF_R), ref_box_crease(r, h.t, CSG_C, R, DIF_HALF));
+    return h;
+}
+
+/* On A \\ B's boundary: on A's surface outside B, or on B's surface inside A (each within tol). */
+static bool on_difference(const double p[3], double tol)
+{
+    double R[3][3];
+    ref_rotation(DIF_ROT, R);
+    double a = ref_sd_box(p, CSG_C, R, DIF_HALF), b = ref_sd_sphere(p, CSG_C, DIF_R);
+    return (fabs(a) <= tol && b >= -tol) || (fabs(b) <= tol && a <= tol);
+}
+
+static const double INT_HALF[3] = {0.6, 0.6, 0.6}, INT_ROT[3] = {10, 20, 30}, INT_R = 0.75;
+static dhit ref_case_intersection(const dray *r)
+{
+    double R[3][3];
+    ref_rotation(INT_ROT, R);
+    dhit h = ref_intersection(ref_box(r, CSG_C, R, INT_HALF), ref_sphere(r, CSG_C, INT_R));
+    if (h.hit)
+        h.crease = fmin(seam(r, &h, CSG_C, INT_R), ref_box_crease(r, h.t, CSG_C, R, INT_HALF));
+    return h;
+}
+
+static bool on_intersection(const double p[3], double tol)
+{
+    double R[3][3];
+    ref_rotation(INT_ROT, R);
+    double a = ref_sd_box(p, CSG_C, R, INT_HALF), b = ref_sd_sphere(p, CSG_C, INT_R);
+    return (fabs(a) <= tol && b <= tol) || (fabs(b) <= tol && a <= tol);
+}
+
+static const probe_case PROBES[] = {
+    {"sphere", "[{\"shape\": \"sphere\", \"radius\": 0.8, \"position\": [0.3, 0.6, -0.2], \"material\": \"m\"}]",
+     0.8, ref_case_sphere, on_sphere},
+    {"box", "[{\"shape\": \"box\", \"size\": [1.2, 0.8, 1.0], \"position\": [-0.2, 0.5, 0], \"rotation\": [20, 35, 10],"
+            " \"material\": \"m\"}]", 10.0, ref_case_box, on_box},
+    {"torus", "[{\"shape\": \"torus\", \"major\": 0.8, \"minor\": 0.25, \"position\": [0, 0.5, 0], \"rotation\": [60, 20, 0],"
+              " \"material\": \"m\"}]", 0.25, ref_case_torus, on_torus},
+    {"difference", "[{\"op\": \"difference\", \"position\": [0, 0.5, 0], \"rotation\": [0, 30, 0], \"children\": ["
+                   "{\"shape\": \"box\", \"size\": [1.4, 1.4, 1.4], \"material\": \"m\"},"
+                   "{\"shape\": \"sphere\", \"radius\": 0.9, \"material\": \"m\"}]}]", 0.9, ref_case_difference, on_difference},
+    {"intersection", "[{\"op\": \"intersection\", \"position\": [0, 0.5, 0], \"children\": ["
+                     "{\"shape\": \"box\", \"size\": [1.2, 1.2, 1.2], \"rotation\": [10, 20, 30], \"material\": \"m\"},"
+                     "{\"shape\": \"sphere\", \"radius\": 0.75, \"material\": \"m\"}]}]", 0.75, ref_case_intersection, on_intersection},
+};
+
+static void depth_and_normal_probes(void **st)
+{
+    (void)st;
+    const double MIN_COS = 0.3;      /* grazing hits are left to the NaN sweep */
+    const int MISS_MARGIN = 3;        /* pixels from a reference silhouette where either answer is fine */
+    static float aov[W * H * AOV];
+    static dhit ref[W * H];
+    for (size_t k = 0; k < sizeof PROBES / sizeof PROBES[0]; k++) {
+        const probe_case *pc = &PROBES[k];
+        char json[2048];
+        snprintf(json, sizeof json,
+                 "{\"program\": \"csg\", \"environment\": {\"color\": [0.2, 0.2, 0.2]},"
+                 " \"quality\": {\"preset\": \"reference\", \"spp\": 1},"
+                 " \"materials\": {\"m\": {\"base_color\": [0.7, 0.7, 0.7]}}, \"objects\": %s}", pc->objects);
+        scene s;
+        load_text(json, NULL, 0, &s);
+        camera cam = cam_at(0.4, 1.6, 4.5, 0, 0.5, 0, 40);
+        draw(&s, &cam, W, H, 1, NULL, aov, NULL);
+        const double pixel_angle = camera_pixel_angle(&cam, H), hit_k = s.quality.hit_k;
+        int depth_checked = 0, normal_checked = 0, miss_checked = 0, near_misses = 0;
+        double worst_depth = 0, worst_angle = 0;
+        for (int row = 0; row < H; row++)
+            for (int x = 0; x < W; x++) {
+                dray r = pixel_ray(&cam, x, row, W, H);
+                ref[row * W + x] = pc->ref(&r);
+            }
+        for (int row = 0; row < H; row++)
+            for (int x = 0; x < W; x++) {
+                const float *a = &aov[(row * W + x) * AOV];
+                const dhit *h = &ref[row * W + x];
+                dray r = pixel_ray(&cam, x, row, W, H);
+                if (!h->hit) {
+                    bool near_silhouette = false;
+                    for (int dy = -MISS_MARGIN; dy <= MISS_MARGIN; dy++)
+                        for (int dx = -MISS_MARGIN; dx <= MISS_MARGIN; dx++) {
+                            int yy = row + dy, xx = x + dx;
+                            if (yy >= 0 && yy < H && xx >= 0 && xx < W && ref[yy * W + xx].hit)
+                                near_silhouette = true;
+                        }
+                    if (!near_silhouette) {
+                        if (!isinf(a[3]))
+                            fail_msg("%s: pixel (%d,%d) should miss, depth %g", pc->name, x, row, (double)a[3]);
+                        miss_checked++;
+                    }
+                    continue;
+                }
+                double cosv = -ref_dot(r.d, h->n);
+                if (cosv < MIN_COS)
+                    continue;
+                if (isinf(a[3]))
+                    fail_msg("%s: pixel (%d,%d) should hit at %g, missed", pc->name, x, row, h->t);
+                /* sphere tracing stops within eps(t) of the surface: eps/cos along the ray */
+                double eps = hit_k * h->t * pixel_angle;
+                double tol = 1.5 * eps / cosv + 1e-5 * h->t;
+                double err = fabs((double)a[3] - h->t);
+                if (err > tol && a[3] < h->t) {
+                    /* The threshold also counts a ray that passes within eps of the surface (a rim, an
+                     * edge) as a hit: fine if that point really lies within the threshold of the solid. */
+                    double p[3];
+                    for (int i = 0; i < 3; i++)
+                        p[i] = r.o[i] + r.d[i] * (double)a[3];
+                    if (pc->on_surface(p, 1.5 * hit_k * (double)a[3] * pixel_angle)) {
+                        near_misses++;
+                        continue;
+                    }
+                }
+                if (err > tol)
+                    fail_msg("%s: pixel (%d,%d) depth %.6f, exact %.6f (error %.2g > %.2g)", pc->name, x, row,
+                             (double)a[3], h->t, err, tol);
+                worst_depth = fmax(worst_depth, err / eps);
+                depth_checked++;
+                if (h->crease < 4 * eps)
+                    continue; /* edges and CSG seams: the normal is undefined there */
+                double dot = (a[0] * h->n[0] + a[1] * h->n[1] + a[2] * h->n[2]) /
+                             sqrt((double)a[0] * a[0] + (double)a[1] * a[1] + (double)a[2] * a[2]);
+                double angle = acos(fmin(1.0, dot));
+                double angle_tol = 0.02 + 3.0 * eps / (cosv * pc->min_radius);
+                if (angle > angle_tol)
+                    fail_msg("%s: pixel (%d,%d) normal off by %.4f rad (> %.4f)", pc->name, x, row, angle, angle_tol);
+                worst_angle = fmax(worst_angle, angle);
+                normal_checked++;
+            }
+        fprintf(stderr, "%-12s depth %4d px (worst %.2f eps), normal %4d px (worst %.4f rad), miss %4d px, "
+                "near-miss hits %d\n", pc->name, depth_checked, worst_depth, normal_checked, worst_angle,
+                miss_checked, near_misses);
+        assert_true(near_misses < depth_checked / 20);
+        assert_true(depth_checked > 200 && normal_checked > 150 && miss_checked > 500);
+        scene_free(&s);
+    }
+}
+
+/* ---- refraction: a ray through a glass sphere leaves where Snell's law says --------------------- */
+
+static void glass_sphere_snell(void **st)
+{
+    (void)st;
+    static const char json[] =
+        "{\"program\": \"csg\", \"environment\": {\"color\": [0.5, 0.5, 0.5]},"
+        " \"quality\": {\"preset\": \"reference\", \"spp\": 1, \"hit_k\": 0.02},"
+        " \"materials\": {\"glass\": {\"transmission\": 1, \"ior\": 1.5, \"roughness\": 0}},"
+        " \"objects\": [{\"shape\": \"sphere\", \"radius\": 1, \"material\": \"glass\"}]}";
+    scene s;
+    load_text(json, NULL, 0, &s);
+    camera cam = cam_at(0.3, 0.2, 4.0, 0, 0, 0, 40);
+    static float aov[W * H * AOV];
+    draw(&s, &cam, W, H, 1, NULL, aov, NULL);
+    const double c[3] = {0, 0, 0}, ior = 1.5, pixel_angle = camera_pixel_angle(&cam, H);
+    int checked = 0, straight = 0;
+    double worst = 0, max_bend = 0;
+    for (int row = 0; row < H; row++)
+        for (int x = 0; x < W; x++) {
+            dray r = pixel_ray(&cam, x, row, W, H);
+            const float *a = &aov[(row * W + x) * AOV];
+            double exit_dir[3] = {a[5], a[6], a[7]};
+            dinterval in = ref_sphere(&r, c, 1.0);
+            if (!in.hit) {
+                /* a miss leaves along the camera ray itself */
+                bool far = true;
+                double oc = -ref_dot(r.o, r.d), d2 = ref_dot(r.o, r.o) - oc * oc;
+                far = sqrt(d2) > 1.0 + 3 * 4.0 * pixel_angle;
+                if (far) {
+                    assert_near(ref_dot(exit_dir, r.d), 1.0, 1e-5);
+                    straight++;
+                }
+                continue;
+            }
+            double cosv = -ref_dot(r.d, in.n0);
+            if (cosv < 0.3)
+                continue;
+            /* enter: air → glass; cross; leave: glass → air, the normal turned to face the ray */
+            dray inside;
+            for (int i = 0; i < 3; i++)
+                inside.o[i] = r.o[i] + r.d[i] * in.t0;
+            assert_true(ref_refract(r.d, in.n0, 1.0 / ior, inside.d));
+            dinterval out = ref_sphere(&inside, c, 1.0);
+            double n_exit[3] = {-out.n1[0], -out.n1[1], -out.n1[2]}, want[3];
+            assert_true(ref_refract(inside.d, n_exit, ior, want)); /* a sphere never traps light by TIR */
+            double angle = acos(fmin(1.0, ref_dot(exit_dir, want) / sqrt(ref_dot(exit_dir, exit_dir))));
+            double eps = s.quality.hit_k * in.t0 * pixel_angle;
+            double tol = 2e-3 + 8.0 * eps / cosv; /* the entry point is off by up to eps/cos */
+            if (angle > tol)
+                fail_msg("pixel (%d,%d): leaves %.4f rad off Snell's direction (> %.4f)", x, row, angle, tol);
+            worst = fmax(worst, angle);
+            max_bend = fmax(max_bend, acos(fmin(1.0, ref_dot(want, r.d))));
+            checked++;
+        }
+    fprintf(stderr, "snell: %d px through glass (worst %.5f rad, paths bend up to %.3f rad), %d px straight\n",
+            checked, worst, max_bend, straight);
+    assert_true(checked > 300 && straight > 1000);
+    assert_true(max_bend > 0.2); /* the test looks at paths that really bend */
+    scene_free(&s);
+}
+
+/* ---- shadows: a lit plane shows no self-shadowing acne ------------------------------------------ */
+
+/* Share of ground pixels whose colour differs from the unshadowed render by more than 0.1 %.
+ * light_pos: a point light's position (NULL: directional). Soft shadows estimate a light of angular
+ * radius ~1/k: within that angle of the plane's own horizon the plane does hide part of it, so those
+ * pixels (k sin(elevation) < 2) are left out. */
+static double acne_share(const char *light, const double *light_pos, double k, const char *extra)
+{
+    char json[1024];
+    snprintf(json, sizeof json,
+             "{\"program\": \"csg\", \"environment\": {\"intensity\": 0}, \"lights\": [%s],"
+             " \"quality\": {\"preset\": \"interactive\", \"spp\": 1},"
+             " \"materials\": {\"floor\": {\"base_color\": [0.8, 0.8, 0.8], \"roughness\": 0.7}},"
+             " \"objects\": [{\"shape\": \"plane\", \"material\": \"floor\"}]}", light);
+    static float lit[W * H * 4], unshadowed[W * H * 4], aov[W * H * AOV];
+    scene s, s_off;
+    load_text(json, NULL, 0, &s);
+    const char *off[] = {"effects.shadows=off"};
+    load_text(json, off, 1, &s_off);
+    camera cam = cam_at(0.0, 1.2, 4.0, 0.0, 0.0, -2.0, 50);
+    draw(&s, &cam, W, H, 1, extra, aov, lit);
+    draw(&s_off, &cam, W, H, 1, NULL, NULL, unshadowed);
+    int ground = 0, acne = 0;
+    for (int i = 0; i < W * H; i++) {
+        if (isinf(aov[i * AOV + 3]))
+            continue;
+        if (light_pos) {
+            dray r = pixel_ray(&cam, i % W, i / W, W, H);
+            double l[3];
+            for (int c = 0; c < 3; c++)
+                l[c] = light_pos[c] - (r.o[c] + r.d[c] * (double)aov[i * AOV + 3]);
+            if (k * l[1] / sqrt(ref_dot(l, l)) < 2.0)
+                continue;
+        }
+        ground++;
+        double a = lit[i * 4], b = unshadowed[i * 4];
+        acne += fabs(a - b) > 1e-3 * fmax(b, 1e-6);
+    }
+    assert_true(ground > W * H / 3);
+    scene_free(&s);
+    scene_free(&s_off);
+    return (double)acne / ground;
+}
+
+static void no_self_shadowing(void **st)
+{
+    (void)st;
+    static const char *const lights[] = {
+        "{\"type\": \"directional\", \"direction\": [0.3, 0.35, 0.2], \"shadow\": \"hard\", \"intensity\": 2}",
+        "{\"type\": \"point\", \"position\": [1, 1.5, -1], \"shadow\": \"soft\", \"intensity\": 10}",
+    };
+    static const double point[3] = {1, 1.5, -1};
+    for (int i = 0; i < 2; i++) {
+        const double *pos = i == 1 ? point : NULL;
+        double with_offset = acne_share(lights[i], pos, 16, NULL);
+        double without = acne_share(lights[i], pos, 16, "#define SURFACE_OFFSET_K 0.0\n");
+        fprintf(stderr, "acne, light %d: %.1f %% of ground pixels with the offset, %.1f %% without\n", i,
+                100 * with_offset, 100 * without);
+        assert_true(with_offset == 0.0);
+        assert_true(without > 0.5); /* the check sees acne when the guard is off */
+    }
+}
+
+/* ---- no NaN or Inf in any output channel ---------------------------------------------------------- */
+
+static uint32_t rng = 12345u;
+static double rnd(double lo, double hi)
+{
+    rng = rng * 1664525u + 1013904223u;
+    return lo + (hi - lo) * (double)(rng >> 8) / 16777216.0;
+}
+
+static void check_finite(const char *what, const float *aov, const float *rgba, int n)
+{
+    for (int i = 0; i < n; i++) {
+        const float *a = aov + i * AOV, *c = rgba + i * 4;
+        for (int k = 0; k < 4; k++)
+            if (!isfinite(c[k]))
+                fail_msg("%s: pixel %d colour channel %d is %g", what, i, k, (double)c[k]);
+        for (int k = 0; k < AOV; k++)
+            if (k != 3 && !isfinite(a[k]))
+                fail_msg("%s: pixel %d AOV channel %d is %g", what, i, k, (double)a[k]);
+        if (isnan(a[3]) || a[3] < 0 || (isinf(a[3]) && (a[0] != 0 || a[1] != 0 || a[2] != 0)))
+            fail_msg("%s: pixel %d depth %g with normal (%g %g %g)", what, i, (double)a[3], (double)a[0],
+                     (double)a[1], (double)a[2]);
+        if (a[4] < 1)
+            fail_msg("%s: pixel %d took %g steps", what, i, (double)a[4]);
+    }
+}
+
+static void no_nan_or_inf(void **st)
+{
+    (void)st;
+    enum { SW = 61, SH = 37, RANDOM_CAMERAS = 12 };
+    static float aov[SW * SH * AOV], rgba[SW * SH * 4];
+    strbuf names = {0};
+    scene_list(&names);
+    int renders = 0;
+    for (char *name = names.data; name && *name;) {
+        char *nl = strchr(name, '\n');
+        *nl = '\0';
+        for (int p = PRESET_DRAFT; p <= PRESET_FINAL; p++) {
+            char preset[64], spp[] = "quality.spp=2";
+            snprintf(preset, sizeof preset, "quality.preset=%s", preset_name((quality_preset)p));
+            const char *sets[] = {preset, spp};
+            scene s;
+            err_t e;
+            if (!scene_load(name, sets, 2, &s, &e))
+                fail_msg("%s", e.msg);
+            camera cams[RANDOM_CAMERAS + 6];
+            int nc = 0;
+            cams[nc++] = camera_look_at(s.cam_position, s.cam_look_at, s.cam_fov_deg * GLM_PIf / 180.0f);
+            cams[nc++] = cam_at(0, 1e-4, 3, 0, 1e-4, -3, 60);   /* 0.1 mm above the ground, looking along it */
+            cams[nc++] = cam_at(0, 1e3, 1e3, 0, 0, 0, 10);      /* far away */
+            cams[nc++] = cam_at(0, 1, 0, 0, 10, 0, 90);         /* straight up (clamped) */
+            cams[nc++] = cam_at(0, 1, 0, 0, -10, 0, 90);        /* straight down */
+            cams[nc++] = cam_at(0, 0.7, 0.4, 0, 0.7, -3, 70);   /* inside whatever sits there */
+            for (int k = 0; k < RANDOM_CAMERAS; k++)
+                cams[nc++] = cam_at(rnd(-4, 4), rnd(-0.5, 3), rnd(-4, 4), rnd(-4, 4), rnd(-1, 2), rnd(-4, 4), rnd(20, 120));
+            for (int k = 0; k < nc; k++) {
+                draw(&s, &cams[k], SW, SH, 2, NULL, aov, rgba);
+                char what[128];
+                snprintf(what, sizeof what, "%s/%s camera %d", name, preset_name((quality_preset)p), k);
+                check_finite(what, aov, rgba, SW * SH);
+                renders++;
+            }
+            scene_free(&s);
+        }
+        name = nl + 1;
+    }
+    sb_free(&names);
+    fprintf(stderr, "no NaN/Inf in %d renders\n", renders);
+    assert_true(renders >= 3 * (RANDOM_CAMERAS + 6));
+}
+
+/* ---- the written PNG is the right way up, colours in the right channels ------------------------- */
+
+static void png_orientation(void **st)
+{
+    (void)st;
+    static const char json[] =
+        "{\"program\": \"csg\", \"environment\": {\"intensity\": 0}, \"quality\": {\"spp\": 1},"
+        " \"materials\": {\"red\": {\"base_color\": [0, 0, 0], \"emission\": [4, 0, 0]},"
+        "                 \"green\": {\"base_color\": [0, 0, 0], \"emission\": [0, 4, 0]}},"
+        " \"objects\": [{\"shape\": \"sphere\", \"radius\": 0.3, \"position\": [-1.2, 0.6, 0], \"material\": \"red\"},"
+        "              {\"shape\": \"sphere\", \"radius\": 0.3, \"position\": [1.3, -0.5, 0], \"material\": \"green\"}]}";
+    scene s;
+    load_text(json, NULL, 0, &s);
+    camera cam = cam_at(0, 0, 5, 0, 0, 0, 40);
+    draw(&s, &cam, W, H, 1, NULL, NULL, NULL);
+    char dir[] = "/tmp/fathom-orient-XXXXXX", path[64];
+    assert_non_null(mkdtemp(dir));
+    snprintf(path, sizeof path, "%s/shot.png", dir);
+    err_t e;
+    if (!offline_write(path, W, H, 0, &e))
+        fail_msg("%s", e.msg);
+    int w, h;
+    uint8_t *px;
+    if (!image_read_u8(path, 4, &w, &h, &px, &e))
+        fail_msg("%s", e.msg);
+    unlink(path);
+    rmdir(dir);
+    assert_int_equal(w, W);
+    assert_int_equal(h, H);
+    /* project each centre in double: column from the left, row from the top */
+    const double centres[2][3] = {{-1.2, 0.6, 0}, {1.3, -0.5, 0}};
+    camera_basis b = camera_get_basis(&cam);
+    double t = tan(0.5 * (double)cam.fov_y);
+    for (int k = 0; k < 2; k++) {
+        double v[3];
+        for (int i = 0; i < 3; i++)
+            v[i] = centres[k][i] - cam.position[i];
+        double f = v[0] * b.forward[0] + v[1] * b.forward[1] + v[2] * b.forward[2];
+        double sx = (v[0] * b.right[0] + v[1] * b.right[1] + v[2] * b.right[2]) / f / (t * W / H);
+        double sy = (v[0] * b.up[0] + v[1] * b.up[1] + v[2] * b.up[2]) / f / t;
+        int x = (int)floor((sx + 1) / 2 * W), row = H - 1 - (int)floor((sy + 1) / 2 * H);
+        const uint8_t *p = px + (row * W + x) * 4;
+        int main = k == 0 ? 0 : 1, other = k == 0 ? 1 : 0;
+        if (!(p[main] > 200 && p[other] < 10 && p[2] < 10))
+            fail_msg("sphere %d at column %d, row %d: colour (%d %d %d)", k, x, row, p[0], p[1], p[2]);
+    }
+    assert_true(px[0] < 10 && px[1] < 10 && px[2] < 10); /* the black background */
+    free(px);
+    scene_free(&s);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(variants_compile),
+        cmocka_unit_test(depth_and_normal_probes),
+        cmocka_unit_test(glass_sphere_snell),
+        cmocka_unit_test(no_self_shadowing),
+        cmocka_unit_test(no_nan_or_inf),
+        cmocka_unit_test(png_orientation),
+    };
+    return cmocka_run_group_tests(tests, setup, teardown);
+}

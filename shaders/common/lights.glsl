@@ -1,5 +1,6 @@
 // Direct light from point lights (radiant intensity, 1/d² falloff as the course task insists) and
 // directional lights (irradiance), each with its own shadow mode.
+#if NUM_LIGHTS > 0 // GLSL has no arrays of size 0
 uniform vec4 uLightVec[NUM_LIGHTS];   // xyz: position (point) or unit direction toward it; w: 0 point, 1 directional
 uniform vec4 uLightColor[NUM_LIGHTS]; // rgb: colour × intensity; w: shadow mode 0 none, 1 hard, 2 soft
 uniform float uLightSoftness[NUM_LIGHTS];
@@ -41,3 +42,6 @@ vec3 directLight(vec3 p, vec3 n, vec3 v, Material m, vec3 F0, float pathT)
     }
     return sum;
 }
+#else
+vec3 directLight(vec3 p, vec3 n, vec3 v, Material m, vec3 F0, float pathT) { return vec3(0.0); }
+#endif

@@ -47,9 +47,13 @@ Hit castRay(vec3 ro, vec3 rd, float tmax, float side, float pathT)
 }
 
 // Gradient of the distance by the tetrahedron of central differences (four map() calls).
-vec3 calcNormal(vec3 p, float eps)
+// Where the gradient vanishes (the centre of a sphere, a point on a symmetry plane of a solid that a
+// camera sits inside) normalize() would return NaN: `fallback` (unit) is returned instead.
+vec3 calcNormal(vec3 p, float eps, vec3 fallback)
 {
     const vec2 k = vec2(1.0, -1.0);
-    return normalize(k.xyy * map(p + k.xyy * eps).x + k.yyx * map(p + k.yyx * eps).x +
-                     k.yxy * map(p + k.yxy * eps).x + k.xxx * map(p + k.xxx * eps).x);
+    vec3 g = k.xyy * map(p + k.xyy * eps).x + k.yyx * map(p + k.yyx * eps).x +
+             k.yxy * map(p + k.yxy * eps).x + k.xxx * map(p + k.xxx * eps).x;
+    float len = length(g);
+    return len > 1e-20 ? g / len : fallback;
 }

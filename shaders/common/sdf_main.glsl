@@ -56,6 +56,12 @@ void main()
     vec3 firstN = vec3(0.0);
     int firstSteps = 0;
     bool escaped = false;
+#if FX_REFRACTION
+    // A camera inside glass starts on the inside: march to where the path leaves.
+    vec2 start = map(ro);
+    if (start.x < 0.0 && uMatParams[clamp(int(start.y + 0.5), 0, NUM_MATERIALS - 1)].y > 0.0)
+        side = -1.0;
+#endif
 
     for (int bounce = 0; bounce <= BOUNCES; bounce++) {
         Hit h = castRay(ro, rd, float(MAX_DIST) - pathT, side, pathT);
@@ -69,7 +75,7 @@ void main()
         vec3 p = ro + rd * h.t;
         float T = pathT + h.t;
         float eps = hitEps(T);
-        vec3 nOut = calcNormal(p, eps); // outward normal of the solid
+        vec3 nOut = calcNormal(p, eps, -rd); // outward normal of the solid
         if (bounce == 0) {
             firstT = h.t;
             primaryT = h.t;
