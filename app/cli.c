@@ -6,12 +6,15 @@
 #include <stdlib.h>
 #include <string.h>
 
-enum { MAX_IMAGE_SIDE = 16384, MAX_SPP = 1 << 16 };
+enum { MAX_IMAGE_SIDE = 16384, MAX_SPP = 1 << 16, DEFAULT_RUNS = 5, MAX_RUNS = 1000 };
 static const float MAX_FOV_DEG = 179.0f; /* vertical field of view; 180 degrees has no perspective */
 
 static const char USAGE[] =
     "usage: fathom [options]\n"
+    "       fathom bench [--scene S] [--size WxH] [--runs N] [--csv FILE] [--set KEY=VALUE]...\n"
     "  Opens the explorer window, or renders an offline shot with --output (no display needed).\n"
+    "  bench: headless; times one sample per pixel at every quality preset, median of N runs [5]\n"
+    "  after warm-up, wall clock around glFinish; prints a table, writes CSV with --csv.\n"
     "\n"
     "  --scene NAME|FILE     scene to load: a name from scenes/ (csg) or a scene file path [csg]\n"
     "  --output FILE         render headless to FILE (.png 8-bit sRGB, .exr linear float) and exit\n"
@@ -118,8 +121,13 @@ static bool parse_aovs(const char *s, unsigned *mask)
 
 bool cli_parse(int argc, char **argv, cli_options *o, err_t *err)
 {
-    *o = (cli_options){.scene = "csg"};
-    for (int i = 1; i < argc; i++) {
+    *o = (cli_options){.scene = "csg", .runs = DEFAULT_RUNS};
+    int first = 1;
+    if (argc > 1 && !strcmp(argv[1], "bench")) {
+        o->bench = true;
+        first = 2;
+    }
+    for (int i = first; i < argc; i++) {
         const char *a = argv[i];
         /* flags without a value */
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) { o->help = true; continue; }
@@ -143,7 +151,8 @@ bool cli_parse(int argc, char **argv, cli_options *o, err_t *err)
             val = (i + 1 < argc) ? argv[++i] : NULL;
         }
         static const char *const with_value[] = {"--scene", "--output", "--size", "--spp", "--quality",
-                                                 "--camera", "--look-at", "--fov", "--set", "--aov", "--frames"};
+                                                 "--camera", "--look-at", "--fov", "--set", "--aov", "--frames",
+                                                 "--runs", "--csv"};
         bool known = false;
         for (size_t k = 0; k < sizeof with_value / sizeof with_value[0]; k++)
             known |= !strcmp(name, with_value[k]);
@@ -163,6 +172,11 @@ bool cli_parse(int argc, char **argv, cli_options *o, err_t *err)
         } else if (!strcmp(name, "--spp")) {
             if (!parse_int(val, 1, MAX_SPP, &o->spp))
                 return err_set(err, "bad --spp '%s': expected a whole number from 1 to %d", val, MAX_SPP);
+        } else if (!strcmp(name, "--runs")) {
+            if (!parse_int(val, 1, MAX_RUNS, &o->runs))
+                return err_set(err, "bad --runs '%s': expected a whole number from 1 to %d", val, MAX_RUNS);
+        } else if (!strcmp(name, "--csv")) {
+            o->csv = val;
         } else if (!strcmp(name, "--frames")) {
             if (!parse_int(val, 1, 1 << 30, &o->frames))
                 return err_set(err, "bad --frames '%s': expected a whole number >= 1", val);
@@ -198,6 +212,10 @@ bool cli_parse(int argc, char **argv, cli_options *o, err_t *err)
                 return err_set(err, "bad --aov '%s': expected a comma list of depth, normal, steps, exit", val);
         }
     }
+    if (o->bench && (o->output || o->aovs || o->frames || o->print_variant))
+        return err_set(err, "fathom bench takes --scene, --size, --runs, --csv, --set and --quiet only");
+    if (!o->bench && (o->csv || o->runs != DEFAULT_RUNS))
+        return err_set(err, "--runs and --csv belong to fathom bench");
     if (o->aovs && !o->output)
         return err_set(err, "--aov needs an offline shot: add --output FILE.exr");
     if (o->output) {

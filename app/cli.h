@@ -1,6 +1,7 @@
 /* cli — the command line, parsed into an options struct. Pure: no I/O but the error text.
  *
  *   fathom [options]              explorer window (or an offline shot with --output)
+ *   fathom bench [options]        time every quality preset of a scene (median of --runs frames)
  *   fathom --help                 usage
  *
  * Angles are degrees on the command line (radians inside the code); sizes are pixels.
@@ -33,6 +34,9 @@ typedef struct cli_options {
     int set_count;
     unsigned aovs; /* aov_flag bits */
     bool print_variant, list_scenes, help, version, quiet;
+    bool bench;        /* `fathom bench ...` */
+    int runs;          /* bench: timed frames per setting (median reported) */
+    const char *csv;   /* bench: CSV output path */
 } cli_options;
 
 /* Parses argv into *o (zeroed first). False with one line in err on bad input. */

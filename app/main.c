@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bench.h"
 #include "cli.h"
 #include "explore.h"
 #include "offline.h"
@@ -54,6 +55,12 @@ int main(int argc, char **argv)
         fputs(names.data ? names.data : "", stdout);
         sb_free(&names);
         return 0;
+    }
+    if (opt.bench) {
+        bool ok = bench_run(&opt, &err);
+        if (!ok)
+            fprintf(stderr, "fathom: %s\n", err.msg);
+        return ok ? 0 : 1;
     }
     if (!opt.output && !opt.print_variant) {
         bool ok = explore_run(&opt, &err);

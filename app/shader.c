@@ -130,7 +130,7 @@ static GLuint compile(GLenum type, const char *root, const char *file, const cha
         glGetShaderInfoLog(sh, len, NULL, log);
         strbuf msg = {0};
         shader_translate_log(log, &files, &msg);
-        err_set(err, "shader compile error in %s (fix the file and press R to reload):\n%s", file,
+        err_set(err, "shader compile error in %s:\n%s", file,
                 msg.data ? msg.data : "(no log)");
         sb_free(&msg);
         free(log);
