@@ -599,6 +599,60 @@ static void png_orientation(void **st)
     scene_free(&s);
 }
 
+/* ---- a broken shader on reload keeps the last good program and says where it broke -------------- */
+
+static void reload_keeps_last_good_program(void **st)
+{
+    (void)st;
+    char dir[] = "/tmp/fathom-reload-XXXXXX", cmd[512], march[300];
+    assert_non_null(mkdtemp(dir));
+    snprintf(cmd, sizeof cmd, "cp -r '%s/shaders' '%s/scenes' '%s/textures' '%s/'", FATHOM_SOURCE_DIR,
+             FATHOM_SOURCE_DIR, FATHOM_SOURCE_DIR, dir);
+    assert_int_equal(system(cmd), 0);
+    snprintf(march, sizeof march, "%s/shaders/common/march.glsl", dir);
+    render_shutdown();
+    setenv("FATHOM_DATA_DIR", dir, 1);
+    err_t e;
+    assert_true(render_init(&e));
+    scene s;
+    load_text("{\"program\": \"csg\", \"quality\": {\"spp\": 1}, \"materials\": {\"m\": {}},"
+              " \"objects\": [{\"shape\": \"sphere\", \"material\": \"m\"}]}", NULL, 0, &s);
+    camera cam = cam_at(0, 0, 4, 0, 0, 0, 40);
+    static float before[W * H * AOV], after[W * H * AOV];
+    draw(&s, &cam, W, H, 1, NULL, before, NULL);
+
+    /* break the file: an undeclared name on a known line */
+    char *text;
+    assert_true(util_read_file(march, &text, NULL, &e));
+    FILE *f = fopen(march, "w");
+    fprintf(f, "float broken() { return not_declared_anywhere; }\n%s", text);
+    fclose(f);
+    assert_false(render_reload(&e));
+    if (!strstr(e.msg, "common/march.glsl:1:"))
+        fail_msg("reload error does not point at common/march.glsl:1: %s", e.msg);
+    render_begin(&cam); /* the old program still draws the same image */
+    render_sample();
+    render_read_aovs(after);
+    assert_memory_equal(before, after, sizeof before);
+
+    f = fopen(march, "w"); /* mended: the reload succeeds */
+    fputs(text, f);
+    fclose(f);
+    free(text);
+    if (!render_reload(&e))
+        fail_msg("%s", e.msg);
+    draw(&s, &cam, W, H, 1, NULL, after, NULL);
+    assert_memory_equal(before, after, sizeof before);
+
+    scene_free(&s);
+    render_shutdown();
+    unsetenv("FATHOM_DATA_DIR");
+    setenv("FATHOM_DATA_DIR", FATHOM_SOURCE_DIR, 1);
+    assert_true(render_init(&e));
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    assert_int_equal(system(cmd), 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -608,6 +662,7 @@ int main(void)
         cmocka_unit_test(no_self_shadowing),
         cmocka_unit_test(no_nan_or_inf),
         cmocka_unit_test(png_orientation),
+        cmocka_unit_test(reload_keeps_last_good_program),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }
