@@ -4,6 +4,7 @@
 #include <cjson/cJSON.h>
 #include <dirent.h>
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -19,11 +20,15 @@ typedef struct ctx {
     int next_var;
 } ctx;
 
-static bool fail(ctx *c, const char *path, const char *fmt, const char *a, const char *b)
+static bool fail(ctx *c, const char *path, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+static bool fail(ctx *c, const char *path, const char *fmt, ...)
 {
     char what[1024];
-    if (snprintf(what, sizeof what, fmt, a, b) >= (int)sizeof what)
+    va_list ap;
+    va_start(ap, fmt);
+    if (vsnprintf(what, sizeof what, fmt, ap) >= (int)sizeof what)
         what[sizeof what - 1] = '\0';
+    va_end(ap);
     return err_set(c->err, "%s: %s: %s", c->file, path[0] ? path : "(top level)", what);
 }
 
@@ -38,7 +43,7 @@ static void child_path(char *out, size_t n, const char *parent, const char *key)
 static bool check_keys(ctx *c, const cJSON *obj, const char *path, const char *const *allowed)
 {
     if (!cJSON_IsObject(obj))
-        return fail(c, path, "expected an object {...}%s%s", "", "");
+        return fail(c, path, "expected an object {...}");
     for (const cJSON *it = obj->child; it; it = it->next) {
         bool ok = false;
         for (const char *const *k = allowed; *k; k++)
@@ -70,7 +75,7 @@ static bool get_num(ctx *c, const cJSON *obj, const char *path, const char *key,
     if (!cJSON_IsNumber(v) || !isfinite(v->valuedouble) || v->valuedouble < lo || v->valuedouble > hi) {
         char range[128];
         snprintf(range, sizeof range, "%g to %g", (double)lo, (double)hi);
-        return fail(c, p, "expected a number from %s%s", range, "");
+        return fail(c, p, "expected a number from %s", range);
     }
     *out = (float)v->valuedouble;
     return true;
@@ -85,7 +90,7 @@ static bool get_int(ctx *c, const cJSON *obj, const char *path, const char *key,
     if (f != floorf(f)) {
         char p[512];
         child_path(p, sizeof p, path, key);
-        return fail(c, p, "expected a whole number%s%s", "", "");
+        return fail(c, p, "expected a whole number");
     }
     *out = (int)f;
     return true;
@@ -102,13 +107,13 @@ static bool get_vec3(ctx *c, const cJSON *obj, const char *path, const char *key
         return true;
     }
     if (!cJSON_IsArray(v) || cJSON_GetArraySize(v) != 3)
-        return fail(c, p, "expected three numbers [x, y, z]%s%s", "", "");
+        return fail(c, p, "expected three numbers [x, y, z]");
     for (int i = 0; i < 3; i++) {
         const cJSON *e = cJSON_GetArrayItem(v, i);
         if (!cJSON_IsNumber(e) || !isfinite(e->valuedouble) || e->valuedouble < lo || e->valuedouble > hi) {
             char range[128];
             snprintf(range, sizeof range, "%g to %g", (double)lo, (double)hi);
-            return fail(c, p, "expected three numbers, each from %s%s", range, "");
+            return fail(c, p, "expected three numbers, each from %s", range);
         }
         out[i] = (float)e->valuedouble;
     }
@@ -126,7 +131,7 @@ static bool get_str(ctx *c, const cJSON *obj, const char *path, const char *key,
     if (!cJSON_IsString(v)) {
         char p[512];
         child_path(p, sizeof p, path, key);
-        return fail(c, p, "expected a string in quotes%s%s", "", "");
+        return fail(c, p, "expected a string in quotes");
     }
     *out = v->valuestring;
     return true;
@@ -135,9 +140,9 @@ static bool get_str(ctx *c, const cJSON *obj, const char *path, const char *key,
 static bool resolve_file(ctx *c, const char *path, const char *rel, char *out)
 {
     if (!util_join(c->s->dir, rel, out, PATH_MAX_LEN))
-        return fail(c, path, "path '%s' is too long%s", rel, "");
+        return fail(c, path, "path '%s' is too long", rel);
     if (!util_file_exists(out))
-        return fail(c, path, "file '%s' not found (paths are relative to the scene file's folder)", out, "");
+        return fail(c, path, "file '%s' not found (paths are relative to the scene file's folder)", out);
     return true;
 }
 
@@ -180,7 +185,7 @@ static bool parse_material(ctx *c, const cJSON *m, const char *path, scene_mater
             return false;
         out->texture = add_texture(c->s, resolved);
         if (out->texture < 0)
-            return fail(c, p, "too many textures (at most %s)%s", "4", "");
+            return fail(c, p, "too many textures (at most %d)", SCENE_MAX_TEXTURES);
     }
     return true;
 }
@@ -189,14 +194,14 @@ static bool parse_materials(ctx *c, const cJSON *root)
 {
     const cJSON *mats = cJSON_GetObjectItemCaseSensitive(root, "materials");
     if (!cJSON_IsObject(mats) || !mats->child)
-        return fail(c, "materials", "expected an object of named materials, e.g. {\"red\": {\"base_color\": [0.8, 0.1, 0.1]}}%s%s", "", "");
+        return fail(c, "materials", "expected an object of named materials, e.g. {\"red\": {\"base_color\": [0.8, 0.1, 0.1]}}");
     for (const cJSON *m = mats->child; m; m = m->next) {
         char p[512];
         child_path(p, sizeof p, "materials", m->string);
         if (c->s->material_count == SCENE_MAX_MATERIALS)
-            return fail(c, p, "too many materials (at most %s)%s", "16", "");
+            return fail(c, p, "too many materials (at most %d)", SCENE_MAX_MATERIALS);
         if (strlen(m->string) == 0 || strlen(m->string) >= SCENE_NAME_MAX)
-            return fail(c, p, "material names must have 1 to 63 characters%s%s", "", "");
+            return fail(c, p, "material names must have 1 to 63 characters");
         scene_material *out = &c->s->materials[c->s->material_count++];
         strcpy(out->name, m->string);
         if (!parse_material(c, m, p, out))
@@ -217,14 +222,13 @@ static int find_material(const scene *s, const char *name)
 
 /* Object-to-world rotation from Euler angles in degrees, applied X then Y then Z. The shader needs
  * world-to-object, the transpose; GLSL's mat3() takes columns, so we emit R's rows as columns. */
-static void emit_transform(ctx *c, const cJSON *node, const char *path, const char *pin, char *pout, bool *ok)
+static bool emit_transform(ctx *c, const cJSON *node, const char *path, const char *pin, char *pout)
 {
     static const float zero[3] = {0, 0, 0};
     float pos[3], rot[3];
-    *ok = get_vec3(c, node, path, "position", zero, -1e6f, 1e6f, pos) &&
-          get_vec3(c, node, path, "rotation", zero, -360, 360, rot);
-    if (!*ok)
-        return;
+    if (!get_vec3(c, node, path, "position", zero, -1e6f, 1e6f, pos) ||
+        !get_vec3(c, node, path, "rotation", zero, -360, 360, rot))
+        return false;
     int v = c->next_var++;
     sprintf(pout, "q%d", v);
     bool has_rot = rot[0] != 0 || rot[1] != 0 || rot[2] != 0;
@@ -234,7 +238,7 @@ static void emit_transform(ctx *c, const cJSON *node, const char *path, const ch
         else
             sb_printf(&c->code, "    vec3 %s = %s - vec3(%.9g, %.9g, %.9g);\n", pout, pin, (double)pos[0],
                       (double)pos[1], (double)pos[2]);
-        return;
+        return true;
     }
     double cx = cos(rot[0] * DEG2RAD), sx = sin(rot[0] * DEG2RAD);
     double cy = cos(rot[1] * DEG2RAD), sy = sin(rot[1] * DEG2RAD);
@@ -251,6 +255,7 @@ static void emit_transform(ctx *c, const cJSON *node, const char *path, const ch
             sb_printf(&c->code, "%.9g%s", r[row][col], (row == 2 && col == 2) ? "" : ", ");
     sb_printf(&c->code, ") * (%s - vec3(%.9g, %.9g, %.9g));\n", pin, (double)pos[0], (double)pos[1],
               (double)pos[2]);
+    return true;
 }
 
 static int emit_node(ctx *c, const cJSON *node, const char *path, const char *pin);
@@ -274,7 +279,7 @@ static int emit_primitive(ctx *c, const cJSON *node, const char *path, const cha
     if (si < 0) {
         char p[512];
         child_path(p, sizeof p, path, "shape");
-        fail(c, p, "unknown shape '%s' (known: sphere, box, round_box, torus, cylinder, capsule, cone, plane)%s", shape, "");
+        fail(c, p, "unknown shape '%s' (known: sphere, box, round_box, torus, cylinder, capsule, cone, plane)", shape);
         return -1;
     }
     const char *keys[10];
@@ -293,19 +298,17 @@ static int emit_primitive(ctx *c, const cJSON *node, const char *path, const cha
     char mp[512];
     child_path(mp, sizeof mp, path, "material");
     if (!mname) {
-        fail(c, mp, "every primitive needs a material, e.g. \"material\": \"%s\"%s", c->s->materials[0].name, "");
+        fail(c, mp, "every primitive needs a material, e.g. \"material\": \"%s\"", c->s->materials[0].name);
         return -1;
     }
     int mat = find_material(c->s, mname);
     if (mat < 0) {
-        fail(c, mp, "no material named '%s' in \"materials\"%s", mname, "");
+        fail(c, mp, "no material named '%s' in \"materials\"", mname);
         return -1;
     }
 
     char q[32];
-    bool ok;
-    emit_transform(c, node, path, pin, q, &ok);
-    if (!ok)
+    if (!emit_transform(c, node, path, pin, q))
         return -1;
     const float BIG = 1e5f, TINY = 1e-5f;
     static const float up[3] = {0, 1, 0};
@@ -323,7 +326,7 @@ static int emit_primitive(ctx *c, const cJSON *node, const char *path, const cha
             !get_num(c, node, path, "radius", 0.1f, 0, BIG, &a)) return -1;
         float m = fminf(v3[0], fminf(v3[1], v3[2]));
         if (2 * a > m) {
-            fail(c, path, "radius must be at most half the smallest size%s%s", "", "");
+            fail(c, path, "radius must be at most half the smallest size");
             return -1;
         }
         snprintf(expr, sizeof expr, "sdRoundBox(%s, vec3(%.9g, %.9g, %.9g), %.9g)", q, 0.5 * v3[0], 0.5 * v3[1],
@@ -342,7 +345,7 @@ static int emit_primitive(ctx *c, const cJSON *node, const char *path, const cha
             !get_num(c, node, path, "radius_top", 0, 0, BIG, &b) ||
             !get_num(c, node, path, "height", 1, TINY, BIG, &h)) return -1;
         if (a + b <= 0) {
-            fail(c, path, "a cone needs radius_bottom or radius_top above 0%s%s", "", "");
+            fail(c, path, "a cone needs radius_bottom or radius_top above 0");
             return -1;
         }
         snprintf(expr, sizeof expr, "sdCappedCone(%s, %.9g, %.9g, %.9g)", q, 0.5 * h, (double)a, (double)b);
@@ -350,7 +353,7 @@ static int emit_primitive(ctx *c, const cJSON *node, const char *path, const cha
         if (!get_vec3(c, node, path, "normal", up, -1, 1, v3)) return -1;
         double len = sqrt((double)v3[0] * v3[0] + (double)v3[1] * v3[1] + (double)v3[2] * v3[2]);
         if (len < 1e-6) {
-            fail(c, path, "normal must not be zero%s%s", "", "");
+            fail(c, path, "normal must not be zero");
             return -1;
         }
         snprintf(expr, sizeof expr, "sdPlane(%s, vec3(%.9g, %.9g, %.9g))", q, v3[0] / len, v3[1] / len, v3[2] / len);
@@ -379,7 +382,7 @@ static int emit_op(ctx *c, const cJSON *node, const char *path, const char *pin,
     char p[512];
     if (oi < 0) {
         child_path(p, sizeof p, path, "op");
-        fail(c, p, "unknown op '%s' (known: union, intersection, difference and smooth_ of each)%s", op, "");
+        fail(c, p, "unknown op '%s' (known: union, intersection, difference and smooth_ of each)", op);
         return -1;
     }
     if (!check_keys(c, node, path, keys))
@@ -387,26 +390,24 @@ static int emit_op(ctx *c, const cJSON *node, const char *path, const char *pin,
     float k = 0;
     if (OPS[oi].smooth) {
         if (!cJSON_GetObjectItemCaseSensitive(node, "k")) {
-            fail(c, path, "'%s' needs a blend radius \"k\" (metres, > 0)%s", op, "");
+            fail(c, path, "'%s' needs a blend radius \"k\" (metres, > 0)", op);
             return -1;
         }
         if (!get_num(c, node, path, "k", 0, 1e-5f, 1e4f, &k))
             return -1;
     } else if (cJSON_GetObjectItemCaseSensitive(node, "k")) {
         child_path(p, sizeof p, path, "k");
-        fail(c, p, "'k' only applies to smooth_ ops%s%s", "", "");
+        fail(c, p, "'k' only applies to smooth_ ops");
         return -1;
     }
     const cJSON *kids = cJSON_GetObjectItemCaseSensitive(node, "children");
     child_path(p, sizeof p, path, "children");
     if (!cJSON_IsArray(kids) || cJSON_GetArraySize(kids) < 2) {
-        fail(c, p, "expected an array of at least two nodes%s%s", "", "");
+        fail(c, p, "expected an array of at least two nodes");
         return -1;
     }
     char q[32];
-    bool ok;
-    emit_transform(c, node, path, pin, q, &ok);
-    if (!ok)
+    if (!emit_transform(c, node, path, pin, q))
         return -1;
     int acc = -1, i = 0;
     for (const cJSON *kid = kids->child; kid; kid = kid->next, i++) {
@@ -433,21 +434,21 @@ static int emit_op(ctx *c, const cJSON *node, const char *path, const char *pin,
 static int emit_node(ctx *c, const cJSON *node, const char *path, const char *pin)
 {
     if (!cJSON_IsObject(node)) {
-        fail(c, path, "expected a node: {\"shape\": ...} or {\"op\": ..., \"children\": [...]}%s%s", "", "");
+        fail(c, path, "expected a node: {\"shape\": ...} or {\"op\": ..., \"children\": [...]}");
         return -1;
     }
     const char *shape = NULL, *op = NULL;
     if (!get_str(c, node, path, "shape", NULL, &shape) || !get_str(c, node, path, "op", NULL, &op))
         return -1;
     if (shape && op) {
-        fail(c, path, "a node has either \"shape\" or \"op\", not both%s%s", "", "");
+        fail(c, path, "a node has either \"shape\" or \"op\", not both");
         return -1;
     }
     if (shape)
         return emit_primitive(c, node, path, pin, shape);
     if (op)
         return emit_op(c, node, path, pin, op);
-    fail(c, path, "a node needs \"shape\" (a primitive) or \"op\" (a CSG operation)%s%s", "", "");
+    fail(c, path, "a node needs \"shape\" (a primitive) or \"op\" (a CSG operation)");
     return -1;
 }
 
@@ -455,7 +456,7 @@ static bool parse_objects(ctx *c, const cJSON *root)
 {
     const cJSON *objs = cJSON_GetObjectItemCaseSensitive(root, "objects");
     if (!cJSON_IsArray(objs) || cJSON_GetArraySize(objs) < 1)
-        return fail(c, "objects", "expected an array of at least one node%s%s", "", "");
+        return fail(c, "objects", "expected an array of at least one node");
     sb_append(&c->code, "vec2 map(vec3 p)\n{\n");
     int acc = -1, i = 0;
     for (const cJSON *n = objs->child; n; n = n->next, i++) {
@@ -483,13 +484,13 @@ static bool parse_lights(ctx *c, const cJSON *root)
     if (!lights)
         return true;
     if (!cJSON_IsArray(lights))
-        return fail(c, "lights", "expected an array of lights%s%s", "", "");
+        return fail(c, "lights", "expected an array of lights");
     int i = 0;
     for (const cJSON *l = lights->child; l; l = l->next, i++) {
         char p[64];
         snprintf(p, sizeof p, "lights.%d", i);
         if (c->s->light_count == SCENE_MAX_LIGHTS)
-            return fail(c, p, "too many lights (at most %s)%s", "8", "");
+            return fail(c, p, "too many lights (at most %d)", SCENE_MAX_LIGHTS);
         static const char *const keys[] = {"type", "position", "direction", "color", "intensity", "shadow",
                                            "softness", NULL};
         if (!check_keys(c, l, p, keys))
@@ -507,7 +508,7 @@ static bool parse_lights(ctx *c, const cJSON *root)
             out->type = LIGHT_POINT;
             if (cJSON_GetObjectItemCaseSensitive(l, "direction")) {
                 child_path(kp, sizeof kp, p, "direction");
-                return fail(c, kp, "a point light has a \"position\", not a direction%s%s", "", "");
+                return fail(c, kp, "a point light has a \"position\", not a direction");
             }
             if (!get_vec3(c, l, p, "position", zero, -1e6f, 1e6f, out->vec))
                 return false;
@@ -515,18 +516,18 @@ static bool parse_lights(ctx *c, const cJSON *root)
             out->type = LIGHT_DIRECTIONAL;
             if (cJSON_GetObjectItemCaseSensitive(l, "position")) {
                 child_path(kp, sizeof kp, p, "position");
-                return fail(c, kp, "a directional light has a \"direction\" (toward the light), not a position%s%s", "", "");
+                return fail(c, kp, "a directional light has a \"direction\" (toward the light), not a position");
             }
             if (!get_vec3(c, l, p, "direction", up, -1e6f, 1e6f, out->vec))
                 return false;
             float len = sqrtf(out->vec[0] * out->vec[0] + out->vec[1] * out->vec[1] + out->vec[2] * out->vec[2]);
             if (len < 1e-6f)
-                return fail(c, p, "direction must not be zero%s%s", "", "");
+                return fail(c, p, "direction must not be zero");
             for (int k = 0; k < 3; k++)
                 out->vec[k] /= len;
         } else {
             child_path(kp, sizeof kp, p, "type");
-            return fail(c, kp, "unknown light type '%s' (known: point, directional)%s", type, "");
+            return fail(c, kp, "unknown light type '%s' (known: point, directional)", type);
         }
         if (!strcmp(shadow, "none"))
             out->shadow = SHADOW_NONE;
@@ -536,7 +537,7 @@ static bool parse_lights(ctx *c, const cJSON *root)
             out->shadow = SHADOW_SOFT;
         else {
             child_path(kp, sizeof kp, p, "shadow");
-            return fail(c, kp, "unknown shadow '%s' (known: none, hard, soft)%s", shadow, "");
+            return fail(c, kp, "unknown shadow '%s' (known: none, hard, soft)", shadow);
         }
     }
     return true;
@@ -561,13 +562,13 @@ static bool parse_environment(ctx *c, const cJSON *root)
     if (!cube)
         return true;
     if (!cJSON_IsArray(cube) || cJSON_GetArraySize(cube) != 6)
-        return fail(c, "environment.cubemap", "expected six image paths in the order +X, -X, +Y, -Y, +Z, -Z%s%s", "", "");
+        return fail(c, "environment.cubemap", "expected six image paths in the order +X, -X, +Y, -Y, +Z, -Z");
     int i = 0;
     for (const cJSON *f = cube->child; f; f = f->next, i++) {
         char p[64];
         snprintf(p, sizeof p, "environment.cubemap.%d", i);
         if (!cJSON_IsString(f))
-            return fail(c, p, "expected an image path in quotes%s%s", "", "");
+            return fail(c, p, "expected an image path in quotes");
         if (!resolve_file(c, p, f->valuestring, s->cubemap[i]))
             return false;
     }
@@ -592,7 +593,7 @@ static bool parse_quality(ctx *c, const cJSON *root)
     if (!get_str(c, q, "quality", "preset", "interactive", &name))
         return false;
     if (!preset_from_name(name, &s->preset))
-        return fail(c, "quality.preset", "unknown preset '%s' (known: draft, interactive, final, reference)%s", name, "");
+        return fail(c, "quality.preset", "unknown preset '%s' (known: draft, interactive, final, reference)", name);
     quality d = preset_quality(s->preset), *o = &s->quality;
     return get_int(c, q, "quality", "max_steps", d.max_steps, 1, 100000, &o->max_steps) &&
            get_num(c, q, "quality", "hit_k", d.hit_k, 1e-3f, 1e3f, &o->hit_k) &&
@@ -611,7 +612,7 @@ static bool parse_effects(ctx *c, const cJSON *root)
     if (!fx)
         return true;
     if (!cJSON_IsObject(fx))
-        return fail(c, "effects", "expected an object like {\"fog\": \"off\"}%s%s", "", "");
+        return fail(c, "effects", "expected an object like {\"fog\": \"off\"}");
     for (const cJSON *it = fx->child; it; it = it->next) {
         char p[128];
         child_path(p, sizeof p, "effects", it->string);
@@ -632,7 +633,7 @@ static bool parse_effects(ctx *c, const cJSON *root)
         else if (!strcmp(v, "off"))
             c->s->effect_modes[e] = EFFECT_OFF;
         else
-            return fail(c, p, "expected \"auto\", \"on\" or \"off\"%s%s", "", "");
+            return fail(c, p, "expected \"auto\", \"on\" or \"off\"");
     }
     return true;
 }
@@ -684,9 +685,9 @@ static bool parse_root(ctx *c, cJSON *root)
         return false;
     snprintf(s->title, sizeof s->title, "%s", title);
     if (!prog)
-        return fail(c, "program", "missing: say which program draws the scene, e.g. \"program\": \"csg\"%s%s", "", "");
+        return fail(c, "program", "missing: say which program draws the scene, e.g. \"program\": \"csg\"");
     if (!program_from_name(prog, &s->program))
-        return fail(c, "program", "unknown program '%s' (known: csg)%s", prog, "");
+        return fail(c, "program", "unknown program '%s' (known: csg)", prog);
 
     const cJSON *cam = cJSON_GetObjectItemCaseSensitive(root, "camera");
     static const float cam_pos[3] = {0, 1, 5}, cam_at[3] = {0, 0, 0};
