@@ -22,6 +22,7 @@ static const float SPEED_STEP = 1.25f;          /* per scroll notch */
 static const float DEFAULT_SPEED = 2.0f;        /* m/s */
 static const float EXPOSURE = 1.0f;
 static const double IDLE_WAIT_S = 0.05;
+static const float MIN_ADAPTIVE_DISTANCE = 1e-7f; /* metres: keeps a little speed at the surface */
 
 static struct {
     scene scene;
@@ -35,6 +36,8 @@ static struct {
     int scene_count;
     int pending_scene; /* -1 none */
     bool reload, screenshot;
+    render_view view;
+    float surface_distance; /* the distance estimate at the camera (fractals: sets the flying speed) */
     char message[ERR_MSG_MAX];
     double frame_ms[FRAME_HISTORY];
     int frame_index;
@@ -52,6 +55,8 @@ static void on_key(GLFWwindow *w, int key, int scancode, int action, int mods)
         app.reload = true;
     else if (key == GLFW_KEY_P || key == GLFW_KEY_F12)
         app.screenshot = true;
+    else if (key == GLFW_KEY_H)
+        app.view = app.view == VIEW_STEPS ? VIEW_COLOR : VIEW_STEPS;
     else if (key >= GLFW_KEY_1 && key <= GLFW_KEY_9 && key - GLFW_KEY_1 < app.scene_count)
         app.pending_scene = key - GLFW_KEY_1;
 }
@@ -135,18 +140,28 @@ static void hud(int w, int h)
         if (app.frame_ms[i] > 0)
             sum += app.frame_ms[i], n++;
     double ms = n ? sum / n : 0;
-    char text[4096];
+    char text[4096], speed[128], limit[256] = "";
     const camera *c = &app.cam;
+    if (app.scene.adaptive_speed)
+        snprintf(speed, sizeof speed, "speed %.2f x distance (%.3g m to the surface)", (double)app.speed,
+                 (double)app.surface_distance);
+    else
+        snprintf(speed, sizeof speed, "speed %.2f m/s", (double)app.speed);
+    /* where the hit threshold meets float resolution, closer detail would only be noise */
+    float d = app.surface_distance, pa = camera_pixel_angle(c, h);
+    if (app.scene.adaptive_speed && app.scene.quality.hit_k * d * pa < PRECISION_REL * (glm_vec3_norm((float *)c->position) + d))
+        snprintf(limit, sizeof limit, "float precision reached: detail below %.2g m cannot be resolved here\n",
+                 (double)(PRECISION_REL * (glm_vec3_norm((float *)c->position) + d)));
     snprintf(text, sizeof text,
-             "%s  [%s]  %dx%d\n"
+             "%s  [%s]  %dx%d%s\n"
              "%.1f ms/sample  %.1f fps  %d/%d spp\n"
-             "pos %.2f %.2f %.2f  speed %.2f m/s  fov %.0f\n"
+             "pos %.4g %.4g %.4g  %s  fov %.0f\n%s"
              "WASD move  mouse look  Space/C up/down  Shift fast  scroll speed\n"
-             "1-%d scenes  R reload  P screenshot  Esc quit\n%s",
-             app.scene.name, preset_name(app.scene.preset), w, h, ms, ms > 0 ? 1000.0 / ms : 0.0,
-             render_samples(), app.scene.quality.spp, (double)c->position[0], (double)c->position[1],
-             (double)c->position[2], (double)app.speed, (double)(c->fov_y * 180.0f / GLM_PIf), app.scene_count,
-             app.message);
+             "1-%d scenes  H steps view  R reload  P screenshot  Esc quit\n%s",
+             app.scene.name, preset_name(app.scene.preset), w, h, app.view == VIEW_STEPS ? "  [steps]" : "", ms,
+             ms > 0 ? 1000.0 / ms : 0.0, render_samples(), app.scene.quality.spp, (double)c->position[0],
+             (double)c->position[1], (double)c->position[2], speed, (double)(c->fov_y * 180.0f / GLM_PIf), limit,
+             app.scene_count, app.message);
     hud_draw(text, w, h, h >= 900 ? 2.0f : 1.5f);
 }
 
@@ -191,7 +206,15 @@ bool explore_run(const cli_options *opt, err_t *err)
             app.scroll = 0;
         }
         camera_input in = read_input(win);
-        camera_update(&app.cam, &in, dt, app.speed, MOUSE_SENSITIVITY);
+        float speed = app.speed;
+        if (app.scene.adaptive_speed) { /* fly by the distance estimate: close up stays controllable */
+            float dist[2];
+            err_t e;
+            if (render_probe(&app.scene, NULL, app.cam.position, 1, dist, &e))
+                app.surface_distance = fabsf(dist[0]);
+            speed = app.speed * fmaxf(app.surface_distance, MIN_ADAPTIVE_DISTANCE);
+        }
+        camera_update(&app.cam, &in, dt, speed, MOUSE_SENSITIVITY);
 
         if (app.pending_scene >= 0) {
             err_t e;
@@ -236,7 +259,7 @@ bool explore_run(const cli_options *opt, err_t *err)
             glFinish();
             app.frame_ms[app.frame_index++ % FRAME_HISTORY] = (glfwGetTime() - t0) * 1000.0;
         }
-        render_display(0, w, h, EXPOSURE);
+        render_display(0, w, h, EXPOSURE, app.view);
         hud(w, h);
         if (app.screenshot) {
             screenshot(w, h);

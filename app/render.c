@@ -13,6 +13,7 @@ enum { MAX_PROGRAMS = 64, NUM_TARGETS = 3, AOV_FLOATS = 8 };
 
 typedef struct cached_program {
     program_kind kind;
+    bool probe;           /* probe.frag (map() at given points) instead of the image */
     char *preamble, *map; /* the key */
     GLuint prog;
 } cached_program;
@@ -89,10 +90,50 @@ void render_preamble(const scene *s, const char *extra_defines, strbuf *out)
         sb_append(out, extra_defines);
 }
 
-static GLuint build_scene_program(program_kind kind, const char *preamble, const char *map, err_t *err)
+static GLuint build_scene_program(bool probe, const char *preamble, const char *map, err_t *err)
 {
-    shader_virtual virt[] = {{"scene_map.glsl", map}};
-    return shader_build(shader_root, "fullscreen.vert", program_shader(kind), preamble, virt, 1, err);
+    shader_virtual virt[] = {{"program.glsl", map}};
+    return shader_build(shader_root, "fullscreen.vert", probe ? "probe.frag" : "sdf.frag", preamble, virt, 1, err);
+}
+
+/* The cached program for (kind, probe, preamble, map), compiled on first use. */
+static GLuint get_program(const scene *s, bool probe, const char *extra_defines, err_t *err)
+{
+    strbuf pre = {0};
+    render_preamble(s, extra_defines, &pre);
+    for (int i = 0; i < state.program_count; i++) {
+        cached_program *c = &state.programs[i];
+        if (c->kind == s->program && c->probe == probe && !strcmp(c->preamble, pre.data) && !strcmp(c->map, s->map_glsl)) {
+            sb_free(&pre);
+            return c->prog;
+        }
+    }
+    GLuint prog = build_scene_program(probe, pre.data, s->map_glsl, err);
+    if (!prog) {
+        sb_free(&pre);
+        return 0;
+    }
+    if (state.program_count == MAX_PROGRAMS) { /* evict the oldest */
+        glDeleteProgram(state.programs[0].prog);
+        free(state.programs[0].preamble);
+        free(state.programs[0].map);
+        memmove(state.programs, state.programs + 1, sizeof state.programs[0] * (MAX_PROGRAMS - 1));
+        state.program_count--;
+    }
+    state.programs[state.program_count++] = (cached_program){
+        .kind = s->program, .probe = probe, .preamble = pre.data, .map = strdup(s->map_glsl), .prog = prog};
+    return prog;
+}
+
+/* Fractal parameters; a uniform the program does not use has location −1 and is ignored by GL. */
+static void upload_fractal_uniforms(GLuint prog, const scene *s)
+{
+    const scene_fractal *f = &s->fractal;
+    glUseProgram(prog);
+    glUniform4f(glGetUniformLocation(prog, "uFractalA"), f->power, f->bailout, f->scale, f->min_radius);
+    glUniform4f(glGetUniformLocation(prog, "uFractalB"), f->fixed_radius, f->fold_limit, f->bound_radius, f->size);
+    glUniform3fv(glGetUniformLocation(prog, "uPalette"), 3, &f->palette[0][0]);
+    glUniform4f(glGetUniformLocation(prog, "uGlow"), f->glow_color[0], f->glow_color[1], f->glow_color[2], f->glow);
 }
 
 static GLint loc(const char *name) { return glGetUniformLocation(state.prog, name); }
@@ -147,36 +188,14 @@ static void upload_scene_uniforms(void)
         glUniform1i(loc(tex_names[i]), i);
     glUniform1i(loc("uEnvMap"), SCENE_MAX_TEXTURES);
     glUniform1f(loc("uEnvMaxLod"), state.env_size > 0 ? log2f((float)state.env_size) : 0.0f);
+    upload_fractal_uniforms(state.prog, s);
 }
 
 bool render_set_scene(const scene *s, const char *extra_defines, err_t *err)
 {
-    strbuf pre = {0};
-    render_preamble(s, extra_defines, &pre);
-    GLuint prog = 0;
-    for (int i = 0; i < state.program_count && !prog; i++) {
-        cached_program *c = &state.programs[i];
-        if (c->kind == s->program && !strcmp(c->preamble, pre.data) && !strcmp(c->map, s->map_glsl))
-            prog = c->prog;
-    }
-    if (!prog) {
-        prog = build_scene_program(s->program, pre.data, s->map_glsl, err);
-        if (!prog) {
-            sb_free(&pre);
-            return false;
-        }
-        if (state.program_count == MAX_PROGRAMS) { /* evict the oldest */
-            glDeleteProgram(state.programs[0].prog);
-            free(state.programs[0].preamble);
-            free(state.programs[0].map);
-            memmove(state.programs, state.programs + 1, sizeof state.programs[0] * (MAX_PROGRAMS - 1));
-            state.program_count--;
-        }
-        state.programs[state.program_count++] =
-            (cached_program){.kind = s->program, .preamble = pre.data, .map = strdup(s->map_glsl), .prog = prog};
-    } else {
-        sb_free(&pre);
-    }
+    GLuint prog = get_program(s, false, extra_defines, err);
+    if (!prog)
+        return false;
 
     free_scene_textures();
     for (int i = 0; i < s->texture_count; i++) {
@@ -289,14 +308,20 @@ void render_sample(void)
     state.samples++;
 }
 
-void render_display(GLuint fbo, int width, int height, float exposure)
+void render_display(GLuint fbo, int width, int height, float exposure, render_view view)
 {
+    GLuint p = state.display_prog;
     glBindFramebuffer(GL_FRAMEBUFFER, fbo);
     glViewport(0, 0, width, height);
-    glUseProgram(state.display_prog);
+    glUseProgram(p);
+    glActiveTexture(GL_TEXTURE1);
+    glBindTexture(GL_TEXTURE_2D, state.targets[2]);
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D, state.targets[0]);
-    glUniform1i(glGetUniformLocation(state.display_prog, "uAccum"), 0);
+    glUniform1i(glGetUniformLocation(p, "uAccum"), 0);
+    glUniform1i(glGetUniformLocation(p, "uAux"), 1);
+    glUniform1i(glGetUniformLocation(p, "uView"), (GLint)view);
+    glUniform1f(glGetUniformLocation(p, "uMaxSteps"), state.scene ? (float)state.scene->quality.max_steps : 1.0f);
     glUniform1f(glGetUniformLocation(state.display_prog, "uInvSamples"),
                 state.samples > 0 ? 1.0f / (float)state.samples : 0.0f);
     glUniform1f(glGetUniformLocation(state.display_prog, "uExposure"), exposure);
@@ -329,7 +354,7 @@ static void read_target(GLuint fbo, GLenum attachment, GLenum type, void *out)
 
 void render_read_srgb8(uint8_t *rgba, float exposure)
 {
-    render_display(state.out_fbo, state.width, state.height, exposure);
+    render_display(state.out_fbo, state.width, state.height, exposure, VIEW_COLOR);
     read_target(state.out_fbo, GL_COLOR_ATTACHMENT0, GL_UNSIGNED_BYTE, rgba);
     flip_rows(rgba, state.height, (size_t)state.width * 4);
 }
@@ -371,7 +396,7 @@ bool render_reload(err_t *err)
         return false;
     for (int i = 0; i < state.program_count; i++) {
         cached_program *c = &state.programs[i];
-        fresh[i] = build_scene_program(c->kind, c->preamble, c->map, err);
+        fresh[i] = build_scene_program(c->probe, c->preamble, c->map, err);
         if (!fresh[i]) {
             for (int k = 0; k < i; k++)
                 glDeleteProgram(fresh[k]);
@@ -390,5 +415,53 @@ bool render_reload(err_t *err)
     if (state.scene)
         upload_scene_uniforms();
     state.samples = 0;
+    return true;
+}
+
+bool render_probe(const scene *s, const char *extra_defines, const float *points, int n, float *out, err_t *err)
+{
+    assert(n > 0);
+    GLuint prog = get_program(s, true, extra_defines, err);
+    if (!prog)
+        return false;
+    upload_fractal_uniforms(prog, s);
+    GLint max_side = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_side);
+    int w = n < max_side ? n : max_side, h = (n + w - 1) / w;
+    float *px = calloc((size_t)w * (size_t)h * 4, sizeof(float));
+    for (int i = 0; i < n; i++)
+        memcpy(px + (size_t)i * 4, points + (size_t)i * 3, sizeof(float) * 3);
+    GLuint tex[2], fbo;
+    glGenTextures(2, tex);
+    for (int i = 0; i < 2; i++) { /* without mipmaps, the default filter leaves a texture incomplete */
+        glBindTexture(GL_TEXTURE_2D, tex[i]);
+        glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, w, h, 0, GL_RGBA, GL_FLOAT, i == 0 ? px : NULL);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    }
+    glGenFramebuffers(1, &fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, tex[1], 0);
+    glDrawBuffers(1, (const GLenum[]){GL_COLOR_ATTACHMENT0});
+    glViewport(0, 0, w, h);
+    glUseProgram(prog);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, tex[0]);
+    glUniform1i(glGetUniformLocation(prog, "uPoints"), 0);
+    glBindVertexArray(state.vao);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glReadBuffer(GL_COLOR_ATTACHMENT0);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, px);
+    for (int i = 0; i < n; i++) {
+        out[2 * i] = px[(size_t)i * 4];
+        out[2 * i + 1] = px[(size_t)i * 4 + 1];
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glDeleteFramebuffers(1, &fbo);
+    glDeleteTextures(2, tex);
+    free(px);
+    if (state.prog)
+        glUseProgram(state.prog);
     return true;
 }

@@ -30,8 +30,10 @@ void render_begin(const camera *c); /* new view: restart accumulation */
 void render_sample(void);           /* add one sample */
 int render_samples(void);
 
-/* Tone-mapped sRGB colour into framebuffer `fbo` (0 = window) of the given size. */
-void render_display(GLuint fbo, int width, int height, float exposure);
+typedef enum render_view { VIEW_COLOR, VIEW_STEPS } render_view;
+
+/* Tone-mapped sRGB colour (or the steps heat map) into framebuffer `fbo` (0 = window). */
+void render_display(GLuint fbo, int width, int height, float exposure, render_view view);
 
 /* Readback, rows top first. srgb8: RGBA 8-bit after render_display's mapping. linear: averaged RGBA.
  * aovs: 8 floats a pixel: normal xyz, depth (+inf on a miss), steps, exit direction xyz. */
@@ -41,6 +43,10 @@ void render_read_aovs(float *aov8);
 
 /* Recompiles every cached program from the files on disk; on error keeps the old programs. */
 bool render_reload(err_t *err);
+
+/* Evaluates the scene's map() on the GPU at n points (xyz each) into out (distance, material each):
+ * the shader's own distance estimate, for tests and the window's flying speed. */
+bool render_probe(const scene *s, const char *extra_defines, const float *points, int n, float *out, err_t *err);
 
 /* The #define preamble of the current scene's variant (for --print-variant). */
 void render_preamble(const scene *s, const char *extra_defines, strbuf *out);

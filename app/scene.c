@@ -586,7 +586,7 @@ static bool parse_quality(ctx *c, const cJSON *root)
         return true;
     }
     static const char *const keys[] = {"preset", "max_steps", "hit_k", "step_factor", "max_dist", "shadow_steps",
-                                       "ao_samples", "bounces", "aniso_taps", "spp", NULL};
+                                       "ao_samples", "bounces", "aniso_taps", "over_relax", "spp", NULL};
     if (!check_keys(c, q, "quality", keys))
         return false;
     const char *name = NULL;
@@ -603,6 +603,7 @@ static bool parse_quality(ctx *c, const cJSON *root)
            get_int(c, q, "quality", "ao_samples", d.ao_samples, 0, 64, &o->ao_samples) &&
            get_int(c, q, "quality", "bounces", d.bounces, 0, 64, &o->bounces) &&
            get_int(c, q, "quality", "aniso_taps", d.aniso_taps, 1, 64, &o->aniso_taps) &&
+           get_num(c, q, "quality", "over_relax", d.over_relax, 1, 1.95f, &o->over_relax) &&
            get_int(c, q, "quality", "spp", d.spp, 1, 1 << 16, &o->spp);
 }
 
@@ -661,6 +662,7 @@ static unsigned derive_effects(const scene *s)
         [EFFECT_ENVMAP] = s->has_cubemap,
         [EFFECT_TEXTURES] = s->texture_count > 0,
         [EFFECT_AA] = s->quality.spp > 1,
+        [EFFECT_GLOW] = s->fractal.glow > 0,
     };
     unsigned fx = 0;
     for (int e = 0; e < EFFECT_COUNT; e++) {
@@ -673,11 +675,87 @@ static unsigned derive_effects(const scene *s)
     return fx;
 }
 
+static bool get_palette(ctx *c, const cJSON *f, float out[3][3])
+{
+    static const float def[3][3] = {{0.95f, 0.55f, 0.25f}, {0.25f, 0.45f, 0.75f}, {0.92f, 0.9f, 0.85f}};
+    memcpy(out, def, sizeof def);
+    const cJSON *pal = cJSON_GetObjectItemCaseSensitive(f, "palette");
+    if (!pal)
+        return true;
+    if (!cJSON_IsArray(pal) || cJSON_GetArraySize(pal) != 3)
+        return fail(c, "fractal.palette", "expected three colours [[r,g,b], [r,g,b], [r,g,b]] (near, middle, far)");
+    int i = 0;
+    for (const cJSON *col = pal->child; col; col = col->next, i++) {
+        if (!cJSON_IsArray(col) || cJSON_GetArraySize(col) != 3)
+            return fail(c, "fractal.palette", "colour %d: expected [r, g, b]", i);
+        for (int k = 0; k < 3; k++) {
+            const cJSON *v = cJSON_GetArrayItem(col, k);
+            if (!cJSON_IsNumber(v) || v->valuedouble < 0 || v->valuedouble > 1)
+                return fail(c, "fractal.palette", "colour %d: expected numbers from 0 to 1", i);
+            out[i][k] = (float)v->valuedouble;
+        }
+    }
+    return true;
+}
+
+/* The "fractal" block: which keys a program reads, and their defaults. */
+static bool parse_fractal(ctx *c, const cJSON *root)
+{
+    scene *s = c->s;
+    scene_fractal *fr = &s->fractal;
+    const cJSON *f = cJSON_GetObjectItemCaseSensitive(root, "fractal");
+    static const char *const bulb[] = {"iterations", "power", "bailout", "bound_radius", "palette", "glow",
+                                       "glow_color", NULL};
+    static const char *const menger[] = {"iterations", "size", "palette", "glow", "glow_color", NULL};
+    static const char *const box[] = {"iterations", "scale", "min_radius", "fixed_radius", "fold_limit",
+                                      "bound_radius", "palette", "glow", "glow_color", NULL};
+    const char *const *keys = s->program == PROGRAM_MANDELBULB ? bulb : s->program == PROGRAM_MENGER ? menger : box;
+    static const float warm[3] = {1.0f, 0.6f, 0.3f};
+    const cJSON *empty = cJSON_CreateObject(), *use = f ? f : empty;
+    bool ok = (!f || check_keys(c, f, "fractal", keys)) && get_palette(c, use, fr->palette) &&
+              get_num(c, use, "fractal", "glow", 0, 0, 100, &fr->glow) &&
+              get_vec3(c, use, "fractal", "glow_color", warm, 0, 100, fr->glow_color);
+    if (ok && s->program == PROGRAM_MANDELBULB) {
+        ok = get_int(c, use, "fractal", "iterations", 12, 1, 64, &fr->iterations) &&
+             get_num(c, use, "fractal", "power", 8, 2, 16, &fr->power) &&
+             get_num(c, use, "fractal", "bailout", 2, 1.5f, 64, &fr->bailout) &&
+             get_num(c, use, "fractal", "bound_radius", 1.6f, 0.5f, 100, &fr->bound_radius);
+    } else if (ok && s->program == PROGRAM_MENGER) {
+        ok = get_int(c, use, "fractal", "iterations", 4, 1, 7, &fr->iterations) &&
+             get_num(c, use, "fractal", "size", 1, 1e-3f, 1e4f, &fr->size);
+        fr->bound_radius = fr->size * 1.7320508f;
+    } else if (ok) {
+        ok = get_int(c, use, "fractal", "iterations", 12, 1, 64, &fr->iterations) &&
+             get_num(c, use, "fractal", "scale", 2, -4, 4, &fr->scale) &&
+             get_num(c, use, "fractal", "min_radius", 0.5f, 0.01f, 10, &fr->min_radius) &&
+             get_num(c, use, "fractal", "fixed_radius", 1, 0.01f, 10, &fr->fixed_radius) &&
+             get_num(c, use, "fractal", "fold_limit", 1, 0.01f, 10, &fr->fold_limit);
+        if (ok && fabsf(fr->scale) <= 1.05f)
+            ok = fail(c, "fractal.scale", "|scale| must be above 1.05 (at or below 1 the set is unbounded or empty)");
+        if (ok && fr->min_radius >= fr->fixed_radius)
+            ok = fail(c, "fractal.min_radius", "must be below fixed_radius");
+        /* With |s| > 1 the set lies in the cube of half-side 2(|s|+1)/(|s|-1) (Lowe's Mandelbox). */
+        float half = 2.0f * (fabsf(fr->scale) + 1.0f) / (fabsf(fr->scale) - 1.0f);
+        ok = ok && get_num(c, use, "fractal", "bound_radius", half * 1.7320508f, 0.5f, 1000, &fr->bound_radius);
+    }
+    cJSON_Delete((cJSON *)empty);
+    if (!ok)
+        return false;
+    /* Fractals are drawn with material 0; a scene may omit "materials". */
+    if (s->material_count == 0) {
+        s->material_count = 1;
+        s->materials[0] = (scene_material){.name = "surface", .base_color = {1, 1, 1}, .roughness = 0.5f,
+                                           .ior = 1.5f, .texture = -1, .uv_scale = 1};
+    }
+    s->map_glsl = NULL; /* set by the caller: an #include of the program's file */
+    return true;
+}
+
 static bool parse_root(ctx *c, cJSON *root)
 {
     scene *s = c->s;
     static const char *const keys[] = {"title", "program", "camera", "environment", "lights", "fog",
-                                       "materials", "objects", "quality", "effects", NULL};
+                                       "materials", "objects", "fractal", "quality", "effects", NULL};
     if (!check_keys(c, root, "", keys))
         return false;
     const char *title = NULL, *prog = NULL;
@@ -687,14 +765,25 @@ static bool parse_root(ctx *c, cJSON *root)
     if (!prog)
         return fail(c, "program", "missing: say which program draws the scene, e.g. \"program\": \"csg\"");
     if (!program_from_name(prog, &s->program))
-        return fail(c, "program", "unknown program '%s' (known: csg)", prog);
+        return fail(c, "program", "unknown program '%s' (known: csg, mandelbulb, menger, mandelbox)", prog);
+    bool fractal = program_is_fractal(s->program);
+    if (fractal && cJSON_GetObjectItemCaseSensitive(root, "objects"))
+        return fail(c, "objects", "a %s scene has no objects (its shape is the \"fractal\" block)", prog);
+    if (!fractal && cJSON_GetObjectItemCaseSensitive(root, "fractal"))
+        return fail(c, "fractal", "only fractal programs (mandelbulb, menger, mandelbox) read a fractal block");
 
     const cJSON *cam = cJSON_GetObjectItemCaseSensitive(root, "camera");
     static const float cam_pos[3] = {0, 1, 5}, cam_at[3] = {0, 0, 0};
     if (cam) {
-        static const char *const ckeys[] = {"position", "look_at", "fov", NULL};
+        static const char *const ckeys[] = {"position", "look_at", "fov", "adaptive_speed", NULL};
         if (!check_keys(c, cam, "camera", ckeys))
             return false;
+        const cJSON *adaptive = cJSON_GetObjectItemCaseSensitive(cam, "adaptive_speed");
+        if (adaptive && !cJSON_IsBool(adaptive))
+            return fail(c, "camera.adaptive_speed", "expected true or false");
+        s->adaptive_speed = adaptive ? cJSON_IsTrue(adaptive) : fractal;
+    } else {
+        s->adaptive_speed = fractal;
     }
     if (!get_vec3(c, cam, "camera", "position", cam_pos, -1e7f, 1e7f, s->cam_position) ||
         !get_vec3(c, cam, "camera", "look_at", cam_at, -1e7f, 1e7f, s->cam_look_at) ||
@@ -711,9 +800,17 @@ static bool parse_root(ctx *c, cJSON *root)
             return false;
         s->has_fog = true;
     }
-    if (!parse_environment(c, root) || !parse_lights(c, root) || !parse_quality(c, root) ||
-        !parse_effects(c, root) || !parse_materials(c, root) || !parse_objects(c, root))
+    if (!parse_environment(c, root) || !parse_lights(c, root) || !parse_quality(c, root) || !parse_effects(c, root))
         return false;
+    if (fractal) {
+        if (cJSON_GetObjectItemCaseSensitive(root, "materials") && !parse_materials(c, root))
+            return false;
+        if (!parse_fractal(c, root))
+            return false;
+        sb_printf(&c->code, "#include \"%s\"\n", program_map_file(s->program));
+    } else if (!parse_materials(c, root) || !parse_objects(c, root)) {
+        return false;
+    }
     s->effects = derive_effects(s);
     return true;
 }
@@ -888,7 +985,8 @@ void scene_free(scene *s)
 variant scene_variant(const scene *s)
 {
     return (variant){.program = s->program, .effects = s->effects, .q = s->quality,
-                     .num_lights = s->light_count, .num_materials = s->material_count};
+                     .num_lights = s->light_count, .num_materials = s->material_count,
+                     .fractal_iterations = s->fractal.iterations};
 }
 
 static int cmp_str(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }

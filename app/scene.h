@@ -45,6 +45,22 @@ typedef struct scene_light {
 
 typedef enum effect_mode { EFFECT_AUTO, EFFECT_ON, EFFECT_OFF } effect_mode;
 
+/* Fractal programs' parameters (the "fractal" block). Each program reads the ones it names. */
+typedef struct scene_fractal {
+    int iterations;     /* all: iterations of the formula (Menger: levels of the sponge) */
+    float power;        /* mandelbulb: 2..16 */
+    float bailout;      /* mandelbulb: escape radius */
+    float scale;        /* mandelbox: scale factor */
+    float min_radius;   /* mandelbox: sphere fold inner radius */
+    float fixed_radius; /* mandelbox: sphere fold outer radius */
+    float fold_limit;   /* mandelbox: box fold limit */
+    float size;         /* menger: half-extent of the sponge (metres) */
+    float bound_radius; /* all: a sphere that holds the whole set (marching starts at it) */
+    float palette[3][3]; /* orbit-trap colours: near, middle, far */
+    float glow;          /* glow strength; 0 = off */
+    float glow_color[3];
+} scene_fractal;
+
 typedef struct scene {
     char path[PATH_MAX_LEN], dir[PATH_MAX_LEN];
     char name[SCENE_NAME_MAX];
@@ -73,7 +89,10 @@ typedef struct scene {
     effect_mode effect_modes[EFFECT_COUNT];
     unsigned effects; /* derived from content, then effect_modes applied */
 
-    char *map_glsl; /* generated `vec2 map(vec3 p)`; malloc'd */
+    scene_fractal fractal;
+    bool adaptive_speed; /* window: flying speed follows the distance to the surface */
+
+    char *map_glsl; /* the program's virtual "program.glsl": the CSG map, or an #include of the fractal */
     int primitive_count;
 } scene;
 

@@ -7,6 +7,11 @@
 
 enum { MAX_INCLUDE_DEPTH = 16 };
 
+/* Mesa 22.3 keeps the line of a `#line L S` but reports semantic errors (an undeclared name) with
+ * source string 0, so the file id is also carried in the line number: L = id · SHADER_LINE_STRIDE + line.
+ * Drivers that honour S (parser errors on Mesa, NVIDIA) and those that do not both map back. */
+static int line_mark(int id, int line) { return id * SHADER_LINE_STRIDE + line; }
+
 static int file_id(shader_files *files, const char *name)
 {
     for (int i = 0; i < files->count; i++)
@@ -40,7 +45,7 @@ static bool expand(const char *root, const char *file, const shader_virtual *vir
         }
         src = text;
     }
-    sb_printf(out, "#line 1 %d\n", id);
+    sb_printf(out, "#line %d %d\n", line_mark(id, 1), id);
     int line = 1;
     for (const char *p = src; *p;) {
         const char *eol = strchr(p, '\n');
@@ -62,7 +67,7 @@ static bool expand(const char *root, const char *file, const shader_virtual *vir
                     free(text);
                     return false;
                 }
-                sb_printf(out, "#line %d %d\n", line + 1, id);
+                sb_printf(out, "#line %d %d\n", line_mark(id, line + 1), id);
             } else {
                 sb_append(out, "\n");
             }
@@ -94,6 +99,10 @@ void shader_translate_log(const char *log, const shader_files *files, strbuf *ou
         /* Mesa: "0:12(5): error: ..."  NVIDIA: "0(12) : error C0000: ..." */
         if ((sscanf(line, "%d:%d(%*d):%n", &src, &ln, &used) == 2 && used > 0) ||
             (sscanf(line, "%d(%d) :%n", &src, &ln, &used) == 2 && used > 0)) {
+            if (ln >= SHADER_LINE_STRIDE) { /* the file id rides in the line number */
+                src = ln / SHADER_LINE_STRIDE;
+                ln %= SHADER_LINE_STRIDE;
+            }
             const char *name = (src >= 0 && src < files->count) ? files->names[src] : "?";
             const char *msg = line + used;
             while (*msg == ' ')

@@ -5,10 +5,11 @@
  *     <preamble: the variant's #defines>
  *     #line 1 0
  *     <the file, with every #include "path" expanded in place>
- * Paths are relative to the shaders root; "virtual" files (generated text, e.g. scene_map.glsl)
- * are looked up first. Each file is included at most once per program. Every expansion is followed
- * by `#line N id`, with one source-string id per file, so a driver log "0:12(3): error" becomes
- * "common/march.glsl:12: error". A failed build returns 0 and the translated log; callers keep their
+ * Paths are relative to the shaders root; "virtual" files (generated text, e.g. program.glsl)
+ * are looked up first. Each file is included at most once per program. Each file starts, and each
+ * expansion is followed, by `#line id·SHADER_LINE_STRIDE+N id` (one id per file; the id rides in the
+ * line number too because Mesa drops the source-string number for some errors), so a driver log
+ * "0:600012(3): error" becomes "common/march.glsl:12: error". A failed build returns 0 and the translated log; callers keep their
  * last good program.
  */
 #ifndef FATHOM_SHADER_H
@@ -19,7 +20,7 @@
 
 #include "util.h"
 
-enum { SHADER_MAX_FILES = 64, SHADER_NAME_MAX = 128 };
+enum { SHADER_MAX_FILES = 64, SHADER_NAME_MAX = 128, SHADER_LINE_STRIDE = 100000 };
 
 typedef struct shader_virtual {
     const char *name;

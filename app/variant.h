@@ -21,7 +21,8 @@
     X(FOG, "fog", "exponential fog along primary rays")                                              \
     X(ENVMAP, "envmap", "cube-map environment (else a constant colour)")                             \
     X(TEXTURES, "textures", "filtered material textures (mipmaps, anisotropic)")                     \
-    X(AA, "aa", "jittered sub-pixel samples, accumulated progressively")
+    X(AA, "aa", "jittered sub-pixel samples, accumulated progressively")                             \
+    X(GLOW, "glow", "fractals: light that grows with the march steps near the surface")
 
 typedef enum effect {
 #define X(id, name, what) EFFECT_##id,
@@ -34,13 +35,20 @@ const char *effect_name(effect e);
 const char *effect_summary(effect e);
 bool effect_from_name(const char *name, effect *e);
 
+/* Positions are float: near |p| no step below about 4 ulps (|p| · 2⁻²¹) resolves anything, so hit
+ * thresholds never go below PRECISION_REL · (|camera| + t); the window says when a zoom reaches it. */
+#define PRECISION_REL 4.76837158e-7f
+
 /* A smooth opaque material reflects a traced mirror image when its roughness is at most this. */
 #define MIRROR_ROUGHNESS 0.25f
 
-/* Scene kinds: each is one fragment shader under shaders/ that supplies its map() and materials. */
-typedef enum program_kind { PROGRAM_CSG, PROGRAM_COUNT } program_kind;
+/* Scene kinds. Each supplies only `vec2 map(vec3 p)` (distance, material) and optionally
+ * `vec3 programAlbedo(vec3 p)` (colouring): csg from the scene's CSG tree (generated), a fractal from
+ * shaders/fractal/NAME.glsl. Everything else (marching, lighting, effects) is shared. */
+typedef enum program_kind { PROGRAM_CSG, PROGRAM_MANDELBULB, PROGRAM_MENGER, PROGRAM_MANDELBOX, PROGRAM_COUNT } program_kind;
 const char *program_name(program_kind p);
-const char *program_shader(program_kind p); /* path under shaders/ */
+const char *program_map_file(program_kind p); /* under shaders/; NULL when generated (csg) */
+bool program_is_fractal(program_kind p);
 bool program_from_name(const char *name, program_kind *p);
 
 /* Accuracy knobs. Each is a compile-time constant in the shader (loops unroll, dead code goes). */
@@ -53,6 +61,7 @@ typedef struct quality {
     int ao_samples;    /* distance samples along the normal */
     int bounces;       /* reflection / refraction path segments after the primary hit */
     int aniso_taps;    /* texture taps along the footprint's long axis (anisotropic filtering) */
+    float over_relax;  /* sphere-tracing over-relaxation ω (Keinert et al. 2014); 1 = plain */
     int spp;           /* samples per pixel for offline shots and a still window */
 } quality;
 
@@ -66,6 +75,7 @@ typedef struct variant {
     unsigned effects; /* bit (1u << effect) */
     quality q;
     int num_lights, num_materials;
+    int fractal_iterations; /* iterations (Menger: levels) compiled into a fractal's map; 0 for csg */
 } variant;
 
 /* The `#define` block (no #version) for v. Appends to out. Two variants compile to the same

@@ -1,9 +1,19 @@
 // Accumulated linear radiance → display: average the samples, expose, tone-map, encode sRGB.
 // Tone curve: K. Narkowicz, "ACES Filmic Tone Mapping Curve" (2015), a fit of the ACES RRT+ODT.
+// View 1 shows the primary ray's march steps instead (a heat map: blue few … red MAX_STEPS).
 uniform sampler2D uAccum;
+uniform sampler2D uAux; // target 2: steps, exit direction
 uniform float uInvSamples;
 uniform float uExposure;
+uniform int uView;
+uniform float uMaxSteps;
 out vec4 oColor;
+
+vec3 heat(float x)
+{
+    x = clamp(x, 0.0, 1.0);
+    return clamp(vec3(1.5 - abs(4.0 * x - 3.0), 1.5 - abs(4.0 * x - 2.0), 1.5 - abs(4.0 * x - 1.0)), 0.0, 1.0);
+}
 
 vec3 acesFit(vec3 x) { return clamp((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0); }
 
@@ -14,6 +24,10 @@ vec3 linearToSrgb(vec3 c)
 
 void main()
 {
+    if (uView == 1) {
+        oColor = vec4(heat(texelFetch(uAux, ivec2(gl_FragCoord.xy), 0).x / uMaxSteps), 1.0);
+        return;
+    }
     vec3 c = texelFetch(uAccum, ivec2(gl_FragCoord.xy), 0).rgb * uInvSamples;
     oColor = vec4(linearToSrgb(acesFit(c * uExposure)), 1.0);
 }

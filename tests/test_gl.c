@@ -21,79 +21,7 @@
 #include "render.h"
 #include "scene.h"
 
-enum { W = 97, H = 61, AOV = 8 };
-#define DEG2RAD (GLM_PI / 180.0)
-
-static int setup(void **st)
-{
-    (void)st;
-    err_t e;
-    if (!gpu_open(&(gpu_desc){.headless = true}, &e) || !render_init(&e)) {
-        fprintf(stderr, "GL setup failed: %s\n", e.msg);
-        return -1;
-    }
-    fprintf(stderr, "GL: %s\n", gpu_describe());
-    return 0;
-}
-
-static int teardown(void **st)
-{
-    (void)st;
-    render_shutdown();
-    gpu_close();
-    return 0;
-}
-
-static void load_text(const char *json, const char *const *sets, int nsets, scene *s)
-{
-    err_t e;
-    char path[PATH_MAX_LEN];
-    snprintf(path, sizeof path, "%s/tests/probe.json", FATHOM_SOURCE_DIR);
-    if (!scene_load_text(json, path, sets, nsets, s, &e))
-        fail_msg("scene: %s", e.msg);
-}
-
-/* Renders `spp` samples of s; fills aov (W*H*8, top row first) and rgba (W*H*4) when not NULL. */
-static void draw(const scene *s, const camera *cam, int w, int h, int spp, const char *extra, float *aov, float *rgba)
-{
-    err_t e;
-    if (!render_set_scene(s, extra, &e))
-        fail_msg("render_set_scene: %s", e.msg);
-    render_resize(w, h);
-    render_begin(cam);
-    for (int i = 0; i < spp; i++)
-        render_sample();
-    if (aov)
-        render_read_aovs(aov);
-    if (rgba)
-        render_read_linear(rgba);
-    assert_int_equal(glGetError(), GL_NO_ERROR);
-}
-
-static camera cam_at(double ex, double ey, double ez, double tx, double ty, double tz, double fov_deg)
-{
-    return camera_look_at((vec3){(float)ex, (float)ey, (float)ez}, (vec3){(float)tx, (float)ty, (float)tz},
-                          (float)(fov_deg * DEG2RAD));
-}
-
-/* The primary ray of pixel (x, row) with row 0 at the top, in double (camera.h's convention). */
-static dray pixel_ray(const camera *c, int x, int row, int w, int h)
-{
-    camera_basis b = camera_get_basis(c);
-    double t = tan(0.5 * (double)c->fov_y);
-    double sx = (2.0 * (x + 0.5) / w - 1.0) * t * w / h;
-    double sy = (2.0 * ((h - 1 - row) + 0.5) / h - 1.0) * t;
-    dray r;
-    double len = 0;
-    for (int i = 0; i < 3; i++) {
-        r.o[i] = c->position[i];
-        r.d[i] = b.forward[i] + sx * b.right[i] + sy * b.up[i];
-        len += r.d[i] * r.d[i];
-    }
-    for (int i = 0; i < 3; i++)
-        r.d[i] /= sqrt(len);
-    return r;
-}
+#include "gltest.h"
 
 /* ---- every variant the shipped scenes can ask for compiles and links ---------------------------- */
 
@@ -485,24 +413,6 @@ static double rnd(double lo, double hi)
     return lo + (hi - lo) * (double)(rng >> 8) / 16777216.0;
 }
 
-static void check_finite(const char *what, const float *aov, const float *rgba, int n)
-{
-    for (int i = 0; i < n; i++) {
-        const float *a = aov + i * AOV, *c = rgba + i * 4;
-        for (int k = 0; k < 4; k++)
-            if (!isfinite(c[k]))
-                fail_msg("%s: pixel %d colour channel %d is %g", what, i, k, (double)c[k]);
-        for (int k = 0; k < AOV; k++)
-            if (k != 3 && !isfinite(a[k]))
-                fail_msg("%s: pixel %d AOV channel %d is %g", what, i, k, (double)a[k]);
-        if (isnan(a[3]) || a[3] < 0 || (isinf(a[3]) && (a[0] != 0 || a[1] != 0 || a[2] != 0)))
-            fail_msg("%s: pixel %d depth %g with normal (%g %g %g)", what, i, (double)a[3], (double)a[0],
-                     (double)a[1], (double)a[2]);
-        if (a[4] < 1)
-            fail_msg("%s: pixel %d took %g steps", what, i, (double)a[4]);
-    }
-}
-
 static void no_nan_or_inf(void **st)
 {
     (void)st;
@@ -664,5 +574,5 @@ int main(void)
         cmocka_unit_test(png_orientation),
         cmocka_unit_test(reload_keeps_last_good_program),
     };
-    return cmocka_run_group_tests(tests, setup, teardown);
+    return cmocka_run_group_tests(tests, gl_setup, gl_teardown);
 }

@@ -53,15 +53,15 @@ static void expands_with_line_directives(void **st)
     static const char want[] =
         "#line 1 0\n"
         "// line 1\n"
-        "#line 1 1\n"
+        "#line 100001 1\n"
         "#define A 1.0\n"
-        "#line 1 2\n"
+        "#line 200001 2\n"
         "#define B 2.0\n"
-        "#line 3 1\n"
+        "#line 100003 1\n"
         "float a = B;\n"
         "#line 3 0\n"
         "float x = A;\n"
-        "#line 1 3\n"
+        "#line 300001 3\n"
         "float g = 3.0;\n"
         "#line 5 0\n"
         "\n" /* the second include of common/a.glsl: already in, so an empty line keeps numbering */
@@ -106,6 +106,10 @@ static void translates_driver_logs(void **st)
     sb_free(&out);
     shader_translate_log("1(40) : error C1008: undefined variable \"foo\"\nplain line", &files, &out);
     assert_string_equal(out.data, "common/march.glsl:40: error C1008: undefined variable \"foo\"\nplain line\n");
+    sb_free(&out);
+    /* Mesa's semantic errors report source 0: the file id in the line number still finds the file */
+    shader_translate_log("0:100077(19): error: `undeclared_thing' undeclared\n", &files, &out);
+    assert_string_equal(out.data, "common/march.glsl:77: error: `undeclared_thing' undeclared\n");
     sb_free(&out);
 }
 

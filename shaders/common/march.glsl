@@ -14,7 +14,14 @@
 #define SURFACE_OFFSET_K 4.0
 #endif
 
-float hitEps(float t) { return max(float(HIT_K) * uPixelAngle * t, HIT_EPS_MIN); }
+// Positions are float: near |p| a step below about 4 ulps (|p| · 2⁻²¹, PRECISION_REL from the C
+// preamble) cannot be resolved and would only add noise, so the threshold never goes below that.
+
+float hitEps(float t)
+{
+    float floatFloor = PRECISION_REL * (length(uCamPos) + t);
+    return max(max(float(HIT_K) * uPixelAngle * t, HIT_EPS_MIN), floatFloor);
+}
 
 struct Hit {
     bool hit;
@@ -25,20 +32,36 @@ struct Hit {
 
 // side = +1 marches outside solids, -1 inside (refraction); pathT = path length before this ray,
 // so thresholds keep growing with the total distance from the eye.
+//
+// Over-relaxation (OVER_RELAX = ω > 1; Keinert, Schäfer, Korndörfer, Ganse, Stamminger, "Enhanced
+// Sphere Tracing", 2014): step ω·d instead of d. Each distance is an empty ball; while consecutive
+// balls overlap the stretch between them is empty. When they do not, the long step may have passed
+// a surface: go back to the plain step from the last point and march plainly from there.
 Hit castRay(vec3 ro, vec3 rd, float tmax, float side, float pathT)
 {
     Hit h = Hit(false, 0.0, -1.0, 0);
-    float t = 0.0;
+    float omega = float(OVER_RELAX);
+    float t = 0.0, tPrev = 0.0, rPrev = 0.0;
     for (int i = 0; i < MAX_STEPS; i++) {
         h.steps = i + 1;
         vec2 d = map(ro + rd * t);
         float dist = side * d.x;
-        if (dist < hitEps(pathT + t)) {
+        if (omega > 1.0 && i > 0 && abs(dist) + rPrev < t - tPrev) {
+            t = tPrev + rPrev * float(STEP_FACTOR);
+            omega = 1.0;
+            continue;
+        }
+        // Plain marching: any distance below the threshold, negative too (a camera inside a solid), is a
+        // hit. Relaxed: a step may land inside with its ball still overlapping the last one; then the
+        // signed distance steps back out, as in Keinert et al.
+        if (omega > 1.0 ? abs(dist) < hitEps(pathT + t) : dist < hitEps(pathT + t)) {
             h.hit = true;
             h.mat = d.y;
             break;
         }
-        t += dist * float(STEP_FACTOR);
+        tPrev = t;
+        rPrev = abs(dist);
+        t += omega * dist * float(STEP_FACTOR);
         if (t > tmax)
             break;
     }

@@ -25,6 +25,10 @@
 #include "common/fog.glsl"
 #endif
 
+#if FX_GLOW
+uniform vec4 uGlow; // rgb colour, a strength
+#endif
+
 layout(location = 0) out vec4 oColor;
 layout(location = 1) out vec4 oNormalDepth;
 layout(location = 2) out vec4 oAux;
@@ -138,6 +142,10 @@ void main()
     if (!escaped && side < 0.0) // the path ran out of bounces inside glass: let it leave unbent
         radiance += throughput * environment(rd);
 
+#if FX_GLOW // light gathered where the primary ray crept along the surface (many steps)
+    float crept = float(firstSteps) / float(MAX_STEPS);
+    radiance += uGlow.rgb * uGlow.a * crept * crept;
+#endif
 #if FX_FOG
     radiance = applyFog(radiance, primaryT);
 #endif

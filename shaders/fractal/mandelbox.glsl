@@ -1,0 +1,43 @@
+// The Mandelbox (T. Lowe, 2010): z → s · sphereFold(boxFold(z)) + c. The box fold reflects each
+// coordinate beyond ±fold limit; the sphere fold inverts radii between min and fixed radius (scaling
+// inside min radius by a constant, so r = 0 needs no guard). DE = |z| / |dr| with the running
+// derivative dr → |s| · k · dr + 1 (k the fold's scale).
+#include "fractal/common.glsl"
+
+const float BOX_ESCAPE2 = 1e8; // |z|² beyond which z only grows: stop before float overflows
+
+float boxDE(vec3 c, out float trap)
+{
+    float scale = uFractalA.z, minR2 = uFractalA.w * uFractalA.w;
+    float fixedR2 = uFractalB.x * uFractalB.x, limit = uFractalB.y;
+    vec3 z = c;
+    float dr = 1.0;
+    trap = 1e10;
+    for (int i = 0; i < FRACTAL_ITERATIONS; i++) {
+        z = clamp(z, -limit, limit) * 2.0 - z;
+        float r2 = dot(z, z);
+        trap = min(trap, r2);
+        float k = r2 < minR2 ? fixedR2 / minR2 : (r2 < fixedR2 ? fixedR2 / r2 : 1.0);
+        z = scale * k * z + c;
+        dr = dr * abs(scale) * k + 1.0;
+        if (dot(z, z) > BOX_ESCAPE2)
+            break;
+    }
+    return length(z) / abs(dr);
+}
+
+vec2 map(vec3 p)
+{
+    float bound = length(p) - uFractalB.z;
+    if (bound > BOUND_MARGIN)
+        return vec2(bound, 0.0);
+    float trap;
+    return vec2(boxDE(p, trap), 0.0);
+}
+
+vec3 programAlbedo(vec3 p)
+{
+    float trap;
+    boxDE(p, trap);
+    return paletteColor(sqrt(trap) / uFractalB.x);
+}

@@ -1,0 +1,13 @@
+// Evaluates the scene's map() at the points in uPoints (one per texel): the distance estimate as the
+// shader computes it, for tests and for the window's distance-driven flying speed.
+#include "common/sdf.glsl"
+#include "program.glsl"
+
+uniform sampler2D uPoints;
+out vec4 oDistance;
+
+void main()
+{
+    vec3 p = texelFetch(uPoints, ivec2(gl_FragCoord.xy), 0).xyz;
+    oDistance = vec4(map(p), 0.0, 1.0);
+}
