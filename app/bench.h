@@ -1,6 +1,13 @@
-/* bench — what accuracy costs in time. Headless: for each quality preset of a scene, the time of one
- * sample per pixel (a window frame), median of `runs` frames after two warm-up frames, measured as
- * wall clock around glFinish (GL timer queries are wrong on llvmpipe). */
+/* bench — what accuracy costs in time. Headless.
+ *
+ * For fixed views of a scene (its start camera, and the same camera turned 40° about the look-at
+ * point), each accuracy knob is swept on its own around the scene's preset, then the presets, then
+ * every effect compiled out / compiled in / compiled in but off at run time. Time: median of `runs`
+ * images (all of a setting's samples) after one warm-up, wall clock around glFinish (GL timer
+ * queries are wrong on llvmpipe). Error: against a reference render of the same view (the reference
+ * preset with REF_SPP samples), whose own convergence is checked against a stricter render
+ * (metrics.h says what is measured). Writes CSV, a gnuplot plot of error against time with the
+ * Pareto front, and a markdown summary. */
 #ifndef FATHOM_BENCH_H
 #define FATHOM_BENCH_H
 

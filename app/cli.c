@@ -11,10 +11,11 @@ static const float MAX_FOV_DEG = 179.0f; /* vertical field of view; 180 degrees 
 
 static const char USAGE[] =
     "usage: fathom [options]\n"
-    "       fathom bench [--scene S] [--size WxH] [--runs N] [--csv FILE] [--set KEY=VALUE]...\n"
+    "       fathom bench [--scene S] [--size WxH] [--runs N] [--knob NAME=v1,v2,...]... [--out DIR]\n"
     "  Opens the explorer window, or renders an offline shot with --output (no display needed).\n"
-    "  bench: headless; times one sample per pixel at every quality preset, median of N runs [5]\n"
-    "  after warm-up, wall clock around glFinish; prints a table, writes CSV with --csv.\n"
+    "  bench: headless; for fixed views, sweeps each accuracy knob on its own (default: all that\n"
+    "  apply), the presets and every effect; time = median of N [5] images after warm-up (wall clock\n"
+    "  around glFinish); error against a reference render. --out writes CSV, plot, summary [320x180].\n"
     "\n"
     "  --scene NAME|FILE     scene to load: a name from scenes/ (csg) or a scene file path [csg]\n"
     "  --output FILE         render headless to FILE (.png 8-bit sRGB, .exr linear float) and exit\n"
@@ -152,7 +153,7 @@ bool cli_parse(int argc, char **argv, cli_options *o, err_t *err)
         }
         static const char *const with_value[] = {"--scene", "--output", "--size", "--spp", "--quality",
                                                  "--camera", "--look-at", "--fov", "--set", "--aov", "--frames",
-                                                 "--runs", "--csv"};
+                                                 "--runs", "--out", "--knob"};
         bool known = false;
         for (size_t k = 0; k < sizeof with_value / sizeof with_value[0]; k++)
             known |= !strcmp(name, with_value[k]);
@@ -175,8 +176,14 @@ bool cli_parse(int argc, char **argv, cli_options *o, err_t *err)
         } else if (!strcmp(name, "--runs")) {
             if (!parse_int(val, 1, MAX_RUNS, &o->runs))
                 return err_set(err, "bad --runs '%s': expected a whole number from 1 to %d", val, MAX_RUNS);
-        } else if (!strcmp(name, "--csv")) {
-            o->csv = val;
+        } else if (!strcmp(name, "--out")) {
+            o->out = val;
+        } else if (!strcmp(name, "--knob")) {
+            if (!strchr(val, '=') || val[0] == '=')
+                return err_set(err, "bad --knob '%s': expected NAME=v1,v2,..., e.g. --knob max_steps=32,64,128", val);
+            if (o->knob_count == CLI_MAX_SETS)
+                return err_set(err, "too many --knob options (at most %d)", CLI_MAX_SETS);
+            o->knobs[o->knob_count++] = val;
         } else if (!strcmp(name, "--frames")) {
             if (!parse_int(val, 1, 1 << 30, &o->frames))
                 return err_set(err, "bad --frames '%s': expected a whole number >= 1", val);
@@ -213,9 +220,9 @@ bool cli_parse(int argc, char **argv, cli_options *o, err_t *err)
         }
     }
     if (o->bench && (o->output || o->aovs || o->frames || o->print_variant))
-        return err_set(err, "fathom bench takes --scene, --size, --runs, --csv, --set and --quiet only");
-    if (!o->bench && (o->csv || o->runs != DEFAULT_RUNS))
-        return err_set(err, "--runs and --csv belong to fathom bench");
+        return err_set(err, "fathom bench takes --scene, --size, --runs, --knob, --out, --set and --quiet only");
+    if (!o->bench && (o->out || o->knob_count || o->runs != DEFAULT_RUNS))
+        return err_set(err, "--runs, --knob and --out belong to fathom bench");
     if (o->aovs && !o->output)
         return err_set(err, "--aov needs an offline shot: add --output FILE.exr");
     if (o->output) {

@@ -1,7 +1,7 @@
 /* cli — the command line, parsed into an options struct. Pure: no I/O but the error text.
  *
  *   fathom [options]              explorer window (or an offline shot with --output)
- *   fathom bench [options]        time every quality preset of a scene (median of --runs frames)
+ *   fathom bench [options]        what accuracy costs: knob sweeps, presets, effects (time and error)
  *   fathom --help                 usage
  *
  * Angles are degrees on the command line (radians inside the code); sizes are pixels.
@@ -35,8 +35,10 @@ typedef struct cli_options {
     unsigned aovs; /* aov_flag bits */
     bool print_variant, list_scenes, help, version, quiet;
     bool bench;        /* `fathom bench ...` */
-    int runs;          /* bench: timed frames per setting (median reported) */
-    const char *csv;   /* bench: CSV output path */
+    int runs;          /* bench: timed images per setting (median reported) */
+    const char *out;   /* bench: folder for CSV, plot and summary (NULL: print only) */
+    const char *knobs[CLI_MAX_SETS]; /* bench: "NAME=v1,v2,..." sweeps (none: every knob, default values) */
+    int knob_count;
 } cli_options;
 
 /* Parses argv into *o (zeroed first). False with one line in err on bad input. */

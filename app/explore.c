@@ -24,6 +24,22 @@ static const float EXPOSURE = 1.0f;
 static const double IDLE_WAIT_S = 0.05;
 static const float MIN_ADAPTIVE_DISTANCE = 1e-7f; /* metres: keeps a little speed at the surface */
 
+/* Knobs the window steps live: = raises a value (× factor, + add), - lowers it, clamped. */
+static const struct {
+    const char *name, *key;
+    float factor, add, lo, hi;
+} KNOBS[] = {
+    {"max_steps", "quality.max_steps", 2, 0, 8, 4096},
+    {"hit_k", "quality.hit_k", 2, 0, 0.0625f, 16},
+    {"shadow_steps", "quality.shadow_steps", 2, 0, 4, 2048},
+    {"ao_samples", "quality.ao_samples", 1, 1, 0, 16},
+    {"bounces", "quality.bounces", 1, 1, 0, 16},
+    {"spp", "quality.spp", 2, 0, 1, 1024},
+    {"over_relax", "quality.over_relax", 1, 0.1f, 1, 1.9f},
+    {"step_factor", "quality.step_factor", 1, 0.05f, 0.3f, 1},
+};
+enum { KNOB_COUNT = sizeof KNOBS / sizeof KNOBS[0] };
+
 static struct {
     scene scene;
     bool have_scene;
@@ -37,6 +53,9 @@ static struct {
     int pending_scene; /* -1 none */
     bool reload, screenshot;
     render_view view;
+    int knob;                          /* the knob that =/- step */
+    int knob_step;                     /* pending: +1 or -1 */
+    char knob_sets[8][64];             /* the stepped knobs, as --set overrides */
     float surface_distance; /* the distance estimate at the camera (fractals: sets the flying speed) */
     char message[ERR_MSG_MAX];
     double frame_ms[FRAME_HISTORY];
@@ -57,6 +76,17 @@ static void on_key(GLFWwindow *w, int key, int scancode, int action, int mods)
         app.screenshot = true;
     else if (key == GLFW_KEY_H)
         app.view = app.view == VIEW_STEPS ? VIEW_COLOR : VIEW_STEPS;
+    else if (key == GLFW_KEY_G) {
+        render_grab_reference();
+        snprintf(app.message, sizeof app.message, "grabbed this frame as the reference: V shows the difference");
+    } else if (key == GLFW_KEY_V)
+        app.view = app.view == VIEW_DIFFERENCE ? VIEW_COLOR : VIEW_DIFFERENCE;
+    else if (key == GLFW_KEY_K)
+        app.knob = (app.knob + 1) % KNOB_COUNT;
+    else if (key == GLFW_KEY_EQUAL || key == GLFW_KEY_KP_ADD)
+        app.knob_step = +1;
+    else if (key == GLFW_KEY_MINUS || key == GLFW_KEY_KP_SUBTRACT)
+        app.knob_step = -1;
     else if (key >= GLFW_KEY_1 && key <= GLFW_KEY_9 && key - GLFW_KEY_1 < app.scene_count)
         app.pending_scene = key - GLFW_KEY_1;
 }
@@ -71,8 +101,15 @@ static void on_scroll(GLFWwindow *w, double dx, double dy)
 static bool load_scene(const char *name, const cli_options *opt, bool first, err_t *err)
 {
     scene next;
-    /* --set overrides belong to the scene named on the command line */
-    if (!scene_load(name, first ? opt->sets : NULL, first ? opt->set_count : 0, &next, err))
+    /* --set overrides belong to the scene named on the command line; stepped knobs to every scene */
+    const char *sets[CLI_MAX_SETS + KNOB_COUNT];
+    int n = 0;
+    for (int i = 0; first && i < opt->set_count; i++)
+        sets[n++] = opt->sets[i];
+    for (int k = 0; k < KNOB_COUNT; k++)
+        if (app.knob_sets[k][0])
+            sets[n++] = app.knob_sets[k];
+    if (!scene_load(name, sets, n, &next, err))
         return false;
     if (opt->spp)
         next.quality.spp = opt->spp;
@@ -98,6 +135,34 @@ static bool load_scene(const char *name, const cli_options *opt, bool first, err
         app.cam = camera_look_at(pos, at, fov * GLM_PIf / 180.0f);
     }
     return true;
+}
+
+static float knob_value(const quality *q, int k)
+{
+    switch (k) {
+    case 0: return (float)q->max_steps;
+    case 1: return q->hit_k;
+    case 2: return (float)q->shadow_steps;
+    case 3: return (float)q->ao_samples;
+    case 4: return (float)q->bounces;
+    case 5: return (float)q->spp;
+    case 6: return q->over_relax;
+    default: return q->step_factor;
+    }
+}
+
+/* Steps the selected knob and reloads the scene with it (the same checks as --set). */
+static void step_knob(const cli_options *opt, int dir)
+{
+    float v = knob_value(&app.scene.quality, app.knob);
+    v = dir > 0 ? v * KNOBS[app.knob].factor + KNOBS[app.knob].add : (v - KNOBS[app.knob].add) / KNOBS[app.knob].factor;
+    v = v < KNOBS[app.knob].lo ? KNOBS[app.knob].lo : v > KNOBS[app.knob].hi ? KNOBS[app.knob].hi : v;
+    snprintf(app.knob_sets[app.knob], sizeof app.knob_sets[0], "%s=%g", KNOBS[app.knob].key, (double)v);
+    err_t e;
+    if (!load_scene(app.scene.path, opt, false, &e))
+        snprintf(app.message, sizeof app.message, "%s", e.msg);
+    else
+        snprintf(app.message, sizeof app.message, "%s = %g", KNOBS[app.knob].name, (double)v);
 }
 
 static void screenshot(int w, int h)
@@ -152,16 +217,23 @@ static void hud(int w, int h)
     if (app.scene.adaptive_speed && app.scene.quality.hit_k * d * pa < PRECISION_REL * (glm_vec3_norm((float *)c->position) + d))
         snprintf(limit, sizeof limit, "float precision reached: detail below %.2g m cannot be resolved here\n",
                  (double)(PRECISION_REL * (glm_vec3_norm((float *)c->position) + d)));
+    char knobs[512];
+    int len = 0;
+    for (int k = 0; k < KNOB_COUNT; k++)
+        len += snprintf(knobs + len, sizeof knobs - (size_t)len, "%s%s %g%s  ", k == app.knob ? "[" : "",
+                        KNOBS[k].name, (double)knob_value(&app.scene.quality, k), k == app.knob ? "]" : "");
+    static const char *const views[] = {"", "  [steps]", "  [difference to grabbed frame]"};
     snprintf(text, sizeof text,
              "%s  [%s]  %dx%d%s\n"
              "%.1f ms/sample  %.1f fps  %d/%d spp\n"
+             "%s\n"
              "pos %.4g %.4g %.4g  %s  fov %.0f\n%s"
              "WASD move  mouse look  Space/C up/down  Shift fast  scroll speed\n"
-             "1-%d scenes  H steps view  R reload  P screenshot  Esc quit\n%s",
-             app.scene.name, preset_name(app.scene.preset), w, h, app.view == VIEW_STEPS ? "  [steps]" : "", ms,
-             ms > 0 ? 1000.0 / ms : 0.0, render_samples(), app.scene.quality.spp, (double)c->position[0],
-             (double)c->position[1], (double)c->position[2], speed, (double)(c->fov_y * 180.0f / GLM_PIf), limit,
-             app.scene_count, app.message);
+             "1-%d scenes  K knob  =/- step it  H steps  G grab  V difference  R reload  P shot  Esc quit\n%s",
+             app.scene.name, preset_name(app.scene.preset), w, h, views[app.view], ms, ms > 0 ? 1000.0 / ms : 0.0,
+             render_samples(), app.scene.quality.spp, knobs, (double)c->position[0], (double)c->position[1],
+             (double)c->position[2], speed, (double)(c->fov_y * 180.0f / GLM_PIf), limit, app.scene_count,
+             app.message);
     hud_draw(text, w, h, h >= 900 ? 2.0f : 1.5f);
 }
 
@@ -223,6 +295,11 @@ bool explore_run(const cli_options *opt, err_t *err)
             else
                 app.message[0] = '\0';
             app.pending_scene = -1;
+            first_frame = true;
+        }
+        if (app.knob_step) {
+            step_knob(opt, app.knob_step);
+            app.knob_step = 0;
             first_frame = true;
         }
         if (app.reload) {

@@ -22,6 +22,8 @@ static struct {
     GLuint vao, display_prog;
     GLuint fbo, targets[NUM_TARGETS];
     GLuint out_fbo, out_tex; /* RGBA8 for sRGB readback */
+    GLuint ref_fbo, ref_tex; /* a grabbed image for the difference view */
+    int ref_samples;
     int width, height, samples;
     cached_program programs[MAX_PROGRAMS];
     int program_count;
@@ -30,7 +32,8 @@ static struct {
     GLuint textures[SCENE_MAX_TEXTURES], envmap;
     int env_size;
     camera cam;
-} state;
+    unsigned runtime_effects; /* effects switched on at run time (bits as in variant.h) */
+} state = {.runtime_effects = ~0u};
 
 static char shader_root[PATH_MAX_LEN];
 
@@ -55,7 +58,10 @@ static void free_targets(void)
         glDeleteTextures(NUM_TARGETS, state.targets);
         glDeleteFramebuffers(1, &state.out_fbo);
         glDeleteTextures(1, &state.out_tex);
-        state.fbo = state.out_fbo = 0;
+        glDeleteFramebuffers(1, &state.ref_fbo);
+        glDeleteTextures(1, &state.ref_tex);
+        state.fbo = state.out_fbo = state.ref_fbo = state.ref_tex = 0;
+        state.ref_samples = 0;
     }
 }
 
@@ -67,6 +73,8 @@ static void free_scene_textures(void)
         glDeleteTextures(1, &state.envmap);
     state.envmap = 0;
 }
+
+void render_set_runtime_effects(unsigned mask) { state.runtime_effects = mask; }
 
 void render_shutdown(void)
 {
@@ -80,6 +88,7 @@ void render_shutdown(void)
     glDeleteProgram(state.display_prog);
     glDeleteVertexArrays(1, &state.vao);
     memset(&state, 0, sizeof state);
+    state.runtime_effects = ~0u;
 }
 
 void render_preamble(const scene *s, const char *extra_defines, strbuf *out)
@@ -291,7 +300,8 @@ void render_sample(void)
     glUniform3fv(loc("uCamUp"), 1, b.up);
     glUniform1f(loc("uTanHalfFov"), tanf(0.5f * state.cam.fov_y));
     glUniform1f(loc("uPixelAngle"), camera_pixel_angle(&state.cam, state.height));
-    bool jitter = (state.scene->effects & (1u << EFFECT_AA)) && !first;
+    glUniform1ui(loc("uFxRuntime"), state.runtime_effects);
+    bool jitter = (state.scene->effects & state.runtime_effects & (1u << EFFECT_AA)) && !first;
     glUniform2f(loc("uJitter"), jitter ? halton(state.samples, 2) - 0.5f : 0.0f,
                 jitter ? halton(state.samples, 3) - 0.5f : 0.0f);
     for (int i = 0; i < SCENE_MAX_TEXTURES; i++) {
@@ -308,6 +318,27 @@ void render_sample(void)
     state.samples++;
 }
 
+void render_grab_reference(void)
+{
+    if (!state.ref_tex) {
+        glGenTextures(1, &state.ref_tex);
+        glBindTexture(GL_TEXTURE_2D, state.ref_tex);
+        glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, state.width, state.height, 0, GL_RGBA, GL_FLOAT, NULL);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        glGenFramebuffers(1, &state.ref_fbo);
+        glBindFramebuffer(GL_FRAMEBUFFER, state.ref_fbo);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, state.ref_tex, 0);
+    }
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, state.fbo);
+    glReadBuffer(GL_COLOR_ATTACHMENT0);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, state.ref_fbo);
+    glDrawBuffers(1, (const GLenum[]){GL_COLOR_ATTACHMENT0});
+    glBlitFramebuffer(0, 0, state.width, state.height, 0, 0, state.width, state.height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    state.ref_samples = state.samples;
+}
+
 void render_display(GLuint fbo, int width, int height, float exposure, render_view view)
 {
     GLuint p = state.display_prog;
@@ -320,6 +351,13 @@ void render_display(GLuint fbo, int width, int height, float exposure, render_vi
     glBindTexture(GL_TEXTURE_2D, state.targets[0]);
     glUniform1i(glGetUniformLocation(p, "uAccum"), 0);
     glUniform1i(glGetUniformLocation(p, "uAux"), 1);
+    if (view == VIEW_DIFFERENCE && !state.ref_samples)
+        view = VIEW_COLOR; /* nothing grabbed yet */
+    glActiveTexture(GL_TEXTURE2);
+    glBindTexture(GL_TEXTURE_2D, state.ref_tex);
+    glActiveTexture(GL_TEXTURE0);
+    glUniform1i(glGetUniformLocation(p, "uReference"), 2);
+    glUniform1f(glGetUniformLocation(p, "uInvRefSamples"), state.ref_samples ? 1.0f / (float)state.ref_samples : 0.0f);
     glUniform1i(glGetUniformLocation(p, "uView"), (GLint)view);
     glUniform1f(glGetUniformLocation(p, "uMaxSteps"), state.scene ? (float)state.scene->quality.max_steps : 1.0f);
     glUniform1f(glGetUniformLocation(state.display_prog, "uInvSamples"),

@@ -25,12 +25,19 @@ void render_shutdown(void);
  * variant preamble: tests use it to switch a guard off. Loads textures, compiles or reuses the program. */
 bool render_set_scene(const scene *s, const char *extra_defines, err_t *err);
 
+/* Switches compiled-in effects off at run time (bit 1 << effect; default all on): the bench measures
+ * what an effect costs compiled in but unused. */
+void render_set_runtime_effects(unsigned mask);
+
 void render_resize(int width, int height);
 void render_begin(const camera *c); /* new view: restart accumulation */
 void render_sample(void);           /* add one sample */
 int render_samples(void);
 
-typedef enum render_view { VIEW_COLOR, VIEW_STEPS } render_view;
+typedef enum render_view { VIEW_COLOR, VIEW_STEPS, VIEW_DIFFERENCE } render_view;
+
+/* Keeps the current image as the reference that VIEW_DIFFERENCE compares against. */
+void render_grab_reference(void);
 
 /* Tone-mapped sRGB colour (or the steps heat map) into framebuffer `fbo` (0 = window). */
 void render_display(GLuint fbo, int width, int height, float exposure, render_view view);

@@ -82,7 +82,8 @@ void variant_preamble(const variant *v, strbuf *out)
 {
     sb_printf(out, "#define PROGRAM_%s 1\n", program_name(v->program));
     for (int e = 0; e < EFFECT_COUNT; e++)
-        sb_printf(out, "#define %s %d\n", EFFECT_DEFINES[e], (v->effects >> e) & 1u);
+        sb_printf(out, "#define %s %d\n#define %s_BIT %du\n", EFFECT_DEFINES[e], (v->effects >> e) & 1u,
+                  EFFECT_DEFINES[e], 1 << e);
     sb_printf(out,
               "#define MAX_STEPS %d\n#define HIT_K %.9g\n#define STEP_FACTOR %.9g\n#define MAX_DIST %.9g\n"
               "#define SHADOW_STEPS %d\n#define AO_SAMPLES %d\n#define BOUNCES %d\n#define ANISO_TAPS %d\n"

@@ -1,8 +1,11 @@
 // Accumulated linear radiance → display: average the samples, expose, tone-map, encode sRGB.
 // Tone curve: K. Narkowicz, "ACES Filmic Tone Mapping Curve" (2015), a fit of the ACES RRT+ODT.
-// View 1 shows the primary ray's march steps instead (a heat map: blue few … red MAX_STEPS).
+// View 1 shows the primary ray's march steps instead (a heat map: blue few … red MAX_STEPS);
+// view 2 the difference to a grabbed reference frame (a heat map: blue same … red 1/8 off).
 uniform sampler2D uAccum;
 uniform sampler2D uAux; // target 2: steps, exit direction
+uniform sampler2D uReference;
+uniform float uInvRefSamples;
 uniform float uInvSamples;
 uniform float uExposure;
 uniform int uView;
@@ -26,6 +29,13 @@ void main()
 {
     if (uView == 1) {
         oColor = vec4(heat(texelFetch(uAux, ivec2(gl_FragCoord.xy), 0).x / uMaxSteps), 1.0);
+        return;
+    }
+    if (uView == 2) {
+        const float DIFF_GAIN = 8.0;
+        vec3 now = acesFit(texelFetch(uAccum, ivec2(gl_FragCoord.xy), 0).rgb * uInvSamples * uExposure);
+        vec3 ref = acesFit(texelFetch(uReference, ivec2(gl_FragCoord.xy), 0).rgb * uInvRefSamples * uExposure);
+        oColor = vec4(heat(length(now - ref) * DIFF_GAIN), 1.0);
         return;
     }
     vec3 c = texelFetch(uAccum, ivec2(gl_FragCoord.xy), 0).rgb * uInvSamples;

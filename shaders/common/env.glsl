@@ -14,7 +14,7 @@ vec3 envDir(vec3 dir) { return vec3(dir.xy, -dir.z); }
 vec3 environment(vec3 dir)
 {
 #if FX_ENVMAP
-    return textureLod(uEnvMap, envDir(dir), 0.0).rgb * uEnvColor;
+    return fxOn(FX_ENVMAP_BIT) ? textureLod(uEnvMap, envDir(dir), 0.0).rgb * uEnvColor : uEnvColor;
 #else
     return uEnvColor;
 #endif
@@ -25,7 +25,8 @@ vec3 environment(vec3 dir)
 vec3 environmentBlurred(vec3 dir, float roughness)
 {
 #if FX_ENVMAP
-    return textureLod(uEnvMap, envDir(dir), roughness * (uEnvMaxLod - 2.0)).rgb * uEnvColor;
+    return fxOn(FX_ENVMAP_BIT) ? textureLod(uEnvMap, envDir(dir), roughness * (uEnvMaxLod - 2.0)).rgb * uEnvColor
+                               : uEnvColor;
 #else
     return uEnvColor;
 #endif

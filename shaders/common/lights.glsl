@@ -28,10 +28,10 @@ vec3 directLight(vec3 p, vec3 n, vec3 v, Material m, vec3 F0, float pathT)
         float vis = 1.0;
 #if FX_SHADOWS
         int mode = int(uLightColor[i].w + 0.5);
-        if (mode > 0) {
+        if (mode > 0 && fxOn(FX_SHADOWS_BIT)) {
             vec3 ro = p + n * (SURFACE_OFFSET_K * hitEps(pathT));
 #if FX_SOFT_SHADOWS
-            if (mode == 2)
+            if (mode == 2 && fxOn(FX_SOFT_SHADOWS_BIT))
                 vis = softShadow(ro, l, dist, uLightSoftness[i], pathT);
             else
 #endif

@@ -81,7 +81,7 @@ Material getMaterial(float id, vec3 p, vec3 n, vec3 dpdx, vec3 dpdy)
 #endif
 #if FX_TEXTURES
     int tex = int(uMatParams[i].w);
-    if (tex >= 0)
+    if (tex >= 0 && fxOn(FX_TEXTURES_BIT))
         m.albedo *= triplanar(tex, p, n, dpdx, dpdy, uMatAbsorb[i].a);
 #endif
     return m;

@@ -39,7 +39,8 @@ vec3 shadeSurface(vec3 p, vec3 n, vec3 v, Material m, vec3 F0, float pathT, bool
     vec3 col = m.emission + directLight(p, n, v, m, F0, pathT);
     float ao = 1.0;
 #if FX_AO
-    ao = calcAO(p, n);
+    if (fxOn(FX_AO_BIT))
+        ao = calcAO(p, n);
 #endif
     float NdotV = max(dot(n, v), MIN_COSINE);
     vec3 F = fresnelSchlick(NdotV, F0);
@@ -63,7 +64,7 @@ void main()
 #if FX_REFRACTION
     // A camera inside glass starts on the inside: march to where the path leaves.
     vec2 start = map(ro);
-    if (start.x < 0.0 && uMatParams[clamp(int(start.y + 0.5), 0, NUM_MATERIALS - 1)].y > 0.0)
+    if (start.x < 0.0 && uMatParams[clamp(int(start.y + 0.5), 0, NUM_MATERIALS - 1)].y > 0.0 && fxOn(FX_REFRACTION_BIT))
         side = -1.0;
 #endif
 
@@ -96,7 +97,7 @@ void main()
             throughput *= exp(-m.absorption * h.t);
 
 #if FX_REFRACTION
-        if (m.transmission > 0.0) {
+        if (m.transmission > 0.0 && fxOn(FX_REFRACTION_BIT)) {
             bool entering = dot(rd, nOut) < 0.0;
             vec3 n = entering ? nOut : -nOut;        // faces the incoming ray
             float eta = entering ? 1.0 / m.ior : m.ior;
@@ -129,7 +130,7 @@ void main()
         vec3 F0 = mix(vec3(pow((ior - 1.0) / (ior + 1.0), 2.0)), m.albedo, m.metallic);
         bool mirror = false;
 #if FX_REFLECTIONS
-        mirror = m.transmission == 0.0 && m.roughness <= MIRROR_ROUGHNESS && bounce < BOUNCES;
+        mirror = m.transmission == 0.0 && m.roughness <= MIRROR_ROUGHNESS && bounce < BOUNCES && fxOn(FX_REFLECTIONS_BIT);
 #endif
         radiance += throughput * shadeSurface(p, n, v, m, F0, T, mirror);
         if (!mirror)
@@ -144,10 +145,12 @@ void main()
 
 #if FX_GLOW // light gathered where the primary ray crept along the surface (many steps)
     float crept = float(firstSteps) / float(MAX_STEPS);
-    radiance += uGlow.rgb * uGlow.a * crept * crept;
+    if (fxOn(FX_GLOW_BIT))
+        radiance += uGlow.rgb * uGlow.a * crept * crept;
 #endif
 #if FX_FOG
-    radiance = applyFog(radiance, primaryT);
+    if (fxOn(FX_FOG_BIT))
+        radiance = applyFog(radiance, primaryT);
 #endif
     oColor = vec4(radiance, 1.0);
     oNormalDepth = vec4(firstN, firstT);

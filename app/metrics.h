@@ -1,0 +1,39 @@
+/* metrics — how far a render is from a reference render of the same view. Pure.
+ *
+ * Colour: RMSE and PSNR of the display colour (8-bit sRGB after tone mapping, scaled to 0..1: what a
+ * person sees). Depth: over pixels both renders hit, the error in pixel footprints,
+ * |t − t_ref| / (t_ref · pixel angle), mean and max. Flips: share of pixels that hit in one render
+ * and miss in the other. Steps: mean primary-ray march steps of the render under test.
+ */
+#ifndef FATHOM_METRICS_H
+#define FATHOM_METRICS_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+typedef struct image_view {
+    int width, height;
+    const uint8_t *srgb; /* RGBA 8-bit, rows top first */
+    const float *aov;    /* 8 floats a pixel (render.h): depth at [3] (+inf on a miss), steps at [4] */
+} image_view;
+
+typedef struct metrics {
+    double rmse, psnr_db; /* psnr: +inf when identical */
+    double depth_mean_fp, depth_max_fp;
+    double flip_share;
+    double mean_steps;
+    int depth_pixels; /* pixels both hit */
+} metrics;
+
+/* Compares test with ref (same size). pixel_angle: of the reference camera at this height. */
+metrics metrics_compare(const image_view *test, const image_view *ref, double pixel_angle);
+
+/* Resizes an 8-bit RGBA image (bilinear) and an AOV image (nearest) to w × h, for a render made at a
+ * lower resolution scale. Outputs are malloc'd. */
+void metrics_upscale(const image_view *in, int w, int h, uint8_t **srgb, float **aov);
+
+/* Marks the points on the lower-left Pareto front of (time, error): none other is at most as slow
+ * and at most as wrong while better in one. */
+void metrics_pareto(const double *time, const double *error, int n, bool *front);
+
+#endif

@@ -1,0 +1,28 @@
+#!/bin/sh
+# fathom bench on a tiny image: it must finish and write a well-formed CSV, a PNG plot and a summary.
+# (Timings are never checked: this machine is shared and noisy.) Usage: bench_smoke.sh FATHOM
+fathom=$1
+out=$(mktemp -d)
+trap 'rm -rf "$out"' EXIT
+passed=0 failed=0
+check() { if eval "$2"; then passed=$((passed + 1)); else failed=$((failed + 1)); echo "FAIL $1"; fi; }
+
+"$fathom" bench --scene csg --size 40x24 --runs 2 --knob max_steps=16,64 --knob hit_k=4,1 \
+    --knob resolution_scale=0.5 --out "$out" --quiet >"$out/stdout" 2>"$out/stderr"
+check "bench exits 0" '[ $? -eq 0 ]'
+csv="$out/csg-knobs.csv"
+check "knob CSV written" '[ -s "$csv" ]'
+check "knob CSV has 14 columns on every line" \
+    '[ "$(awk -F, "{print NF}" "$csv" | sort -u)" = "14" ]'
+# 2 + 2 + 1 knob rows and 4 presets, plus the header
+check "knob CSV has 10 lines" '[ "$(wc -l < "$csv")" -eq 10 ]'
+check "times and errors are numbers >= 0" \
+    '[ -z "$(tail -n +2 "$csv" | awk -F, "\$7 !~ /^[0-9.]+\$/ || \$8 !~ /^[0-9.]+\$/ || \$13 !~ /^[0-9.]+\$/")" ]'
+check "the reference preset is on the Pareto front" 'grep -q "^csg,40,24,2,preset,reference,.*,1$" "$csv"'
+check "effects CSV lists every effect" '[ "$(tail -n +2 "$out/csg-effects.csv" | wc -l)" -eq 10 ]'
+check "plot is a PNG" '[ "$(head -c 8 "$out/csg-plot.png" | od -An -tx1 | tr -d " \n")" = "89504e470d0a1a0a" ]'
+check "summary links the plot" 'grep -q "](csg-plot.png)" "$out/csg-summary.md"'
+check "bad knob is refused" '! "$fathom" bench --knob nosuch=1 --size 8x8 2>/dev/null'
+[ "$failed" -eq 0 ] || cat "$out/stderr"
+echo "bench_smoke: $passed passed, $failed failed"
+[ "$failed" -eq 0 ]
