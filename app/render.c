@@ -7,13 +7,14 @@
 #include <string.h>
 
 #include "shader.h"
+#include "terrain.h"
 #include "texture.h"
 
 enum { MAX_PROGRAMS = 64, NUM_TARGETS = 3, AOV_FLOATS = 8 };
 
 typedef struct cached_program {
     program_kind kind;
-    bool probe;           /* probe.frag (map() at given points) instead of the image */
+    const char *frag;     /* sdf.frag (the image), probe.frag (map() at points), fogprobe.frag */
     char *preamble, *map; /* the key */
     GLuint prog;
 } cached_program;
@@ -30,6 +31,8 @@ static struct {
     GLuint prog; /* current scene program */
     const scene *scene;
     GLuint textures[SCENE_MAX_TEXTURES], envmap;
+    GLuint height_tex, height_max_tex; /* terrain: heights, max pyramid */
+    heightfield hf;
     int env_size;
     camera cam;
     unsigned runtime_effects; /* effects switched on at run time (bits as in variant.h) */
@@ -67,6 +70,12 @@ static void free_targets(void)
 
 static void free_scene_textures(void)
 {
+    if (state.height_tex) {
+        glDeleteTextures(1, &state.height_tex);
+        glDeleteTextures(1, &state.height_max_tex);
+        state.height_tex = state.height_max_tex = 0;
+        heightfield_free(&state.hf);
+    }
     glDeleteTextures(SCENE_MAX_TEXTURES, state.textures);
     memset(state.textures, 0, sizeof state.textures);
     if (state.envmap)
@@ -99,25 +108,25 @@ void render_preamble(const scene *s, const char *extra_defines, strbuf *out)
         sb_append(out, extra_defines);
 }
 
-static GLuint build_scene_program(bool probe, const char *preamble, const char *map, err_t *err)
+static GLuint build_scene_program(const char *frag, const char *preamble, const char *map, err_t *err)
 {
     shader_virtual virt[] = {{"program.glsl", map}};
-    return shader_build(shader_root, "fullscreen.vert", probe ? "probe.frag" : "sdf.frag", preamble, virt, 1, err);
+    return shader_build(shader_root, "fullscreen.vert", frag, preamble, virt, 1, err);
 }
 
-/* The cached program for (kind, probe, preamble, map), compiled on first use. */
-static GLuint get_program(const scene *s, bool probe, const char *extra_defines, err_t *err)
+/* The cached program for (kind, fragment shader, preamble, map), compiled on first use. */
+static GLuint get_program(const scene *s, const char *frag, const char *extra_defines, err_t *err)
 {
     strbuf pre = {0};
     render_preamble(s, extra_defines, &pre);
     for (int i = 0; i < state.program_count; i++) {
         cached_program *c = &state.programs[i];
-        if (c->kind == s->program && c->probe == probe && !strcmp(c->preamble, pre.data) && !strcmp(c->map, s->map_glsl)) {
+        if (c->kind == s->program && !strcmp(c->frag, frag) && !strcmp(c->preamble, pre.data) && !strcmp(c->map, s->map_glsl)) {
             sb_free(&pre);
             return c->prog;
         }
     }
-    GLuint prog = build_scene_program(probe, pre.data, s->map_glsl, err);
+    GLuint prog = build_scene_program(frag, pre.data, s->map_glsl, err);
     if (!prog) {
         sb_free(&pre);
         return 0;
@@ -130,8 +139,66 @@ static GLuint get_program(const scene *s, bool probe, const char *extra_defines,
         state.program_count--;
     }
     state.programs[state.program_count++] = (cached_program){
-        .kind = s->program, .probe = probe, .preamble = pre.data, .map = strdup(s->map_glsl), .prog = prog};
+        .kind = s->program, .frag = frag, .preamble = pre.data, .map = strdup(s->map_glsl), .prog = prog};
     return prog;
+}
+
+static GLuint float_texture(int w, int h, const float *data, int levels, float *const *mips)
+{
+    GLuint t;
+    glGenTextures(1, &t);
+    glBindTexture(GL_TEXTURE_2D, t);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    if (data)
+        glTexImage2D(GL_TEXTURE_2D, 0, GL_R32F, w, h, 0, GL_RED, GL_FLOAT, data);
+    for (int k = 0; k < levels; k++) {
+        int lw = w >> k, lh = h >> k;
+        glTexImage2D(GL_TEXTURE_2D, k, GL_R32F, lw > 0 ? lw : 1, lh > 0 ? lh : 1, 0, GL_RED, GL_FLOAT, mips[k]);
+    }
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, levels > 0 ? levels - 1 : 0);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    return t;
+}
+
+/* Terrain: heights (exact texelFetch, bilinear done in the shader) and the max pyramid. */
+static bool upload_terrain(const scene *s, err_t *err)
+{
+    heightfield_desc d = {.path = s->terrain.heightmap, .spacing = {s->terrain.spacing[0], s->terrain.spacing[1]},
+                          .height_min = s->terrain.height_min, .height_max = s->terrain.height_max,
+                          .exaggeration = s->terrain.exaggeration};
+    if (!heightfield_load(&d, &state.hf, err))
+        return false;
+    state.height_tex = float_texture(state.hf.width, state.hf.height, state.hf.h, 0, NULL);
+    state.height_max_tex = float_texture(state.hf.pw, state.hf.ph, NULL, state.hf.levels, state.hf.max);
+    return true;
+}
+
+static void upload_terrain_uniforms(GLuint prog, const scene *s)
+{
+    const heightfield *hf = &state.hf;
+    glUseProgram(prog);
+    glUniform1i(glGetUniformLocation(prog, "uHeight"), SCENE_MAX_TEXTURES + 1);
+    glUniform1i(glGetUniformLocation(prog, "uHeightMax"), SCENE_MAX_TEXTURES + 2);
+    glUniform4f(glGetUniformLocation(prog, "uTerrainGrid"), hf->x0, hf->z0, hf->dx, hf->dz);
+    glUniform4f(glGetUniformLocation(prog, "uTerrainRange"), hf->hmin, hf->hmax,
+                1.0f / sqrtf(1.0f + hf->lipschitz * hf->lipschitz), (float)(hf->levels - 1));
+    glUniform2i(glGetUniformLocation(prog, "uTerrainSize"), hf->width, hf->height);
+    glUniform3f(glGetUniformLocation(prog, "uTerrainLayers"), s->terrain.sand_line, s->terrain.snow_line,
+                s->terrain.grass_slope);
+    static const char *const layers[4] = {"sand", "grass", "rock", "snow"};
+    int idx[4];
+    for (int l = 0; l < 4; l++) {
+        idx[l] = -1;
+        for (int m = 0; m < s->material_count; m++)
+            if (!strcmp(s->materials[m].name, layers[l]))
+                idx[l] = m;
+    }
+    if (idx[2] < 0) /* rock is the fallback layer: the first material */
+        idx[2] = 0;
+    for (int l = 0; l < 4; l++)
+        idx[l] = idx[l] < 0 ? idx[2] : idx[l];
+    glUniform4i(glGetUniformLocation(prog, "uLayerMaterial"), idx[0], idx[1], idx[2], idx[3]);
 }
 
 /* Fractal parameters; a uniform the program does not use has location −1 and is ignored by GL. */
@@ -191,18 +258,20 @@ static void upload_scene_uniforms(void)
         env[k] = s->env_color[k] * s->env_intensity;
     glUniform3fv(loc("uEnvColor"), 1, env);
     glUniform3fv(loc("uFogColor"), 1, s->fog_color);
-    glUniform1f(loc("uFogDensity"), s->fog_density);
+    glUniform3f(loc("uFog"), s->fog_density, s->fog_falloff, s->fog_height);
     static const char *const tex_names[SCENE_MAX_TEXTURES] = {"uTex0", "uTex1", "uTex2", "uTex3"};
     for (int i = 0; i < SCENE_MAX_TEXTURES; i++)
         glUniform1i(loc(tex_names[i]), i);
     glUniform1i(loc("uEnvMap"), SCENE_MAX_TEXTURES);
     glUniform1f(loc("uEnvMaxLod"), state.env_size > 0 ? log2f((float)state.env_size) : 0.0f);
     upload_fractal_uniforms(state.prog, s);
+    if (state.height_tex)
+        upload_terrain_uniforms(state.prog, s);
 }
 
 bool render_set_scene(const scene *s, const char *extra_defines, err_t *err)
 {
-    GLuint prog = get_program(s, false, extra_defines, err);
+    GLuint prog = get_program(s, "sdf.frag", extra_defines, err);
     if (!prog)
         return false;
 
@@ -212,6 +281,8 @@ bool render_set_scene(const scene *s, const char *extra_defines, err_t *err)
         if (!state.textures[i])
             return false;
     }
+    if (s->program == PROGRAM_TERRAIN && !upload_terrain(s, err))
+        return false;
     state.env_size = 0;
     if (s->has_cubemap && (s->effects & (1u << EFFECT_ENVMAP))) {
         state.envmap = texture_load_cube(s->cubemap, &state.env_size, err);
@@ -310,6 +381,10 @@ void render_sample(void)
     }
     glActiveTexture(GL_TEXTURE0 + SCENE_MAX_TEXTURES);
     glBindTexture(GL_TEXTURE_CUBE_MAP, state.envmap);
+    glActiveTexture(GL_TEXTURE0 + SCENE_MAX_TEXTURES + 1);
+    glBindTexture(GL_TEXTURE_2D, state.height_tex);
+    glActiveTexture(GL_TEXTURE0 + SCENE_MAX_TEXTURES + 2);
+    glBindTexture(GL_TEXTURE_2D, state.height_max_tex);
     glActiveTexture(GL_TEXTURE0);
 
     glBindVertexArray(state.vao);
@@ -434,7 +509,7 @@ bool render_reload(err_t *err)
         return false;
     for (int i = 0; i < state.program_count; i++) {
         cached_program *c = &state.programs[i];
-        fresh[i] = build_scene_program(c->probe, c->preamble, c->map, err);
+        fresh[i] = build_scene_program(c->frag, c->preamble, c->map, err);
         if (!fresh[i]) {
             for (int k = 0; k < i; k++)
                 glDeleteProgram(fresh[k]);
@@ -458,11 +533,26 @@ bool render_reload(err_t *err)
 
 bool render_probe(const scene *s, const char *extra_defines, const float *points, int n, float *out, err_t *err)
 {
+    return render_probe_with(s, "probe.frag", extra_defines, points, n, out, err);
+}
+
+bool render_probe_with(const scene *s, const char *frag, const char *extra_defines, const float *points, int n,
+                       float *out, err_t *err)
+{
     assert(n > 0);
-    GLuint prog = get_program(s, true, extra_defines, err);
+    GLuint prog = get_program(s, frag, extra_defines, err);
     if (!prog)
         return false;
     upload_fractal_uniforms(prog, s);
+    glUniform3fv(glGetUniformLocation(prog, "uFogColor"), 1, s->fog_color);
+    glUniform3f(glGetUniformLocation(prog, "uFog"), s->fog_density, s->fog_falloff, s->fog_height);
+    if (state.height_tex && state.scene == s)
+        upload_terrain_uniforms(prog, s);
+    glActiveTexture(GL_TEXTURE0 + SCENE_MAX_TEXTURES + 1);
+    glBindTexture(GL_TEXTURE_2D, state.height_tex);
+    glActiveTexture(GL_TEXTURE0 + SCENE_MAX_TEXTURES + 2);
+    glBindTexture(GL_TEXTURE_2D, state.height_max_tex);
+    glActiveTexture(GL_TEXTURE0);
     GLint max_side = 0;
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_side);
     int w = n < max_side ? n : max_side, h = (n + w - 1) / w;

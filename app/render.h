@@ -54,6 +54,9 @@ bool render_reload(err_t *err);
 /* Evaluates the scene's map() on the GPU at n points (xyz each) into out (distance, material each):
  * the shader's own distance estimate, for tests and the window's flying speed. */
 bool render_probe(const scene *s, const char *extra_defines, const float *points, int n, float *out, err_t *err);
+/* The same with another probe shader: fogprobe.frag gives the fog's optical depth for (y, dir y, length). */
+bool render_probe_with(const scene *s, const char *frag, const char *extra_defines, const float *points, int n,
+                       float *out, err_t *err);
 
 /* The #define preamble of the current scene's variant (for --print-variant). */
 void render_preamble(const scene *s, const char *extra_defines, strbuf *out);

@@ -174,7 +174,7 @@ static bool parse_material(ctx *c, const cJSON *m, const char *path, scene_mater
         !get_num(c, m, path, "ior", 1.5f, 1, 4, &out->ior) ||
         !get_vec3(c, m, path, "absorption", zero, 0, 1e4f, out->absorption) ||
         !get_vec3(c, m, path, "emission", zero, 0, 1e6f, out->emission) ||
-        !get_num(c, m, path, "uv_scale", 1, 1e-4f, 1e4f, &out->uv_scale) ||
+        !get_num(c, m, path, "uv_scale", 1, 1e-7f, 1e4f, &out->uv_scale) ||
         !get_str(c, m, path, "texture", NULL, &tex))
         return false;
     out->texture = -1;
@@ -586,7 +586,8 @@ static bool parse_quality(ctx *c, const cJSON *root)
         return true;
     }
     static const char *const keys[] = {"preset", "max_steps", "hit_k", "step_factor", "max_dist", "shadow_steps",
-                                       "ao_samples", "bounces", "aniso_taps", "over_relax", "spp", NULL};
+                                       "ao_samples", "bounces", "aniso_taps", "over_relax", "linear_step", "step_growth",
+                                       "binary_steps", "spp", NULL};
     if (!check_keys(c, q, "quality", keys))
         return false;
     const char *name = NULL;
@@ -604,6 +605,9 @@ static bool parse_quality(ctx *c, const cJSON *root)
            get_int(c, q, "quality", "bounces", d.bounces, 0, 64, &o->bounces) &&
            get_int(c, q, "quality", "aniso_taps", d.aniso_taps, 1, 64, &o->aniso_taps) &&
            get_num(c, q, "quality", "over_relax", d.over_relax, 1, 1.95f, &o->over_relax) &&
+           get_num(c, q, "quality", "linear_step", d.linear_step, 0.01f, 1000, &o->linear_step) &&
+           get_num(c, q, "quality", "step_growth", d.step_growth, 1, 2, &o->step_growth) &&
+           get_int(c, q, "quality", "binary_steps", d.binary_steps, 0, 40, &o->binary_steps) &&
            get_int(c, q, "quality", "spp", d.spp, 1, 1 << 16, &o->spp);
 }
 
@@ -751,11 +755,58 @@ static bool parse_fractal(ctx *c, const cJSON *root)
     return true;
 }
 
+static bool parse_terrain(ctx *c, const cJSON *root)
+{
+    struct scene_terrain *t = &c->s->terrain;
+    const cJSON *tb = cJSON_GetObjectItemCaseSensitive(root, "terrain");
+    static const char *const keys[] = {"heightmap", "spacing", "height_min", "height_max", "exaggeration", "method",
+                                       "sand_line", "snow_line", "grass_slope", NULL};
+    if (!tb)
+        return fail(c, "terrain", "a terrain scene needs a \"terrain\" block with a \"heightmap\"");
+    if (!check_keys(c, tb, "terrain", keys))
+        return false;
+    const char *hm = NULL, *method = NULL;
+    static const float zero2[3] = {0, 0, 0};
+    float sp[3];
+    if (!get_str(c, tb, "terrain", "heightmap", NULL, &hm) || !get_str(c, tb, "terrain", "method", "maxmip", &method))
+        return false;
+    if (!hm)
+        return fail(c, "terrain.heightmap", "missing: a heightmap image (16-bit PNG, EXR, TIFF…)");
+    if (!resolve_file(c, "terrain.heightmap", hm, t->heightmap))
+        return false;
+    const cJSON *spacing = cJSON_GetObjectItemCaseSensitive(tb, "spacing");
+    if (spacing) {
+        if (!cJSON_IsArray(spacing) || cJSON_GetArraySize(spacing) != 2 || !cJSON_IsNumber(spacing->child) ||
+            !cJSON_IsNumber(spacing->child->next) || spacing->child->valuedouble <= 0 || spacing->child->next->valuedouble <= 0)
+            return fail(c, "terrain.spacing", "expected [dx, dz]: metres per texel, both above 0");
+        sp[0] = (float)spacing->child->valuedouble;
+        sp[1] = (float)spacing->child->next->valuedouble;
+    } else {
+        memcpy(sp, zero2, sizeof sp);
+    }
+    t->spacing[0] = sp[0];
+    t->spacing[1] = sp[1];
+    if (!get_num(c, tb, "terrain", "height_min", 0, -1e5f, 1e5f, &t->height_min) ||
+        !get_num(c, tb, "terrain", "height_max", 0, -1e5f, 1e5f, &t->height_max) ||
+        !get_num(c, tb, "terrain", "exaggeration", 1, 0.01f, 100, &t->exaggeration) ||
+        !get_num(c, tb, "terrain", "sand_line", -1e9f, -1e9f, 1e9f, &t->sand_line) ||
+        !get_num(c, tb, "terrain", "snow_line", 1e9f, -1e9f, 1e9f, &t->snow_line) ||
+        !get_num(c, tb, "terrain", "grass_slope", 0.8f, 0, 1, &t->grass_slope))
+        return false;
+    if (!strcmp(method, "maxmip"))
+        t->maxmip = true;
+    else if (!strcmp(method, "linear"))
+        t->maxmip = false;
+    else
+        return fail(c, "terrain.method", "unknown method '%s' (known: maxmip, linear)", method);
+    return true;
+}
+
 static bool parse_root(ctx *c, cJSON *root)
 {
     scene *s = c->s;
     static const char *const keys[] = {"title", "program", "camera", "environment", "lights", "fog",
-                                       "materials", "objects", "fractal", "quality", "effects", NULL};
+                                       "materials", "objects", "fractal", "terrain", "quality", "effects", NULL};
     if (!check_keys(c, root, "", keys))
         return false;
     const char *title = NULL, *prog = NULL;
@@ -765,8 +816,12 @@ static bool parse_root(ctx *c, cJSON *root)
     if (!prog)
         return fail(c, "program", "missing: say which program draws the scene, e.g. \"program\": \"csg\"");
     if (!program_from_name(prog, &s->program))
-        return fail(c, "program", "unknown program '%s' (known: csg, mandelbulb, menger, mandelbox)", prog);
-    bool fractal = program_is_fractal(s->program);
+        return fail(c, "program", "unknown program '%s' (known: csg, mandelbulb, menger, mandelbox, terrain)", prog);
+    bool fractal = program_is_fractal(s->program), terrain = s->program == PROGRAM_TERRAIN;
+    if (terrain && cJSON_GetObjectItemCaseSensitive(root, "objects"))
+        return fail(c, "objects", "a terrain scene has no objects (its shape is the \"terrain\" block)");
+    if (!terrain && cJSON_GetObjectItemCaseSensitive(root, "terrain"))
+        return fail(c, "terrain", "only the terrain program reads a terrain block");
     if (fractal && cJSON_GetObjectItemCaseSensitive(root, "objects"))
         return fail(c, "objects", "a %s scene has no objects (its shape is the \"fractal\" block)", prog);
     if (!fractal && cJSON_GetObjectItemCaseSensitive(root, "fractal"))
@@ -792,17 +847,23 @@ static bool parse_root(ctx *c, cJSON *root)
 
     const cJSON *fog = cJSON_GetObjectItemCaseSensitive(root, "fog");
     if (fog) {
-        static const char *const fkeys[] = {"color", "density", NULL};
+        static const char *const fkeys[] = {"color", "density", "falloff", "height", NULL};
         static const float fog_grey[3] = {0.6f, 0.65f, 0.7f};
         if (!check_keys(c, fog, "fog", fkeys) ||
             !get_vec3(c, fog, "fog", "color", fog_grey, 0, 1e3f, s->fog_color) ||
-            !get_num(c, fog, "fog", "density", 0.02f, 0, 1e3f, &s->fog_density))
+            !get_num(c, fog, "fog", "density", 0.02f, 0, 1e3f, &s->fog_density) ||
+            !get_num(c, fog, "fog", "falloff", 0, -1e3f, 1e3f, &s->fog_falloff) ||
+            !get_num(c, fog, "fog", "height", 0, -1e7f, 1e7f, &s->fog_height))
             return false;
         s->has_fog = true;
     }
     if (!parse_environment(c, root) || !parse_lights(c, root) || !parse_quality(c, root) || !parse_effects(c, root))
         return false;
-    if (fractal) {
+    if (terrain) {
+        if (!parse_materials(c, root) || !parse_terrain(c, root))
+            return false;
+        sb_printf(&c->code, "#include \"%s\"\n", program_map_file(s->program));
+    } else if (fractal) {
         if (cJSON_GetObjectItemCaseSensitive(root, "materials") && !parse_materials(c, root))
             return false;
         if (!parse_fractal(c, root))
@@ -986,7 +1047,7 @@ variant scene_variant(const scene *s)
 {
     return (variant){.program = s->program, .effects = s->effects, .q = s->quality,
                      .num_lights = s->light_count, .num_materials = s->material_count,
-                     .fractal_iterations = s->fractal.iterations};
+                     .fractal_iterations = s->fractal.iterations, .terrain_maxmip = s->terrain.maxmip};
 }
 
 static int cmp_str(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }

@@ -75,7 +75,8 @@ typedef struct scene {
     char cubemap[6][PATH_MAX_LEN]; /* +X -X +Y -Y +Z -Z */
 
     bool has_fog;
-    float fog_color[3], fog_density;
+    float fog_color[3], fog_density; /* density σ0 at fog_height, per metre */
+    float fog_falloff, fog_height;   /* σ(y) = σ0 · exp(−falloff · (y − height)) */
 
     scene_material materials[SCENE_MAX_MATERIALS];
     int material_count;
@@ -90,6 +91,14 @@ typedef struct scene {
     unsigned effects; /* derived from content, then effect_modes applied */
 
     scene_fractal fractal;
+
+    struct scene_terrain {
+        char heightmap[PATH_MAX_LEN];
+        float spacing[2], height_min, height_max, exaggeration;
+        bool maxmip;      /* method: "maxmip" (exact, hierarchical) or "linear" (the lab's search) */
+        float sand_line, snow_line; /* metres: sand below, snow above (after exaggeration) */
+        float grass_slope;          /* grass where the normal's y is above this, else rock */
+    } terrain;
     bool adaptive_speed; /* window: flying speed follows the distance to the surface */
 
     char *map_glsl; /* the program's virtual "program.glsl": the CSG map, or an #include of the fractal */

@@ -45,7 +45,14 @@ bool effect_from_name(const char *name, effect *e);
 /* Scene kinds. Each supplies only `vec2 map(vec3 p)` (distance, material) and optionally
  * `vec3 programAlbedo(vec3 p)` (colouring): csg from the scene's CSG tree (generated), a fractal from
  * shaders/fractal/NAME.glsl. Everything else (marching, lighting, effects) is shared. */
-typedef enum program_kind { PROGRAM_CSG, PROGRAM_MANDELBULB, PROGRAM_MENGER, PROGRAM_MANDELBOX, PROGRAM_COUNT } program_kind;
+typedef enum program_kind {
+    PROGRAM_CSG,
+    PROGRAM_MANDELBULB,
+    PROGRAM_MENGER,
+    PROGRAM_MANDELBOX,
+    PROGRAM_TERRAIN,
+    PROGRAM_COUNT
+} program_kind;
 const char *program_name(program_kind p);
 const char *program_map_file(program_kind p); /* under shaders/; NULL when generated (csg) */
 bool program_is_fractal(program_kind p);
@@ -62,6 +69,9 @@ typedef struct quality {
     int bounces;       /* reflection / refraction path segments after the primary hit */
     int aniso_taps;    /* texture taps along the footprint's long axis (anisotropic filtering) */
     float over_relax;  /* sphere-tracing over-relaxation ω (Keinert et al. 2014); 1 = plain */
+    float linear_step; /* terrain, the lab's method: first step of the linear search, texels */
+    float step_growth; /* terrain: each linear step is this much longer than the last */
+    int binary_steps;  /* terrain: binary-search refinements after the linear search brackets a hit */
     int spp;           /* samples per pixel for offline shots and a still window */
 } quality;
 
@@ -76,6 +86,7 @@ typedef struct variant {
     quality q;
     int num_lights, num_materials;
     int fractal_iterations; /* iterations (Menger: levels) compiled into a fractal's map; 0 for csg */
+    bool terrain_maxmip;    /* terrain: the max-mipmap traversal instead of the lab's linear search */
 } variant;
 
 /* The `#define` block (no #version) for v. Appends to out. Two variants compile to the same

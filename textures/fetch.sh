@@ -17,3 +17,5 @@ done
 oiiotool "$media/irrlicht2_up.jpg" --rotate90 -o textures/skybox/irrlicht2_up.jpg
 oiiotool "$media/irrlicht2_dn.jpg" --rotate270 -o textures/skybox/irrlicht2_dn.jpg
 cp "$tmp/usr/share/games/cube2/packages/yo_frankie/generic_grayrock1_col.jpg" textures/ground_rock.jpg
+cp "$tmp/usr/share/games/cube2/packages/yo_frankie/generic_grass1_col.jpg" textures/ground_grass.jpg
+cp "$tmp/usr/share/games/cube2/packages/yo_frankie/generic_dirt1_col.jpg" textures/ground_sand.jpg

@@ -23,12 +23,7 @@ float hitEps(float t)
     return max(max(float(HIT_K) * uPixelAngle * t, HIT_EPS_MIN), floatFloor);
 }
 
-struct Hit {
-    bool hit;
-    float t;   // distance along the ray from its origin
-    float mat; // material index
-    int steps;
-};
+#include "common/hit.glsl"
 
 // side = +1 marches outside solids, -1 inside (refraction); pathT = path length before this ray,
 // so thresholds keep growing with the total distance from the eye.
@@ -37,6 +32,7 @@ struct Hit {
 // Sphere Tracing", 2014): step ω·d instead of d. Each distance is an empty ball; while consecutive
 // balls overlap the stretch between them is empty. When they do not, the long step may have passed
 // a surface: go back to the plain step from the last point and march plainly from there.
+#ifndef PROGRAM_CAST_RAY // a program may march its own way (terrain)
 Hit castRay(vec3 ro, vec3 rd, float tmax, float side, float pathT)
 {
     Hit h = Hit(false, 0.0, -1.0, 0);
@@ -68,7 +64,9 @@ Hit castRay(vec3 ro, vec3 rd, float tmax, float side, float pathT)
     h.t = t;
     return h;
 }
+#endif
 
+#ifndef PROGRAM_NORMAL // a program may know its normals better (terrain: from the heightfield)
 // Gradient of the distance by the tetrahedron of central differences (four map() calls).
 // Where the gradient vanishes (the centre of a sphere, a point on a symmetry plane of a solid that a
 // camera sits inside) normalize() would return NaN: `fallback` (unit) is returned instead.
@@ -80,3 +78,4 @@ vec3 calcNormal(vec3 p, float eps, vec3 fallback)
     float len = length(g);
     return len > 1e-20 ? g / len : fallback;
 }
+#endif

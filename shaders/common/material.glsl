@@ -76,8 +76,9 @@ Material getMaterial(float id, vec3 p, vec3 n, vec3 dpdx, vec3 dpdy)
     m.ior = uMatParams[i].z;
     m.absorption = uMatAbsorb[i].rgb;
     m.emission = uMatEmission[i];
-#ifdef PROGRAM_ALBEDO // the program colours its surface (fractals: orbit traps)
-    m.albedo *= programAlbedo(p);
+#ifdef PROGRAM_ALBEDO // the program colours its surface (fractals: orbit traps; terrain: layers)
+    m.albedo = programAlbedo(p, n, dpdx, dpdy, m.albedo);
+    return m;
 #endif
 #if FX_TEXTURES
     int tex = int(uMatParams[i].w);

@@ -150,7 +150,7 @@ void main()
 #endif
 #if FX_FOG
     if (fxOn(FX_FOG_BIT))
-        radiance = applyFog(radiance, primaryT);
+        radiance = applyFog(radiance, ray.o, ray.d, primaryT);
 #endif
     oColor = vec4(radiance, 1.0);
     oNormalDepth = vec4(firstN, firstT);

@@ -35,9 +35,9 @@ vec2 map(vec3 p)
     return vec2(boxDE(p, trap), 0.0);
 }
 
-vec3 programAlbedo(vec3 p)
+vec3 programAlbedo(vec3 p, vec3 n, vec3 dpdx, vec3 dpdy, vec3 base)
 {
     float trap;
     boxDE(p, trap);
-    return paletteColor(sqrt(trap) / uFractalB.x);
+    return base * paletteColor(sqrt(trap) / uFractalB.x);
 }

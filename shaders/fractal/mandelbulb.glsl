@@ -42,10 +42,10 @@ vec2 map(vec3 p)
     return vec2(bulbDE(p, trap), 0.0);
 }
 
-vec3 programAlbedo(vec3 p)
+vec3 programAlbedo(vec3 p, vec3 n, vec3 dpdx, vec3 dpdy, vec3 base)
 {
     float trap;
     bulbDE(p, trap);
     // surface orbits come closest to the origin at |z| ≈ 0.4 … 1.1: spread that over the palette
-    return paletteColor(smoothstep(0.4, 1.1, trap));
+    return base * paletteColor(smoothstep(0.4, 1.1, trap));
 }

@@ -54,7 +54,7 @@ float mengerDE(vec3 p)
 vec2 map(vec3 p) { return vec2(mengerDE(p), 0.0); }
 
 // Colour by how deep the nearest hole is: follow the nearer cube down and note where the point sits.
-vec3 programAlbedo(vec3 p)
+vec3 programAlbedo(vec3 p, vec3 n, vec3 dpdx, vec3 dpdy, vec3 base)
 {
     vec3 q = p / uFractalB.w;
     float trap = 1.0;
@@ -64,5 +64,5 @@ vec3 programAlbedo(vec3 p)
         q = sdBox(a, vec3(1.0)) <= sdBox(b, vec3(1.0)) ? a : b;
         trap = min(trap, length(q.yz) / 1.5 + float(l) * 0.02);
     }
-    return paletteColor(trap);
+    return base * paletteColor(trap);
 }

@@ -1,0 +1,201 @@
+// The terrain program: a heightfield under the contract in app/terrain.h (texel centres on a regular
+// grid, bilinear between them, Y up, metres). Primary rays use either
+//  - the max-mipmap traversal (TERRAIN_MAXMIP; Tevs, Ihrke, Seidel 2008): descend a pyramid of cell
+//    maxima, skipping every node the ray passes above, and intersect the bilinear patch of each cell
+//    it reaches exactly (a quadratic along the ray). Exact: no ray tunnels through a ridge.
+//  - the height-field lab's search: enter the slab [hmin, hmax], step linearly with steps growing by
+//    STEP_GROWTH, and refine the first bracketed crossing by BINARY_STEPS bisections. A step can jump
+//    over a ridge thinner than itself (tests/test_terrain.c shows where).
+// Hit.steps counts height samples (texel fetches of four corners count once) for --aov steps.
+uniform sampler2D uHeight;    // R32F metres: texel (i, j) = column i (west → east), row j (north → south)
+uniform sampler2D uHeightMax; // R32F max pyramid: level 0 = cells between four centres
+uniform vec4 uTerrainGrid;    // x0, z0 (north-west corner of the grid), dx, dz (metres per texel)
+uniform vec4 uTerrainRange;   // hmin, hmax, 1 / sqrt(1 + L²) (L = steepest slope), top pyramid level
+uniform ivec2 uTerrainSize;   // texels
+uniform vec3 uTerrainLayers;  // sand below (m), snow above (m), grass where normal.y exceeds this
+uniform ivec4 uLayerMaterial; // material indices of sand, grass, rock, snow (−1: absent)
+
+#include "common/hit.glsl"
+
+#define PROGRAM_CAST_RAY 1
+#define PROGRAM_NORMAL 1
+#define PROGRAM_ALBEDO 1
+
+// Cell space: c = (xz − x0z0) / dxdz − ½ puts texel centres on integers; cell (i, j) is [i, i+1]×[j, j+1].
+vec2 toCell(vec2 xz) { return (xz - uTerrainGrid.xy) / uTerrainGrid.zw - 0.5; }
+float texelHeight(ivec2 t) { return texelFetch(uHeight, clamp(t, ivec2(0), uTerrainSize - 1), 0).r; }
+
+float heightAtCell(vec2 c)
+{
+    c = clamp(c, vec2(0.0), vec2(uTerrainSize - 1));
+    ivec2 i = min(ivec2(floor(c)), uTerrainSize - 2);
+    vec2 f = c - vec2(i);
+    float h00 = texelHeight(i), h10 = texelHeight(i + ivec2(1, 0));
+    float h01 = texelHeight(i + ivec2(0, 1)), h11 = texelHeight(i + ivec2(1, 1));
+    return mix(mix(h00, h10, f.x), mix(h01, h11, f.x), f.y);
+}
+
+float terrainHeight(vec2 xz) { return heightAtCell(toCell(xz)); }
+
+// A distance bound for shadows and AO: vertical clearance shrunk by the steepest slope.
+vec2 map(vec3 p) { return vec2((p.y - terrainHeight(p.xz)) * uTerrainRange.z, 0.0); }
+
+// Where the ray is over the footprint and inside the slab [hmin, hmax]: (t enter, t exit).
+vec2 terrainSlab(vec3 ro, vec3 rd)
+{
+    vec3 lo = vec3(uTerrainGrid.x + 0.5 * uTerrainGrid.z, uTerrainRange.x, uTerrainGrid.y + 0.5 * uTerrainGrid.w);
+    vec3 hi = vec3(uTerrainGrid.x + (float(uTerrainSize.x) - 0.5) * uTerrainGrid.z, uTerrainRange.y,
+                   uTerrainGrid.y + (float(uTerrainSize.y) - 0.5) * uTerrainGrid.w);
+    vec3 inv = 1.0 / rd; // ±inf for an axis the ray does not move along: the slab test still works
+    vec3 t0 = (lo - ro) * inv, t1 = (hi - ro) * inv;
+    vec3 tmin = min(t0, t1), tmax = max(t0, t1);
+    // a zero direction component gives NaN when ro sits exactly on that plane: treat as inside
+    tmin = mix(tmin, vec3(-1e30), isnan(tmin));
+    tmax = mix(tmax, vec3(1e30), isnan(tmax));
+    return vec2(max(max(max(tmin.x, tmin.y), tmin.z), 0.0), min(min(tmax.x, tmax.y), tmax.z));
+}
+
+// First s in [0, sEnd] where the ray meets cell `cell`'s bilinear patch; −1 if none. c0: the ray's
+// cell-space position at s = 0, cd its cell-space velocity, y0 and dy its height and climb.
+float intersectCell(ivec2 cell, vec2 c0, vec2 cd, float y0, float dy, float sEnd)
+{
+    float h00 = texelHeight(cell), h10 = texelHeight(cell + ivec2(1, 0));
+    float h01 = texelHeight(cell + ivec2(0, 1)), h11 = texelHeight(cell + ivec2(1, 1));
+    float a = h10 - h00, b = h01 - h00, c = h00 - h10 - h01 + h11;
+    vec2 uv = c0 - vec2(cell);
+    // y(s) − h(s) = A s² + B s + C
+    float A = -c * cd.x * cd.y;
+    float B = dy - (a * cd.x + b * cd.y + c * (uv.x * cd.y + uv.y * cd.x));
+    float C = y0 - (h00 + a * uv.x + b * uv.y + c * uv.x * uv.y);
+    if (C <= 0.0)
+        return 0.0; // already at or below the surface where the ray enters the cell
+    float s = -1.0;
+    if (abs(A) < 1e-12 * max(abs(B), 1e-30)) {
+        s = B < 0.0 ? -C / B : -1.0;
+    } else {
+        float disc = B * B - 4.0 * A * C;
+        if (disc >= 0.0) {
+            float q = -0.5 * (B + (B >= 0.0 ? 1.0 : -1.0) * sqrt(disc)); // no cancellation
+            float r1 = q / A, r2 = q != 0.0 ? C / q : -1.0;
+            float lo = min(r1, r2), hi = max(r1, r2);
+            s = lo >= 0.0 ? lo : hi;
+        }
+    }
+    return (s >= 0.0 && s <= sEnd) ? s : -1.0;
+}
+
+#if TERRAIN_MAXMIP
+Hit terrainTrace(vec3 ro, vec3 rd, vec2 slab)
+{
+    Hit h = Hit(false, slab.y, 0.0, 0);
+    vec2 c0 = toCell(ro.xz), cd = rd.xz / uTerrainGrid.zw;
+    vec2 dirSign = vec2(cd.x >= 0.0 ? 1.0 : -1.0, cd.y >= 0.0 ? 1.0 : -1.0);
+    const float NUDGE = 1e-4; // cells: moves a point on a node boundary into the node ahead
+    int top = int(uTerrainRange.w), level = top;
+    float t = slab.x;
+    for (int i = 0; i < MAX_STEPS; i++) {
+        vec2 c = c0 + cd * t;
+        float size = float(1 << level);
+        ivec2 node = ivec2(floor((c + dirSign * NUDGE * vec2(notEqual(cd, vec2(0.0)))) / size));
+        vec2 far = (vec2(node) + max(dirSign, 0.0)) * size;
+        vec2 tAxis = mix((far - c0) / cd, vec2(1e30), equal(cd, vec2(0.0)));
+        float tExit = min(min(tAxis.x, tAxis.y), slab.y);
+        h.steps++;
+        if (level == 0) {
+            float s = intersectCell(node, c0 + cd * t, cd, ro.y + rd.y * t, rd.y, tExit - t);
+            if (s >= 0.0) {
+                h.hit = true;
+                h.t = t + s;
+                return h;
+            }
+        } else {
+            float ymin = min(ro.y + rd.y * t, ro.y + rd.y * tExit);
+            if (ymin <= texelFetch(uHeightMax, node, level).r) {
+                level--; // the ray may meet something in here: look closer
+                continue;
+            }
+        }
+        t = tExit; // nothing in this node: past it, and back up a level
+        if (t >= slab.y)
+            break;
+        level = min(level + 1, top);
+    }
+    h.t = slab.y;
+    return h;
+}
+#else
+Hit terrainTrace(vec3 ro, vec3 rd, vec2 slab)
+{
+    Hit h = Hit(false, slab.y, 0.0, 1);
+    float texel = min(uTerrainGrid.z, uTerrainGrid.w);
+    float along = max(length(rd.xz), 1e-3); // horizontal metres per metre of ray
+    float dt = min(float(LINEAR_STEP) * texel / along, (uTerrainRange.y - uTerrainRange.x) + texel);
+    float t = slab.x;
+    vec3 p = ro + rd * t;
+    if (p.y <= terrainHeight(p.xz)) { // starts below the surface
+        h.hit = true;
+        h.t = t;
+        return h;
+    }
+    for (int i = 0; i < MAX_STEPS; i++) {
+        float tPrev = t;
+        t = min(t + dt, slab.y);
+        dt *= float(STEP_GROWTH);
+        p = ro + rd * t;
+        h.steps++;
+        if (p.y <= terrainHeight(p.xz)) {
+            float lo = tPrev, hi = t;
+            for (int k = 0; k < BINARY_STEPS; k++) {
+                float mid = 0.5 * (lo + hi);
+                vec3 q = ro + rd * mid;
+                h.steps++;
+                if (q.y <= terrainHeight(q.xz))
+                    hi = mid;
+                else
+                    lo = mid;
+            }
+            h.hit = true;
+            h.t = 0.5 * (lo + hi);
+            return h;
+        }
+        if (t >= slab.y)
+            break;
+    }
+    return h;
+}
+#endif
+
+Hit castRay(vec3 ro, vec3 rd, float tmax, float side, float pathT)
+{
+    vec2 slab = terrainSlab(ro, rd);
+    slab.y = min(slab.y, tmax);
+    if (slab.x > slab.y)
+        return Hit(false, tmax, 0.0, 1);
+    Hit h = terrainTrace(ro, rd, slab);
+    if (!h.hit)
+        h.t = tmax;
+    return h;
+}
+
+// The surface normal from the heightfield at texel scale (central differences over one texel); on the
+// side of the terrain's column (a ray that reached the footprint's edge below the surface) the side's.
+vec3 calcNormal(vec3 p, float eps, vec3 fallback)
+{
+    float dx = uTerrainGrid.z, dz = uTerrainGrid.w;
+    if (p.y < terrainHeight(p.xz) - eps) {
+        vec2 c = toCell(p.xz), far = vec2(uTerrainSize - 1) - c;
+        float m = min(min(c.x, c.y), min(far.x, far.y));
+        return m == c.x ? vec3(-1, 0, 0) : m == far.x ? vec3(1, 0, 0) : m == c.y ? vec3(0, 0, -1) : vec3(0, 0, 1);
+    }
+    float hx = terrainHeight(p.xz + vec2(dx, 0.0)) - terrainHeight(p.xz - vec2(dx, 0.0));
+    float hz = terrainHeight(p.xz + vec2(0.0, dz)) - terrainHeight(p.xz - vec2(0.0, dz));
+    return normalize(vec3(-hx / (2.0 * dx), 1.0, -hz / (2.0 * dz)));
+}
+
+// Materials by slope and altitude: sand low, snow high and flat, grass on gentle slopes, rock on
+// the rest (triplanar texturing keeps cliffs unstretched): terrain/layers.glsl, which needs the
+// material uniforms, so both come here.
+vec3 programAlbedo(vec3 p, vec3 n, vec3 dpdx, vec3 dpdy, vec3 base);
+#include "common/uniforms.glsl"
+#include "common/material.glsl"
+#include "terrain/layers.glsl"
