@@ -29,6 +29,11 @@ static bool ao(const scene *s) { return s->effects & (1u << EFFECT_AO); }
 static bool bounces(const scene *s) { return s->effects & ((1u << EFFECT_REFLECTIONS) | (1u << EFFECT_REFRACTION)); }
 static bool textured(const scene *s) { return s->effects & (1u << EFFECT_TEXTURES); }
 static bool fractal(const scene *s) { return program_is_fractal(s->program); }
+static bool terrain(const scene *s) { return s->program == PROGRAM_TERRAIN; }
+static bool searched(const scene *s) /* the lab's search runs: linear terrain, or relief materials */
+{
+    return (s->program == PROGRAM_TERRAIN && !s->terrain.maxmip) || (s->effects & (1u << EFFECT_RELIEF));
+}
 
 static const knob KNOBS[] = {
     {"max_steps", "quality.max_steps", "16,32,64,128,256,512", any},
@@ -36,6 +41,10 @@ static const knob KNOBS[] = {
     {"step_factor", "quality.step_factor", "0.6,0.8,0.9,1", any},
     {"over_relax", "quality.over_relax", "1,1.2,1.3,1.4,1.6", any},
     {"iterations", "fractal.iterations", NULL, fractal}, /* per program, below */
+    {"method", "terrain.method", "linear,maxmip", terrain},
+    {"linear_step", "quality.linear_step", "4,2,1,0.5,0.25", searched},
+    {"step_growth", "quality.step_growth", "1.1,1.05,1.02,1", searched},
+    {"binary_steps", "quality.binary_steps", "0,2,4,8,12", searched},
     {"shadow_steps", "quality.shadow_steps", "8,16,32,64,128", shadows},
     {"ao_samples", "quality.ao_samples", "0,2,3,5,8", ao},
     {"bounces", "quality.bounces", "0,1,2,3,6", bounces},
@@ -461,7 +470,8 @@ bool bench_run(const cli_options *opt, err_t *err)
         if (!found) {
             scene_free(&base);
             return err_set(err, "unknown --knob '%.*s' (known: max_steps, hit_k, step_factor, over_relax, iterations, "
-                                "shadow_steps, ao_samples, bounces, aniso_taps, spp, resolution_scale)",
+                                "method, linear_step, step_growth, binary_steps, shadow_steps, ao_samples, bounces, "
+                                "aniso_taps, spp, resolution_scale)",
                            (int)(eq - opt->knobs[i]), opt->knobs[i]);
         }
     }

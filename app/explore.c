@@ -23,6 +23,7 @@ static const float DEFAULT_SPEED = 2.0f;        /* m/s */
 static const float EXPOSURE = 1.0f;
 static const double IDLE_WAIT_S = 0.05;
 static const float MIN_ADAPTIVE_DISTANCE = 1e-7f; /* metres: keeps a little speed at the surface */
+static const float WALK_HEIGHT = 1.8f;            /* metres: eye height when walking on terrain */
 
 /* Knobs the window steps live: = raises a value (× factor, + add), - lowers it, clamped. */
 static const struct {
@@ -53,6 +54,7 @@ static struct {
     int pending_scene; /* -1 none */
     bool reload, screenshot;
     render_view view;
+    bool walking; /* terrain: keep the eye WALK_HEIGHT above the ground */
     int knob;                          /* the knob that =/- step */
     int knob_step;                     /* pending: +1 or -1 */
     char knob_sets[8][64];             /* the stepped knobs, as --set overrides */
@@ -81,6 +83,8 @@ static void on_key(GLFWwindow *w, int key, int scancode, int action, int mods)
         snprintf(app.message, sizeof app.message, "grabbed this frame as the reference: V shows the difference");
     } else if (key == GLFW_KEY_V)
         app.view = app.view == VIEW_DIFFERENCE ? VIEW_COLOR : VIEW_DIFFERENCE;
+    else if (key == GLFW_KEY_T)
+        app.walking = !app.walking;
     else if (key == GLFW_KEY_K)
         app.knob = (app.knob + 1) % KNOB_COUNT;
     else if (key == GLFW_KEY_EQUAL || key == GLFW_KEY_KP_ADD)
@@ -223,13 +227,16 @@ static void hud(int w, int h)
         len += snprintf(knobs + len, sizeof knobs - (size_t)len, "%s%s %g%s  ", k == app.knob ? "[" : "",
                         KNOBS[k].name, (double)knob_value(&app.scene.quality, k), k == app.knob ? "]" : "");
     static const char *const views[] = {"", "  [steps]", "  [difference to grabbed frame]"};
+    if (app.walking && snprintf(limit + strlen(limit), sizeof limit - strlen(limit), "walking %.1f m above the ground\n",
+                                (double)WALK_HEIGHT) < 0)
+        limit[0] = '\0';
     snprintf(text, sizeof text,
              "%s  [%s]  %dx%d%s\n"
              "%.1f ms/sample  %.1f fps  %d/%d spp\n"
              "%s\n"
              "pos %.4g %.4g %.4g  %s  fov %.0f\n%s"
              "WASD move  mouse look  Space/C up/down  Shift fast  scroll speed\n"
-             "1-%d scenes  K knob  =/- step it  H steps  G grab  V difference  R reload  P shot  Esc quit\n%s",
+             "1-%d scenes  K knob  =/- step it  H steps  G grab  V difference  T walk  R reload  P shot  Esc quit\n%s",
              app.scene.name, preset_name(app.scene.preset), w, h, views[app.view], ms, ms > 0 ? 1000.0 / ms : 0.0,
              render_samples(), app.scene.quality.spp, knobs, (double)c->position[0], (double)c->position[1],
              (double)c->position[2], speed, (double)(c->fov_y * 180.0f / GLM_PIf), limit, app.scene_count,
@@ -287,6 +294,9 @@ bool explore_run(const cli_options *opt, err_t *err)
             speed = app.speed * fmaxf(app.surface_distance, MIN_ADAPTIVE_DISTANCE);
         }
         camera_update(&app.cam, &in, dt, speed, MOUSE_SENSITIVITY);
+        float ground;
+        if (app.walking && render_ground_height(app.cam.position[0], app.cam.position[2], &ground))
+            app.cam.position[1] = ground + WALK_HEIGHT;
 
         if (app.pending_scene >= 0) {
             err_t e;

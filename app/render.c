@@ -31,6 +31,7 @@ static struct {
     GLuint prog; /* current scene program */
     const scene *scene;
     GLuint textures[SCENE_MAX_TEXTURES], envmap;
+    int texture_width[SCENE_MAX_TEXTURES]; /* heightmaps: texels across (relief step size) */
     GLuint height_tex, height_max_tex; /* terrain: heights, max pyramid */
     heightfield hf;
     int env_size;
@@ -174,16 +175,23 @@ static bool upload_terrain(const scene *s, err_t *err)
     return true;
 }
 
-static void upload_terrain_uniforms(GLuint prog, const scene *s)
+/* The noise terrain's parameters and its distance bound (shaders/terrain/noise.glsl). */
+static void upload_noise_uniforms(GLuint prog, const scene *s)
 {
-    const heightfield *hf = &state.hf;
+    const struct scene_terrain *t = &s->terrain;
+    const float QUINTIC_SLOPE = 30.0f / 16.0f, SQRT3 = 1.7320508f;
+    float grad = 0, amp = 0.5f, freq = t->frequency;
+    for (int o = 0; o < t->octaves; o++, amp *= 0.5f, freq *= 2.0f)
+        grad += amp * freq * QUINTIC_SLOPE * SQRT3;
     glUseProgram(prog);
-    glUniform1i(glGetUniformLocation(prog, "uHeight"), SCENE_MAX_TEXTURES + 1);
-    glUniform1i(glGetUniformLocation(prog, "uHeightMax"), SCENE_MAX_TEXTURES + 2);
-    glUniform4f(glGetUniformLocation(prog, "uTerrainGrid"), hf->x0, hf->z0, hf->dx, hf->dz);
-    glUniform4f(glGetUniformLocation(prog, "uTerrainRange"), hf->hmin, hf->hmax,
-                1.0f / sqrtf(1.0f + hf->lipschitz * hf->lipschitz), (float)(hf->levels - 1));
-    glUniform2i(glGetUniformLocation(prog, "uTerrainSize"), hf->width, hf->height);
+    glUniform4f(glGetUniformLocation(prog, "uNoise"), t->base, t->amplitude, t->frequency, (float)t->octaves);
+    glUniform1f(glGetUniformLocation(prog, "uNoiseBound"), 1.0f / (1.0f + t->amplitude * grad));
+    glUniform4f(glGetUniformLocation(prog, "uTerrainRange"), t->base, t->base + t->amplitude, 1.0f, 0.0f);
+}
+
+static void upload_layer_uniforms(GLuint prog, const scene *s)
+{
+    glUseProgram(prog);
     glUniform3f(glGetUniformLocation(prog, "uTerrainLayers"), s->terrain.sand_line, s->terrain.snow_line,
                 s->terrain.grass_slope);
     static const char *const layers[4] = {"sand", "grass", "rock", "snow"};
@@ -199,6 +207,18 @@ static void upload_terrain_uniforms(GLuint prog, const scene *s)
     for (int l = 0; l < 4; l++)
         idx[l] = idx[l] < 0 ? idx[2] : idx[l];
     glUniform4i(glGetUniformLocation(prog, "uLayerMaterial"), idx[0], idx[1], idx[2], idx[3]);
+}
+
+static void upload_terrain_uniforms(GLuint prog)
+{
+    const heightfield *hf = &state.hf;
+    glUseProgram(prog);
+    glUniform1i(glGetUniformLocation(prog, "uHeight"), SCENE_MAX_TEXTURES + 1);
+    glUniform1i(glGetUniformLocation(prog, "uHeightMax"), SCENE_MAX_TEXTURES + 2);
+    glUniform4f(glGetUniformLocation(prog, "uTerrainGrid"), hf->x0, hf->z0, hf->dx, hf->dz);
+    glUniform4f(glGetUniformLocation(prog, "uTerrainRange"), hf->hmin, hf->hmax,
+                1.0f / sqrtf(1.0f + hf->lipschitz * hf->lipschitz), (float)(hf->levels - 1));
+    glUniform2i(glGetUniformLocation(prog, "uTerrainSize"), hf->width, hf->height);
 }
 
 /* Fractal parameters; a uniform the program does not use has location −1 and is ignored by GL. */
@@ -237,6 +257,15 @@ static void upload_scene_uniforms(void)
     glUniform4fv(loc("uMatParams"), s->material_count, &params[0][0]);
     glUniform4fv(loc("uMatAbsorb"), s->material_count, &absorb[0][0]);
     glUniform3fv(loc("uMatEmission"), s->material_count, &emit[0][0]);
+    float relief[SCENE_MAX_MATERIALS][4];
+    for (int i = 0; i < s->material_count; i++) {
+        const scene_material *m = &s->materials[i];
+        relief[i][0] = (float)m->relief;
+        relief[i][1] = m->relief_depth;
+        relief[i][2] = m->relief >= 0 ? (float)state.texture_width[m->relief] : 1.0f;
+        relief[i][3] = 0;
+    }
+    glUniform4fv(loc("uMatRelief"), s->material_count, &relief[0][0]);
 
     float lvec[SCENE_MAX_LIGHTS][4], lcol[SCENE_MAX_LIGHTS][4], lsoft[SCENE_MAX_LIGHTS];
     for (int i = 0; i < s->light_count; i++) {
@@ -266,7 +295,11 @@ static void upload_scene_uniforms(void)
     glUniform1f(loc("uEnvMaxLod"), state.env_size > 0 ? log2f((float)state.env_size) : 0.0f);
     upload_fractal_uniforms(state.prog, s);
     if (state.height_tex)
-        upload_terrain_uniforms(state.prog, s);
+        upload_terrain_uniforms(state.prog);
+    if (s->program == PROGRAM_NOISE)
+        upload_noise_uniforms(state.prog, s);
+    if (s->program == PROGRAM_TERRAIN || s->program == PROGRAM_NOISE)
+        upload_layer_uniforms(state.prog, s);
 }
 
 bool render_set_scene(const scene *s, const char *extra_defines, err_t *err)
@@ -277,7 +310,10 @@ bool render_set_scene(const scene *s, const char *extra_defines, err_t *err)
 
     free_scene_textures();
     for (int i = 0; i < s->texture_count; i++) {
-        state.textures[i] = texture_load_2d(s->textures[i], err);
+        int w = 0;
+        state.textures[i] = s->texture_linear[i] ? texture_load_height(s->textures[i], &w, err)
+                                                 : texture_load_2d(s->textures[i], err);
+        state.texture_width[i] = w;
         if (!state.textures[i])
             return false;
     }
@@ -547,7 +583,9 @@ bool render_probe_with(const scene *s, const char *frag, const char *extra_defin
     glUniform3fv(glGetUniformLocation(prog, "uFogColor"), 1, s->fog_color);
     glUniform3f(glGetUniformLocation(prog, "uFog"), s->fog_density, s->fog_falloff, s->fog_height);
     if (state.height_tex && state.scene == s)
-        upload_terrain_uniforms(prog, s);
+        upload_terrain_uniforms(prog);
+    if (s->program == PROGRAM_NOISE)
+        upload_noise_uniforms(prog, s);
     glActiveTexture(GL_TEXTURE0 + SCENE_MAX_TEXTURES + 1);
     glBindTexture(GL_TEXTURE_2D, state.height_tex);
     glActiveTexture(GL_TEXTURE0 + SCENE_MAX_TEXTURES + 2);
@@ -591,5 +629,13 @@ bool render_probe_with(const scene *s, const char *frag, const char *extra_defin
     free(px);
     if (state.prog)
         glUseProgram(state.prog);
+    return true;
+}
+
+bool render_ground_height(float x, float z, float *height)
+{
+    if (!state.height_tex)
+        return false;
+    *height = heightfield_at(&state.hf, x, z);
     return true;
 }

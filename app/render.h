@@ -48,6 +48,9 @@ void render_read_srgb8(uint8_t *rgba, float exposure);
 void render_read_linear(float *rgba);
 void render_read_aovs(float *aov8);
 
+/* Terrain scenes: the ground height under world (x, z); false for other scenes. */
+bool render_ground_height(float x, float z, float *height);
+
 /* Recompiles every cached program from the files on disk; on error keeps the old programs. */
 bool render_reload(err_t *err);
 

@@ -148,25 +148,27 @@ static bool resolve_file(ctx *c, const char *path, const char *rel, char *out)
 
 /* ---- materials ---------------------------------------------------------------------------- */
 
-static int add_texture(scene *s, const char *resolved)
+static int add_texture(scene *s, const char *resolved, bool linear)
 {
     for (int i = 0; i < s->texture_count; i++)
-        if (!strcmp(s->textures[i], resolved))
+        if (!strcmp(s->textures[i], resolved) && s->texture_linear[i] == linear)
             return i;
     if (s->texture_count == SCENE_MAX_TEXTURES)
         return -1;
     strcpy(s->textures[s->texture_count], resolved);
+    s->texture_linear[s->texture_count] = linear;
     return s->texture_count++;
 }
 
 static bool parse_material(ctx *c, const cJSON *m, const char *path, scene_material *out)
 {
     static const char *const keys[] = {"base_color", "metallic", "roughness", "transmission", "ior",
-                                       "absorption", "emission", "texture", "uv_scale", NULL};
+                                       "absorption", "emission", "texture", "uv_scale", "relief",
+                                       "relief_depth", NULL};
     static const float white[3] = {1, 1, 1}, zero[3] = {0, 0, 0};
     if (!check_keys(c, m, path, keys))
         return false;
-    const char *tex = NULL;
+    const char *tex = NULL, *relief = NULL;
     if (!get_vec3(c, m, path, "base_color", white, 0, 1, out->base_color) ||
         !get_num(c, m, path, "metallic", 0, 0, 1, &out->metallic) ||
         !get_num(c, m, path, "roughness", 0.5f, 0, 1, &out->roughness) ||
@@ -175,15 +177,26 @@ static bool parse_material(ctx *c, const cJSON *m, const char *path, scene_mater
         !get_vec3(c, m, path, "absorption", zero, 0, 1e4f, out->absorption) ||
         !get_vec3(c, m, path, "emission", zero, 0, 1e6f, out->emission) ||
         !get_num(c, m, path, "uv_scale", 1, 1e-7f, 1e4f, &out->uv_scale) ||
-        !get_str(c, m, path, "texture", NULL, &tex))
+        !get_str(c, m, path, "texture", NULL, &tex) || !get_str(c, m, path, "relief", NULL, &relief) ||
+        !get_num(c, m, path, "relief_depth", 0.05f, 1e-5f, 1e3f, &out->relief_depth))
         return false;
     out->texture = -1;
+    out->relief = -1;
+    if (relief) {
+        char p[512], resolved[PATH_MAX_LEN];
+        child_path(p, sizeof p, path, "relief");
+        if (!resolve_file(c, p, relief, resolved))
+            return false;
+        out->relief = add_texture(c->s, resolved, true);
+        if (out->relief < 0)
+            return fail(c, p, "too many textures (at most %d)", SCENE_MAX_TEXTURES);
+    }
     if (tex) {
         char p[512], resolved[PATH_MAX_LEN];
         child_path(p, sizeof p, path, "texture");
         if (!resolve_file(c, p, tex, resolved))
             return false;
-        out->texture = add_texture(c->s, resolved);
+        out->texture = add_texture(c->s, resolved, false);
         if (out->texture < 0)
             return fail(c, p, "too many textures (at most %d)", SCENE_MAX_TEXTURES);
     }
@@ -646,7 +659,7 @@ static bool parse_effects(ctx *c, const cJSON *root)
 /* An effect is compiled in when the scene's content calls for it ("auto"), then "on"/"off" force it. */
 static unsigned derive_effects(const scene *s)
 {
-    bool shadows = false, soft = false, mirror = false, glass = false;
+    bool shadows = false, soft = false, mirror = false, glass = false, relief = false;
     for (int i = 0; i < s->light_count; i++) {
         shadows |= s->lights[i].shadow != SHADOW_NONE;
         soft |= s->lights[i].shadow == SHADOW_SOFT;
@@ -654,6 +667,7 @@ static unsigned derive_effects(const scene *s)
     for (int i = 0; i < s->material_count; i++) {
         const scene_material *m = &s->materials[i];
         glass |= m->transmission > 0;
+        relief |= m->relief >= 0;
         mirror |= m->transmission == 0 && m->roughness <= MIRROR_ROUGHNESS;
     }
     bool want[EFFECT_COUNT] = {
@@ -664,9 +678,10 @@ static unsigned derive_effects(const scene *s)
         [EFFECT_REFRACTION] = glass && s->quality.bounces > 0,
         [EFFECT_FOG] = s->has_fog,
         [EFFECT_ENVMAP] = s->has_cubemap,
-        [EFFECT_TEXTURES] = s->texture_count > 0,
+        [EFFECT_TEXTURES] = s->texture_count > 0 && !(s->texture_count == 1 && s->texture_linear[0]),
         [EFFECT_AA] = s->quality.spp > 1,
         [EFFECT_GLOW] = s->fractal.glow > 0,
+        [EFFECT_RELIEF] = relief,
     };
     unsigned fx = 0;
     for (int e = 0; e < EFFECT_COUNT; e++) {
@@ -676,6 +691,9 @@ static unsigned derive_effects(const scene *s)
     /* penumbrae are a kind of shadow: without shadow rays there is nothing to soften */
     if (!(fx & (1u << EFFECT_SHADOWS)))
         fx &= ~(1u << EFFECT_SOFT_SHADOWS);
+    /* terrain programs run the lab's search themselves, over their own surface: no relief there */
+    if (s->program == PROGRAM_TERRAIN || s->program == PROGRAM_NOISE)
+        fx &= ~(1u << EFFECT_RELIEF);
     return fx;
 }
 
@@ -755,6 +773,25 @@ static bool parse_fractal(ctx *c, const cJSON *root)
     return true;
 }
 
+static bool parse_noise(ctx *c, const cJSON *root)
+{
+    struct scene_terrain *t = &c->s->terrain;
+    const cJSON *tb = cJSON_GetObjectItemCaseSensitive(root, "terrain");
+    static const char *const keys[] = {"base", "amplitude", "frequency", "octaves", "sand_line", "snow_line",
+                                       "grass_slope", NULL};
+    const cJSON *empty = cJSON_CreateObject(), *use = tb ? tb : empty;
+    bool ok = (!tb || check_keys(c, tb, "terrain", keys)) &&
+              get_num(c, use, "terrain", "base", 0, -1e6f, 1e6f, &t->base) &&
+              get_num(c, use, "terrain", "amplitude", 40, 0, 1e6f, &t->amplitude) &&
+              get_num(c, use, "terrain", "frequency", 0.01f, 1e-7f, 1e3f, &t->frequency) &&
+              get_int(c, use, "terrain", "octaves", 6, 1, 12, &t->octaves) &&
+              get_num(c, use, "terrain", "sand_line", -1e9f, -1e9f, 1e9f, &t->sand_line) &&
+              get_num(c, use, "terrain", "snow_line", 1e9f, -1e9f, 1e9f, &t->snow_line) &&
+              get_num(c, use, "terrain", "grass_slope", 0.8f, 0, 1, &t->grass_slope);
+    cJSON_Delete((cJSON *)empty);
+    return ok;
+}
+
 static bool parse_terrain(ctx *c, const cJSON *root)
 {
     struct scene_terrain *t = &c->s->terrain;
@@ -816,12 +853,12 @@ static bool parse_root(ctx *c, cJSON *root)
     if (!prog)
         return fail(c, "program", "missing: say which program draws the scene, e.g. \"program\": \"csg\"");
     if (!program_from_name(prog, &s->program))
-        return fail(c, "program", "unknown program '%s' (known: csg, mandelbulb, menger, mandelbox, terrain)", prog);
-    bool fractal = program_is_fractal(s->program), terrain = s->program == PROGRAM_TERRAIN;
+        return fail(c, "program", "unknown program '%s' (known: csg, mandelbulb, menger, mandelbox, terrain, noise)", prog);
+    bool fractal = program_is_fractal(s->program), terrain = s->program == PROGRAM_TERRAIN || s->program == PROGRAM_NOISE;
     if (terrain && cJSON_GetObjectItemCaseSensitive(root, "objects"))
         return fail(c, "objects", "a terrain scene has no objects (its shape is the \"terrain\" block)");
     if (!terrain && cJSON_GetObjectItemCaseSensitive(root, "terrain"))
-        return fail(c, "terrain", "only the terrain program reads a terrain block");
+        return fail(c, "terrain", "only the terrain and noise programs read a terrain block");
     if (fractal && cJSON_GetObjectItemCaseSensitive(root, "objects"))
         return fail(c, "objects", "a %s scene has no objects (its shape is the \"fractal\" block)", prog);
     if (!fractal && cJSON_GetObjectItemCaseSensitive(root, "fractal"))
@@ -860,7 +897,8 @@ static bool parse_root(ctx *c, cJSON *root)
     if (!parse_environment(c, root) || !parse_lights(c, root) || !parse_quality(c, root) || !parse_effects(c, root))
         return false;
     if (terrain) {
-        if (!parse_materials(c, root) || !parse_terrain(c, root))
+        if (!parse_materials(c, root) ||
+            !(s->program == PROGRAM_NOISE ? parse_noise(c, root) : parse_terrain(c, root)))
             return false;
         sb_printf(&c->code, "#include \"%s\"\n", program_map_file(s->program));
     } else if (fractal) {

@@ -29,6 +29,8 @@ typedef struct scene_material {
     float emission[3];
     int texture;    /* index into scene.textures, -1 none; multiplies base_color */
     float uv_scale; /* texture repeats per metre */
+    int relief;          /* index into scene.textures of a heightmap (parallax occlusion), -1 none */
+    float relief_depth;  /* metres below the surface that the heightmap's black lies */
 } scene_material;
 
 typedef enum light_type { LIGHT_POINT, LIGHT_DIRECTIONAL } light_type;
@@ -83,6 +85,7 @@ typedef struct scene {
     scene_light lights[SCENE_MAX_LIGHTS];
     int light_count;
     char textures[SCENE_MAX_TEXTURES][PATH_MAX_LEN];
+    bool texture_linear[SCENE_MAX_TEXTURES]; /* heights: linear float, not sRGB colour */
     int texture_count;
 
     quality_preset preset;
@@ -98,6 +101,9 @@ typedef struct scene {
         bool maxmip;      /* method: "maxmip" (exact, hierarchical) or "linear" (the lab's search) */
         float sand_line, snow_line; /* metres: sand below, snow above (after exaggeration) */
         float grass_slope;          /* grass where the normal's y is above this, else rock */
+        /* program noise: f(p) = y − base − amplitude · fbm(p · frequency), `octaves` octaves */
+        float base, amplitude, frequency;
+        int octaves;
     } terrain;
     bool adaptive_speed; /* window: flying speed follows the distance to the surface */
 

@@ -1,5 +1,6 @@
 #include "texture.h"
 
+#include <math.h>
 #include <stdlib.h>
 
 #include "image_io.h"
@@ -22,6 +23,37 @@ GLuint texture_load_2d(const char *path, err_t *err)
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+    return tex;
+}
+
+GLuint texture_load_height(const char *path, int *width, err_t *err)
+{
+    int w, h, c;
+    float *px;
+    if (!image_read_f32(path, &w, &h, &c, &px, err))
+        return 0;
+    float *one = malloc(sizeof(float) * (size_t)w * (size_t)h);
+    float lo = INFINITY, hi = -INFINITY;
+    for (int i = 0; i < w * h; i++) {
+        one[i] = px[(size_t)i * (size_t)c];
+        lo = one[i] < lo ? one[i] : lo;
+        hi = one[i] > hi ? one[i] : hi;
+    }
+    for (int i = 0; i < w * h; i++) /* 0 deepest, 1 the surface */
+        one[i] = hi > lo ? (one[i] - lo) / (hi - lo) : 1.0f;
+    free(px);
+    GLuint tex;
+    glGenTextures(1, &tex);
+    glBindTexture(GL_TEXTURE_2D, tex);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_R32F, w, h, 0, GL_RED, GL_FLOAT, one);
+    free(one);
+    glGenerateMipmap(GL_TEXTURE_2D);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+    *width = w;
     return tex;
 }
 

@@ -13,6 +13,10 @@
 /* 0 and err when the file cannot be read. */
 GLuint texture_load_2d(const char *path, err_t *err);
 
+/* A heightmap as linear float (first channel), mipmapped, repeating: for parallax occlusion. *width
+ * gets its width in texels. */
+GLuint texture_load_height(const char *path, int *width, err_t *err);
+
 /* faces in GL order +X, -X, +Y, -Y, +Z, -Z; all square and the same size. *size gets the face size. */
 GLuint texture_load_cube(const char (*faces)[PATH_MAX_LEN], int *size, err_t *err);
 

@@ -34,6 +34,7 @@ static const struct { const char *name, *map_file; } PROGRAMS[PROGRAM_COUNT] = {
     [PROGRAM_MENGER] = {"menger", "fractal/menger.glsl"},
     [PROGRAM_MANDELBOX] = {"mandelbox", "fractal/mandelbox.glsl"},
     [PROGRAM_TERRAIN] = {"terrain", "terrain/terrain.glsl"},
+    [PROGRAM_NOISE] = {"noise", "terrain/noise.glsl"},
 };
 
 const char *program_name(program_kind p) { assert(p < PROGRAM_COUNT); return PROGRAMS[p].name; }

@@ -22,7 +22,8 @@
     X(ENVMAP, "envmap", "cube-map environment (else a constant colour)")                             \
     X(TEXTURES, "textures", "filtered material textures (mipmaps, anisotropic)")                     \
     X(AA, "aa", "jittered sub-pixel samples, accumulated progressively")                             \
-    X(GLOW, "glow", "fractals: light that grows with the march steps near the surface")
+    X(GLOW, "glow", "fractals: light that grows with the march steps near the surface")               \
+    X(RELIEF, "relief", "parallax occlusion mapping of a heightmap on a material (the lab's search)")
 
 typedef enum effect {
 #define X(id, name, what) EFFECT_##id,
@@ -51,6 +52,7 @@ typedef enum program_kind {
     PROGRAM_MENGER,
     PROGRAM_MANDELBOX,
     PROGRAM_TERRAIN,
+    PROGRAM_NOISE,
     PROGRAM_COUNT
 } program_kind;
 const char *program_name(program_kind p);

@@ -53,10 +53,10 @@ expect unwritable-output 1 "folder '$tmp/no/such/dir' does not exist" 1 -- "$fat
 
 # a shader that does not compile: a copy of the data folder with one broken line
 mkdir -p "$tmp/data"
-cp -r "$src/shaders" "$src/scenes" "$src/textures" "$tmp/data/"
+cp -r "$src/shaders" "$src/scenes" "$src/textures" "$src/terrains" "$tmp/data/"
 line=$(grep -n "const vec2 k = vec2(1.0, -1.0);" "$tmp/data/shaders/common/march.glsl" | cut -d: -f1)
 sed -i "${line}s/.*/    const vec2 k = undeclared_thing;/" "$tmp/data/shaders/common/march.glsl"
-expect shader-error 1 "common/march.glsl:$line:" 12 -- env FATHOM_DATA_DIR="$tmp/data" "$fathom" $out
+expect shader-error 1 "common/march.glsl:$line:" 40 -- env FATHOM_DATA_DIR="$tmp/data" "$fathom" $out
 
 expect no-display 1 "no display to open a window on" 1 -- env -u DISPLAY -u WAYLAND_DISPLAY "$fathom" --frames 1
 

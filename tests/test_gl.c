@@ -516,8 +516,8 @@ static void reload_keeps_last_good_program(void **st)
     (void)st;
     char dir[] = "/tmp/fathom-reload-XXXXXX", cmd[512], march[300];
     assert_non_null(mkdtemp(dir));
-    snprintf(cmd, sizeof cmd, "cp -r '%s/shaders' '%s/scenes' '%s/textures' '%s/'", FATHOM_SOURCE_DIR,
-             FATHOM_SOURCE_DIR, FATHOM_SOURCE_DIR, dir);
+    snprintf(cmd, sizeof cmd, "cp -r '%s/shaders' '%s/scenes' '%s/textures' '%s/terrains' '%s/'", FATHOM_SOURCE_DIR,
+             FATHOM_SOURCE_DIR, FATHOM_SOURCE_DIR, FATHOM_SOURCE_DIR, dir);
     assert_int_equal(system(cmd), 0);
     snprintf(march, sizeof march, "%s/shaders/common/march.glsl", dir);
     render_shutdown();

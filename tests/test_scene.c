@@ -76,9 +76,10 @@ static void shipped_csg_scene(void **st)
     assert_true(metal && rough && mirror && glass);
     assert_true(s.light_count >= 2);
     assert_true(s.has_cubemap);
-    assert_int_equal(s.texture_count, 1);
+    assert_int_equal(s.texture_count, 2); /* the rock colour, and a heightmap for the relief */
+    assert_true(s.texture_linear[1] && !s.texture_linear[0]);
     unsigned want = FX(SHADOWS) | FX(SOFT_SHADOWS) | FX(AO) | FX(REFLECTIONS) | FX(REFRACTION) | FX(ENVMAP) |
-                    FX(TEXTURES) | FX(AA);
+                    FX(TEXTURES) | FX(AA) | FX(RELIEF);
     assert_int_equal(s.effects, want); /* and no fog: the scene has none */
     scene_free(&s);
 }

@@ -25,6 +25,15 @@ vec3 fresnelSchlick(float cosTheta, vec3 F0)
     return F0 + (1.0 - F0) * (m2 * m2 * m);
 }
 
+// For light from the whole environment a rough surface does not reach full reflectance at grazing
+// angles: S. Lagarde, "Adopting a physically based shading model" (2011), max(1 − r, F0) as the limit.
+vec3 fresnelSchlickRoughness(float cosTheta, vec3 F0, float roughness)
+{
+    float m = clamp(1.0 - cosTheta, 0.0, 1.0);
+    float m2 = m * m;
+    return F0 + (max(vec3(1.0 - roughness), F0) - F0) * (m2 * m2 * m);
+}
+
 // Reflected radiance factor for one light: BRDF × cos θ_l.
 vec3 cookTorrance(vec3 n, vec3 v, vec3 l, vec3 albedo, float metallic, float roughness, vec3 F0)
 {

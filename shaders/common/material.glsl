@@ -10,8 +10,10 @@ struct Material {
     vec3 absorption, emission;
 };
 
-#if FX_TEXTURES
+#if FX_TEXTURES || FX_RELIEF
 uniform sampler2D uTex0, uTex1, uTex2, uTex3;
+#endif
+#if FX_TEXTURES
 
 // GLSL 330 indexes sampler arrays only with constants, hence the branches.
 vec3 texSample(int i, vec2 uv, vec2 dx, vec2 dy)

@@ -24,6 +24,9 @@
 #if FX_FOG
 #include "common/fog.glsl"
 #endif
+#if FX_RELIEF
+#include "common/relief.glsl"
+#endif
 
 #if FX_GLOW
 uniform vec4 uGlow; // rgb colour, a strength
@@ -43,7 +46,7 @@ vec3 shadeSurface(vec3 p, vec3 n, vec3 v, Material m, vec3 F0, float pathT, bool
         ao = calcAO(p, n);
 #endif
     float NdotV = max(dot(n, v), MIN_COSINE);
-    vec3 F = fresnelSchlick(NdotV, F0);
+    vec3 F = fresnelSchlickRoughness(NdotV, F0, m.roughness);
     col += (1.0 - F) * (1.0 - m.metallic) * m.albedo * environmentBlurred(n, 1.0) * ao;
     if (!tracedMirror)
         col += F * environmentBlurred(reflect(-v, n), m.roughness) * ao;
@@ -91,6 +94,15 @@ void main()
         dn = sign(dn) * max(abs(dn), 1e-3) + (dn == 0.0 ? 1e-3 : 0.0);
         vec3 dpdx = T * (ray.dDdx - rd * dot(ray.dDdx, nOut) / dn);
         vec3 dpdy = T * (ray.dDdy - rd * dot(ray.dDdy, nOut) / dn);
+        vec3 pSurface = p; // shadows and AO start on the real surface, not inside a relief
+#if FX_RELIEF
+        int reliefSteps = 0;
+        nOut = applyRelief(clamp(int(h.mat + 0.5), 0, NUM_MATERIALS - 1), p, nOut, rd, reliefSteps);
+        if (bounce == 0) {
+            firstN = nOut;
+            firstSteps += reliefSteps;
+        }
+#endif
         Material m = getMaterial(h.mat, p, nOut, dpdx, dpdy);
 
         if (side < 0.0) // the segment just travelled was inside glass
@@ -132,7 +144,7 @@ void main()
 #if FX_REFLECTIONS
         mirror = m.transmission == 0.0 && m.roughness <= MIRROR_ROUGHNESS && bounce < BOUNCES && fxOn(FX_REFLECTIONS_BIT);
 #endif
-        radiance += throughput * shadeSurface(p, n, v, m, F0, T, mirror);
+        radiance += throughput * shadeSurface(pSurface, n, v, m, F0, T, mirror);
         if (!mirror)
             break;
         throughput *= fresnelSchlick(max(dot(n, v), MIN_COSINE), F0);

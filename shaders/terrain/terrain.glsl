@@ -124,42 +124,19 @@ Hit terrainTrace(vec3 ro, vec3 rd, vec2 slab)
     return h;
 }
 #else
+float hsSurfaceY(vec2 xz) { return terrainHeight(xz); }
+#include "common/heightsearch.glsl"
+
 Hit terrainTrace(vec3 ro, vec3 rd, vec2 slab)
 {
-    Hit h = Hit(false, slab.y, 0.0, 1);
+    Hit h = Hit(false, slab.y, 0.0, 0);
     float texel = min(uTerrainGrid.z, uTerrainGrid.w);
     float along = max(length(rd.xz), 1e-3); // horizontal metres per metre of ray
     float dt = min(float(LINEAR_STEP) * texel / along, (uTerrainRange.y - uTerrainRange.x) + texel);
-    float t = slab.x;
-    vec3 p = ro + rd * t;
-    if (p.y <= terrainHeight(p.xz)) { // starts below the surface
+    float t = heightSearch(ro, rd, slab.x, slab.y, dt, h.steps);
+    if (t >= 0.0) {
         h.hit = true;
         h.t = t;
-        return h;
-    }
-    for (int i = 0; i < MAX_STEPS; i++) {
-        float tPrev = t;
-        t = min(t + dt, slab.y);
-        dt *= float(STEP_GROWTH);
-        p = ro + rd * t;
-        h.steps++;
-        if (p.y <= terrainHeight(p.xz)) {
-            float lo = tPrev, hi = t;
-            for (int k = 0; k < BINARY_STEPS; k++) {
-                float mid = 0.5 * (lo + hi);
-                vec3 q = ro + rd * mid;
-                h.steps++;
-                if (q.y <= terrainHeight(q.xz))
-                    hi = mid;
-                else
-                    lo = mid;
-            }
-            h.hit = true;
-            h.t = 0.5 * (lo + hi);
-            return h;
-        }
-        if (t >= slab.y)
-            break;
     }
     return h;
 }
