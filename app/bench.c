@@ -284,9 +284,11 @@ static bool measure_effects(const scene *base, effect_row *rows, err_t *err)
 
 /* ---- output ------------------------------------------------------------------------------------- */
 
+static const char *prefix(void) { return B.opt->name ? B.opt->name : B.opt->scene; }
+
 static FILE *open_out(const char *name, char *path, err_t *err)
 {
-    snprintf(path, PATH_MAX_LEN, "%s/%s-%s", B.opt->out, B.opt->scene, name);
+    snprintf(path, PATH_MAX_LEN, "%s/%s-%s", B.opt->out, prefix(), name);
     FILE *f = fopen(path, "w");
     if (!f)
         err_set(err, "cannot write '%s': check that --out '%s' is a writable folder", path, B.opt->out);
@@ -351,7 +353,7 @@ static bool write_outputs(const scene *base, const metrics *conv, double ref_ms,
     f = open_out("plot.gp", gp, err);
     if (!f)
         return false;
-    snprintf(png, sizeof png, "%s/%s-plot.png", B.opt->out, B.opt->scene);
+    snprintf(png, sizeof png, "%s/%s-plot.png", B.opt->out, prefix());
     fprintf(f, "set terminal pngcairo size 960,620 font ',10'\nset output '%s'\n", png);
     fprintf(f, "set title \"%s: error against time, each knob swept alone (%dx%d, %.40s)\" noenhanced\n",
             B.opt->scene, B.w, B.h, (const char *)glGetString(GL_RENDERER));
@@ -371,11 +373,15 @@ static bool write_outputs(const scene *base, const metrics *conv, double ref_ms,
     f = open_out("summary.md", path, err);
     if (!f)
         return false;
-    fprintf(f, "# What accuracy costs: %s\n\n", B.opt->scene);
+    fprintf(f, "# What accuracy costs: %s\n\n", prefix());
+    strbuf sets = {0};
+    for (int i = 0; i < B.opt->set_count; i++)
+        sb_printf(&sets, " --set %s", B.opt->sets[i]);
     fprintf(f, "%s. %dx%d, %d views (the start camera, and turned %.0f° about the look-at point), median of %d "
-               "images after a warm-up, on %s. Made by `fathom bench --scene %s --size %dx%d --runs %d --out DIR`.\n\n",
+               "images after a warm-up, on %s. Made by `fathom bench --scene %s --size %dx%d --runs %d%s --out DIR`.\n\n",
             base->title, B.w, B.h, VIEWS, (double)VIEW_TURN_DEG, B.opt->runs, gpu_describe(), B.opt->scene, B.w, B.h,
-            B.opt->runs);
+            B.opt->runs, sets.data ? sets.data : "");
+    sb_free(&sets);
     fprintf(f, "**Reference**: the `reference` preset at %d spp (%.0f ms per image). **Converged?** A render four "
                "times stricter in hit threshold, twice in samples and steps, and with 16 bounces differs from it "
                "by RMSE %.5f (PSNR %.1f dB), mean depth %.3f / max %.2f pixel footprints, %.3f %% flipped pixels: "
@@ -385,7 +391,7 @@ static bool write_outputs(const scene *base, const metrics *conv, double ref_ms,
                "both renders hit; flips: pixels that hit in one and miss in the other. Every knob row starts from "
                "the scene's `%s` preset. `*` marks the Pareto front (no setting is both faster and closer).\n\n",
             preset_name(base->preset));
-    fprintf(f, "![error against time](%s-plot.png)\n\n", B.opt->scene);
+    fprintf(f, "![error against time](%s-plot.png)\n\n", prefix());
     fprintf(f, "| knob | value | ms/image | RMSE | PSNR dB | depth mean (fp) | depth max (fp) | flips %% | steps/px |\n"
                "|---|---|---|---|---|---|---|---|---|\n");
     for (int i = 0; i < B.nrows; i++) {

@@ -11,7 +11,7 @@ static const float MAX_FOV_DEG = 179.0f; /* vertical field of view; 180 degrees 
 
 static const char USAGE[] =
     "usage: fathom [options]\n"
-    "       fathom bench [--scene S] [--size WxH] [--runs N] [--knob NAME=v1,v2,...]... [--out DIR]\n"
+    "       fathom bench [--scene S] [--size WxH] [--runs N] [--knob NAME=v1,v2,...]... [--out DIR] [--name N]\n"
     "  Opens the explorer window, or renders an offline shot with --output (no display needed).\n"
     "  bench: headless; for fixed views, sweeps each accuracy knob on its own (default: all that\n"
     "  apply), the presets and every effect; time = median of N [5] images after warm-up (wall clock\n"
@@ -153,7 +153,7 @@ bool cli_parse(int argc, char **argv, cli_options *o, err_t *err)
         }
         static const char *const with_value[] = {"--scene", "--output", "--size", "--spp", "--quality",
                                                  "--camera", "--look-at", "--fov", "--set", "--aov", "--frames",
-                                                 "--runs", "--out", "--knob"};
+                                                 "--runs", "--out", "--knob", "--name"};
         bool known = false;
         for (size_t k = 0; k < sizeof with_value / sizeof with_value[0]; k++)
             known |= !strcmp(name, with_value[k]);
@@ -178,6 +178,10 @@ bool cli_parse(int argc, char **argv, cli_options *o, err_t *err)
                 return err_set(err, "bad --runs '%s': expected a whole number from 1 to %d", val, MAX_RUNS);
         } else if (!strcmp(name, "--out")) {
             o->out = val;
+        } else if (!strcmp(name, "--name")) {
+            if (!*val || strchr(val, '/'))
+                return err_set(err, "bad --name '%s': a file name prefix, without '/'", val);
+            o->name = val;
         } else if (!strcmp(name, "--knob")) {
             if (!strchr(val, '=') || val[0] == '=')
                 return err_set(err, "bad --knob '%s': expected NAME=v1,v2,..., e.g. --knob max_steps=32,64,128", val);
@@ -220,9 +224,9 @@ bool cli_parse(int argc, char **argv, cli_options *o, err_t *err)
         }
     }
     if (o->bench && (o->output || o->aovs || o->frames || o->print_variant))
-        return err_set(err, "fathom bench takes --scene, --size, --runs, --knob, --out, --set and --quiet only");
-    if (!o->bench && (o->out || o->knob_count || o->runs != DEFAULT_RUNS))
-        return err_set(err, "--runs, --knob and --out belong to fathom bench");
+        return err_set(err, "fathom bench takes --scene, --size, --runs, --knob, --out, --name, --set and --quiet only");
+    if (!o->bench && (o->out || o->name || o->knob_count || o->runs != DEFAULT_RUNS))
+        return err_set(err, "--runs, --knob, --out and --name belong to fathom bench");
     if (o->aovs && !o->output)
         return err_set(err, "--aov needs an offline shot: add --output FILE.exr");
     if (o->output) {

@@ -37,6 +37,7 @@ typedef struct cli_options {
     bool bench;        /* `fathom bench ...` */
     int runs;          /* bench: timed images per setting (median reported) */
     const char *out;   /* bench: folder for CSV, plot and summary (NULL: print only) */
+    const char *name;  /* bench: file name prefix in that folder (NULL: the scene's name) */
     const char *knobs[CLI_MAX_SETS]; /* bench: "NAME=v1,v2,..." sweeps (none: every knob, default values) */
     int knob_count;
 } cli_options;

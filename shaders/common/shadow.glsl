@@ -2,6 +2,7 @@
 // hardShadow: 0 or 1. softShadow: the penumbra estimate of I. Quilez, "soft shadows in raymarched
 // SDFs" (2010): a ray that passes at distance h from an occluder at distance t is k·h/t lit.
 
+#ifndef PROGRAM_SHADOWS // a program may cast shadow rays its own way (terrain)
 float hardShadow(vec3 ro, vec3 rd, float tmax, float pathT)
 {
     float t = 0.0;
@@ -33,4 +34,5 @@ float softShadow(vec3 ro, vec3 rd, float tmax, float k, float pathT)
     res = clamp(res, 0.0, 1.0);
     return res * res * (3.0 - 2.0 * res); // smoothstep: no visible kink at the penumbra's edge
 }
+#endif
 #endif

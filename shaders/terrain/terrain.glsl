@@ -154,6 +154,36 @@ Hit castRay(vec3 ro, vec3 rd, float tmax, float side, float pathT)
     return h;
 }
 
+// Shadows with the terrain's own marcher: a hard shadow is a castRay hit; a soft one steps toward the
+// light with the lab's growing steps and takes the penumbra from the least clearance over distance,
+// k · (y − h) / t (the heightfield form of Quilez's estimate). Both stop once the ray is above hmax.
+#define PROGRAM_SHADOWS 1
+float hardShadow(vec3 ro, vec3 rd, float tmax, float pathT)
+{
+    vec2 slab = terrainSlab(ro, rd);
+    slab.y = min(slab.y, tmax);
+    return slab.x <= slab.y && terrainTrace(ro, rd, slab).hit ? 0.0 : 1.0;
+}
+
+float softShadow(vec3 ro, vec3 rd, float tmax, float k, float pathT)
+{
+    vec2 slab = terrainSlab(ro, rd);
+    slab.y = min(slab.y, tmax);
+    float res = 1.0, t = slab.x;
+    float dt = float(LINEAR_STEP) * min(uTerrainGrid.z, uTerrainGrid.w) / max(length(rd.xz), 1e-3);
+    for (int i = 0; i < SHADOW_STEPS && t < slab.y; i++) {
+        vec3 p = ro + rd * t;
+        float clearance = p.y - terrainHeight(p.xz);
+        if (clearance <= 0.0)
+            return 0.0;
+        res = min(res, k * clearance / max(t, 1e-6));
+        t += dt;
+        dt *= float(STEP_GROWTH);
+    }
+    res = clamp(res, 0.0, 1.0);
+    return res * res * (3.0 - 2.0 * res);
+}
+
 // The surface normal from the heightfield at texel scale (central differences over one texel); on the
 // side of the terrain's column (a ray that reached the footprint's edge below the surface) the side's.
 vec3 calcNormal(vec3 p, float eps, vec3 fallback)
