@@ -449,12 +449,51 @@ static int count_values(const char *v)
     return n;
 }
 
+/* Each preset's frame time (one sample per pixel) at the start view: what the window costs. */
+static bool frame_times(const cli_options *opt, err_t *err)
+{
+    if (!gpu_open(&(gpu_desc){.headless = true}, err))
+        return false;
+    bool ok = render_init(err);
+    printf("%s, %dx%d, %s: ms per frame (1 sample per pixel), median of %d after a warm-up\n", opt->scene, B.w, B.h,
+           gpu_describe(), opt->runs);
+    for (int p = 0; ok && p < PRESET_COUNT; p++) {
+        char set[64];
+        snprintf(set, sizeof set, "quality.preset=%s", preset_name((quality_preset)p));
+        const char *sets[] = {set, "quality.spp=1"};
+        scene s;
+        ok = load(sets, 2, &s, err) && render_set_scene(&s, NULL, err);
+        if (!ok)
+            break;
+        camera cam = camera_look_at(s.cam_position, s.cam_look_at, s.cam_fov_deg * GLM_PIf / 180.0f);
+        double *ms = malloc(sizeof *ms * (size_t)opt->runs);
+        image(&s, &cam, B.w, B.h);
+        for (int r = 0; r < opt->runs; r++)
+            ms[r] = image(&s, &cam, B.w, B.h);
+        float *aov = malloc(sizeof(float) * (size_t)B.w * (size_t)B.h * AOV_FLOATS);
+        render_read_aovs(aov);
+        double steps = 0;
+        for (int i = 0; i < B.w * B.h; i++)
+            steps += aov[(size_t)i * AOV_FLOATS + 4];
+        printf("  %-12s %8.1f ms   %6.1f steps (height samples) per pixel\n", preset_name((quality_preset)p),
+               util_median(ms, opt->runs), steps / (B.w * B.h));
+        free(aov);
+        free(ms);
+        scene_free(&s);
+    }
+    render_shutdown();
+    gpu_close();
+    return ok;
+}
+
 bool bench_run(const cli_options *opt, err_t *err)
 {
     memset(&B, 0, sizeof B);
     B.opt = opt;
     B.w = opt->width ? opt->width : DEFAULT_WIDTH;
     B.h = opt->height ? opt->height : DEFAULT_HEIGHT;
+    if (opt->frame_times)
+        return frame_times(opt, err);
     if (opt->out) {
         struct stat st;
         if (stat(opt->out, &st) != 0 || !S_ISDIR(st.st_mode))

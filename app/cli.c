@@ -16,6 +16,7 @@ static const char USAGE[] =
     "  bench: headless; for fixed views, sweeps each accuracy knob on its own (default: all that\n"
     "  apply), the presets and every effect; time = median of N [5] images after warm-up (wall clock\n"
     "  around glFinish); error against a reference render. --out writes CSV, plot, summary [320x180].\n"
+    "  bench --frame-times: only each preset's frame time (one sample per pixel), median of N.\n"
     "\n"
     "  --scene NAME|FILE     scene to load: a name from scenes/ (csg) or a scene file path [csg]\n"
     "  --output FILE         render headless to FILE (.png 8-bit sRGB, .exr linear float) and exit\n"
@@ -136,6 +137,7 @@ bool cli_parse(int argc, char **argv, cli_options *o, err_t *err)
         if (!strcmp(a, "--print-variant")) { o->print_variant = true; continue; }
         if (!strcmp(a, "--list-scenes")) { o->list_scenes = true; continue; }
         if (!strcmp(a, "--quiet")) { o->quiet = true; continue; }
+        if (!strcmp(a, "--frame-times")) { o->frame_times = true; continue; }
 
         /* flags with a value: "--flag value" or "--flag=value" */
         const char *eq = strchr(a, '=');
@@ -225,7 +227,7 @@ bool cli_parse(int argc, char **argv, cli_options *o, err_t *err)
     }
     if (o->bench && (o->output || o->aovs || o->frames || o->print_variant))
         return err_set(err, "fathom bench takes --scene, --size, --runs, --knob, --out, --name, --set and --quiet only");
-    if (!o->bench && (o->out || o->name || o->knob_count || o->runs != DEFAULT_RUNS))
+    if (!o->bench && (o->out || o->name || o->knob_count || o->frame_times || o->runs != DEFAULT_RUNS))
         return err_set(err, "--runs, --knob, --out and --name belong to fathom bench");
     if (o->aovs && !o->output)
         return err_set(err, "--aov needs an offline shot: add --output FILE.exr");

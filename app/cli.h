@@ -38,6 +38,7 @@ typedef struct cli_options {
     int runs;          /* bench: timed images per setting (median reported) */
     const char *out;   /* bench: folder for CSV, plot and summary (NULL: print only) */
     const char *name;  /* bench: file name prefix in that folder (NULL: the scene's name) */
+    bool frame_times;  /* bench: only the presets' frame times (1 sample per pixel), no error */
     const char *knobs[CLI_MAX_SETS]; /* bench: "NAME=v1,v2,..." sweeps (none: every knob, default values) */
     int knob_count;
 } cli_options;
