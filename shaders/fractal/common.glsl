@@ -7,6 +7,13 @@ uniform vec3 uPalette[3]; // orbit-trap colours: near, middle, far
 // the margin keeps the switch to the fractal's estimate away from the set.
 const float BOUND_MARGIN = 0.1;
 
+// True (with the bound's distance in d) when p is far enough outside the bounding sphere to use it.
+bool outsideBound(vec3 p, out float d)
+{
+    d = length(p) - uFractalB.z;
+    return d > BOUND_MARGIN;
+}
+
 vec3 paletteColor(float t)
 {
     t = clamp(t, 0.0, 1.0);

@@ -35,11 +35,8 @@ float bulbDE(vec3 c, out float trap)
 
 vec2 map(vec3 p)
 {
-    float bound = length(p) - uFractalB.z;
-    if (bound > BOUND_MARGIN)
-        return vec2(bound, 0.0);
-    float trap;
-    return vec2(bulbDE(p, trap), 0.0);
+    float d, trap;
+    return vec2(outsideBound(p, d) ? d : bulbDE(p, trap), 0.0);
 }
 
 vec3 programAlbedo(vec3 p, vec3 n, vec3 dpdx, vec3 dpdy, vec3 base)
