@@ -7,6 +7,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "aov.h"
 #include "gpu.h"
 #include "image_io.h"
 #include "metrics.h"
@@ -14,7 +15,7 @@
 #include "scene.h"
 
 enum { DEFAULT_WIDTH = 320, DEFAULT_HEIGHT = 180, VIEWS = 2, REF_SPP = 64, STRICT_SPP = 128, LONG_SPP = 64,
-       MAX_ROWS = 512, AOV_FLOATS = 8 };
+       MAX_ROWS = 512 };
 static const float VIEW_TURN_DEG = 40.0f;
 
 /* A knob: its --set key (or a bench-only setting), the default sweep, which programs it applies to. */
@@ -478,7 +479,7 @@ static bool frame_times(const cli_options *opt, err_t *err)
         render_read_aovs(aov);
         double steps = 0;
         for (int i = 0; i < B.w * B.h; i++)
-            steps += aov[(size_t)i * AOV_FLOATS + 4];
+            steps += aov[(size_t)i * AOV_FLOATS + AOV_SLOT_STEPS];
         printf("  %-12s %8.1f ms   %6.1f steps (height samples) per pixel\n", preset_name((quality_preset)p),
                util_median(ms, opt->runs), steps / (B.w * B.h));
         free(aov);

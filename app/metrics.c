@@ -4,7 +4,7 @@
 #include <math.h>
 #include <stdlib.h>
 
-enum { AOV_FLOATS = 8, AOV_DEPTH = 3, AOV_STEPS = 4 };
+#include "aov.h"
 
 metrics metrics_compare(const image_view *test, const image_view *ref, double pixel_angle)
 {
@@ -18,8 +18,8 @@ metrics metrics_compare(const image_view *test, const image_view *ref, double pi
             double d = ((double)test->srgb[i * 4 + (size_t)c] - (double)ref->srgb[i * 4 + (size_t)c]) / 255.0;
             se += d * d;
         }
-        double ta = test->aov[i * AOV_FLOATS + AOV_DEPTH], tr = ref->aov[i * AOV_FLOATS + AOV_DEPTH];
-        steps += test->aov[i * AOV_FLOATS + AOV_STEPS];
+        double ta = test->aov[i * AOV_FLOATS + AOV_SLOT_DEPTH], tr = ref->aov[i * AOV_FLOATS + AOV_SLOT_DEPTH];
+        steps += test->aov[i * AOV_FLOATS + AOV_SLOT_STEPS];
         if (isinf(ta) != isinf(tr)) {
             flips++;
         } else if (!isinf(tr)) {

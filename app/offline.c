@@ -5,12 +5,13 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "aov.h"
 #include "cli.h"
 #include "gpu.h"
 #include "image_io.h"
 #include "render.h"
 
-enum { BAR_WIDTH = 30, AOV_FLOATS = 8, MAX_CHANNELS = 12 };
+enum { BAR_WIDTH = 30, MAX_CHANNELS = 12 };
 static const float EXPOSURE = 1.0f;
 
 static void progress(int done, int total, double elapsed)
@@ -47,17 +48,17 @@ bool offline_write(const char *path, int width, int height, unsigned aovs, err_t
     const char *names[MAX_CHANNELS] = {"R", "G", "B", "A"};
     int src[MAX_CHANNELS]; /* index into aov for channels past RGBA */
     int nc = 4;
-    if (aovs & AOV_DEPTH) names[nc] = "Z", src[nc++] = 3;
+    if (aovs & AOV_DEPTH) names[nc] = "Z", src[nc++] = AOV_SLOT_DEPTH;
     if (aovs & AOV_NORMAL) {
-        names[nc] = "N.X", src[nc++] = 0;
-        names[nc] = "N.Y", src[nc++] = 1;
-        names[nc] = "N.Z", src[nc++] = 2;
+        names[nc] = "N.X", src[nc++] = AOV_SLOT_NORMAL;
+        names[nc] = "N.Y", src[nc++] = AOV_SLOT_NORMAL + 1;
+        names[nc] = "N.Z", src[nc++] = AOV_SLOT_NORMAL + 2;
     }
-    if (aovs & AOV_STEPS) names[nc] = "steps", src[nc++] = 4;
+    if (aovs & AOV_STEPS) names[nc] = "steps", src[nc++] = AOV_SLOT_STEPS;
     if (aovs & AOV_EXIT) {
-        names[nc] = "exit.X", src[nc++] = 5;
-        names[nc] = "exit.Y", src[nc++] = 6;
-        names[nc] = "exit.Z", src[nc++] = 7;
+        names[nc] = "exit.X", src[nc++] = AOV_SLOT_EXIT;
+        names[nc] = "exit.Y", src[nc++] = AOV_SLOT_EXIT + 1;
+        names[nc] = "exit.Z", src[nc++] = AOV_SLOT_EXIT + 2;
     }
     float *out = malloc(sizeof(float) * (size_t)nc * n);
     for (size_t i = 0; i < n; i++) {

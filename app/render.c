@@ -6,11 +6,12 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "aov.h"
 #include "shader.h"
 #include "terrain.h"
 #include "texture.h"
 
-enum { MAX_PROGRAMS = 64, NUM_TARGETS = 3, AOV_FLOATS = 8 };
+enum { MAX_PROGRAMS = 64, NUM_TARGETS = 3 };
 
 typedef struct cached_program {
     program_kind kind;
@@ -528,8 +529,8 @@ void render_read_aovs(float *aov8)
     for (size_t i = 0; i < n; i++) {
         memcpy(aov8 + i * AOV_FLOATS, a + i * 4, sizeof(float) * 4);
         memcpy(aov8 + i * AOV_FLOATS + 4, b + i * 4, sizeof(float) * 4);
-        if (aov8[i * AOV_FLOATS + 3] < 0.0f) /* the shader marks a miss with depth −1 */
-            aov8[i * AOV_FLOATS + 3] = INFINITY;
+        if (aov8[i * AOV_FLOATS + AOV_SLOT_DEPTH] < 0.0f) /* the shader marks a miss with depth −1 */
+            aov8[i * AOV_FLOATS + AOV_SLOT_DEPTH] = INFINITY;
     }
     free(a);
     free(b);

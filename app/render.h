@@ -43,7 +43,7 @@ void render_grab_reference(void);
 void render_display(GLuint fbo, int width, int height, float exposure, render_view view);
 
 /* Readback, rows top first. srgb8: RGBA 8-bit after render_display's mapping. linear: averaged RGBA.
- * aovs: 8 floats a pixel: normal xyz, depth (+inf on a miss), steps, exit direction xyz. */
+ * aovs: AOV_FLOATS a pixel, laid out as aov.h says (depth +inf on a miss). */
 void render_read_srgb8(uint8_t *rgba, float exposure);
 void render_read_linear(float *rgba);
 void render_read_aovs(float *aov8);

@@ -3,11 +3,12 @@
 #ifndef FATHOM_TEST_GLTEST_H
 #define FATHOM_TEST_GLTEST_H
 
+#include "aov.h"
 #include "camera.h"
 #include "reference.h"
 #include "scene.h"
 
-enum { W = 97, H = 61, AOV = 8 };
+enum { W = 97, H = 61, AOV = AOV_FLOATS };
 #define DEG2RAD (GLM_PI / 180.0)
 
 int gl_setup(void **st);

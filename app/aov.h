@@ -1,0 +1,16 @@
+/* aov — the layout of the per-pixel outputs besides colour (render_read_aovs): AOV_FLOATS floats a
+ * pixel, rows top first. Depth is the distance along the unit ray to the first hit, +inf on a miss;
+ * steps counts the primary ray's march steps (height samples on terrain); exit is the direction in
+ * which the main path left the scene. */
+#ifndef FATHOM_AOV_H
+#define FATHOM_AOV_H
+
+enum {
+    AOV_FLOATS = 8,
+    AOV_SLOT_NORMAL = 0, /* x, y, z */
+    AOV_SLOT_DEPTH = 3,
+    AOV_SLOT_STEPS = 4,
+    AOV_SLOT_EXIT = 5, /* x, y, z */
+};
+
+#endif
