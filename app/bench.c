@@ -191,9 +191,10 @@ static bool make_references(const scene *base, metrics *convergence, double *ref
 {
     char spp[32];
     snprintf(spp, sizeof spp, "quality.spp=%d", REF_SPP);
-    const char *ref_sets[] = {"quality.preset=reference", spp};
+    /* a scene that pins max_steps (for its presets) must not truncate its reference: lift it */
+    const char *ref_sets[] = {"quality.preset=reference", spp, "quality.max_steps=4096"};
     scene ref;
-    if (!load(ref_sets, 2, &ref, err) || !render_set_scene(&ref, NULL, err))
+    if (!load(ref_sets, 3, &ref, err) || !render_set_scene(&ref, NULL, err))
         return false;
     camera start = camera_look_at(base->cam_position, base->cam_look_at, base->cam_fov_deg * GLM_PIf / 180.0f);
     for (int v = 0; v < VIEWS; v++) {
@@ -220,7 +221,7 @@ static bool make_references(const scene *base, metrics *convergence, double *ref
     snprintf(strict_spp, sizeof strict_spp, "quality.spp=%d", STRICT_SPP);
     /* (AO samples stay: the AO estimate is a different function of its sample count, not a converging sum) */
     const char *strict_sets[] = {"quality.preset=reference", strict_spp, "quality.hit_k=0.0625",
-                                 "quality.max_steps=2048", "quality.shadow_steps=512", "quality.bounces=16"};
+                                 "quality.max_steps=8192", "quality.shadow_steps=512", "quality.bounces=16"};
     scene strict;
     if (!load(strict_sets, 6, &strict, err) || !render_set_scene(&strict, NULL, err))
         return false;
