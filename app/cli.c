@@ -209,10 +209,11 @@ bool cli_parse(int argc, char **argv, cli_options *o, err_t *err)
             /* sugar for --set quality.preset=Q; the scene checks the name */
             if (o->set_count == CLI_MAX_SETS)
                 return err_set(err, "too many --set/--quality options (at most %d)", CLI_MAX_SETS);
-            static char buf[64];
-            if (strlen(val) > sizeof buf - 20)
+            static char bufs[CLI_MAX_SETS][64]; /* one per override slot: a later --quality adds, never rewrites */
+            char *buf = bufs[o->set_count];
+            if (strlen(val) > sizeof bufs[0] - 20)
                 return err_set(err, "bad --quality '%s': use draft, interactive, final or reference", val);
-            snprintf(buf, sizeof buf, "quality.preset=%s", val);
+            snprintf(buf, sizeof bufs[0], "quality.preset=%s", val);
             o->sets[o->set_count++] = buf;
         } else if (!strcmp(name, "--set")) {
             if (!strchr(val, '=') || val[0] == '=')
