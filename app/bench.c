@@ -1,5 +1,6 @@
 #include "bench.h"
 
+#include <assert.h>
 #include <epoxy/gl.h>
 #include <math.h>
 #include <stdio.h>
@@ -8,6 +9,7 @@
 #include <sys/stat.h>
 
 #include "aov.h"
+#include "bench_report.h"
 #include "gpu.h"
 #include "image_io.h"
 #include "metrics.h"
@@ -18,53 +20,59 @@ enum { DEFAULT_WIDTH = 320, DEFAULT_HEIGHT = 180, VIEWS = 2, REF_SPP = 64, STRIC
        MAX_ROWS = 512 };
 static const float VIEW_TURN_DEG = 40.0f;
 
-/* A knob: its --set key (or a bench-only setting), the default sweep, which programs it applies to. */
-typedef struct knob {
-    const char *name, *key, *values;
-    bool (*applies)(const scene *s);
-} knob;
+/* A sweep: a knob's --set key (NULL: the bench's own resolution_scale) and its values. Built at run
+ * time from QUALITY_KNOBS, the program's row of PROGRAM_LIST, and resolution_scale. */
+typedef struct sweep {
+    char name[32], key[64], values[256];
+    bool own; /* resolution_scale: rendered smaller and upscaled, no --set */
+} sweep;
+enum { MAX_SWEEPS = KNOB_COUNT + 8 };
 
-static bool any(const scene *s) { (void)s; return true; }
-static bool shadows(const scene *s) { return s->effects & (1u << EFFECT_SHADOWS); }
-static bool ao(const scene *s) { return s->effects & (1u << EFFECT_AO); }
-static bool bounces(const scene *s) { return s->effects & ((1u << EFFECT_REFLECTIONS) | (1u << EFFECT_REFRACTION)); }
-static bool textured(const scene *s) { return s->effects & (1u << EFFECT_TEXTURES); }
-static bool fractal(const scene *s) { return program_is_fractal(s->program); }
-static bool terrain(const scene *s) { return s->program == PROGRAM_TERRAIN; }
-static bool searched(const scene *s) /* the lab's search runs: linear terrain, or relief materials */
+static bool scope_applies(knob_scope scope, const scene *s)
 {
-    return (s->program == PROGRAM_TERRAIN && !s->terrain.maxmip) || (s->effects & (1u << EFFECT_RELIEF));
+    switch (scope) {
+    case SCOPE_ANY: return true;
+    case SCOPE_SHADOWS: return s->effects & (1u << EFFECT_SHADOWS);
+    case SCOPE_AO: return s->effects & (1u << EFFECT_AO);
+    case SCOPE_BOUNCES: return s->effects & ((1u << EFFECT_REFLECTIONS) | (1u << EFFECT_REFRACTION));
+    case SCOPE_TEXTURES: return s->effects & (1u << EFFECT_TEXTURES);
+    case SCOPE_SEARCH: /* the lab's search runs: linear terrain, or relief materials */
+        return (s->terrain.heightmap[0] && !s->terrain.maxmip) || (s->effects & (1u << EFFECT_RELIEF));
+    }
+    return false;
 }
 
-static const knob KNOBS[] = {
-    {"max_steps", "quality.max_steps", "16,32,64,128,256,512", any},
-    {"hit_k", "quality.hit_k", "8,4,2,1,0.5", any},
-    {"step_factor", "quality.step_factor", "0.6,0.8,0.9,1", any},
-    {"over_relax", "quality.over_relax", "1,1.2,1.3,1.4,1.6", any},
-    {"iterations", "fractal.iterations", NULL, fractal}, /* per program, below */
-    {"method", "terrain.method", "linear,maxmip", terrain},
-    {"linear_step", "quality.linear_step", "4,2,1,0.5,0.25", searched},
-    {"step_growth", "quality.step_growth", "1.1,1.05,1.02,1", searched},
-    {"binary_steps", "quality.binary_steps", "0,2,4,8,12", searched},
-    {"shadow_steps", "quality.shadow_steps", "8,16,32,64,128", shadows},
-    {"ao_samples", "quality.ao_samples", "0,2,3,5,8", ao},
-    {"bounces", "quality.bounces", "0,1,2,3,6", bounces},
-    {"aniso_taps", "quality.aniso_taps", "1,2,4,8", textured},
-    {"spp", "quality.spp", "1,2,4,8,16", any},
-    {"resolution_scale", NULL, "0.25,0.5,0.75,1", any},
-};
-
-static const char *iteration_values(program_kind p)
+/* Every sweep the bench knows for scene s; `applies` says which run by default. */
+static int list_sweeps(const scene *s, sweep *out, bool *applies)
 {
-    return p == PROGRAM_MENGER ? "1,2,3,4,5" : p == PROGRAM_MANDELBULB ? "3,4,6,8,10,12" : "4,6,8,10,12,16";
+    int n = 0;
+    for (int k = 0; k < KNOB_COUNT; k++) {
+        const knob_def *d = knob_get_def((knob_id)k);
+        if (!d->sweep)
+            continue;
+        out[n] = (sweep){0};
+        snprintf(out[n].name, sizeof out[n].name, "%s", d->name);
+        snprintf(out[n].key, sizeof out[n].key, "quality.%s", d->name);
+        snprintf(out[n].values, sizeof out[n].values, "%s", d->sweep);
+        applies[n++] = scope_applies(d->scope, s);
+    }
+    /* the program's own: "key=v1,v2;key2=…", named by the key's last part */
+    const char *own = program_get(s->program)->bench;
+    for (const char *p = own; p && *p && n < MAX_SWEEPS - 1;) {
+        size_t len = strcspn(p, ";"), eq = strcspn(p, "=");
+        assert(eq < len);
+        out[n] = (sweep){0};
+        snprintf(out[n].key, sizeof out[n].key, "%.*s", (int)eq, p);
+        const char *dot = strrchr(out[n].key, '.');
+        snprintf(out[n].name, sizeof out[n].name, "%s", dot ? dot + 1 : out[n].key);
+        snprintf(out[n].values, sizeof out[n].values, "%.*s", (int)(len - eq - 1), p + eq + 1);
+        applies[n++] = true;
+        p += len + (p[len] == ';');
+    }
+    out[n] = (sweep){.name = "resolution_scale", .values = "0.25,0.5,0.75,1", .own = true};
+    applies[n++] = true;
+    return n;
 }
-
-typedef struct row {
-    char knob[32], value[32];
-    double ms;  /* median time of one image (all its samples), mean over views */
-    metrics m;  /* mean over views (max depth: max) */
-    bool front;
-} row;
 
 typedef struct ref_view {
     camera cam;
@@ -76,7 +84,7 @@ static struct {
     const cli_options *opt;
     int w, h;
     ref_view views[VIEWS];
-    row rows[MAX_ROWS];
+    bench_row rows[MAX_ROWS];
     int nrows;
     int total, done;
     double t0;
@@ -129,7 +137,7 @@ static void read_back(int w, int h, uint8_t **srgb, float **aov)
 
 /* Times and measures one setting over every view. scale < 1 renders smaller and upscales. */
 static bool measure(const char *knob_name, const char *value, const char *const *sets, int nsets, double scale,
-                    row *out, err_t *err)
+                    bench_row *out, err_t *err)
 {
     scene s;
     if (!load(sets, nsets, &s, err))
@@ -141,7 +149,7 @@ static bool measure(const char *knob_name, const char *value, const char *const 
     int w = (int)lround(B.w * scale), h = (int)lround(B.h * scale);
     w = w < 1 ? 1 : w;
     h = h < 1 ? 1 : h;
-    *out = (row){0};
+    *out = (bench_row){0};
     snprintf(out->knob, sizeof out->knob, "%s", knob_name);
     snprintf(out->value, sizeof out->value, "%s", value);
     /* an image of LONG_SPP samples or more is long enough to time once, and needs no warm-up */
@@ -196,10 +204,10 @@ static bool make_references(const scene *base, metrics *convergence, double *ref
     scene ref;
     if (!load(ref_sets, 3, &ref, err) || !render_set_scene(&ref, NULL, err))
         return false;
-    camera start = camera_look_at(base->cam_position, base->cam_look_at, base->cam_fov_deg * GLM_PIf / 180.0f);
+    camera start = camera_look_at_deg(base->cam_position, base->cam_look_at, base->cam_fov_deg);
     for (int v = 0; v < VIEWS; v++) {
         /* turn the camera about the vertical through the look-at point */
-        float a = (float)v * VIEW_TURN_DEG * GLM_PIf / 180.0f, ca = cosf(a), sa = sinf(a);
+        float a = glm_rad((float)v * VIEW_TURN_DEG), ca = cosf(a), sa = sinf(a);
         float d[3], pos[3];
         for (int k = 0; k < 3; k++)
             d[k] = base->cam_position[k] - base->cam_look_at[k];
@@ -241,12 +249,6 @@ static bool make_references(const scene *base, metrics *convergence, double *ref
 
 /* ---- effects ------------------------------------------------------------------------------------ */
 
-typedef struct effect_row {
-    effect e;
-    bool in_scene;
-    double out_ms, in_ms, in_off_ms;
-} effect_row;
-
 static double effect_time(const char *set, unsigned runtime, err_t *err, bool *ok)
 {
     const char *sets[] = {set, "quality.spp=1"};
@@ -287,138 +289,9 @@ static bool measure_effects(const scene *base, effect_row *rows, err_t *err)
     return true;
 }
 
-/* ---- output ------------------------------------------------------------------------------------- */
-
-static const char *prefix(void) { return B.opt->name ? B.opt->name : B.opt->scene; }
-
-static FILE *open_out(const char *name, char *path, err_t *err)
-{
-    snprintf(path, PATH_MAX_LEN, "%s/%s-%s", B.opt->out, prefix(), name);
-    FILE *f = fopen(path, "w");
-    if (!f)
-        err_set(err, "cannot write '%s': check that --out '%s' is a writable folder", path, B.opt->out);
-    return f;
-}
-
-static bool write_outputs(const scene *base, const metrics *conv, double ref_ms, const effect_row *fx, err_t *err)
-{
-    char path[PATH_MAX_LEN], csv[PATH_MAX_LEN], png[PATH_MAX_LEN];
-    FILE *f = open_out("knobs.csv", csv, err);
-    if (!f)
-        return false;
-    fprintf(f, "scene,width,height,views,knob,value,ms_per_image,rmse,psnr_db,depth_mean_fp,depth_max_fp,"
-               "flip_share,mean_steps,pareto\n");
-    for (int i = 0; i < B.nrows; i++) {
-        const row *r = &B.rows[i];
-        fprintf(f, "%s,%d,%d,%d,%s,%s,%.3f,%.6f,%.3f,%.4f,%.4f,%.6f,%.3f,%d\n", B.opt->scene, B.w, B.h, VIEWS, r->knob,
-                r->value, r->ms, r->m.rmse, isinf(r->m.psnr_db) ? 999.0 : r->m.psnr_db, r->m.depth_mean_fp,
-                r->m.depth_max_fp, r->m.flip_share, r->m.mean_steps, r->front);
-    }
-    fclose(f);
-    f = open_out("effects.csv", path, err);
-    if (!f)
-        return false;
-    fprintf(f, "scene,effect,in_scene,ms_compiled_out,ms_compiled_in,ms_compiled_in_switched_off\n");
-    for (int e = 0; e < EFFECT_COUNT; e++)
-        fprintf(f, "%s,%s,%d,%.3f,%.3f,%.3f\n", B.opt->scene, effect_name(fx[e].e), fx[e].in_scene, fx[e].out_ms,
-                fx[e].in_ms, fx[e].in_off_ms);
-    fclose(f);
-
-    /* gnuplot: one data block per knob, the front last */
-    char dat[PATH_MAX_LEN], gp[PATH_MAX_LEN];
-    f = open_out("plot.dat", dat, err);
-    if (!f)
-        return false;
-    char knobs[64][32];
-    int nk = 0;
-    for (int i = 0; i < B.nrows; i++) {
-        if (nk == 0 || strcmp(knobs[nk - 1], B.rows[i].knob)) {
-            if (nk)
-                fprintf(f, "\n\n");
-            snprintf(knobs[nk++], 32, "%s", B.rows[i].knob);
-        }
-        fprintf(f, "%.4f %.6f %s\n", B.rows[i].ms, fmax(B.rows[i].m.rmse, 1e-5), B.rows[i].value);
-    }
-    fprintf(f, "\n\n");
-    /* the front, sorted by time */
-    int order[MAX_ROWS], n = 0;
-    for (int i = 0; i < B.nrows; i++)
-        if (B.rows[i].front)
-            order[n++] = i;
-    for (int a = 1; a < n; a++)
-        for (int b = a; b > 0 && B.rows[order[b]].ms < B.rows[order[b - 1]].ms; b--) {
-            int t = order[b];
-            order[b] = order[b - 1];
-            order[b - 1] = t;
-        }
-    for (int i = 0; i < n; i++)
-        fprintf(f, "%.4f %.6f %s=%s\n", B.rows[order[i]].ms, fmax(B.rows[order[i]].m.rmse, 1e-5),
-                B.rows[order[i]].knob, B.rows[order[i]].value);
-    fclose(f);
-    f = open_out("plot.gp", gp, err);
-    if (!f)
-        return false;
-    snprintf(png, sizeof png, "%s/%s-plot.png", B.opt->out, prefix());
-    fprintf(f, "set terminal pngcairo size 960,620 font ',10'\nset output '%s'\n", png);
-    fprintf(f, "set title \"%s: error against time, each knob swept alone (%dx%d, %.40s)\" noenhanced\n",
-            B.opt->scene, B.w, B.h, (const char *)glGetString(GL_RENDERER));
-    fprintf(f, "set logscale xy\nset xlabel 'ms per image (median)'\nset ylabel 'colour RMSE against the reference'\n"
-               "set key outside right top noenhanced\nset grid\n");
-    fprintf(f, "plot ");
-    for (int k = 0; k < nk; k++)
-        fprintf(f, "'%s' index %d using 1:2 with linespoints pt 7 ps 0.8 title '%s', ", dat, k, knobs[k]);
-    fprintf(f, "'%s' index %d using 1:2 with steps lw 2 lc rgb 'black' title 'Pareto front'\n", dat, nk);
-    fclose(f);
-    char cmd[PATH_MAX_LEN * 2];
-    snprintf(cmd, sizeof cmd, "gnuplot '%s' 2>&1", gp);
-    if (system(cmd) != 0)
-        return err_set(err, "gnuplot failed on '%s' (is gnuplot installed? apt-get install gnuplot-nox); the CSV "
-                            "files are written", gp);
-
-    f = open_out("summary.md", path, err);
-    if (!f)
-        return false;
-    fprintf(f, "# What accuracy costs: %s\n\n", prefix());
-    strbuf sets = {0};
-    for (int i = 0; i < B.opt->set_count; i++)
-        sb_printf(&sets, " --set %s", B.opt->sets[i]);
-    fprintf(f, "%s. %dx%d, %d views (the start camera, and turned %.0f° about the look-at point), median of %d "
-               "images after a warm-up, on %s. Made by `fathom bench --scene %s --size %dx%d --runs %d%s --out DIR`.\n\n",
-            base->title, B.w, B.h, VIEWS, (double)VIEW_TURN_DEG, B.opt->runs, gpu_describe(), B.opt->scene, B.w, B.h,
-            B.opt->runs, sets.data ? sets.data : "");
-    sb_free(&sets);
-    fprintf(f, "**Reference**: the `reference` preset at %d spp (%.0f ms per image). **Converged?** A render four "
-               "times stricter in hit threshold, twice in samples and steps, and with 16 bounces differs from it "
-               "by RMSE %.5f (PSNR %.1f dB), mean depth %.3f / max %.2f pixel footprints, %.3f %% flipped pixels: "
-               "errors well above these are the knobs', not the reference's.\n\n",
-            REF_SPP, ref_ms, conv->rmse, conv->psnr_db, conv->depth_mean_fp, conv->depth_max_fp, 100 * conv->flip_share);
-    fprintf(f, "Error: colour RMSE and PSNR of the 8-bit display image; depth error in pixel footprints over pixels "
-               "both renders hit; flips: pixels that hit in one and miss in the other. Every knob row starts from "
-               "the scene's `%s` preset. `*` marks the Pareto front (no setting is both faster and closer). Settings "
-               "of 64 spp or more are timed once per view.\n\n",
-            preset_name(base->preset));
-    fprintf(f, "![error against time](%s-plot.png)\n\n", prefix());
-    fprintf(f, "| knob | value | ms/image | RMSE | PSNR dB | depth mean (fp) | depth max (fp) | flips %% | steps/px |\n"
-               "|---|---|---|---|---|---|---|---|---|\n");
-    for (int i = 0; i < B.nrows; i++) {
-        const row *r = &B.rows[i];
-        fprintf(f, "| %s | %s%s | %.1f | %.4f | %.1f | %.3f | %.2f | %.2f | %.1f |\n", r->knob, r->value,
-                r->front ? " *" : "", r->ms, r->m.rmse, r->m.psnr_db, r->m.depth_mean_fp, r->m.depth_max_fp,
-                100 * r->m.flip_share, r->m.mean_steps);
-    }
-    fprintf(f, "\n## Effects: compiled in, compiled out, compiled in but switched off\n\n"
-               "ms per 1-spp frame at the start view. *In scene*: the scene calls for it (so fathom compiles it).\n\n"
-               "| effect | in scene | compiled out | compiled in | compiled in, off at run time |\n|---|---|---|---|---|\n");
-    for (int e = 0; e < EFFECT_COUNT; e++)
-        fprintf(f, "| %s | %s | %.1f | %.1f | %.1f |\n", effect_name(fx[e].e), fx[e].in_scene ? "yes" : "no",
-                fx[e].out_ms, fx[e].in_ms, fx[e].in_off_ms);
-    fclose(f);
-    return true;
-}
-
 /* ---- the run ------------------------------------------------------------------------------------ */
 
-static bool add_knob_rows(const scene *base, const knob *k, const char *values, err_t *err)
+static bool add_sweep_rows(const sweep *k, const char *values, err_t *err)
 {
     char list[512];
     snprintf(list, sizeof list, "%s", values);
@@ -426,11 +299,11 @@ static bool add_knob_rows(const scene *base, const knob *k, const char *values, 
     for (char *v = strtok_r(list, ",", &save); v; v = strtok_r(NULL, ",", &save)) {
         if (B.nrows == MAX_ROWS)
             return err_set(err, "too many bench settings (at most %d)", MAX_ROWS);
-        char set[96];
+        char set[128];
         const char *sets[1];
         int n = 0;
         double scale = 1.0;
-        if (k->key) {
+        if (!k->own) {
             snprintf(set, sizeof set, "%s=%s", k->key, v);
             sets[n++] = set;
         } else {
@@ -443,7 +316,6 @@ static bool add_knob_rows(const scene *base, const knob *k, const char *values, 
             return false;
         B.nrows++;
     }
-    (void)base;
     return true;
 }
 
@@ -471,7 +343,7 @@ static bool frame_times(const cli_options *opt, err_t *err)
         ok = load(sets, 2, &s, err) && render_set_scene(&s, NULL, err);
         if (!ok)
             break;
-        camera cam = camera_look_at(s.cam_position, s.cam_look_at, s.cam_fov_deg * GLM_PIf / 180.0f);
+        camera cam = camera_look_at_deg(s.cam_position, s.cam_look_at, s.cam_fov_deg);
         double *ms = malloc(sizeof *ms * (size_t)opt->runs);
         image(&s, &cam, B.w, B.h);
         for (int r = 0; r < opt->runs; r++)
@@ -492,6 +364,34 @@ static bool frame_times(const cli_options *opt, err_t *err)
     return ok;
 }
 
+/* Which sweeps run, with which values: --knob NAME=… picks (only those), else every one that applies. */
+static bool pick_sweeps(const scene *base, sweep *sweeps, const char **values, int *n, err_t *err)
+{
+    bool applies[MAX_SWEEPS];
+    *n = list_sweeps(base, sweeps, applies);
+    for (int k = 0; k < *n && !B.opt->knob_count; k++)
+        values[k] = applies[k] ? sweeps[k].values : NULL;
+    for (int i = 0; i < B.opt->knob_count; i++) {
+        const char *arg = B.opt->knobs[i], *eq = strchr(arg, '=');
+        bool found = false;
+        for (int k = 0; k < *n; k++)
+            if ((size_t)(eq - arg) == strlen(sweeps[k].name) && !strncmp(arg, sweeps[k].name, (size_t)(eq - arg))) {
+                values[k] = eq + 1;
+                found = true;
+            }
+        if (!found) {
+            strbuf known = {0};
+            for (int k = 0; k < *n; k++)
+                sb_printf(&known, "%s%s", k ? ", " : "", sweeps[k].name);
+            err_set(err, "unknown --knob '%.*s' for scene %s (known here: %s)", (int)(eq - arg), arg, base->name,
+                    known.data);
+            sb_free(&known);
+            return false;
+        }
+    }
+    return true;
+}
+
 bool bench_run(const cli_options *opt, err_t *err)
 {
     memset(&B, 0, sizeof B);
@@ -508,34 +408,17 @@ bool bench_run(const cli_options *opt, err_t *err)
     scene base;
     if (!load(NULL, 0, &base, err))
         return false;
-    /* which knobs, with which values */
-    const char *values[sizeof KNOBS / sizeof KNOBS[0]] = {0};
-    for (int i = 0; i < opt->knob_count; i++) {
-        const char *eq = strchr(opt->knobs[i], '=');
-        bool found = false;
-        for (size_t k = 0; k < sizeof KNOBS / sizeof KNOBS[0]; k++)
-            if ((size_t)(eq - opt->knobs[i]) == strlen(KNOBS[k].name) && !strncmp(opt->knobs[i], KNOBS[k].name, (size_t)(eq - opt->knobs[i]))) {
-                values[k] = eq + 1;
-                found = true;
-            }
-        if (!found) {
-            scene_free(&base);
-            return err_set(err, "unknown --knob '%.*s' (known: max_steps, hit_k, step_factor, over_relax, iterations, "
-                                "method, linear_step, step_growth, binary_steps, shadow_steps, ao_samples, bounces, "
-                                "aniso_taps, spp, resolution_scale)",
-                           (int)(eq - opt->knobs[i]), opt->knobs[i]);
-        }
+    sweep sweeps[MAX_SWEEPS];
+    const char *values[MAX_SWEEPS] = {0};
+    int nsweeps;
+    if (!pick_sweeps(&base, sweeps, values, &nsweeps, err)) {
+        scene_free(&base);
+        return false;
     }
     B.total = VIEWS + 1 + PRESET_COUNT + EFFECT_COUNT;
-    for (size_t k = 0; k < sizeof KNOBS / sizeof KNOBS[0]; k++) {
-        if (!opt->knob_count) {
-            if (!KNOBS[k].applies(&base))
-                continue;
-            values[k] = KNOBS[k].values ? KNOBS[k].values : iteration_values(base.program);
-        }
+    for (int k = 0; k < nsweeps; k++)
         if (values[k])
             B.total += count_values(values[k]);
-    }
     if (!gpu_open(&(gpu_desc){.headless = true}, err)) {
         scene_free(&base);
         return false;
@@ -545,9 +428,9 @@ bool bench_run(const cli_options *opt, err_t *err)
     double ref_ms = 0;
     effect_row fx[EFFECT_COUNT];
     bool ok = render_init(err) && make_references(&base, &conv, &ref_ms, err);
-    for (size_t k = 0; ok && k < sizeof KNOBS / sizeof KNOBS[0]; k++)
+    for (int k = 0; ok && k < nsweeps; k++)
         if (values[k])
-            ok = add_knob_rows(&base, &KNOBS[k], values[k], err);
+            ok = add_sweep_rows(&sweeps[k], values[k], err);
     for (int p = 0; ok && p < PRESET_COUNT; p++) {
         char set[64];
         snprintf(set, sizeof set, "quality.preset=%s", preset_name((quality_preset)p));
@@ -566,20 +449,12 @@ bool bench_run(const cli_options *opt, err_t *err)
         metrics_pareto(t, e, B.nrows, front);
         for (int i = 0; i < B.nrows; i++)
             B.rows[i].front = front[i];
-        printf("%s, %dx%d, %s; reference converged to RMSE %.5f\n", opt->scene, B.w, B.h, gpu_describe(), conv.rmse);
-        printf("%-16s %-10s %10s %8s %8s %10s %10s %7s %8s\n", "knob", "value", "ms/image", "RMSE", "PSNR", "depth fp",
-               "max fp", "flips%", "steps");
-        for (int i = 0; i < B.nrows; i++) {
-            const row *r = &B.rows[i];
-            printf("%-16s %-10s %10.1f %8.4f %8.1f %10.3f %10.2f %7.2f %8.1f%s\n", r->knob, r->value, r->ms, r->m.rmse,
-                   r->m.psnr_db, r->m.depth_mean_fp, r->m.depth_max_fp, 100 * r->m.flip_share, r->m.mean_steps,
-                   r->front ? "  *" : "");
-        }
-        for (int i = 0; i < EFFECT_COUNT; i++)
-            printf("effect %-13s in scene %-3s  out %7.1f ms  in %7.1f ms  in, off %7.1f ms\n", effect_name(fx[i].e),
-                   fx[i].in_scene ? "yes" : "no", fx[i].out_ms, fx[i].in_ms, fx[i].in_off_ms);
+        bench_results res = {.opt = opt, .base = &base, .w = B.w, .h = B.h, .views = VIEWS, .ref_spp = REF_SPP,
+                             .view_turn_deg = VIEW_TURN_DEG, .rows = B.rows, .nrows = B.nrows, .fx = fx,
+                             .conv = &conv, .ref_ms = ref_ms};
+        bench_print(&res);
         if (opt->out)
-            ok = write_outputs(&base, &conv, ref_ms, fx, err);
+            ok = bench_write(&res, err);
     }
     for (int v = 0; v < VIEWS; v++) {
         free(B.views[v].srgb);

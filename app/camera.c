@@ -19,6 +19,11 @@ camera camera_look_at(const vec3 eye, const vec3 target, float fov_y)
     return c;
 }
 
+camera camera_look_at_deg(const vec3 eye, const vec3 target, float fov_y_deg)
+{
+    return camera_look_at(eye, target, glm_rad(fov_y_deg));
+}
+
 camera_basis camera_get_basis(const camera *c)
 {
     camera_basis b;

@@ -34,6 +34,8 @@ typedef struct camera_input {
 
 /* A camera at `eye` looking at `target` (target == eye keeps yaw = pitch = 0). */
 camera camera_look_at(const vec3 eye, const vec3 target, float fov_y);
+/* The same with the field of view in degrees (scene files and the command line speak degrees). */
+camera camera_look_at_deg(const vec3 eye, const vec3 target, float fov_y_deg);
 camera_basis camera_get_basis(const camera *c);
 
 /* Moves and turns by one frame of input: speed in m/s, sensitivity in radians per pixel. */

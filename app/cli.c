@@ -2,9 +2,12 @@
 
 #include <errno.h>
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include "quality.h"
 
 enum { MAX_IMAGE_SIDE = 16384, MAX_SPP = 1 << 16, DEFAULT_RUNS = 5, MAX_RUNS = 1000 };
 static const float MAX_FOV_DEG = 179.0f; /* vertical field of view; 180 degrees has no perspective */
@@ -121,111 +124,118 @@ static bool parse_aovs(const char *s, unsigned *mask)
     return *mask != 0;
 }
 
-bool cli_parse(int argc, char **argv, cli_options *o, err_t *err)
+/* Options that take a value, first half: what to render and where (*handled: it was one of them). */
+static bool set_output_option(const char *name, const char *val, cli_options *o, err_t *err, bool *handled)
 {
-    *o = (cli_options){.scene = "csg", .runs = DEFAULT_RUNS};
-    int first = 1;
-    if (argc > 1 && !strcmp(argv[1], "bench")) {
-        o->bench = true;
-        first = 2;
+    *handled = true;
+    if (!strcmp(name, "--scene")) {
+        o->scene = val;
+    } else if (!strcmp(name, "--output")) {
+        o->output = val;
+    } else if (!strcmp(name, "--size")) {
+        if (!cli_parse_size(val, &o->width, &o->height))
+            return err_set(err, "bad --size '%s': expected WxH with 1 <= W,H <= %d, e.g. 1920x1080", val,
+                           MAX_IMAGE_SIDE);
+    } else if (!strcmp(name, "--spp")) {
+        if (!parse_int(val, 1, MAX_SPP, &o->spp))
+            return err_set(err, "bad --spp '%s': expected a whole number from 1 to %d", val, MAX_SPP);
+    } else if (!strcmp(name, "--runs")) {
+        if (!parse_int(val, 1, MAX_RUNS, &o->runs))
+            return err_set(err, "bad --runs '%s': expected a whole number from 1 to %d", val, MAX_RUNS);
+    } else if (!strcmp(name, "--out")) {
+        o->out = val;
+    } else if (!strcmp(name, "--name")) {
+        if (!*val || strchr(val, '/'))
+            return err_set(err, "bad --name '%s': a file name prefix, without '/'", val);
+        o->name = val;
+    } else if (!strcmp(name, "--knob")) {
+        if (!strchr(val, '=') || val[0] == '=')
+            return err_set(err, "bad --knob '%s': expected NAME=v1,v2,..., e.g. --knob max_steps=32,64,128", val);
+        if (o->knob_count == CLI_MAX_SETS)
+            return err_set(err, "too many --knob options (at most %d)", CLI_MAX_SETS);
+        o->knobs[o->knob_count++] = val;
+    } else if (!strcmp(name, "--frames")) {
+        if (!parse_int(val, 1, 1 << 30, &o->frames))
+            return err_set(err, "bad --frames '%s': expected a whole number >= 1", val);
+    } else {
+        *handled = false;
     }
-    for (int i = first; i < argc; i++) {
-        const char *a = argv[i];
-        /* flags without a value */
-        if (!strcmp(a, "--help") || !strcmp(a, "-h")) { o->help = true; continue; }
-        if (!strcmp(a, "--version")) { o->version = true; continue; }
-        if (!strcmp(a, "--print-variant")) { o->print_variant = true; continue; }
-        if (!strcmp(a, "--list-scenes")) { o->list_scenes = true; continue; }
-        if (!strcmp(a, "--quiet")) { o->quiet = true; continue; }
-        if (!strcmp(a, "--frame-times")) { o->frame_times = true; continue; }
+    return true;
+}
 
-        /* flags with a value: "--flag value" or "--flag=value" */
-        const char *eq = strchr(a, '=');
-        char name[32];
-        const char *val;
-        if (strncmp(a, "--", 2) == 0 && eq && (size_t)(eq - a) < sizeof name) {
-            memcpy(name, a, (size_t)(eq - a));
-            name[eq - a] = '\0';
-            val = eq + 1;
-        } else {
-            if (strlen(a) >= sizeof name)
-                return err_set(err, "unknown option '%s' (see fathom --help)", a);
-            strcpy(name, a);
-            val = (i + 1 < argc) ? argv[++i] : NULL;
-        }
-        static const char *const with_value[] = {"--scene", "--output", "--size", "--spp", "--quality",
-                                                 "--camera", "--look-at", "--fov", "--set", "--aov", "--frames",
-                                                 "--runs", "--out", "--knob", "--name"};
-        bool known = false;
-        for (size_t k = 0; k < sizeof with_value / sizeof with_value[0]; k++)
-            known |= !strcmp(name, with_value[k]);
-        if (!known)
-            return err_set(err, "unknown option '%s' (see fathom --help)", name);
-        if (!val)
-            return err_set(err, "option %s needs a value (see fathom --help)", name);
-
-        if (!strcmp(name, "--scene")) {
-            o->scene = val;
-        } else if (!strcmp(name, "--output")) {
-            o->output = val;
-        } else if (!strcmp(name, "--size")) {
-            if (!cli_parse_size(val, &o->width, &o->height))
-                return err_set(err, "bad --size '%s': expected WxH with 1 <= W,H <= %d, e.g. 1920x1080",
-                               val, MAX_IMAGE_SIDE);
-        } else if (!strcmp(name, "--spp")) {
-            if (!parse_int(val, 1, MAX_SPP, &o->spp))
-                return err_set(err, "bad --spp '%s': expected a whole number from 1 to %d", val, MAX_SPP);
-        } else if (!strcmp(name, "--runs")) {
-            if (!parse_int(val, 1, MAX_RUNS, &o->runs))
-                return err_set(err, "bad --runs '%s': expected a whole number from 1 to %d", val, MAX_RUNS);
-        } else if (!strcmp(name, "--out")) {
-            o->out = val;
-        } else if (!strcmp(name, "--name")) {
-            if (!*val || strchr(val, '/'))
-                return err_set(err, "bad --name '%s': a file name prefix, without '/'", val);
-            o->name = val;
-        } else if (!strcmp(name, "--knob")) {
-            if (!strchr(val, '=') || val[0] == '=')
-                return err_set(err, "bad --knob '%s': expected NAME=v1,v2,..., e.g. --knob max_steps=32,64,128", val);
-            if (o->knob_count == CLI_MAX_SETS)
-                return err_set(err, "too many --knob options (at most %d)", CLI_MAX_SETS);
-            o->knobs[o->knob_count++] = val;
-        } else if (!strcmp(name, "--frames")) {
-            if (!parse_int(val, 1, 1 << 30, &o->frames))
-                return err_set(err, "bad --frames '%s': expected a whole number >= 1", val);
-        } else if (!strcmp(name, "--fov")) {
-            if (!parse_float(val, &o->fov_deg) || o->fov_deg <= 0.0f || o->fov_deg >= MAX_FOV_DEG)
-                return err_set(err, "bad --fov '%s': expected degrees, 0 < fov < %g", val, (double)MAX_FOV_DEG);
-            o->has_fov = true;
-        } else if (!strcmp(name, "--camera")) {
-            if (!cli_parse_vec3(val, o->camera))
-                return err_set(err, "bad --camera '%s': expected X,Y,Z, e.g. 0,1.5,6", val);
-            o->has_camera = true;
-        } else if (!strcmp(name, "--look-at")) {
-            if (!cli_parse_vec3(val, o->look_at))
-                return err_set(err, "bad --look-at '%s': expected X,Y,Z, e.g. 0,0.5,0", val);
-            o->has_look_at = true;
-        } else if (!strcmp(name, "--quality")) {
-            /* sugar for --set quality.preset=Q; the scene checks the name */
-            if (o->set_count == CLI_MAX_SETS)
-                return err_set(err, "too many --set/--quality options (at most %d)", CLI_MAX_SETS);
-            static char bufs[CLI_MAX_SETS][64]; /* one per override slot: a later --quality adds, never rewrites */
-            char *buf = bufs[o->set_count];
-            if (strlen(val) > sizeof bufs[0] - 20)
-                return err_set(err, "bad --quality '%s': use draft, interactive, final or reference", val);
-            snprintf(buf, sizeof bufs[0], "quality.preset=%s", val);
-            o->sets[o->set_count++] = buf;
-        } else if (!strcmp(name, "--set")) {
-            if (!strchr(val, '=') || val[0] == '=')
-                return err_set(err, "bad --set '%s': expected KEY=VALUE, e.g. --set camera.fov=40", val);
-            if (o->set_count == CLI_MAX_SETS)
-                return err_set(err, "too many --set options (at most %d)", CLI_MAX_SETS);
-            o->sets[o->set_count++] = val;
-        } else if (!strcmp(name, "--aov")) {
-            if (!parse_aovs(val, &o->aovs))
-                return err_set(err, "bad --aov '%s': expected a comma list of depth, normal, steps, exit", val);
-        }
+/* --quality Q is sugar for --set quality.preset=Q, checked here so a typo is a command-line error. */
+static bool add_quality(const char *val, cli_options *o, err_t *err)
+{
+    quality_preset p;
+    if (!preset_from_name(val, &p)) {
+        strbuf known = {0};
+        for (int i = 0; i < PRESET_COUNT; i++)
+            sb_printf(&known, "%s%s", i ? ", " : "", preset_name((quality_preset)i));
+        err_set(err, "bad --quality '%s': use one of %s", val, known.data);
+        sb_free(&known);
+        return false;
     }
+    if (o->set_count == CLI_MAX_SETS)
+        return err_set(err, "too many --set/--quality options (at most %d)", CLI_MAX_SETS);
+    /* one buffer per override slot: a later --quality adds, never rewrites */
+    char *buf = o->preset_sets[o->set_count];
+    snprintf(buf, sizeof o->preset_sets[0], "quality.preset=%s", preset_name(p));
+    o->sets[o->set_count++] = buf;
+    return true;
+}
+
+/* Options that take a value, second half: the view and the scene's parameters. */
+static bool set_view_option(const char *name, const char *val, cli_options *o, err_t *err)
+{
+    if (!strcmp(name, "--fov")) {
+        if (!parse_float(val, &o->fov_deg) || o->fov_deg <= 0.0f || o->fov_deg >= MAX_FOV_DEG)
+            return err_set(err, "bad --fov '%s': expected degrees, 0 < fov < %g", val, (double)MAX_FOV_DEG);
+        o->has_fov = true;
+    } else if (!strcmp(name, "--camera")) {
+        if (!cli_parse_vec3(val, o->camera))
+            return err_set(err, "bad --camera '%s': expected X,Y,Z, e.g. 0,1.5,6", val);
+        o->has_camera = true;
+    } else if (!strcmp(name, "--look-at")) {
+        if (!cli_parse_vec3(val, o->look_at))
+            return err_set(err, "bad --look-at '%s': expected X,Y,Z, e.g. 0,0.5,0", val);
+        o->has_look_at = true;
+    } else if (!strcmp(name, "--quality")) {
+        return add_quality(val, o, err);
+    } else if (!strcmp(name, "--set")) {
+        if (!strchr(val, '=') || val[0] == '=')
+            return err_set(err, "bad --set '%s': expected KEY=VALUE, e.g. --set camera.fov=40", val);
+        if (o->set_count == CLI_MAX_SETS)
+            return err_set(err, "too many --set options (at most %d)", CLI_MAX_SETS);
+        o->sets[o->set_count++] = val;
+    } else if (!strcmp(name, "--aov")) {
+        if (!parse_aovs(val, &o->aovs))
+            return err_set(err, "bad --aov '%s': expected a comma list of depth, normal, steps, exit", val);
+    } else {
+        return err_set(err, "unknown option '%s' (see fathom --help)", name);
+    }
+    return true;
+}
+
+/* Flags without a value. False: a is not one of them. */
+static bool set_flag(const char *a, cli_options *o)
+{
+    static const struct { const char *name; size_t offset; } FLAGS[] = {
+        {"--help", offsetof(cli_options, help)},           {"-h", offsetof(cli_options, help)},
+        {"--version", offsetof(cli_options, version)},     {"--print-variant", offsetof(cli_options, print_variant)},
+        {"--list-scenes", offsetof(cli_options, list_scenes)}, {"--quiet", offsetof(cli_options, quiet)},
+        {"--frame-times", offsetof(cli_options, frame_times)},
+    };
+    for (size_t i = 0; i < sizeof FLAGS / sizeof FLAGS[0]; i++)
+        if (!strcmp(a, FLAGS[i].name)) {
+            *(bool *)((char *)o + FLAGS[i].offset) = true;
+            return true;
+        }
+    return false;
+}
+
+/* Options that only make sense together. */
+static bool check_combinations(const cli_options *o, err_t *err)
+{
     if (o->bench && (o->output || o->aovs || o->frames || o->print_variant))
         return err_set(err, "fathom bench takes --scene, --size, --runs, --knob, --out, --name, --set and --quiet only");
     if (!o->bench && (o->out || o->name || o->knob_count || o->frame_times || o->runs != DEFAULT_RUNS))
@@ -242,4 +252,49 @@ bool cli_parse(int argc, char **argv, cli_options *o, err_t *err)
                            (int)(dot ? dot - o->output : (long)strlen(o->output)), o->output);
     }
     return true;
+}
+
+bool cli_parse(int argc, char **argv, cli_options *o, err_t *err)
+{
+    *o = (cli_options){.scene = "csg", .runs = DEFAULT_RUNS};
+    int first = 1;
+    if (argc > 1 && !strcmp(argv[1], "bench")) {
+        o->bench = true;
+        first = 2;
+    }
+    for (int i = first; i < argc; i++) {
+        const char *a = argv[i];
+        if (set_flag(a, o))
+            continue;
+        /* flags with a value: "--flag value" or "--flag=value" */
+        const char *eq = strchr(a, '=');
+        char name[32];
+        const char *val;
+        if (strncmp(a, "--", 2) == 0 && eq && (size_t)(eq - a) < sizeof name) {
+            memcpy(name, a, (size_t)(eq - a));
+            name[eq - a] = '\0';
+            val = eq + 1;
+        } else {
+            if (strlen(a) >= sizeof name)
+                return err_set(err, "unknown option '%s' (see fathom --help)", a);
+            strcpy(name, a);
+            val = (i + 1 < argc) ? argv[++i] : NULL;
+        }
+        static const char *const WITH_VALUE[] = {"--scene", "--output", "--size", "--spp", "--quality",
+                                                 "--camera", "--look-at", "--fov", "--set", "--aov", "--frames",
+                                                 "--runs", "--out", "--knob", "--name"};
+        bool known = false;
+        for (size_t k = 0; k < sizeof WITH_VALUE / sizeof WITH_VALUE[0]; k++)
+            known |= !strcmp(name, WITH_VALUE[k]);
+        if (!known)
+            return err_set(err, "unknown option '%s' (see fathom --help)", name);
+        if (!val)
+            return err_set(err, "option %s needs a value (see fathom --help)", name);
+        bool handled;
+        if (!set_output_option(name, val, o, err, &handled))
+            return false;
+        if (!handled && !set_view_option(name, val, o, err))
+            return false;
+    }
+    return check_combinations(o, err);
 }

@@ -31,6 +31,7 @@ typedef struct cli_options {
     bool has_camera, has_look_at, has_fov;
     float camera[3], look_at[3], fov_deg;
     const char *sets[CLI_MAX_SETS]; /* "key=value" scene overrides, in order */
+    char preset_sets[CLI_MAX_SETS][48]; /* storage for the overrides --quality writes (slot = its index) */
     int set_count;
     unsigned aovs; /* aov_flag bits */
     bool print_variant, list_scenes, help, version, quiet;

@@ -25,22 +25,6 @@ static const double IDLE_WAIT_S = 0.05;
 static const float MIN_ADAPTIVE_DISTANCE = 1e-7f; /* metres: keeps a little speed at the surface */
 static const float WALK_HEIGHT = 1.8f;            /* metres: eye height when walking on terrain */
 
-/* Knobs the window steps live: = raises a value (× factor, + add), - lowers it, clamped. */
-static const struct {
-    const char *name, *key;
-    float factor, add, lo, hi;
-} KNOBS[] = {
-    {"max_steps", "quality.max_steps", 2, 0, 8, 4096},
-    {"hit_k", "quality.hit_k", 2, 0, 0.0625f, 16},
-    {"shadow_steps", "quality.shadow_steps", 2, 0, 4, 2048},
-    {"ao_samples", "quality.ao_samples", 1, 1, 0, 16},
-    {"bounces", "quality.bounces", 1, 1, 0, 16},
-    {"spp", "quality.spp", 2, 0, 1, 1024},
-    {"over_relax", "quality.over_relax", 1, 0.1f, 1, 1.9f},
-    {"step_factor", "quality.step_factor", 1, 0.05f, 0.3f, 1},
-};
-enum { KNOB_COUNT = sizeof KNOBS / sizeof KNOBS[0] };
-
 static struct {
     scene scene;
     bool have_scene;
@@ -55,14 +39,23 @@ static struct {
     bool reload, screenshot;
     render_view view;
     bool walking; /* terrain: keep the eye WALK_HEIGHT above the ground */
-    int knob;                          /* the knob that =/- step */
+    knob_id knob;                      /* the knob that =/- step (one the window steps) */
     int knob_step;                     /* pending: +1 or -1 */
-    char knob_sets[8][64];             /* the stepped knobs, as --set overrides */
+    char knob_sets[KNOB_COUNT][64];    /* the stepped knobs, as --set overrides */
     float surface_distance; /* the distance estimate at the camera (fractals: sets the flying speed) */
     char message[ERR_MSG_MAX];
     double frame_ms[FRAME_HISTORY];
     int frame_index;
 } app;
+
+/* The next knob the window steps, after k (QUALITY_KNOBS' step column says which). */
+static knob_id next_knob(knob_id k)
+{
+    do
+        k = (knob_id)((k + 1) % KNOB_COUNT);
+    while (!knob_window_steps(k));
+    return k;
+}
 
 static void on_key(GLFWwindow *w, int key, int scancode, int action, int mods)
 {
@@ -86,7 +79,7 @@ static void on_key(GLFWwindow *w, int key, int scancode, int action, int mods)
     else if (key == GLFW_KEY_T)
         app.walking = !app.walking;
     else if (key == GLFW_KEY_K)
-        app.knob = (app.knob + 1) % KNOB_COUNT;
+        app.knob = next_knob(app.knob);
     else if (key == GLFW_KEY_EQUAL || key == GLFW_KEY_KP_ADD)
         app.knob_step = +1;
     else if (key == GLFW_KEY_MINUS || key == GLFW_KEY_KP_SUBTRACT)
@@ -118,11 +111,8 @@ static bool load_scene(const char *name, const cli_options *opt, bool first, err
     if (opt->spp)
         next.quality.spp = opt->spp;
     bool same_file = app.have_scene && !strcmp(app.scene.path, next.path);
-    scene old = app.scene;
-    app.scene = next; /* the renderer keeps a pointer: hand it the stored copy */
-    if (!render_set_scene(&app.scene, NULL, err)) {
-        scene_free(&app.scene);
-        app.scene = old;
+    if (!render_set_scene(&next, NULL, err)) { /* the renderer copies what it needs */
+        scene_free(&next);
         if (app.have_scene) {
             err_t ignore;
             render_set_scene(&app.scene, NULL, &ignore); /* back to the last good scene */
@@ -130,43 +120,29 @@ static bool load_scene(const char *name, const cli_options *opt, bool first, err
         return false;
     }
     if (app.have_scene)
-        scene_free(&old);
+        scene_free(&app.scene);
+    app.scene = next;
     app.have_scene = true;
     if (!same_file) { /* a reload of the same file keeps the camera where the user flew it */
         float fov = first && opt->has_fov ? opt->fov_deg : app.scene.cam_fov_deg;
         const float *pos = first && opt->has_camera ? opt->camera : app.scene.cam_position;
         const float *at = first && opt->has_look_at ? opt->look_at : app.scene.cam_look_at;
-        app.cam = camera_look_at(pos, at, fov * GLM_PIf / 180.0f);
+        app.cam = camera_look_at_deg(pos, at, fov);
     }
     return true;
-}
-
-static float knob_value(const quality *q, int k)
-{
-    switch (k) {
-    case 0: return (float)q->max_steps;
-    case 1: return q->hit_k;
-    case 2: return (float)q->shadow_steps;
-    case 3: return (float)q->ao_samples;
-    case 4: return (float)q->bounces;
-    case 5: return (float)q->spp;
-    case 6: return q->over_relax;
-    default: return q->step_factor;
-    }
 }
 
 /* Steps the selected knob and reloads the scene with it (the same checks as --set). */
 static void step_knob(const cli_options *opt, int dir)
 {
-    float v = knob_value(&app.scene.quality, app.knob);
-    v = dir > 0 ? v * KNOBS[app.knob].factor + KNOBS[app.knob].add : (v - KNOBS[app.knob].add) / KNOBS[app.knob].factor;
-    v = v < KNOBS[app.knob].lo ? KNOBS[app.knob].lo : v > KNOBS[app.knob].hi ? KNOBS[app.knob].hi : v;
-    snprintf(app.knob_sets[app.knob], sizeof app.knob_sets[0], "%s=%g", KNOBS[app.knob].key, (double)v);
+    const char *name = knob_get_def(app.knob)->name;
+    double v = knob_step(app.knob, knob_value(&app.scene.quality, app.knob), dir);
+    snprintf(app.knob_sets[app.knob], sizeof app.knob_sets[0], "quality.%s=%g", name, v);
     err_t e;
     if (!load_scene(app.scene.path, opt, false, &e))
         snprintf(app.message, sizeof app.message, "%s", e.msg);
     else
-        snprintf(app.message, sizeof app.message, "%s = %g", KNOBS[app.knob].name, (double)v);
+        snprintf(app.message, sizeof app.message, "%s = %g", name, v);
 }
 
 static void screenshot(int w, int h)
@@ -224,8 +200,10 @@ static void hud(int w, int h)
     char knobs[512];
     int len = 0;
     for (int k = 0; k < KNOB_COUNT; k++)
-        len += snprintf(knobs + len, sizeof knobs - (size_t)len, "%s%s %g%s  ", k == app.knob ? "[" : "",
-                        KNOBS[k].name, (double)knob_value(&app.scene.quality, k), k == app.knob ? "]" : "");
+        if (knob_window_steps((knob_id)k))
+            len += snprintf(knobs + len, sizeof knobs - (size_t)len, "%s%s %g%s  ", k == (int)app.knob ? "[" : "",
+                            knob_get_def((knob_id)k)->name, knob_value(&app.scene.quality, (knob_id)k),
+                            k == (int)app.knob ? "]" : "");
     static const char *const views[] = {"", "  [steps]", "  [difference to grabbed frame]"};
     if (app.walking && snprintf(limit + strlen(limit), sizeof limit - strlen(limit), "walking %.1f m above the ground\n",
                                 (double)WALK_HEIGHT) < 0)
@@ -239,16 +217,14 @@ static void hud(int w, int h)
              "1-%d scenes  K knob  =/- step it  H steps  G grab  V difference  T walk  R reload  P shot  Esc quit\n%s",
              app.scene.name, preset_name(app.scene.preset), w, h, views[app.view], ms, ms > 0 ? 1000.0 / ms : 0.0,
              render_samples(), app.scene.quality.spp, knobs, (double)c->position[0], (double)c->position[1],
-             (double)c->position[2], speed, (double)(c->fov_y * 180.0f / GLM_PIf), limit, app.scene_count,
+             (double)c->position[2], speed, (double)glm_deg(c->fov_y), limit, app.scene_count,
              app.message);
     hud_draw(text, w, h, h >= 900 ? 2.0f : 1.5f);
 }
 
-bool explore_run(const cli_options *opt, err_t *err)
+/* The shipped scenes, in --list-scenes order: number keys 1–9 pick them. */
+static void list_scene_names(void)
 {
-    memset(&app, 0, sizeof app);
-    app.pending_scene = -1;
-    app.speed = DEFAULT_SPEED;
     strbuf list = {0};
     scene_list(&list);
     for (char *line = list.data; line && *line && app.scene_count < MAX_SCENES;) {
@@ -257,7 +233,123 @@ bool explore_run(const cli_options *opt, err_t *err)
         line = nl ? nl + 1 : line + strlen(line);
     }
     sb_free(&list);
+}
 
+/* One frame's flight: scroll sets the speed, which follows the distance to the surface where the scene
+ * asks for it (fractals: close up stays controllable); walking keeps the eye above the ground. */
+static void fly(GLFWwindow *win, float dt)
+{
+    if (app.scroll != 0) {
+        app.speed *= powf(SPEED_STEP, app.scroll);
+        app.scroll = 0;
+    }
+    camera_input in = read_input(win);
+    float speed = app.speed;
+    if (app.scene.adaptive_speed) {
+        float dist[2];
+        err_t e;
+        if (render_probe(&app.scene, NULL, app.cam.position, 1, dist, &e))
+            app.surface_distance = fabsf(dist[0]);
+        speed = app.speed * fmaxf(app.surface_distance, MIN_ADAPTIVE_DISTANCE);
+    }
+    camera_update(&app.cam, &in, dt, speed, MOUSE_SENSITIVITY);
+    float ground;
+    if (app.walking && render_ground_height(app.cam.position[0], app.cam.position[2], &ground))
+        app.cam.position[1] = ground + WALK_HEIGHT;
+}
+
+/* Scene switches, knob steps and reloads asked for by keys. True when the image must restart. */
+static bool handle_requests(const cli_options *opt)
+{
+    bool restart = false;
+    if (app.pending_scene >= 0) {
+        err_t e;
+        if (!load_scene(app.names[app.pending_scene], opt, false, &e))
+            snprintf(app.message, sizeof app.message, "%s", e.msg), fprintf(stderr, "%s\n", e.msg);
+        else
+            app.message[0] = '\0';
+        app.pending_scene = -1;
+        restart = true;
+    }
+    if (app.knob_step) {
+        step_knob(opt, app.knob_step);
+        app.knob_step = 0;
+        restart = true;
+    }
+    if (app.reload) {
+        err_t e;
+        if (!render_reload(&e) || !load_scene(app.scene.path, opt, false, &e)) {
+            if (snprintf(app.message, sizeof app.message, "reload failed, kept the last good program:\n%s", e.msg) >=
+                (int)sizeof app.message)
+                app.message[sizeof app.message - 1] = '\0';
+            fprintf(stderr, "%s\n", app.message);
+        } else {
+            snprintf(app.message, sizeof app.message, "shaders and scene reloaded");
+        }
+        app.reload = false;
+        restart = true;
+    }
+    return restart;
+}
+
+/* Adds a sample while the image is not converged (every frame with --frames). True while refining. */
+static bool draw(const cli_options *opt, int w, int h, bool restart, camera *shown, bool *moved)
+{
+    render_resize(w, h);
+    *moved = memcmp(shown, &app.cam, sizeof *shown) != 0;
+    if (*moved || restart || render_samples() == 0) {
+        render_begin(&app.cam);
+        *shown = app.cam;
+    }
+    bool refining = render_samples() < app.scene.quality.spp;
+    if (refining || opt->frames) {
+        double t0 = glfwGetTime();
+        render_sample();
+        glFinish();
+        app.frame_ms[app.frame_index++ % FRAME_HISTORY] = (glfwGetTime() - t0) * 1000.0;
+    }
+    render_display(0, w, h, EXPOSURE, app.view);
+    hud(w, h);
+    if (app.screenshot) {
+        screenshot(w, h);
+        app.screenshot = false;
+    }
+    return refining;
+}
+
+static void loop(GLFWwindow *win, const cli_options *opt)
+{
+    camera shown = {0};
+    bool restart = true;
+    double last = glfwGetTime();
+    for (int frame = 0; !glfwWindowShouldClose(win) && (opt->frames == 0 || frame < opt->frames); frame++) {
+        double now = glfwGetTime();
+        float dt = (float)(now - last);
+        last = now;
+        glfwPollEvents();
+        fly(win, dt);
+        restart |= handle_requests(opt);
+        int w, h;
+        glfwGetFramebufferSize(win, &w, &h);
+        if (w <= 0 || h <= 0) { /* minimised */
+            glfwWaitEventsTimeout(IDLE_WAIT_S);
+            continue;
+        }
+        bool moved, refining = draw(opt, w, h, restart, &shown, &moved);
+        restart = false;
+        glfwSwapBuffers(win);
+        if (!refining && !moved && !opt->frames)
+            glfwWaitEventsTimeout(IDLE_WAIT_S); /* converged: do not spin */
+    }
+}
+
+bool explore_run(const cli_options *opt, err_t *err)
+{
+    memset(&app, 0, sizeof app);
+    app.pending_scene = -1;
+    app.speed = DEFAULT_SPEED;
+    app.knob = next_knob((knob_id)(KNOB_COUNT - 1));
+    list_scene_names();
     if (!gpu_open(&(gpu_desc){.width = opt->width, .height = opt->height, .title = "fathom"}, err))
         return false;
     GLFWwindow *win = gpu_window();
@@ -271,91 +363,7 @@ bool explore_run(const cli_options *opt, err_t *err)
     glfwSetScrollCallback(win, on_scroll);
     glfwSetInputMode(win, GLFW_CURSOR, GLFW_CURSOR_DISABLED);
     fprintf(stderr, "fathom: %s\n", gpu_describe());
-
-    camera shown = {0};
-    bool first_frame = true;
-    double last = glfwGetTime();
-    for (int frame = 0; !glfwWindowShouldClose(win) && (opt->frames == 0 || frame < opt->frames); frame++) {
-        double now = glfwGetTime();
-        float dt = (float)(now - last);
-        last = now;
-        glfwPollEvents();
-        if (app.scroll != 0) {
-            app.speed *= powf(SPEED_STEP, app.scroll);
-            app.scroll = 0;
-        }
-        camera_input in = read_input(win);
-        float speed = app.speed;
-        if (app.scene.adaptive_speed) { /* fly by the distance estimate: close up stays controllable */
-            float dist[2];
-            err_t e;
-            if (render_probe(&app.scene, NULL, app.cam.position, 1, dist, &e))
-                app.surface_distance = fabsf(dist[0]);
-            speed = app.speed * fmaxf(app.surface_distance, MIN_ADAPTIVE_DISTANCE);
-        }
-        camera_update(&app.cam, &in, dt, speed, MOUSE_SENSITIVITY);
-        float ground;
-        if (app.walking && render_ground_height(app.cam.position[0], app.cam.position[2], &ground))
-            app.cam.position[1] = ground + WALK_HEIGHT;
-
-        if (app.pending_scene >= 0) {
-            err_t e;
-            if (!load_scene(app.names[app.pending_scene], opt, false, &e))
-                snprintf(app.message, sizeof app.message, "%s", e.msg), fprintf(stderr, "%s\n", e.msg);
-            else
-                app.message[0] = '\0';
-            app.pending_scene = -1;
-            first_frame = true;
-        }
-        if (app.knob_step) {
-            step_knob(opt, app.knob_step);
-            app.knob_step = 0;
-            first_frame = true;
-        }
-        if (app.reload) {
-            err_t e;
-            if (!render_reload(&e) || !load_scene(app.scene.path, opt, false, &e)) {
-                if (snprintf(app.message, sizeof app.message, "reload failed, kept the last good program:\n%s",
-                             e.msg) >= (int)sizeof app.message)
-                    app.message[sizeof app.message - 1] = '\0';
-                fprintf(stderr, "%s\n", app.message);
-            } else {
-                snprintf(app.message, sizeof app.message, "shaders and scene reloaded");
-            }
-            app.reload = false;
-            first_frame = true;
-        }
-
-        int w, h;
-        glfwGetFramebufferSize(win, &w, &h);
-        if (w <= 0 || h <= 0) { /* minimised */
-            glfwWaitEventsTimeout(IDLE_WAIT_S);
-            continue;
-        }
-        render_resize(w, h);
-        bool moved = memcmp(&shown, &app.cam, sizeof shown) != 0;
-        if (moved || first_frame || render_samples() == 0) {
-            render_begin(&app.cam);
-            shown = app.cam;
-            first_frame = false;
-        }
-        bool refining = render_samples() < app.scene.quality.spp;
-        if (refining || opt->frames) {
-            double t0 = glfwGetTime();
-            render_sample();
-            glFinish();
-            app.frame_ms[app.frame_index++ % FRAME_HISTORY] = (glfwGetTime() - t0) * 1000.0;
-        }
-        render_display(0, w, h, EXPOSURE, app.view);
-        hud(w, h);
-        if (app.screenshot) {
-            screenshot(w, h);
-            app.screenshot = false;
-        }
-        glfwSwapBuffers(win);
-        if (!refining && !moved && !opt->frames)
-            glfwWaitEventsTimeout(IDLE_WAIT_S); /* converged: do not spin */
-    }
+    loop(win, opt);
     hud_shutdown();
     render_shutdown();
     if (app.have_scene)

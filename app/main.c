@@ -42,7 +42,11 @@ int main(int argc, char **argv)
         return EXIT_USAGE;
     }
     if (opt.help) {
-        fputs(cli_usage(), stdout);
+        strbuf knobs = {0};
+        quality_describe(&knobs);
+        printf("%s\nQuality knobs (--set quality.NAME=VALUE) [draft/interactive/final/reference]:\n%s", cli_usage(),
+               knobs.data);
+        sb_free(&knobs);
         return 0;
     }
     if (opt.version) {
@@ -83,8 +87,8 @@ int main(int argc, char **argv)
         float fov = opt.has_fov ? opt.fov_deg : s.cam_fov_deg;
         offline_desc d = {
             .scene = &s,
-            .cam = camera_look_at(opt.has_camera ? opt.camera : s.cam_position,
-                                  opt.has_look_at ? opt.look_at : s.cam_look_at, fov * GLM_PIf / 180.0f),
+            .cam = camera_look_at_deg(opt.has_camera ? opt.camera : s.cam_position,
+                                  opt.has_look_at ? opt.look_at : s.cam_look_at, fov),
             .width = opt.width ? opt.width : DEFAULT_WIDTH,
             .height = opt.height ? opt.height : DEFAULT_HEIGHT,
             .spp = s.quality.spp,

@@ -1,5 +1,10 @@
 /* scene — a scene file (JSON, see scenes/README.md) turned into a scene struct. Pure: files in, data out.
  *
+ * Files: scene.c (entry points, the top level, the preamble and uniforms), scene_json.c (reading
+ * with error context), scene_blocks.c (materials, lights, environment, camera, fog, quality,
+ * effects), scene_csg.c (the CSG tree → map()), scene_programs.c (each program's block),
+ * scene_set.c (--set overrides).
+ *
  * Conventions: right-handed world, Y up, metres. Angles in degrees in the file, radians in code.
  * Colours are linear RGB. Point lights fall off as 1/d² (intensity is radiant intensity, W/sr-like);
  * directional lights give irradiance `intensity` on a surface facing them.
@@ -15,7 +20,10 @@
 #include <stdbool.h>
 
 #include "util.h"
-#include "variant.h"
+#include "effect.h"
+#include "program.h"
+#include "quality.h"
+#include "uniforms.h"
 
 enum { SCENE_MAX_MATERIALS = 16, SCENE_MAX_LIGHTS = 8, SCENE_MAX_TEXTURES = 4, SCENE_NAME_MAX = 64 };
 
@@ -124,8 +132,14 @@ bool scene_load_text(const char *text, const char *path, const char *const *sets
 
 void scene_free(scene *s);
 
-/* The variant the scene compiles. */
-variant scene_variant(const scene *s);
+/* The `#define` block (no #version) the scene compiles: program, effects, quality knobs, counts and
+ * the program's own defines. Two scenes compile to the same program exactly when these (and their
+ * map()) are equal. */
+void scene_preamble(const scene *s, strbuf *out);
+
+/* The scene's named uniforms: materials, lights, environment, fog, then the program's own. Texture
+ * units and sizes are the renderer's (render_scene.c). */
+void scene_uniforms(const scene *s, const uniform_sink *u);
 
 /* Lists scene names under <data>/scenes into out (one per line). */
 void scene_list(strbuf *out);

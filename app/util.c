@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 #include <sys/stat.h>
 #include <time.h>
 
@@ -73,10 +74,36 @@ bool util_file_exists(const char *path)
     return stat(path, &st) == 0 && S_ISREG(st.st_mode);
 }
 
+/* A folder holds fathom's data when it has shaders/common/contract.glsl. */
+static bool is_data_dir(const char *dir)
+{
+    char probe[PATH_MAX_LEN];
+    return snprintf(probe, sizeof probe, "%s/shaders/common/contract.glsl", dir) < (int)sizeof probe &&
+           util_file_exists(probe);
+}
+
+/* $FATHOM_DATA_DIR; else beside the binary: <bin>/../share/fathom (installed), <bin>/.. (a build folder
+ * inside the source tree), <bin> itself; else the source tree the binary was built from. */
 const char *util_data_dir(void)
 {
+    static char found[PATH_MAX_LEN];
     const char *env = getenv("FATHOM_DATA_DIR");
-    return (env && env[0]) ? env : FATHOM_SOURCE_DIR;
+    if (env && env[0])
+        return env;
+    if (found[0])
+        return found;
+    char exe[PATH_MAX_LEN], dir[PATH_MAX_LEN];
+    ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
+    if (n > 0) {
+        exe[n] = '\0';
+        util_dirname(exe, dir, sizeof dir);
+        const char *const rel[] = {"/../" FATHOM_DATA_SUBDIR, "/..", ""};
+        for (size_t i = 0; i < sizeof rel / sizeof rel[0]; i++)
+            if (snprintf(found, sizeof found, "%s%s", dir, rel[i]) < (int)sizeof found && is_data_dir(found))
+                return found;
+    }
+    snprintf(found, sizeof found, "%s", FATHOM_SOURCE_DIR);
+    return found;
 }
 
 double util_now(void)

@@ -31,7 +31,8 @@ bool util_dirname(const char *path, char *out, size_t n);
 bool util_join(const char *dir, const char *rel, char *out, size_t n);
 bool util_file_exists(const char *path);
 
-/* Where shaders/, scenes/ and textures/ live: $FATHOM_DATA_DIR, else the source tree. */
+/* Where shaders/, scenes/, textures/ and terrains/ live: $FATHOM_DATA_DIR, else found beside the
+ * binary (installed: <prefix>/bin/../share/fathom), else the source tree it was built from. */
 const char *util_data_dir(void);
 
 /* Monotonic wall clock in seconds. */

@@ -1,7 +1,6 @@
 // Evaluates the scene's map() at the points in uPoints (one per texel): the distance estimate as the
 // shader computes it, for tests and for the window's distance-driven flying speed.
-#include "common/sdf.glsl"
-#include "program.glsl"
+#include "common/contract.glsl"
 
 uniform sampler2D uPoints;
 out vec4 oDistance;

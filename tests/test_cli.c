@@ -75,6 +75,8 @@ static void bad_values(void **st)
     expect_error(ARGC("--camera", "1,2,3,4"), ARGV("--camera", "1,2,3,4"), "X,Y,Z");
     expect_error(ARGC("--camera", "1,inf,3"), ARGV("--camera", "1,inf,3"), "X,Y,Z");
     expect_error(ARGC("--set", "novalue"), ARGV("--set", "novalue"), "KEY=VALUE");
+    /* a preset name is a command-line value: checked here (exit 2), not later as a scene error */
+    expect_error(ARGC("--quality", "high"), ARGV("--quality", "high"), "draft, interactive, final, reference");
     expect_error(ARGC("--frobnicate"), ARGV("--frobnicate"), "unknown option");
     expect_error(ARGC("--spp"), ARGV("--spp"), "needs a value");
     expect_error(ARGC("--output", "x.jpg"), ARGV("--output", "x.jpg"), ".png or .exr");

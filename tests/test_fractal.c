@@ -346,7 +346,7 @@ static void over_relaxation(void **st)
     err_t e;
     assert_true(scene_load(names[k], sa, 1, &a, &e));
     assert_true(scene_load(names[k], sb, 2, &b, &e));
-    camera cam = camera_look_at(a.cam_position, a.cam_look_at, a.cam_fov_deg * GLM_PIf / 180.0f);
+    camera cam = camera_look_at_deg(a.cam_position, a.cam_look_at, a.cam_fov_deg);
     draw(&a, &cam, W, H, 1, NULL, plain, NULL);
     draw(&b, &cam, W, H, 1, NULL, relaxed, NULL);
     double steps_a = 0, steps_b = 0, pa = camera_pixel_angle(&cam, H);

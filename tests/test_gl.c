@@ -434,7 +434,7 @@ static void no_nan_or_inf(void **st)
                 fail_msg("%s", e.msg);
             camera cams[RANDOM_CAMERAS + 6];
             int nc = 0;
-            cams[nc++] = camera_look_at(s.cam_position, s.cam_look_at, s.cam_fov_deg * GLM_PIf / 180.0f);
+            cams[nc++] = camera_look_at_deg(s.cam_position, s.cam_look_at, s.cam_fov_deg);
             cams[nc++] = cam_at(0, 1e-4, 3, 0, 1e-4, -3, 60);   /* 0.1 mm above the ground, looking along it */
             cams[nc++] = cam_at(0, 1e3, 1e3, 0, 0, 0, 10);      /* far away */
             cams[nc++] = cam_at(0, 1, 0, 0, 10, 0, 90);         /* straight up (clamped) */

@@ -6,22 +6,24 @@
 // y_d (its lower end for b > 0): τ = σ0 · s · e^(−b (y_d − y0)) · f(u), u = |b d_y| s ≥ 0,
 // f(u) = (1 − e^(−u)) / u, with its series near 0. Every factor is finite for every slope.
 uniform vec3 uFogColor;
-uniform vec3 uFog; // σ0 per metre, falloff b per metre, reference height y0
+uniform float uFogDensity; // σ0 per metre at uFogHeight
+uniform float uFogFalloff; // b per metre
+uniform float uFogHeight;  // y0
 
 const float FOG_SERIES_BELOW = 1e-3;
 const float FOG_MAX_EXPONENT = 80.0; // e^80 ≈ 5e34: well inside float, and already opaque
 
 float fogOpticalDepth(float oy, float dy, float s)
 {
-    float sigma0 = uFog.x, b = uFog.y;
+    float sigma0 = uFogDensity, b = uFogFalloff;
 #ifdef FOG_NAIVE // the lab's form as written (tests show what it gets wrong)
-    return sigma0 * exp(-b * (oy - uFog.z)) * (1.0 - exp(-b * dy * s)) / (b * dy);
+    return sigma0 * exp(-b * (oy - uFogHeight)) * (1.0 - exp(-b * dy * s)) / (b * dy);
 #else
     float y1 = oy + dy * s;
     float yDense = b >= 0.0 ? min(oy, y1) : max(oy, y1);
     float u = abs(b * dy) * s;
     float f = u < FOG_SERIES_BELOW ? 1.0 - u * (0.5 - u / 6.0) : (1.0 - exp(-u)) / u;
-    float e = min(-b * (yDense - uFog.z), FOG_MAX_EXPONENT);
+    float e = min(-b * (yDense - uFogHeight), FOG_MAX_EXPONENT);
     return sigma0 * s * exp(e) * f;
 #endif
 }

@@ -1,8 +1,10 @@
 // Direct light from point lights (radiant intensity, 1/d² falloff as the course task insists) and
 // directional lights (irradiance), each with its own shadow mode.
 #if NUM_LIGHTS > 0 // GLSL has no arrays of size 0
-uniform vec4 uLightVec[NUM_LIGHTS];   // xyz: position (point) or unit direction toward it; w: 0 point, 1 directional
-uniform vec4 uLightColor[NUM_LIGHTS]; // rgb: colour × intensity; w: shadow mode 0 none, 1 hard, 2 soft
+uniform vec3 uLightVec[NUM_LIGHTS];        // position (point) or unit direction toward it (directional)
+uniform bool uLightDirectional[NUM_LIGHTS];
+uniform vec3 uLightColor[NUM_LIGHTS];      // colour × intensity
+uniform int uLightShadow[NUM_LIGHTS];      // 0 none, 1 hard, 2 soft (scene_light.shadow)
 uniform float uLightSoftness[NUM_LIGHTS];
 
 vec3 directLight(vec3 p, vec3 n, vec3 v, Material m, vec3 F0, float pathT)
@@ -11,15 +13,15 @@ vec3 directLight(vec3 p, vec3 n, vec3 v, Material m, vec3 F0, float pathT)
     for (int i = 0; i < NUM_LIGHTS; i++) {
         vec3 l;
         float dist;
-        vec3 radiance = uLightColor[i].rgb;
-        if (uLightVec[i].w < 0.5) {
-            vec3 toLight = uLightVec[i].xyz - p;
+        vec3 radiance = uLightColor[i];
+        if (!uLightDirectional[i]) {
+            vec3 toLight = uLightVec[i] - p;
             float d2 = max(dot(toLight, toLight), 1e-8);
             dist = sqrt(d2);
             l = toLight / dist;
             radiance /= d2;
         } else {
-            l = uLightVec[i].xyz;
+            l = uLightVec[i];
             dist = float(MAX_DIST);
         }
         vec3 f = cookTorrance(n, v, l, m.albedo, m.metallic, m.roughness, F0);
@@ -27,7 +29,7 @@ vec3 directLight(vec3 p, vec3 n, vec3 v, Material m, vec3 F0, float pathT)
             continue;
         float vis = 1.0;
 #if FX_SHADOWS
-        int mode = int(uLightColor[i].w + 0.5);
+        int mode = uLightShadow[i];
         if (mode > 0 && fxOn(FX_SHADOWS_BIT)) {
             vec3 ro = p + n * (SURFACE_OFFSET_K * hitEps(pathT));
 #if FX_SOFT_SHADOWS

@@ -1,8 +1,13 @@
-// Materials: metal/roughness PBR parameters from uniform arrays filled by app/render.c.
-uniform vec4 uMatBase[NUM_MATERIALS];     // rgb base colour, a = metallic
-uniform vec4 uMatParams[NUM_MATERIALS];   // roughness, transmission, ior, texture index (-1 none)
-uniform vec4 uMatAbsorb[NUM_MATERIALS];   // rgb Beer–Lambert coefficient per metre, a = uv scale
+// Materials: metal/roughness PBR parameters, one uniform array per parameter (app/scene.c names them).
+uniform vec3 uMatBaseColor[NUM_MATERIALS];
+uniform float uMatMetallic[NUM_MATERIALS];
+uniform float uMatRoughness[NUM_MATERIALS];
+uniform float uMatTransmission[NUM_MATERIALS]; // 0 opaque, 1 glass
+uniform float uMatIor[NUM_MATERIALS];
+uniform vec3 uMatAbsorption[NUM_MATERIALS];    // Beer–Lambert coefficient per metre
 uniform vec3 uMatEmission[NUM_MATERIALS];
+uniform int uMatTexture[NUM_MATERIALS];        // colour texture index, −1 none
+uniform float uMatUvScale[NUM_MATERIALS];      // texture repeats per metre
 
 struct Material {
     vec3 albedo;
@@ -71,21 +76,21 @@ Material getMaterial(float id, vec3 p, vec3 n, vec3 dpdx, vec3 dpdy)
 {
     int i = clamp(int(id + 0.5), 0, NUM_MATERIALS - 1);
     Material m;
-    m.albedo = uMatBase[i].rgb;
-    m.metallic = uMatBase[i].a;
-    m.roughness = uMatParams[i].x;
-    m.transmission = uMatParams[i].y;
-    m.ior = uMatParams[i].z;
-    m.absorption = uMatAbsorb[i].rgb;
+    m.albedo = uMatBaseColor[i];
+    m.metallic = uMatMetallic[i];
+    m.roughness = uMatRoughness[i];
+    m.transmission = uMatTransmission[i];
+    m.ior = uMatIor[i];
+    m.absorption = uMatAbsorption[i];
     m.emission = uMatEmission[i];
 #ifdef PROGRAM_ALBEDO // the program colours its surface (fractals: orbit traps; terrain: layers)
     m.albedo = programAlbedo(p, n, dpdx, dpdy, m.albedo);
     return m;
 #endif
 #if FX_TEXTURES
-    int tex = int(uMatParams[i].w);
+    int tex = uMatTexture[i];
     if (tex >= 0 && fxOn(FX_TEXTURES_BIT))
-        m.albedo *= triplanar(tex, p, n, dpdx, dpdy, uMatAbsorb[i].a);
+        m.albedo *= triplanar(tex, p, n, dpdx, dpdy, uMatUvScale[i]);
 #endif
     return m;
 }

@@ -2,7 +2,9 @@
 // lab's search (common/heightsearch.glsl) run in the face's tangent space. The face's frame is its
 // dominant world axis (as the triplanar textures use); the layer lies between the face (heightmap
 // white) and relief_depth below it (black). Self-shadowing inside the layer is not simulated.
-uniform vec4 uMatRelief[NUM_MATERIALS]; // texture index (−1 none), depth (m), heightmap width (texels), −
+uniform int uMatRelief[NUM_MATERIALS];         // heightmap texture index, −1 none
+uniform float uMatReliefDepth[NUM_MATERIALS];   // metres below the surface that its black lies
+uniform float uMatReliefTexels[NUM_MATERIALS];  // heightmap width in texels
 
 struct ReliefFrame {
     vec3 T, B, N;
@@ -28,7 +30,7 @@ float hsSurfaceY(vec2 xz) { return -gRelief.depth * (1.0 - reliefHeight(xz)); }
 // normal (n unchanged where the material has no relief); steps counts height samples.
 vec3 applyRelief(int mat, inout vec3 p, vec3 n, vec3 rd, inout int steps)
 {
-    int tex = int(uMatRelief[mat].x);
+    int tex = uMatRelief[mat];
     if (tex < 0 || !fxOn(FX_RELIEF_BIT))
         return n;
     vec3 a = abs(n);
@@ -37,13 +39,13 @@ vec3 applyRelief(int mat, inout vec3 p, vec3 n, vec3 rd, inout int steps)
     gRelief.T = axis == 0 ? vec3(0, 0, 1) : vec3(1, 0, 0);
     gRelief.B = cross(gRelief.N, gRelief.T);
     gRelief.tex = tex;
-    gRelief.depth = uMatRelief[mat].y;
-    gRelief.scale = uMatAbsorb[mat].a; // the material's uv scale: repeats per metre
+    gRelief.depth = uMatReliefDepth[mat];
+    gRelief.scale = uMatUvScale[mat]; // repeats per metre
     vec3 ro = vec3(dot(p, gRelief.T), 0.0, dot(p, gRelief.B));
     vec3 d = vec3(dot(rd, gRelief.T), dot(rd, gRelief.N), dot(rd, gRelief.B));
     if (d.y >= -1e-4)
         return n; // leaving the face, or along it: nothing to look into
-    float texel = 1.0 / (gRelief.scale * uMatRelief[mat].z);
+    float texel = 1.0 / (gRelief.scale * uMatReliefTexels[mat]);
     float t1 = gRelief.depth / -d.y;
     float dt = float(LINEAR_STEP) * texel / max(length(d.xz), 1e-3);
     float t = heightSearch(ro, d, 0.0, t1, min(dt, t1), steps);

@@ -29,7 +29,8 @@
 #endif
 
 #if FX_GLOW
-uniform vec4 uGlow; // rgb colour, a strength
+uniform vec3 uGlowColor;
+uniform float uGlowStrength;
 #endif
 
 layout(location = 0) out vec4 oColor;
@@ -67,7 +68,7 @@ void main()
 #if FX_REFRACTION
     // A camera inside glass starts on the inside: march to where the path leaves.
     vec2 start = map(ro);
-    if (start.x < 0.0 && uMatParams[clamp(int(start.y + 0.5), 0, NUM_MATERIALS - 1)].y > 0.0 && fxOn(FX_REFRACTION_BIT))
+    if (start.x < 0.0 && uMatTransmission[clamp(int(start.y + 0.5), 0, NUM_MATERIALS - 1)] > 0.0 && fxOn(FX_REFRACTION_BIT))
         side = -1.0;
 #endif
 
@@ -158,7 +159,7 @@ void main()
 #if FX_GLOW // light gathered where the primary ray crept along the surface (many steps)
     float crept = float(firstSteps) / float(MAX_STEPS);
     if (fxOn(FX_GLOW_BIT))
-        radiance += uGlow.rgb * uGlow.a * crept * crept;
+        radiance += uGlowColor * uGlowStrength * crept * crept;
 #endif
 #if FX_FOG
     if (fxOn(FX_FOG_BIT))

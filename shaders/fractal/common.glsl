@@ -1,6 +1,6 @@
 // Shared by the fractal programs: their parameters, the bounding sphere and orbit-trap colouring.
-uniform vec4 uFractalA; // mandelbulb: power, bailout; mandelbox: scale, min radius (in z, w)
-uniform vec4 uFractalB; // mandelbox: fixed radius, fold limit; all: bound radius (z); menger: half size (w)
+// Each formula declares its own parameters (app/scene_programs.c names them).
+uniform float uBoundRadius; // a sphere about the origin that holds the whole set
 uniform vec3 uPalette[3]; // orbit-trap colours: near, middle, far
 
 // Outside the bounding sphere (which holds the whole set) its distance is a safe, cheap bound;
@@ -10,7 +10,7 @@ const float BOUND_MARGIN = 0.1;
 // True (with the bound's distance in d) when p is far enough outside the bounding sphere to use it.
 bool outsideBound(vec3 p, out float d)
 {
-    d = length(p) - uFractalB.z;
+    d = length(p) - uBoundRadius;
     return d > BOUND_MARGIN;
 }
 

@@ -3,13 +3,17 @@
 // inside min radius by a constant, so r = 0 needs no guard). DE = |z| / |dr| with the running
 // derivative dr → |s| · k · dr + 1 (k the fold's scale).
 #include "fractal/common.glsl"
+uniform float uBoxScale;       // the scale factor s
+uniform float uBoxMinRadius;   // sphere fold: inner radius
+uniform float uBoxFixedRadius; // sphere fold: outer radius
+uniform float uBoxFoldLimit;   // box fold: the limit
 
 const float BOX_ESCAPE2 = 1e8; // |z|² beyond which z only grows: stop before float overflows
 
 float boxDE(vec3 c, out float trap)
 {
-    float scale = uFractalA.z, minR2 = uFractalA.w * uFractalA.w;
-    float fixedR2 = uFractalB.x * uFractalB.x, limit = uFractalB.y;
+    float scale = uBoxScale, minR2 = uBoxMinRadius * uBoxMinRadius;
+    float fixedR2 = uBoxFixedRadius * uBoxFixedRadius, limit = uBoxFoldLimit;
     vec3 z = c;
     float dr = 1.0;
     trap = 1e10;
@@ -36,5 +40,5 @@ vec3 programAlbedo(vec3 p, vec3 n, vec3 dpdx, vec3 dpdy, vec3 base)
 {
     float trap;
     boxDE(p, trap);
-    return base * paletteColor(sqrt(trap) / uFractalB.x);
+    return base * paletteColor(sqrt(trap) / uBoxFixedRadius);
 }

@@ -4,6 +4,8 @@
 // Guards (tests/test_fractal.c fails without each): at r → 0, acos(y/r) is 0/0, atan(0, 0) is
 // undefined in GLSL and ln 0 = −∞ (times r = 0 gives NaN): each falls back to its limit.
 #include "fractal/common.glsl"
+uniform float uBulbPower;   // the exponent n of z → zⁿ + c
+uniform float uBulbBailout; // escape radius
 
 #ifndef BULB_GUARDS // tests compile them out (0) to show what each prevents
 #define BULB_GUARDS 1
@@ -12,7 +14,7 @@ const float BULB_TINY = BULB_GUARDS != 0 ? 1e-30 : -1.0;
 
 float bulbDE(vec3 c, out float trap)
 {
-    float power = uFractalA.x, bailout = uFractalA.y;
+    float power = uBulbPower, bailout = uBulbBailout;
     vec3 z = c;
     float dr = 1.0, r = length(z);
     trap = 1e10;

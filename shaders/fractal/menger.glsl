@@ -6,6 +6,7 @@
 // corner/edge choices; a path is dropped as soon as its cube's box distance (a lower bound for
 // everything inside it) is no better than the best found, trying the nearer cube first.
 #include "fractal/common.glsl"
+uniform float uMengerSize; // half the cube's side (metres)
 
 const vec3 MENGER_CORNER = vec3(2.0 / 3.0, 2.0 / 3.0, 2.0 / 3.0);
 const vec3 MENGER_EDGE = vec3(2.0 / 3.0, 2.0 / 3.0, 0.0);
@@ -23,7 +24,7 @@ float mengerDE(vec3 p)
 {
     const int N = FRACTAL_ITERATIONS;
     const int PATHS = 1 << N;
-    float size = uFractalB.w;
+    float size = uMengerSize;
     vec3 q0 = p / size;
     float best = 1e10;
     int m = 0;
@@ -56,7 +57,7 @@ vec2 map(vec3 p) { return vec2(mengerDE(p), 0.0); }
 // Colour by how deep the nearest hole is: follow the nearer cube down and note where the point sits.
 vec3 programAlbedo(vec3 p, vec3 n, vec3 dpdx, vec3 dpdy, vec3 base)
 {
-    vec3 q = p / uFractalB.w;
+    vec3 q = p / uMengerSize;
     float trap = 1.0;
     for (int l = 0; l < FRACTAL_ITERATIONS; l++) {
         q = foldOctahedral(q);

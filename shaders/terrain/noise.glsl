@@ -3,7 +3,10 @@
 // Normals come from the analytic gradient of n (quintic-smoothed value noise: I. Quilez, "value noise
 // derivatives"). Sphere tracing needs a distance bound: |∇f| ≤ 1 + A · Σ fᵢ aᵢ · 30/16 · √3 (the
 // quintic's steepest slope is 30/16 per unit on each axis), so f / that is one.
-uniform vec4 uNoise;  // base height, amplitude A (metres), base frequency (1/m), octaves
+uniform float uNoiseBase;      // base height (metres)
+uniform float uNoiseAmplitude; // A (metres)
+uniform float uNoiseFrequency; // base frequency (1/m)
+uniform int uNoiseOctaves;
 uniform float uNoiseBound; // 1 / (the bound on |∇f| above), from C
 
 #define PROGRAM_NORMAL 1
@@ -48,8 +51,8 @@ vec4 valueNoise(vec3 p)
 vec4 fbm(vec3 p)
 {
     vec4 sum = vec4(0.0);
-    float amp = 0.5, freq = uNoise.z;
-    for (int o = 0; o < int(uNoise.w); o++) {
+    float amp = 0.5, freq = uNoiseFrequency;
+    for (int o = 0; o < uNoiseOctaves; o++) {
         vec4 n = valueNoise(p * freq + vec3(float(o) * 17.31));
         sum += amp * vec4(n.x, n.yzw * freq);
         amp *= 0.5;
@@ -58,21 +61,19 @@ vec4 fbm(vec3 p)
     return sum;
 }
 
-float noiseField(vec3 p) { return p.y - uNoise.x - uNoise.y * fbm(p).x; }
+float noiseField(vec3 p) { return p.y - uNoiseBase - uNoiseAmplitude * fbm(p).x; }
 
 vec2 map(vec3 p) { return vec2(noiseField(p) * uNoiseBound, 0.0); }
 
 vec3 calcNormal(vec3 p, float eps, vec3 fallback)
 {
-    vec3 g = vec3(0.0, 1.0, 0.0) - uNoise.y * fbm(p).yzw;
+    vec3 g = vec3(0.0, 1.0, 0.0) - uNoiseAmplitude * fbm(p).yzw;
     float len = length(g);
     return len > 1e-20 ? g / len : fallback;
 }
 
-// Heights for the shared layered albedo (terrain/layers.glsl): the noise's range.
-uniform vec4 uTerrainRange;
-uniform vec3 uTerrainLayers;
-uniform ivec4 uLayerMaterial;
+// The shared layered albedo (terrain/layers.glsl), over the noise's height range.
+uniform float uTerrainHeightMin, uTerrainHeightMax;
 vec3 programAlbedo(vec3 p, vec3 n, vec3 dpdx, vec3 dpdy, vec3 base);
 #include "common/uniforms.glsl"
 #include "common/material.glsl"

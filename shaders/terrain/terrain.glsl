@@ -9,11 +9,12 @@
 // Hit.steps counts height samples (texel fetches of four corners count once) for --aov steps.
 uniform sampler2D uHeight;    // R32F metres: texel (i, j) = column i (west → east), row j (north → south)
 uniform sampler2D uHeightMax; // R32F max pyramid: level 0 = cells between four centres
-uniform vec4 uTerrainGrid;    // x0, z0 (north-west corner of the grid), dx, dz (metres per texel)
-uniform vec4 uTerrainRange;   // hmin, hmax, 1 / sqrt(1 + L²) (L = steepest slope), top pyramid level
-uniform ivec2 uTerrainSize;   // texels
-uniform vec3 uTerrainLayers;  // sand below (m), snow above (m), grass where normal.y exceeds this
-uniform ivec4 uLayerMaterial; // material indices of sand, grass, rock, snow (−1: absent)
+uniform vec2 uTerrainOrigin;     // x0, z0: the north-west corner of the grid
+uniform vec2 uTerrainSpacing;    // dx, dz: metres per texel
+uniform float uTerrainHeightMin, uTerrainHeightMax; // metres (also read by terrain/layers.glsl)
+uniform float uTerrainStepScale; // 1 / sqrt(1 + L²), L the steepest slope: (y − h) · this bounds the distance
+uniform int uTerrainTopLevel;    // the max pyramid's top level
+uniform ivec2 uTerrainSize;      // texels
 
 #include "common/hit.glsl"
 
@@ -22,7 +23,7 @@ uniform ivec4 uLayerMaterial; // material indices of sand, grass, rock, snow (�
 #define PROGRAM_ALBEDO 1
 
 // Cell space: c = (xz − x0z0) / dxdz − ½ puts texel centres on integers; cell (i, j) is [i, i+1]×[j, j+1].
-vec2 toCell(vec2 xz) { return (xz - uTerrainGrid.xy) / uTerrainGrid.zw - 0.5; }
+vec2 toCell(vec2 xz) { return (xz - uTerrainOrigin) / uTerrainSpacing - 0.5; }
 float texelHeight(ivec2 t) { return texelFetch(uHeight, clamp(t, ivec2(0), uTerrainSize - 1), 0).r; }
 
 float heightAtCell(vec2 c)
@@ -38,14 +39,14 @@ float heightAtCell(vec2 c)
 float terrainHeight(vec2 xz) { return heightAtCell(toCell(xz)); }
 
 // A distance bound for shadows and AO: vertical clearance shrunk by the steepest slope.
-vec2 map(vec3 p) { return vec2((p.y - terrainHeight(p.xz)) * uTerrainRange.z, 0.0); }
+vec2 map(vec3 p) { return vec2((p.y - terrainHeight(p.xz)) * uTerrainStepScale, 0.0); }
 
 // Where the ray is over the footprint and inside the slab [hmin, hmax]: (t enter, t exit).
 vec2 terrainSlab(vec3 ro, vec3 rd)
 {
-    vec3 lo = vec3(uTerrainGrid.x + 0.5 * uTerrainGrid.z, uTerrainRange.x, uTerrainGrid.y + 0.5 * uTerrainGrid.w);
-    vec3 hi = vec3(uTerrainGrid.x + (float(uTerrainSize.x) - 0.5) * uTerrainGrid.z, uTerrainRange.y,
-                   uTerrainGrid.y + (float(uTerrainSize.y) - 0.5) * uTerrainGrid.w);
+    vec3 lo = vec3(uTerrainOrigin.x + 0.5 * uTerrainSpacing.x, uTerrainHeightMin, uTerrainOrigin.y + 0.5 * uTerrainSpacing.y);
+    vec3 hi = vec3(uTerrainOrigin.x + (float(uTerrainSize.x) - 0.5) * uTerrainSpacing.x, uTerrainHeightMax,
+                   uTerrainOrigin.y + (float(uTerrainSize.y) - 0.5) * uTerrainSpacing.y);
     vec3 inv = 1.0 / rd; // ±inf for an axis the ray does not move along: the slab test still works
     vec3 t0 = (lo - ro) * inv, t1 = (hi - ro) * inv;
     vec3 tmin = min(t0, t1), tmax = max(t0, t1);
@@ -88,10 +89,10 @@ float intersectCell(ivec2 cell, vec2 c0, vec2 cd, float y0, float dy, float sEnd
 Hit terrainTrace(vec3 ro, vec3 rd, vec2 slab)
 {
     Hit h = Hit(false, slab.y, 0.0, 0);
-    vec2 c0 = toCell(ro.xz), cd = rd.xz / uTerrainGrid.zw;
+    vec2 c0 = toCell(ro.xz), cd = rd.xz / uTerrainSpacing;
     vec2 dirSign = vec2(cd.x >= 0.0 ? 1.0 : -1.0, cd.y >= 0.0 ? 1.0 : -1.0);
     const float NUDGE = 1e-4; // cells: moves a point on a node boundary into the node ahead
-    int top = int(uTerrainRange.w), level = top;
+    int top = uTerrainTopLevel, level = top;
     float t = slab.x;
     for (int i = 0; i < MAX_STEPS; i++) {
         vec2 c = c0 + cd * t;
@@ -130,9 +131,9 @@ float hsSurfaceY(vec2 xz) { return terrainHeight(xz); }
 Hit terrainTrace(vec3 ro, vec3 rd, vec2 slab)
 {
     Hit h = Hit(false, slab.y, 0.0, 0);
-    float texel = min(uTerrainGrid.z, uTerrainGrid.w);
+    float texel = min(uTerrainSpacing.x, uTerrainSpacing.y);
     float along = max(length(rd.xz), 1e-3); // horizontal metres per metre of ray
-    float dt = min(float(LINEAR_STEP) * texel / along, (uTerrainRange.y - uTerrainRange.x) + texel);
+    float dt = min(float(LINEAR_STEP) * texel / along, (uTerrainHeightMax - uTerrainHeightMin) + texel);
     float t = heightSearch(ro, rd, slab.x, slab.y, dt, h.steps);
     if (t >= 0.0) {
         h.hit = true;
@@ -170,7 +171,7 @@ float softShadow(vec3 ro, vec3 rd, float tmax, float k, float pathT)
     vec2 slab = terrainSlab(ro, rd);
     slab.y = min(slab.y, tmax);
     float res = 1.0, t = slab.x;
-    float dt = float(LINEAR_STEP) * min(uTerrainGrid.z, uTerrainGrid.w) / max(length(rd.xz), 1e-3);
+    float dt = float(LINEAR_STEP) * min(uTerrainSpacing.x, uTerrainSpacing.y) / max(length(rd.xz), 1e-3);
     for (int i = 0; i < SHADOW_STEPS && t < slab.y; i++) {
         vec3 p = ro + rd * t;
         float clearance = p.y - terrainHeight(p.xz);
@@ -188,7 +189,7 @@ float softShadow(vec3 ro, vec3 rd, float tmax, float k, float pathT)
 // side of the terrain's column (a ray that reached the footprint's edge below the surface) the side's.
 vec3 calcNormal(vec3 p, float eps, vec3 fallback)
 {
-    float dx = uTerrainGrid.z, dz = uTerrainGrid.w;
+    float dx = uTerrainSpacing.x, dz = uTerrainSpacing.y;
     if (p.y < terrainHeight(p.xz) - eps) {
         vec2 c = toCell(p.xz), far = vec2(uTerrainSize - 1) - c;
         float m = min(min(c.x, c.y), min(far.x, far.y));

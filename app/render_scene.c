@@ -1,0 +1,185 @@
+/* render_scene — the scene on the GPU. render_set_scene() hands over a scene; this file keeps its own
+ * copy by value (the caller may free or change its scene at once), loads the textures, cube map and
+ * heightfield it names, and uploads every uniform by name (scene_uniforms() says which). */
+#include <math.h>
+#include <string.h>
+
+#include "render_parts.h"
+#include "terrain.h"
+#include "texture.h"
+
+static struct {
+    scene scene; /* a copy; map_glsl is not kept (the program cache owns its own copy) */
+    bool have_scene;
+    GLuint textures[SCENE_MAX_TEXTURES], envmap;
+    int texture_width[SCENE_MAX_TEXTURES]; /* heightmaps: texels across (relief step size) */
+    int env_size;
+    GLuint height_tex, height_max_tex; /* terrain: heights, max pyramid */
+    heightfield hf;
+} gpu;
+
+static void free_textures(void)
+{
+    if (gpu.height_tex) {
+        glDeleteTextures(1, &gpu.height_tex);
+        glDeleteTextures(1, &gpu.height_max_tex);
+        gpu.height_tex = gpu.height_max_tex = 0;
+        heightfield_free(&gpu.hf);
+    }
+    glDeleteTextures(SCENE_MAX_TEXTURES, gpu.textures);
+    memset(gpu.textures, 0, sizeof gpu.textures);
+    if (gpu.envmap)
+        glDeleteTextures(1, &gpu.envmap);
+    gpu.envmap = 0;
+}
+
+void scene_gpu_shutdown(void)
+{
+    free_textures();
+    memset(&gpu, 0, sizeof gpu);
+}
+
+const scene *scene_gpu_current(void) { return gpu.have_scene ? &gpu.scene : NULL; }
+
+static GLuint float_texture(int w, int h, const float *data, int levels, float *const *mips)
+{
+    GLuint t;
+    glGenTextures(1, &t);
+    glBindTexture(GL_TEXTURE_2D, t);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    if (data)
+        glTexImage2D(GL_TEXTURE_2D, 0, GL_R32F, w, h, 0, GL_RED, GL_FLOAT, data);
+    for (int k = 0; k < levels; k++) {
+        int lw = w >> k, lh = h >> k;
+        glTexImage2D(GL_TEXTURE_2D, k, GL_R32F, lw > 0 ? lw : 1, lh > 0 ? lh : 1, 0, GL_RED, GL_FLOAT, mips[k]);
+    }
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, levels > 0 ? levels - 1 : 0);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    return t;
+}
+
+/* Terrain: heights (exact texelFetch, bilinear done in the shader) and the max pyramid. */
+static bool upload_heightfield(const scene *s, err_t *err)
+{
+    heightfield_desc d = {.path = s->terrain.heightmap, .spacing = {s->terrain.spacing[0], s->terrain.spacing[1]},
+                          .height_min = s->terrain.height_min, .height_max = s->terrain.height_max,
+                          .exaggeration = s->terrain.exaggeration};
+    if (!heightfield_load(&d, &gpu.hf, err))
+        return false;
+    gpu.height_tex = float_texture(gpu.hf.width, gpu.hf.height, gpu.hf.h, 0, NULL);
+    gpu.height_max_tex = float_texture(gpu.hf.pw, gpu.hf.ph, NULL, gpu.hf.levels, gpu.hf.max);
+    return true;
+}
+
+bool scene_gpu_set(const scene *s, err_t *err)
+{
+    free_textures();
+    gpu.have_scene = false;
+    for (int i = 0; i < s->texture_count; i++) {
+        int w = 0;
+        gpu.textures[i] = s->texture_linear[i] ? texture_load_height(s->textures[i], &w, err)
+                                               : texture_load_2d(s->textures[i], err);
+        gpu.texture_width[i] = w;
+        if (!gpu.textures[i])
+            return false;
+    }
+    if (s->terrain.heightmap[0] && !upload_heightfield(s, err))
+        return false;
+    gpu.env_size = 0;
+    if (s->has_cubemap && (s->effects & (1u << EFFECT_ENVMAP))) {
+        gpu.envmap = texture_load_cube(s->cubemap, &gpu.env_size, err);
+        if (!gpu.envmap)
+            return false;
+    }
+    gpu.scene = *s;
+    gpu.scene.map_glsl = NULL;
+    gpu.have_scene = true;
+    return true;
+}
+
+/* A uniform_sink that uploads to one GL program; names the program does not use are skipped. */
+static void gl_set(void *user, const char *name, uniform_type type, int comps, int count, const void *data)
+{
+    GLint loc = glGetUniformLocation(*(const GLuint *)user, name);
+    if (loc < 0 || count <= 0)
+        return;
+    const float *f = data;
+    const GLint *i = data;
+    switch (comps * 2 + (type == UNIFORM_INT)) {
+    case 2: glUniform1fv(loc, count, f); break;
+    case 3: glUniform1iv(loc, count, i); break;
+    case 4: glUniform2fv(loc, count, f); break;
+    case 5: glUniform2iv(loc, count, i); break;
+    case 6: glUniform3fv(loc, count, f); break;
+    case 7: glUniform3iv(loc, count, i); break;
+    case 8: glUniform4fv(loc, count, f); break;
+    default: glUniform4iv(loc, count, i); break;
+    }
+}
+
+/* The loaded heightfield's grid (shaders/terrain/terrain.glsl). */
+static void heightfield_uniforms(const heightfield *hf, const uniform_sink *u)
+{
+    uniform_i(u, "uHeight", UNIT_HEIGHT);
+    uniform_i(u, "uHeightMax", UNIT_HEIGHT_MAX);
+    uniform_fv(u, "uTerrainOrigin", 2, 1, (const float[]){hf->x0, hf->z0});
+    uniform_fv(u, "uTerrainSpacing", 2, 1, (const float[]){hf->dx, hf->dz});
+    uniform_f(u, "uTerrainHeightMin", hf->hmin);
+    uniform_f(u, "uTerrainHeightMax", hf->hmax);
+    uniform_f(u, "uTerrainStepScale", 1.0f / sqrtf(1.0f + hf->lipschitz * hf->lipschitz));
+    uniform_i(u, "uTerrainTopLevel", hf->levels - 1);
+    uniform_iv(u, "uTerrainSize", 2, 1, (const int[]){hf->width, hf->height});
+}
+
+/* What only the loaded textures know: units, the cube map's mip count, relief heightmap widths. */
+static void texture_uniforms(const scene *s, const uniform_sink *u)
+{
+    static const char *const tex_names[SCENE_MAX_TEXTURES] = {"uTex0", "uTex1", "uTex2", "uTex3"};
+    for (int i = 0; i < SCENE_MAX_TEXTURES; i++)
+        uniform_i(u, tex_names[i], i);
+    uniform_i(u, "uEnvMap", UNIT_ENVMAP);
+    uniform_f(u, "uEnvMaxLod", gpu.env_size > 0 ? log2f((float)gpu.env_size) : 0.0f);
+    float texels[SCENE_MAX_MATERIALS];
+    for (int i = 0; i < s->material_count; i++)
+        texels[i] = s->materials[i].relief >= 0 ? (float)gpu.texture_width[s->materials[i].relief] : 1.0f;
+    uniform_fv(u, "uMatReliefTexels", 1, s->material_count, texels);
+}
+
+void scene_gpu_uniforms(GLuint prog, const scene *s)
+{
+    glUseProgram(prog);
+    uniform_sink u = {gl_set, &prog};
+    scene_uniforms(s, &u);
+    /* the GPU side belongs to the current scene: another scene (a probe's) gets only its own values */
+    bool current = gpu.have_scene && !strcmp(gpu.scene.path, s->path) &&
+                   !strcmp(gpu.scene.terrain.heightmap, s->terrain.heightmap);
+    if (!current)
+        return;
+    texture_uniforms(s, &u);
+    if (gpu.height_tex)
+        heightfield_uniforms(&gpu.hf, &u);
+}
+
+void scene_gpu_bind_textures(void)
+{
+    for (int i = 0; i < SCENE_MAX_TEXTURES; i++) {
+        glActiveTexture(GL_TEXTURE0 + (GLenum)i);
+        glBindTexture(GL_TEXTURE_2D, gpu.textures[i]);
+    }
+    glActiveTexture(GL_TEXTURE0 + UNIT_ENVMAP);
+    glBindTexture(GL_TEXTURE_CUBE_MAP, gpu.envmap);
+    glActiveTexture(GL_TEXTURE0 + UNIT_HEIGHT);
+    glBindTexture(GL_TEXTURE_2D, gpu.height_tex);
+    glActiveTexture(GL_TEXTURE0 + UNIT_HEIGHT_MAX);
+    glBindTexture(GL_TEXTURE_2D, gpu.height_max_tex);
+    glActiveTexture(GL_TEXTURE0);
+}
+
+bool render_ground_height(float x, float z, float *height)
+{
+    if (!gpu.height_tex)
+        return false;
+    *height = heightfield_at(&gpu.hf, x, z);
+    return true;
+}

@@ -1,0 +1,28 @@
+// The program contract: what a scene program supplies and what it may override. Every program's
+// fragment shader (sdf.frag, probe.frag) includes this file, which brings in the
+// program as the virtual file program.glsl (app/scene.c writes it: the csg program's generated map(),
+// or an #include of the program's file from PROGRAM_LIST in app/program.h).
+//
+// A program MUST define
+//   vec2 map(vec3 p)      x: a signed distance bound (|x| ≤ the distance to the surface, negative
+//                         inside; a fractal's step factor is the named STEP_FACTOR knob, never a
+//                         hidden scale), y: the material index (0 … NUM_MATERIALS − 1).
+// A program MAY define, each announced by a #define before the shared code tests it:
+//   PROGRAM_CAST_RAY   Hit castRay(vec3 ro, vec3 rd, float tmax, float side, float pathT)
+//                      its own primary/secondary marcher (terrain: max-mipmap or the lab's search);
+//                      default: sphere tracing in common/march.glsl.
+//   PROGRAM_NORMAL     vec3 calcNormal(vec3 p, float eps, vec3 fallback)
+//                      its own normals (terrain: from the heightfield; noise: analytic gradient);
+//                      default: central differences of map().
+//   PROGRAM_SHADOWS    float hardShadow(…), float softShadow(…) as in common/shadow.glsl
+//                      (terrain: its own marcher toward the sun).
+//   PROGRAM_ALBEDO     vec3 programAlbedo(vec3 p, vec3 n, vec3 dpdx, vec3 dpdy, vec3 base)
+//                      colours its surface (fractals: orbit traps; terrains: layers); textures then
+//                      do not apply.
+// A program reads its parameters from uniforms it declares itself, one named uniform per parameter
+// (uBulbPower, uMengerSize, uTerrainSpacing…); app/scene_programs.c uploads them by those names. It
+// reads the #defines of the preamble (app/scene.c scene_preamble): PROGRAM_<name>, FX_<EFFECT>,
+// the quality knobs (MAX_STEPS, HIT_K, … from QUALITY_KNOBS in app/quality.h), NUM_LIGHTS,
+// NUM_MATERIALS, and its own (FRACTAL_ITERATIONS, TERRAIN_MAXMIP).
+#include "common/sdf.glsl"
+#include "program.glsl"
