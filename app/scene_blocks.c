@@ -151,47 +151,32 @@ bool parse_lights(scene_ctx *c, const cJSON *root)
             return false;
         scene_light *out = &c->s->lights[c->s->light_count++];
         static const float white[3] = {1, 1, 1}, up[3] = {0, 1, 0}, zero[3] = {0, 0, 0};
-        const char *type = NULL, *shadow = NULL;
-        if (!get_str(c, l, p, "type", "point", &type) || !get_str(c, l, p, "shadow", "hard", &shadow) ||
+        /* in the order of light_type and shadow_mode (scene.h) */
+        static const char *const TYPES[] = {"point", "directional", NULL}, *const SHADOWS[] = {"none", "hard", "soft", NULL};
+        int type, shadow;
+        if (!get_enum(c, l, p, "type", "light type", TYPES, LIGHT_POINT, &type) ||
+            !get_enum(c, l, p, "shadow", "shadow", SHADOWS, SHADOW_HARD, &shadow) ||
             !get_vec3(c, l, p, "color", white, 0, 1e3f, out->color) ||
             !get_num(c, l, p, "intensity", 1, 0, 1e7f, &out->intensity) ||
             !get_num(c, l, p, "softness", 16, 1, 1024, &out->softness))
             return false;
-        char kp[96];
-        if (!strcmp(type, "point")) {
-            out->type = LIGHT_POINT;
-            if (cJSON_GetObjectItemCaseSensitive(l, "direction")) {
-                child_path(kp, sizeof kp, p, "direction");
-                return fail(c, kp, "a point light has a \"position\", not a direction");
-            }
-            if (!get_vec3(c, l, p, "position", zero, -1e6f, 1e6f, out->vec))
-                return false;
-        } else if (!strcmp(type, "directional")) {
-            out->type = LIGHT_DIRECTIONAL;
-            if (cJSON_GetObjectItemCaseSensitive(l, "position")) {
-                child_path(kp, sizeof kp, p, "position");
-                return fail(c, kp, "a directional light has a \"direction\" (toward the light), not a position");
-            }
-            if (!get_vec3(c, l, p, "direction", up, -1e6f, 1e6f, out->vec))
-                return false;
+        out->type = (light_type)type;
+        out->shadow = (shadow_mode)shadow;
+        /* a point light has a position, a directional light a direction: the other key is a mistake */
+        const char *own = type == LIGHT_POINT ? "position" : "direction", *other = type == LIGHT_POINT ? "direction" : "position";
+        if (cJSON_GetObjectItemCaseSensitive(l, other)) {
+            char kp[96];
+            child_path(kp, sizeof kp, p, other);
+            return fail(c, kp, "a %s light has a \"%s\", not a %s", TYPES[type], own, other);
+        }
+        if (!get_vec3(c, l, p, own, type == LIGHT_POINT ? zero : up, -1e6f, 1e6f, out->vec))
+            return false;
+        if (type == LIGHT_DIRECTIONAL) { /* unit, toward the light */
             float len = sqrtf(out->vec[0] * out->vec[0] + out->vec[1] * out->vec[1] + out->vec[2] * out->vec[2]);
             if (len < 1e-6f)
                 return fail(c, p, "direction must not be zero");
             for (int k = 0; k < 3; k++)
                 out->vec[k] /= len;
-        } else {
-            child_path(kp, sizeof kp, p, "type");
-            return fail(c, kp, "unknown light type '%s' (known: point, directional)", type);
-        }
-        if (!strcmp(shadow, "none"))
-            out->shadow = SHADOW_NONE;
-        else if (!strcmp(shadow, "hard"))
-            out->shadow = SHADOW_HARD;
-        else if (!strcmp(shadow, "soft"))
-            out->shadow = SHADOW_SOFT;
-        else {
-            child_path(kp, sizeof kp, p, "shadow");
-            return fail(c, kp, "unknown shadow '%s' (known: none, hard, soft)", shadow);
         }
     }
     return true;
@@ -293,15 +278,12 @@ bool parse_effects(scene_ctx *c, const cJSON *root)
             sb_free(&list);
             return r;
         }
-        const char *v = cJSON_IsString(it) ? it->valuestring : "";
-        if (!strcmp(v, "auto"))
-            c->s->effect_modes[e] = EFFECT_AUTO;
-        else if (!strcmp(v, "on"))
-            c->s->effect_modes[e] = EFFECT_ON;
-        else if (!strcmp(v, "off"))
-            c->s->effect_modes[e] = EFFECT_OFF;
-        else
-            return fail(c, p, "expected \"auto\", \"on\" or \"off\"");
+        /* in the order of effect_mode (scene.h) */
+        static const char *const MODES[] = {"auto", "on", "off", NULL};
+        int mode;
+        if (!get_enum(c, fx, "effects", it->string, "mode", MODES, EFFECT_AUTO, &mode))
+            return false;
+        c->s->effect_modes[e] = (effect_mode)mode;
     }
     return true;
 }

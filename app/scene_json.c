@@ -122,6 +122,27 @@ bool get_str(scene_ctx *c, const cJSON *obj, const char *path, const char *key, 
     return true;
 }
 
+bool get_enum(scene_ctx *c, const cJSON *obj, const char *path, const char *key, const char *what,
+              const char *const *names, int def, int *out)
+{
+    const char *v = NULL;
+    if (!get_str(c, obj, path, key, names[def], &v))
+        return false;
+    for (int i = 0; names[i]; i++)
+        if (!strcmp(v, names[i])) {
+            *out = i;
+            return true;
+        }
+    char p[KEY_PATH_MAX];
+    child_path(p, sizeof p, path, key);
+    strbuf known = {0};
+    for (int i = 0; names[i]; i++)
+        sb_printf(&known, "%s%s", i ? ", " : "", names[i]);
+    bool r = fail(c, p, "unknown %s '%s' (known: %s)", what, v, known.data);
+    sb_free(&known);
+    return r;
+}
+
 bool resolve_file(scene_ctx *c, const char *path, const char *rel, char *out)
 {
     if (!util_join(c->s->dir, rel, out, PATH_MAX_LEN))

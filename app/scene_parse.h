@@ -38,6 +38,11 @@ bool get_vec3(scene_ctx *c, const cJSON *obj, const char *path, const char *key,
               float hi, float out[3]);
 bool get_str(scene_ctx *c, const cJSON *obj, const char *path, const char *key, const char *def, const char **out);
 
+/* A string from a NULL-terminated list of names: *out = its index (def when the key is missing).
+ * An unknown name is refused with the list ("unknown light type 'x' (known: point, directional)"). */
+bool get_enum(scene_ctx *c, const cJSON *obj, const char *path, const char *key, const char *what,
+              const char *const *names, int def, int *out);
+
 /* A file named in the scene: resolved against the scene file's folder and checked to exist. */
 bool resolve_file(scene_ctx *c, const char *path, const char *rel, char *out);
 

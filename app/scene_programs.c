@@ -182,10 +182,10 @@ bool heightmap_parse(scene_ctx *c, const cJSON *root)
         return fail(c, "terrain", "a terrain scene needs a \"terrain\" block with a \"heightmap\"");
     if (!check_keys(c, tb, "terrain", keys))
         return false;
-    const char *hm = NULL, *method = NULL;
+    const char *hm = NULL;
     static const float zero2[3] = {0, 0, 0};
     float sp[3];
-    if (!get_str(c, tb, "terrain", "heightmap", NULL, &hm) || !get_str(c, tb, "terrain", "method", "maxmip", &method))
+    if (!get_str(c, tb, "terrain", "heightmap", NULL, &hm))
         return false;
     if (!hm)
         return fail(c, "terrain.heightmap", "missing: a heightmap image (16-bit PNG, EXR, TIFF…)");
@@ -210,12 +210,11 @@ bool heightmap_parse(scene_ctx *c, const cJSON *root)
         !get_num(c, tb, "terrain", "snow_line", 1e9f, -1e9f, 1e9f, &t->snow_line) ||
         !get_num(c, tb, "terrain", "grass_slope", 0.8f, 0, 1, &t->grass_slope))
         return false;
-    if (!strcmp(method, "maxmip"))
-        t->maxmip = true;
-    else if (!strcmp(method, "linear"))
-        t->maxmip = false;
-    else
-        return fail(c, "terrain.method", "unknown method '%s' (known: maxmip, linear)", method);
+    static const char *const METHODS[] = {"linear", "maxmip", NULL};
+    int m;
+    if (!get_enum(c, tb, "terrain", "method", "method", METHODS, 1, &m))
+        return false;
+    t->maxmip = m == 1;
     return true;
 }
 

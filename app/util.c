@@ -1,7 +1,10 @@
+/* realpath() is XSI */
+#define _XOPEN_SOURCE 700
 #include "util.h"
 
 #include <assert.h>
 #include <errno.h>
+#include <limits.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -99,8 +102,12 @@ const char *util_data_dir(void)
         util_dirname(exe, dir, sizeof dir);
         const char *const rel[] = {"/../" FATHOM_DATA_SUBDIR, "/..", ""};
         for (size_t i = 0; i < sizeof rel / sizeof rel[0]; i++)
-            if (snprintf(found, sizeof found, "%s%s", dir, rel[i]) < (int)sizeof found && is_data_dir(found))
+            if (snprintf(found, sizeof found, "%s%s", dir, rel[i]) < (int)sizeof found && is_data_dir(found)) {
+                char clean[PATH_MAX]; /* messages name the scene file: without "bin/.." */
+                if (realpath(found, clean) && strlen(clean) < sizeof found)
+                    strcpy(found, clean);
                 return found;
+            }
     }
     snprintf(found, sizeof found, "%s", FATHOM_SOURCE_DIR);
     return found;

@@ -170,7 +170,7 @@ static void overrides(void **st)
     const char *bad_preset[] = {"quality.preset=ultra"};
     expect_error(MINIMAL, bad_preset, 1, "unknown preset 'ultra'");
     const char *bad_mode[] = {"effects.fog=maybe"};
-    expect_error(MINIMAL, bad_mode, 1, "\"auto\", \"on\" or \"off\"");
+    expect_error(MINIMAL, bad_mode, 1, "effects.fog: unknown mode 'maybe' (known: auto, on, off)");
 }
 
 static void effects_follow_content(void **st)
