@@ -36,6 +36,8 @@ static bool scope_applies(knob_scope scope, const scene *s)
     case SCOPE_AO: return s->effects & (1u << EFFECT_AO);
     case SCOPE_BOUNCES: return s->effects & ((1u << EFFECT_REFLECTIONS) | (1u << EFFECT_REFRACTION));
     case SCOPE_TEXTURES: return s->effects & (1u << EFFECT_TEXTURES);
+    case SCOPE_REFINES: /* common/march.glsl refines; fractals define their surface by the footprint */
+        return !program_is_fractal(s->program) && !s->terrain.heightmap[0];
     case SCOPE_SEARCH: /* the lab's search runs: linear terrain, or relief materials */
         return (s->terrain.heightmap[0] && !s->terrain.maxmip) || (s->effects & (1u << EFFECT_RELIEF));
     }

@@ -6,12 +6,63 @@
 
 #include "aov.h"
 
+static bool hits(const image_view *v, int x, int y)
+{
+    return !isinf(v->aov[((size_t)y * (size_t)v->width + (size_t)x) * AOV_FLOATS + AOV_SLOT_DEPTH]);
+}
+
+/* A reference edge pixel: it hits and a 4-neighbour misses, or the other way round. */
+static bool is_edge(const image_view *v, int x, int y)
+{
+    static const int DX[4] = {1, -1, 0, 0}, DY[4] = {0, 0, 1, -1};
+    bool h = hits(v, x, y);
+    for (int k = 0; k < 4; k++) {
+        int xx = x + DX[k], yy = y + DY[k];
+        if (xx >= 0 && yy >= 0 && xx < v->width && yy < v->height && hits(v, xx, yy) != h)
+            return true;
+    }
+    return false;
+}
+
+/* How far a flipped pixel lies from the reference's nearest edge pixel (pixels; capped). */
+static double edge_distance(const image_view *ref, int x, int y)
+{
+    enum { MAX_SEARCH = 64 };
+    double best = MAX_SEARCH;
+    for (int r = 0; r < MAX_SEARCH && r < best; r++)
+        for (int dy = -r; dy <= r; dy++)
+            for (int dx = -r; dx <= r; dx++) {
+                if (abs(dx) != r && abs(dy) != r)
+                    continue; /* the ring at Chebyshev distance r */
+                int xx = x + dx, yy = y + dy;
+                if (xx >= 0 && yy >= 0 && xx < ref->width && yy < ref->height && is_edge(ref, xx, yy))
+                    best = fmin(best, sqrt((double)(dx * dx + dy * dy)));
+            }
+    return best;
+}
+
+/* Silhouettes: IoU of the hit masks and the largest distance of a flipped pixel from a reference edge. */
+static void silhouettes(const image_view *test, const image_view *ref, metrics *m)
+{
+    size_t both = 0, either = 0;
+    for (int y = 0; y < ref->height; y++)
+        for (int x = 0; x < ref->width; x++) {
+            bool a = hits(test, x, y), b = hits(ref, x, y);
+            both += a && b;
+            either += a || b;
+            if (a != b)
+                m->edge_max_px = fmax(m->edge_max_px, edge_distance(ref, x, y));
+        }
+    m->iou = either ? (double)both / (double)either : 1.0;
+}
+
 metrics metrics_compare(const image_view *test, const image_view *ref, double pixel_angle)
 {
     assert(test->width == ref->width && test->height == ref->height);
     size_t n = (size_t)test->width * (size_t)test->height;
     metrics m = {0};
     double se = 0, depth_sum = 0, steps = 0;
+    long exhausted = 0;
     size_t flips = 0;
     for (size_t i = 0; i < n; i++) {
         for (int c = 0; c < 3; c++) {
@@ -19,7 +70,9 @@ metrics metrics_compare(const image_view *test, const image_view *ref, double pi
             se += d * d;
         }
         double ta = test->aov[i * AOV_FLOATS + AOV_SLOT_DEPTH], tr = ref->aov[i * AOV_FLOATS + AOV_SLOT_DEPTH];
-        steps += test->aov[i * AOV_FLOATS + AOV_SLOT_STEPS];
+        float st = test->aov[i * AOV_FLOATS + AOV_SLOT_STEPS];
+        steps += fabsf(st);
+        exhausted += st < 0;
         if (isinf(ta) != isinf(tr)) {
             flips++;
         } else if (!isinf(tr)) {
@@ -34,6 +87,8 @@ metrics metrics_compare(const image_view *test, const image_view *ref, double pi
     m.depth_mean_fp = m.depth_pixels ? depth_sum / m.depth_pixels : 0;
     m.flip_share = (double)flips / (double)n;
     m.mean_steps = steps / (double)n;
+    m.exhausted_share = (double)exhausted / (double)n;
+    silhouettes(test, ref, &m);
     return m;
 }
 

@@ -41,6 +41,7 @@ typedef enum knob_scope {
     SCOPE_BOUNCES,  /* scenes with mirrors or glass */
     SCOPE_TEXTURES, /* scenes with filtered colour textures */
     SCOPE_SEARCH,   /* the lab's linear + binary search runs: linear terrain, relief materials */
+    SCOPE_REFINES,  /* sphere-traced programs whose distance is exact or a bound (not fractals' level-of-detail surfaces) */
 } knob_scope;
 
 /* clang-format off */
@@ -50,6 +51,8 @@ typedef enum knob_scope {
       "sphere-tracing steps per ray")                                                                                                     \
     X(hit_k,        FLOAT, "HIT_K",        1e-3,  1e3,    2,    1,       0.5,   0.25, 2,   0,    "8,4,2,1,0.5",           SCOPE_ANY,      \
       "hit threshold in pixel footprints: a ray stops within hit_k * t * pixel angle of a surface")                                       \
+    X(refine,       INT,   "REFINE_STEPS", 0,   64,     4,    8,       12,    24,   1,   4,    "0,2,4,8,16",            SCOPE_REFINES,  \
+      "hits are surfaces: below the footprint threshold the march goes on to the zero crossing, located by up to this many regula-falsi steps (0: a ray within hit_k footprints has hit)") \
     X(step_factor,  FLOAT, "STEP_FACTOR",  0.05,  1,      1,    1,       1,     1,    1,   0.05, "0.6,0.8,0.9,1",         SCOPE_ANY,      \
       "fraction of the distance bound taken per step (1 for exact distances)")                                                            \
     X(max_dist,     FLOAT, "MAX_DIST",     1e-2,  1e7,    100,  100,     100,   100,  0,   0,    NULL,                    SCOPE_ANY,      \

@@ -130,6 +130,10 @@ static void heightfield_uniforms(const heightfield *hf, const uniform_sink *u)
     uniform_f(u, "uTerrainStepScale", 1.0f / sqrtf(1.0f + hf->lipschitz * hf->lipschitz));
     uniform_i(u, "uTerrainTopLevel", hf->levels - 1);
     uniform_iv(u, "uTerrainSize", 2, 1, (const int[]){hf->width, hf->height});
+    /* a ray crosses at most pw + ph level-0 cells; each costs an exit and at most a descent, and the
+     * walk up and down the pyramid adds a few nodes per level */
+    enum { NODES_PER_CELL = 4, NODES_PER_LEVEL = 16 };
+    uniform_i(u, "uTerrainMaxNodes", NODES_PER_CELL * (hf->pw + hf->ph) + NODES_PER_LEVEL * hf->levels);
 }
 
 /* What only the loaded textures know: units, the cube map's mip count, relief heightmap widths. */

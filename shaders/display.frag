@@ -28,7 +28,9 @@ vec3 linearToSrgb(vec3 c)
 void main()
 {
     if (uView == 1) {
-        oColor = vec4(heat(texelFetch(uAux, ivec2(gl_FragCoord.xy), 0).x / uMaxSteps), 1.0);
+        float steps = texelFetch(uAux, ivec2(gl_FragCoord.xy), 0).x;
+        const vec3 OUT_OF_STEPS = vec3(1.0, 0.0, 1.0); // magenta: the step budget ran out here
+        oColor = vec4(steps < 0.0 ? OUT_OF_STEPS : heat(steps / uMaxSteps), 1.0);
         return;
     }
     if (uView == 2) {

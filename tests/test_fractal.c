@@ -352,8 +352,8 @@ static void over_relaxation(void **st)
     double steps_a = 0, steps_b = 0, pa = camera_pixel_angle(&cam, H);
     int both = 0, differ = 0;
     for (int i = 0; i < W * H; i++) {
-        steps_a += plain[i * AOV + 4];
-        steps_b += relaxed[i * AOV + 4];
+        steps_a += fabsf(plain[i * AOV + 4]);
+        steps_b += fabsf(relaxed[i * AOV + 4]);
         float ta = plain[i * AOV + 3], tb = relaxed[i * AOV + 3];
         if (isinf(ta) != isinf(tb)) {
             differ++;
@@ -375,6 +375,52 @@ static void over_relaxation(void **st)
     }
 }
 
+/* ---- no ray stops on the bounding sphere --------------------------------------------------------------
+ * Outside the bounding sphere the programs return its distance (a cheap bound) while it exceeds a
+ * margin of 0.1. From far away the hit threshold exceeds that margin, and a ray that stopped on the
+ * bound would be drawn on an invisible sphere: its hit point would lie more than the margin outside
+ * the sphere, where no point of the set (which lies inside it) comes within the threshold. */
+static void bounding_sphere_is_never_drawn(void **st)
+{
+    (void)st;
+    const double BOUND_MARGIN = 0.1; /* shaders/fractal/common.glsl */
+    static const struct { const char *name; double distance; } CASES[] = {{"mandelbulb", 30}, {"mandelbox", 45}};
+    static const char *const PRESETS[] = {"draft", "final"};
+    static float aov[W * H * AOV];
+    for (size_t k = 0; k < sizeof CASES / sizeof CASES[0]; k++)
+        for (int p = 0; p < 2; p++) {
+            char preset[64];
+            snprintf(preset, sizeof preset, "quality.preset=%s", PRESETS[p]);
+            const char *sets[] = {preset, "quality.spp=1"};
+            scene s;
+            err_t e;
+            if (!scene_load(CASES[k].name, sets, 2, &s, &e))
+                fail_msg("%s", e.msg);
+            double d = CASES[k].distance / sqrt(3.0);
+            camera cam = cam_at(d, d * 0.8, d * 1.1, 0, 0, 0, 40);
+            double eps_at_bound = s.quality.hit_k * (CASES[k].distance - s.fractal.bound_radius) *
+                                  camera_pixel_angle(&cam, H);
+            assert_true(eps_at_bound > BOUND_MARGIN); /* the case the fixed margin did not cover */
+            draw(&s, &cam, W, H, 1, NULL, aov, NULL);
+            int hits = 0, on_bound = 0;
+            for (int row = 0; row < H; row++)
+                for (int x = 0; x < W; x++) {
+                    double t = aov[(row * W + x) * AOV + AOV_SLOT_DEPTH];
+                    if (isinf(t))
+                        continue;
+                    hits++;
+                    dray r = pixel_ray(&cam, x, row, W, H);
+                    double q[3] = {r.o[0] + r.d[0] * t, r.o[1] + r.d[1] * t, r.o[2] + r.d[2] * t};
+                    on_bound += sqrt(ref_dot(q, q)) > s.fractal.bound_radius + BOUND_MARGIN;
+                }
+            fprintf(stderr, "%s %s from %g: %d hits, %d on the bounding sphere (threshold there %.3g)\n",
+                    CASES[k].name, PRESETS[p], CASES[k].distance, hits, on_bound, eps_at_bound);
+            assert_true(hits > 20);
+            assert_int_equal(on_bound, 0);
+            scene_free(&s);
+        }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -383,6 +429,7 @@ int main(void)
         cmocka_unit_test(mandelbulb_hard_points),
         cmocka_unit_test(extreme_cameras),
         cmocka_unit_test(over_relaxation),
+        cmocka_unit_test(bounding_sphere_is_never_drawn),
     };
     return cmocka_run_group_tests(tests, gl_setup, gl_teardown);
 }

@@ -322,6 +322,54 @@ static void fog_against_quadrature(void **st)
     }
 }
 
+static void load_text_file(const char *name, const char *const *sets, int n, scene *s)
+{
+    err_t e;
+    if (!scene_load(name, sets, n, s, &e))
+        fail_msg("%s", e.msg);
+}
+
+/* ---- running out of steps is not a miss ---------------------------------------------------------------
+ * At every preset, from the shipped camera and a grazing one, no pixel may be a miss where a march
+ * with a budget a hundred times longer hits: a ray that exhausts its steps near the ground returns
+ * its best candidate (flagged by negative steps) instead of the sky. */
+static void out_of_steps_is_not_a_miss(void **st)
+{
+    (void)st;
+    static const char *const SCENES[] = {"noise", "jacksboro", "himalaya"};
+    static float test[W * H * AOV], longer[W * H * AOV];
+    for (size_t k = 0; k < sizeof SCENES / sizeof SCENES[0]; k++)
+        for (int p = 0; p < PRESET_COUNT; p++) {
+            char preset[64], steps[64];
+            snprintf(preset, sizeof preset, "quality.preset=%s", preset_name((quality_preset)p));
+            snprintf(steps, sizeof steps, "quality.max_steps=%d", 100 * (int)fmin(preset_quality((quality_preset)p).max_steps, 1000));
+            const char *sa[] = {preset, "quality.spp=1"}, *sb[] = {preset, "quality.spp=1", steps};
+            scene a, b;
+            load_text_file(SCENES[k], sa, 2, &a);
+            load_text_file(SCENES[k], sb, 3, &b);
+            float eye[3], at[3]; /* grazing: just above the ground at the look-at point, level */
+            for (int i = 0; i < 3; i++)
+                eye[i] = a.cam_position[i], at[i] = a.cam_look_at[i];
+            camera cams[2] = {camera_look_at_deg(eye, at, a.cam_fov_deg)};
+            at[1] = eye[1] = a.cam_position[1] * 0.25f + a.cam_look_at[1] * 0.75f;
+            cams[1] = camera_look_at_deg(eye, at, a.cam_fov_deg);
+            int missed = 0, exhausted = 0;
+            for (int c = 0; c < 2; c++) {
+                draw(&a, &cams[c], W, H, 1, NULL, test, NULL);
+                draw(&b, &cams[c], W, H, 1, NULL, longer, NULL);
+                for (int i = 0; i < W * H; i++) {
+                    missed += isinf(test[i * AOV + AOV_SLOT_DEPTH]) && !isinf(longer[i * AOV + AOV_SLOT_DEPTH]);
+                    exhausted += test[i * AOV + AOV_SLOT_STEPS] < 0;
+                }
+            }
+            fprintf(stderr, "%s %s: %d pixels miss where 100x the steps hit; %d ran out of steps\n", SCENES[k],
+                    preset_name((quality_preset)p), missed, exhausted);
+            assert_int_equal(missed, 0);
+            scene_free(&a);
+            scene_free(&b);
+        }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -329,6 +377,7 @@ int main(void)
         cmocka_unit_test(linear_first_hits),
         cmocka_unit_test(thin_ridge),
         cmocka_unit_test(fog_against_quadrature),
+        cmocka_unit_test(out_of_steps_is_not_a_miss),
     };
     return cmocka_run_group_tests(tests, gl_setup, gl_teardown);
 }

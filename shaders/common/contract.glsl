@@ -7,6 +7,9 @@
 //   vec2 map(vec3 p)      x: a signed distance bound (|x| ≤ the distance to the surface, negative
 //                         inside; a fractal's step factor is the named STEP_FACTOR knob, never a
 //                         hidden scale), y: the material index (0 … NUM_MATERIALS − 1).
+//                         A conservative bound that is not a surface (a bounding sphere) is
+//                         returned with material MATERIAL_BOUND (common/hit.glsl): marchers step
+//                         by it and never stop on it.
 // A program MAY define, each announced by a #define before the shared code tests it:
 //   PROGRAM_CAST_RAY   Hit castRay(vec3 ro, vec3 rd, float tmax, float side, float pathT)
 //                      its own primary/secondary marcher (terrain: max-mipmap or the lab's search);
@@ -16,6 +19,9 @@
 //                      default: central differences of map().
 //   PROGRAM_SHADOWS    float hardShadow(…), float softShadow(…) as in common/shadow.glsl
 //                      (terrain: its own marcher toward the sun).
+//   PROGRAM_FOOTPRINT_SURFACE  the footprint rule (a ray within HIT_K pixel footprints has hit)
+//                      defines the surface at a level of detail, so hits are not refined to the
+//                      zero crossing (fractals). Without it, hits are surfaces: common/march.glsl.
 //   PROGRAM_ALBEDO     vec3 programAlbedo(vec3 p, vec3 n, vec3 dpdx, vec3 dpdy, vec3 base)
 //                      colours its surface (fractals: orbit traps; terrains: layers); textures then
 //                      do not apply.
@@ -25,4 +31,5 @@
 // the quality knobs (MAX_STEPS, HIT_K, … from QUALITY_KNOBS in app/quality.h), NUM_LIGHTS,
 // NUM_MATERIALS, and its own (FRACTAL_ITERATIONS, TERRAIN_MAXMIP).
 #include "common/sdf.glsl"
+#include "common/hit.glsl"
 #include "program.glsl"

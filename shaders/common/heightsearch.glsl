@@ -5,6 +5,12 @@
 // terrain, tangent space for relief). Returns the hit t, or −1; `samples` counts height lookups.
 float hsSurfaceY(vec2 xz);
 
+// The search ends where the ray leaves [t0, t1], however many steps that takes (the step knobs set
+// its cost); this bound only stops a degenerate step from looping forever.
+#ifndef HEIGHT_SEARCH_MAX_STEPS
+#define HEIGHT_SEARCH_MAX_STEPS 1000000
+#endif
+
 float heightSearch(vec3 ro, vec3 rd, float t0, float t1, float dt, inout int samples)
 {
     float t = t0;
@@ -12,7 +18,7 @@ float heightSearch(vec3 ro, vec3 rd, float t0, float t1, float dt, inout int sam
     samples++;
     if (p.y <= hsSurfaceY(p.xz))
         return t; // starts below the surface
-    for (int i = 0; i < MAX_STEPS; i++) {
+    for (int i = 0; i < HEIGHT_SEARCH_MAX_STEPS; i++) {
         float tPrev = t;
         t = min(t + dt, t1);
         dt *= float(STEP_GROWTH);

@@ -1,7 +1,16 @@
+#ifndef HIT_GLSL // included by the contract and by marchers
+#define HIT_GLSL
 // What a ray march returns (common/march.glsl, or a program's own castRay).
 struct Hit {
     bool hit;
-    float t;   // distance along the ray from its origin
-    float mat; // material index
+    float t;        // distance along the ray from its origin
+    float mat;      // material index
     int steps;
+    bool exhausted; // the step budget ran out: t is the best candidate along the ray, not a located surface
 };
+
+// map() may return this material for a conservative bound that is not a surface (the fractals'
+// bounding sphere): marchers step by its distance but never stop on it.
+const float MATERIAL_BOUND = -1.0;
+bool isBound(vec2 d) { return d.y < -0.5; }
+#endif

@@ -7,9 +7,27 @@ uniform vec3 uLightColor[NUM_LIGHTS];      // colour × intensity
 uniform int uLightShadow[NUM_LIGHTS];      // 0 none, 1 hard, 2 soft (scene_light.shadow)
 uniform float uLightSoftness[NUM_LIGHTS];
 
+// Shadow rays start SURFACE_OFFSET_K thresholds off the surface, measured in map()'s units: where
+// map() is a bound that grows slower than distance (a Lipschitz-scaled field, such as the noise
+// terrain's), the offset grows by 1/|∇map| so the ray does not start inside its own threshold. A hit
+// that lies on the surface (refined: common/march.glsl) has no threshold of slack to spare.
+float shadowOffset(vec3 p, vec3 n, float pathT)
+{
+    const float MIN_GRADIENT = 0.02; // at most 50× the plain offset
+    float off = SURFACE_OFFSET_K * hitEps(pathT);
+#if FX_SHADOWS && MARCH_REFINES
+    float g = (map(p + n * off).x - map(p).x) / off;
+    off /= clamp(g, MIN_GRADIENT, 1.0);
+#endif
+    return off;
+}
+
 vec3 directLight(vec3 p, vec3 n, vec3 v, Material m, vec3 F0, float pathT)
 {
     vec3 sum = vec3(0.0);
+#if FX_SHADOWS
+    float offset = shadowOffset(p, n, pathT);
+#endif
     for (int i = 0; i < NUM_LIGHTS; i++) {
         vec3 l;
         float dist;
@@ -31,7 +49,7 @@ vec3 directLight(vec3 p, vec3 n, vec3 v, Material m, vec3 F0, float pathT)
 #if FX_SHADOWS
         int mode = uLightShadow[i];
         if (mode > 0 && fxOn(FX_SHADOWS_BIT)) {
-            vec3 ro = p + n * (SURFACE_OFFSET_K * hitEps(pathT));
+            vec3 ro = p + n * offset;
 #if FX_SOFT_SHADOWS
             if (mode == 2 && fxOn(FX_SOFT_SHADOWS_BIT))
                 vis = softShadow(ro, l, dist, uLightSoftness[i], pathT);

@@ -32,34 +32,120 @@ float hitEps(float t)
 // Sphere Tracing", 2014): step ω·d instead of d. Each distance is an empty ball; while consecutive
 // balls overlap the stretch between them is empty. When they do not, the long step may have passed
 // a surface: go back to the plain step from the last point and march plainly from there.
+//
+// A hit is a surface, not a near miss (REFINE_STEPS > 0, for programs whose distance is exact or a
+// bound). The footprint threshold eps(t) only ends the big relaxed steps. Below it the march goes on:
+// approaching (the distance fell since the last step) it takes plain sphere-tracing steps, which
+// never pass a surface; passing by (the distance grew) it steps max(d, eps), so a ray that skims a
+// long face does not crawl along it (only a feature thinner than eps right beside that face could be
+// stepped over). A program whose map() is a bound far below the distance (the noise terrain's
+// Lipschitz-scaled field) may set NEAR_MIN_STEP (in thresholds) so its hits converge in a few steps
+// instead of hundreds; the price is that such a step can cross a chord shorter than itself (the rim
+// of a silhouette, a corner sliver): silhouettes shrink and depth may lie behind by up to that step. A hit is either a distance within float resolution of 0, or a sign change, whose
+// bracket [outside, inside] is narrowed by REFINE_STEPS Illinois regula-falsi steps (Dowell &
+// Jarratt 1971); the hit is the bracket's outside end, so depth is never behind the surface. A ray
+// that passes within eps of a surface without crossing it is a miss: silhouettes, thin shells and
+// narrow gaps keep their true size (tests/test_silhouette.c). A program whose surface *is* defined
+// by the footprint (fractals at a level of detail: PROGRAM_FOOTPRINT_SURFACE) keeps the plain rule.
+// (A secant step toward the predicted crossing converged faster on grazing hits, but stepped across
+// corner slivers up to 2 eps thick.)
+//
+// A ray that runs out of MAX_STEPS short of tmax is not a miss: it returns its best candidate, the
+// step where the distance was fewest thresholds away (Keinert et al. 2014), with `exhausted` set.
+#ifndef NEAR_MIN_STEP
+#define NEAR_MIN_STEP 0.0
+#endif
+#if REFINE_STEPS > 0 && !defined(PROGRAM_FOOTPRINT_SURFACE)
+#define MARCH_REFINES 1
+#else
+#define MARCH_REFINES 0
+#endif
+
+// The surface between a (outside, distance fa > 0) and b (inside, fb < 0), by Illinois regula falsi.
+float refineCrossing(vec3 ro, vec3 rd, float side, float a, float fa, float b, float fb, float pathT, inout int steps)
+{
+    int lastSide = 0;
+    for (int i = 0; i < REFINE_STEPS; i++) {
+        float floorEps = PRECISION_REL * (length(uCamPos) + pathT + a);
+        if (b - a <= floorEps || fa <= floorEps)
+            break;
+        float t = clamp(a + (b - a) * fa / (fa - fb), a, b);
+        float f = side * map(ro + rd * t).x;
+        steps++;
+        if (f > 0.0) {
+            a = t;
+            fa = f;
+            if (lastSide == 1)
+                fb *= 0.5; // Illinois: the stale end's weight halves, so both ends keep moving
+            lastSide = 1;
+        } else {
+            b = t;
+            fb = f;
+            if (lastSide == -1)
+                fa *= 0.5;
+            lastSide = -1;
+        }
+    }
+    return a;
+}
+
 #ifndef PROGRAM_CAST_RAY // a program may march its own way (terrain)
 Hit castRay(vec3 ro, vec3 rd, float tmax, float side, float pathT)
 {
-    Hit h = Hit(false, 0.0, -1.0, 0);
+    Hit h = Hit(false, 0.0, -1.0, 0, false);
     float omega = float(OVER_RELAX);
-    float t = 0.0, tPrev = 0.0, rPrev = 0.0;
+    float t = 0.0, tPrev = 0.0, rPrev = 0.0, fPrev = 0.0; // rPrev = |fPrev|: the last ball's radius
+    float bestRatio = 1e30, tBest = 0.0, matBest = 0.0; // the closest approach, in thresholds
+    bool lastBound = false; // the last step was on a bound: the ray had left the surfaces' reach
     for (int i = 0; i < MAX_STEPS; i++) {
         h.steps = i + 1;
         vec2 d = map(ro + rd * t);
         float dist = side * d.x;
-        if (omega > 1.0 && i > 0 && abs(dist) + rPrev < t - tPrev) {
+        float eps = hitEps(pathT + t);
+        bool bound = isBound(d);
+        lastBound = bound;
+        if (omega > 1.0 && i > 0 && (abs(dist) + rPrev < t - tPrev || (MARCH_REFINES == 1 && dist < 0.0))) {
             t = tPrev + rPrev * float(STEP_FACTOR);
             omega = 1.0;
             continue;
         }
-        // Plain marching: any distance below the threshold, negative too (a camera inside a solid), is a
-        // hit. Relaxed: a step may land inside with its ball still overlapping the last one; then the
-        // signed distance steps back out, as in Keinert et al.
-        if (omega > 1.0 ? abs(dist) < hitEps(pathT + t) : dist < hitEps(pathT + t)) {
+        if (!bound && dist / eps < bestRatio) {
+            bestRatio = dist / eps;
+            tBest = t;
+            matBest = d.y;
+        }
+        float step = omega * dist * float(STEP_FACTOR);
+#if MARCH_REFINES
+        if (!bound && dist <= PRECISION_REL * (length(uCamPos) + pathT + t)) { // on the surface (or inside at the start)
             h.hit = true;
+        } else if (!bound && dist < 0.0) { // crossed since the last step: locate the surface
+            t = refineCrossing(ro, rd, side, tPrev, fPrev, t, dist, pathT, h.steps);
+            d = map(ro + rd * t);
+            h.hit = true;
+        } else if (!bound && dist < eps) {
+            bool approaching = i == 0 || dist < fPrev;
+            step = approaching ? max(dist * float(STEP_FACTOR), NEAR_MIN_STEP * eps) : max(dist, eps);
+        }
+#else
+        if (!bound && (omega > 1.0 ? abs(dist) < eps : dist < eps)) // relaxed: a step may land just inside
+            h.hit = true;
+#endif
+        if (h.hit) {
             h.mat = d.y;
             break;
         }
         tPrev = t;
+        fPrev = dist;
         rPrev = abs(dist);
-        t += omega * dist * float(STEP_FACTOR);
+        t += step;
         if (t > tmax)
             break;
+    }
+    if (!h.hit && t <= tmax && h.steps >= MAX_STEPS && bestRatio < 1e30 && !lastBound) { // out of steps near a surface
+        h.hit = true;
+        h.exhausted = true;
+        t = tBest;
+        h.mat = matBest;
     }
     h.t = t;
     return h;

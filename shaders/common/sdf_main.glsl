@@ -8,7 +8,8 @@
 // Outputs (sample 0 of each frame writes the AOVs; later samples only add colour):
 //   0: linear RGB radiance, alpha 1 (accumulated by additive blending)
 //   1: world normal of the first hit, depth along the unit ray (−1 on a miss: C turns it into +inf)
-//   2: primary-ray march steps, direction in which the path left the scene
+//   2: primary-ray march steps (negative when the ray ran out of them and took its best candidate),
+//      direction in which the path left the scene
 
 #include "common/uniforms.glsl"
 #include "common/camera.glsl"
@@ -64,6 +65,7 @@ void main()
     float firstT = -1.0, primaryT = float(MAX_DIST);
     vec3 firstN = vec3(0.0);
     int firstSteps = 0;
+    bool firstExhausted = false; // the primary ray ran out of steps (its hit is a best candidate)
     bool escaped = false;
 #if FX_REFRACTION
     // A camera inside glass starts on the inside: march to where the path leaves.
@@ -74,8 +76,10 @@ void main()
 
     for (int bounce = 0; bounce <= BOUNCES; bounce++) {
         Hit h = castRay(ro, rd, float(MAX_DIST) - pathT, side, pathT);
-        if (bounce == 0)
+        if (bounce == 0) {
             firstSteps = h.steps;
+            firstExhausted = h.exhausted;
+        }
         if (!h.hit) {
             radiance += throughput * environment(rd);
             escaped = true;
@@ -167,5 +171,5 @@ void main()
 #endif
     oColor = vec4(radiance, 1.0);
     oNormalDepth = vec4(firstN, firstT);
-    oAux = vec4(float(firstSteps), rd);
+    oAux = vec4(firstExhausted ? -float(firstSteps) : float(firstSteps), rd); // negative: out of steps
 }

@@ -7,8 +7,9 @@ float hardShadow(vec3 ro, vec3 rd, float tmax, float pathT)
 {
     float t = 0.0;
     for (int i = 0; i < SHADOW_STEPS; i++) {
-        float h = map(ro + rd * t).x;
-        if (h < hitEps(pathT + t))
+        vec2 d = map(ro + rd * t);
+        float h = d.x;
+        if (h < hitEps(pathT + t) && !isBound(d))
             return 0.0;
         t += h;
         if (t > tmax)
@@ -22,11 +23,13 @@ float softShadow(vec3 ro, vec3 rd, float tmax, float k, float pathT)
 {
     float res = 1.0, t = 0.0;
     for (int i = 0; i < SHADOW_STEPS; i++) {
-        float h = map(ro + rd * t).x;
-        float eps = hitEps(pathT + t);
-        if (h < eps)
-            return 0.0;
-        res = min(res, k * h / max(t, eps));
+        vec2 d = map(ro + rd * t);
+        float h = d.x, eps = hitEps(pathT + t);
+        if (!isBound(d)) { // a bound is not an occluder: neither a hit nor a penumbra
+            if (h < eps)
+                return 0.0;
+            res = min(res, k * h / max(t, eps));
+        }
         t += clamp(h, eps, tmax / 4.0);
         if (t > tmax)
             break;

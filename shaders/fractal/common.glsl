@@ -3,8 +3,14 @@
 uniform float uBoundRadius; // a sphere about the origin that holds the whole set
 uniform vec3 uPalette[3]; // orbit-trap colours: near, middle, far
 
-// Outside the bounding sphere (which holds the whole set) its distance is a safe, cheap bound;
-// the margin keeps the switch to the fractal's estimate away from the set.
+// The footprint rule defines a fractal's surface at a level of detail (a ray within HIT_K pixel
+// footprints of the set has hit it): the marcher does not refine these hits (common/march.glsl).
+#define PROGRAM_FOOTPRINT_SURFACE 1
+
+// Outside the bounding sphere (which holds the whole set) its distance is a safe, cheap bound. It is
+// returned with MATERIAL_BOUND: rays step by it but never stop on it, at any hit threshold (a far
+// camera's threshold can exceed any fixed margin). The margin keeps the switch to the fractal's
+// estimate away from the set.
 const float BOUND_MARGIN = 0.1;
 
 // True (with the bound's distance in d) when p is far enough outside the bounding sphere to use it.

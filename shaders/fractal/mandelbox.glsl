@@ -33,7 +33,7 @@ float boxDE(vec3 c, out float trap)
 vec2 map(vec3 p)
 {
     float d, trap;
-    return vec2(outsideBound(p, d) ? d : boxDE(p, trap), 0.0);
+    return outsideBound(p, d) ? vec2(d, MATERIAL_BOUND) : vec2(boxDE(p, trap), 0.0);
 }
 
 vec3 programAlbedo(vec3 p, vec3 n, vec3 dpdx, vec3 dpdy, vec3 base)

@@ -38,7 +38,7 @@ float bulbDE(vec3 c, out float trap)
 vec2 map(vec3 p)
 {
     float d, trap;
-    return vec2(outsideBound(p, d) ? d : bulbDE(p, trap), 0.0);
+    return outsideBound(p, d) ? vec2(d, MATERIAL_BOUND) : vec2(bulbDE(p, trap), 0.0);
 }
 
 vec3 programAlbedo(vec3 p, vec3 n, vec3 dpdx, vec3 dpdy, vec3 base)

@@ -10,6 +10,9 @@ uniform int uNoiseOctaves;
 uniform float uNoiseBound; // 1 / (the bound on |∇f| above), from C
 
 #define PROGRAM_NORMAL 1
+// map() is |∇f|-scaled by a global bound (about 20× below the distance on the shipped scene): plain
+// steps below the threshold would not reach the surface within the step budget (common/march.glsl).
+#define NEAR_MIN_STEP 0.25
 #define PROGRAM_ALBEDO 1
 
 // An integer mixer ("lowbias32", C. Wellons, 2018: the constants are his published search result),
@@ -63,7 +66,13 @@ vec4 fbm(vec3 p)
 
 float noiseField(vec3 p) { return p.y - uNoiseBase - uNoiseAmplitude * fbm(p).x; }
 
-vec2 map(vec3 p) { return vec2(noiseField(p) * uNoiseBound, 0.0); }
+// Above base + A (the fbm stays below 1) the surface cannot be: the height above that plane bounds the
+// distance too, and grows fast on rays that leave upward. It is a bound, not a surface.
+vec2 map(vec3 p)
+{
+    float field = noiseField(p) * uNoiseBound, above = p.y - (uNoiseBase + uNoiseAmplitude);
+    return above > field ? vec2(above, MATERIAL_BOUND) : vec2(field, 0.0);
+}
 
 vec3 calcNormal(vec3 p, float eps, vec3 fallback)
 {

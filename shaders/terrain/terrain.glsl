@@ -15,6 +15,7 @@ uniform float uTerrainHeightMin, uTerrainHeightMax; // metres (also read by terr
 uniform float uTerrainStepScale; // 1 / sqrt(1 + L²), L the steepest slope: (y − h) · this bounds the distance
 uniform int uTerrainTopLevel;    // the max pyramid's top level
 uniform ivec2 uTerrainSize;      // texels
+uniform int uTerrainMaxNodes;    // the max-mipmap traversal's node budget: enough for any ray across the grid
 
 #include "common/hit.glsl"
 
@@ -88,13 +89,13 @@ float intersectCell(ivec2 cell, vec2 c0, vec2 cd, float y0, float dy, float sEnd
 #if TERRAIN_MAXMIP
 Hit terrainTrace(vec3 ro, vec3 rd, vec2 slab)
 {
-    Hit h = Hit(false, slab.y, 0.0, 0);
+    Hit h = Hit(false, slab.y, 0.0, 0, false);
     vec2 c0 = toCell(ro.xz), cd = rd.xz / uTerrainSpacing;
     vec2 dirSign = vec2(cd.x >= 0.0 ? 1.0 : -1.0, cd.y >= 0.0 ? 1.0 : -1.0);
     const float NUDGE = 1e-4; // cells: moves a point on a node boundary into the node ahead
     int top = uTerrainTopLevel, level = top;
     float t = slab.x;
-    for (int i = 0; i < MAX_STEPS; i++) {
+    for (int i = 0; i < uTerrainMaxNodes; i++) { // exact: its budget follows the grid, not a quality knob
         vec2 c = c0 + cd * t;
         float size = float(1 << level);
         ivec2 node = ivec2(floor((c + dirSign * NUDGE * vec2(notEqual(cd, vec2(0.0)))) / size));
@@ -130,7 +131,7 @@ float hsSurfaceY(vec2 xz) { return terrainHeight(xz); }
 
 Hit terrainTrace(vec3 ro, vec3 rd, vec2 slab)
 {
-    Hit h = Hit(false, slab.y, 0.0, 0);
+    Hit h = Hit(false, slab.y, 0.0, 0, false);
     float texel = min(uTerrainSpacing.x, uTerrainSpacing.y);
     float along = max(length(rd.xz), 1e-3); // horizontal metres per metre of ray
     float dt = min(float(LINEAR_STEP) * texel / along, (uTerrainHeightMax - uTerrainHeightMin) + texel);
@@ -148,7 +149,7 @@ Hit castRay(vec3 ro, vec3 rd, float tmax, float side, float pathT)
     vec2 slab = terrainSlab(ro, rd);
     slab.y = min(slab.y, tmax);
     if (slab.x > slab.y)
-        return Hit(false, tmax, 0.0, 1);
+        return Hit(false, tmax, 0.0, 1, false);
     Hit h = terrainTrace(ro, rd, slab);
     if (!h.hit)
         h.t = tmax;
