@@ -19,6 +19,7 @@
 enum { DEFAULT_WIDTH = 320, DEFAULT_HEIGHT = 180, VIEWS = 2, REF_SPP = 64, STRICT_SPP = 128, LONG_SPP = 64,
        MAX_ROWS = 512 };
 static const float VIEW_TURN_DEG = 40.0f;
+#define REF_REFINE "quality.refine=64" /* the knob's maximum: regula falsi to float resolution */
 
 /* A sweep: a knob's --set key (NULL: the bench's own resolution_scale) and its values. Built at run
  * time from QUALITY_KNOBS, the program's row of PROGRAM_LIST, and resolution_scale. */
@@ -185,6 +186,9 @@ static bool measure(const char *knob_name, const char *value, const char *const 
         out->m.depth_max_fp = fmax(out->m.depth_max_fp, m.depth_max_fp);
         out->m.flip_share += m.flip_share / VIEWS;
         out->m.mean_steps += m.mean_steps / VIEWS;
+        out->m.iou = v == 0 ? m.iou : fmin(out->m.iou, m.iou); /* silhouettes: the worst view */
+        out->m.edge_max_px = fmax(out->m.edge_max_px, m.edge_max_px);
+        out->m.exhausted_share += m.exhausted_share / VIEWS;
         free(srgb);
         free(aov);
     }
@@ -201,10 +205,11 @@ static bool make_references(const scene *base, metrics *convergence, double *ref
 {
     char spp[32];
     snprintf(spp, sizeof spp, "quality.spp=%d", REF_SPP);
-    /* a scene that pins max_steps (for its presets) must not truncate its reference: lift it */
-    const char *ref_sets[] = {"quality.preset=reference", spp, "quality.max_steps=4096"};
+    /* The reference must not share the bias of what it judges: hits located at float resolution
+     * (refine at its maximum, where the program refines), a long step budget, many samples. */
+    const char *ref_sets[] = {"quality.preset=reference", spp, "quality.max_steps=4096", REF_REFINE};
     scene ref;
-    if (!load(ref_sets, 3, &ref, err) || !render_set_scene(&ref, NULL, err))
+    if (!load(ref_sets, 4, &ref, err) || !render_set_scene(&ref, NULL, err))
         return false;
     camera start = camera_look_at_deg(base->cam_position, base->cam_look_at, base->cam_fov_deg);
     for (int v = 0; v < VIEWS; v++) {
@@ -230,10 +235,10 @@ static bool make_references(const scene *base, metrics *convergence, double *ref
     char strict_spp[32];
     snprintf(strict_spp, sizeof strict_spp, "quality.spp=%d", STRICT_SPP);
     /* (AO samples stay: the AO estimate is a different function of its sample count, not a converging sum) */
-    const char *strict_sets[] = {"quality.preset=reference", strict_spp, "quality.hit_k=0.0625",
+    const char *strict_sets[] = {"quality.preset=reference", strict_spp, REF_REFINE, "quality.hit_k=0.0625",
                                  "quality.max_steps=8192", "quality.shadow_steps=512", "quality.bounces=16"};
     scene strict;
-    if (!load(strict_sets, 6, &strict, err) || !render_set_scene(&strict, NULL, err))
+    if (!load(strict_sets, 7, &strict, err) || !render_set_scene(&strict, NULL, err))
         return false;
     image(&strict, &B.views[0].cam, B.w, B.h);
     uint8_t *srgb;
@@ -354,7 +359,7 @@ static bool frame_times(const cli_options *opt, err_t *err)
         render_read_aovs(aov);
         double steps = 0;
         for (int i = 0; i < B.w * B.h; i++)
-            steps += aov[(size_t)i * AOV_FLOATS + AOV_SLOT_STEPS];
+            steps += fabsf(aov[(size_t)i * AOV_FLOATS + AOV_SLOT_STEPS]); /* negative: ran out of steps */
         printf("  %-12s %8.1f ms   %6.1f steps (height samples) per pixel\n", preset_name((quality_preset)p),
                util_median(ms, opt->runs), steps / (B.w * B.h));
         free(aov);

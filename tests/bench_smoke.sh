@@ -12,12 +12,14 @@ check() { if eval "$2"; then passed=$((passed + 1)); else failed=$((failed + 1))
 check "bench exits 0" '[ $? -eq 0 ]'
 csv="$out/csg-knobs.csv"
 check "knob CSV written" '[ -s "$csv" ]'
-check "knob CSV has 14 columns on every line" \
-    '[ "$(awk -F, "{print NF}" "$csv" | sort -u)" = "14" ]'
+check "knob CSV has 17 columns on every line" \
+    '[ "$(awk -F, "{print NF}" "$csv" | sort -u)" = "17" ]'
 # 2 + 2 + 1 knob rows and 4 presets, plus the header
 check "knob CSV has 10 lines" '[ "$(wc -l < "$csv")" -eq 10 ]'
 check "times and errors are numbers >= 0" \
-    '[ -z "$(tail -n +2 "$csv" | awk -F, "\$7 !~ /^[0-9.]+\$/ || \$8 !~ /^[0-9.]+\$/ || \$13 !~ /^[0-9.]+\$/")" ]'
+    '[ -z "$(tail -n +2 "$csv" | awk -F, "\$7 !~ /^[0-9.]+\$/ || \$8 !~ /^[0-9.]+\$/ || \$15 !~ /^[0-9.]+\$/")" ]'
+check "silhouette IoU is in [0, 1]" \
+    '[ -z "$(tail -n +2 "$csv" | awk -F, "\$13 < 0 || \$13 > 1")" ]'
 check "the reference preset is on the Pareto front" 'grep -q "^csg,40,24,2,preset,reference,.*,1$" "$csv"'
 check "effects CSV lists every effect" \
     '[ "$(tail -n +2 "$out/csg-effects.csv" | wc -l)" -eq "$("$fathom" --print-variant | grep -c "^#define FX_.*_BIT")" ]'

@@ -22,6 +22,9 @@
 //   PROGRAM_FOOTPRINT_SURFACE  the footprint rule (a ray within HIT_K pixel footprints has hit)
 //                      defines the surface at a level of detail, so hits are not refined to the
 //                      zero crossing (fractals). Without it, hits are surfaces: common/march.glsl.
+//   PROGRAM_SLOW_BOUND map() is a bound far below the distance (a globally Lipschitz-scaled field):
+//                      shadow rays step off by the offset in map()'s units (common/lights.glsl);
+//                      with NEAR_MIN_STEP its hits converge within the step budget (march.glsl).
 //   PROGRAM_ALBEDO     vec3 programAlbedo(vec3 p, vec3 n, vec3 dpdx, vec3 dpdy, vec3 base)
 //                      colours its surface (fractals: orbit traps; terrains: layers); textures then
 //                      do not apply.

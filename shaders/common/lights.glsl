@@ -8,14 +8,14 @@ uniform int uLightShadow[NUM_LIGHTS];      // 0 none, 1 hard, 2 soft (scene_ligh
 uniform float uLightSoftness[NUM_LIGHTS];
 
 // Shadow rays start SURFACE_OFFSET_K thresholds off the surface, measured in map()'s units: where
-// map() is a bound that grows slower than distance (a Lipschitz-scaled field, such as the noise
-// terrain's), the offset grows by 1/|∇map| so the ray does not start inside its own threshold. A hit
-// that lies on the surface (refined: common/march.glsl) has no threshold of slack to spare.
+// map() is a bound that grows much slower than distance (PROGRAM_SLOW_BOUND: the noise terrain's
+// Lipschitz-scaled field), the offset grows by 1/|∇map| so the ray does not start inside its own
+// threshold: a hit on the surface (refined: common/march.glsl) has no threshold of slack to spare.
 float shadowOffset(vec3 p, vec3 n, float pathT)
 {
     const float MIN_GRADIENT = 0.02; // at most 50× the plain offset
     float off = SURFACE_OFFSET_K * hitEps(pathT);
-#if FX_SHADOWS && MARCH_REFINES
+#if FX_SHADOWS && MARCH_REFINES && defined(PROGRAM_SLOW_BOUND)
     float g = (map(p + n * off).x - map(p).x) / off;
     off /= clamp(g, MIN_GRADIENT, 1.0);
 #endif

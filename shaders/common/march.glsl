@@ -97,6 +97,7 @@ Hit castRay(vec3 ro, vec3 rd, float tmax, float side, float pathT)
     float t = 0.0, tPrev = 0.0, rPrev = 0.0, fPrev = 0.0; // rPrev = |fPrev|: the last ball's radius
     float bestRatio = 1e30, tBest = 0.0, matBest = 0.0; // the closest approach, in thresholds
     bool lastBound = false; // the last step was on a bound: the ray had left the surfaces' reach
+    float floorBase = PRECISION_REL * (length(uCamPos) + pathT); // float resolution at t = 0
     for (int i = 0; i < MAX_STEPS; i++) {
         h.steps = i + 1;
         vec2 d = map(ro + rd * t);
@@ -116,7 +117,7 @@ Hit castRay(vec3 ro, vec3 rd, float tmax, float side, float pathT)
         }
         float step = omega * dist * float(STEP_FACTOR);
 #if MARCH_REFINES
-        if (!bound && dist <= PRECISION_REL * (length(uCamPos) + pathT + t)) { // on the surface (or inside at the start)
+        if (!bound && dist <= floorBase + PRECISION_REL * t) { // on the surface (or inside at the start)
             h.hit = true;
         } else if (!bound && dist < 0.0) { // crossed since the last step: locate the surface
             t = refineCrossing(ro, rd, side, tPrev, fPrev, t, dist, pathT, h.steps);

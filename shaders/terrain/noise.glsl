@@ -13,6 +13,7 @@ uniform float uNoiseBound; // 1 / (the bound on |∇f| above), from C
 // map() is |∇f|-scaled by a global bound (about 20× below the distance on the shipped scene): plain
 // steps below the threshold would not reach the surface within the step budget (common/march.glsl).
 #define NEAR_MIN_STEP 0.25
+#define PROGRAM_SLOW_BOUND 1
 #define PROGRAM_ALBEDO 1
 
 // An integer mixer ("lowbias32", C. Wellons, 2018: the constants are his published search result),
