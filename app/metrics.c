@@ -11,37 +11,25 @@ static bool hits(const image_view *v, int x, int y)
     return !isinf(v->aov[((size_t)y * (size_t)v->width + (size_t)x) * AOV_FLOATS + AOV_SLOT_DEPTH]);
 }
 
-/* A reference edge pixel: it hits and a 4-neighbour misses, or the other way round. */
-static bool is_edge(const image_view *v, int x, int y)
-{
-    static const int DX[4] = {1, -1, 0, 0}, DY[4] = {0, 0, 1, -1};
-    bool h = hits(v, x, y);
-    for (int k = 0; k < 4; k++) {
-        int xx = x + DX[k], yy = y + DY[k];
-        if (xx >= 0 && yy >= 0 && xx < v->width && yy < v->height && hits(v, xx, yy) != h)
-            return true;
-    }
-    return false;
-}
-
-/* How far a flipped pixel lies from the reference's nearest edge pixel (pixels; capped). */
-static double edge_distance(const image_view *ref, int x, int y)
+/* How far the edge moved at a flipped pixel: the distance (pixels) to the nearest reference pixel
+ * that agrees with the test there (a silhouette grown by one pixel gives 1; capped). */
+static double edge_distance(const image_view *ref, int x, int y, bool test_hits)
 {
     enum { MAX_SEARCH = 64 };
     double best = MAX_SEARCH;
-    for (int r = 0; r < MAX_SEARCH && r < best; r++)
+    for (int r = 1; r < MAX_SEARCH && r < best; r++)
         for (int dy = -r; dy <= r; dy++)
             for (int dx = -r; dx <= r; dx++) {
                 if (abs(dx) != r && abs(dy) != r)
                     continue; /* the ring at Chebyshev distance r */
                 int xx = x + dx, yy = y + dy;
-                if (xx >= 0 && yy >= 0 && xx < ref->width && yy < ref->height && is_edge(ref, xx, yy))
+                if (xx >= 0 && yy >= 0 && xx < ref->width && yy < ref->height && hits(ref, xx, yy) == test_hits)
                     best = fmin(best, sqrt((double)(dx * dx + dy * dy)));
             }
     return best;
 }
 
-/* Silhouettes: IoU of the hit masks and the largest distance of a flipped pixel from a reference edge. */
+/* Silhouettes: IoU of the hit masks and the farthest a flipped pixel lies from the reference's edge. */
 static void silhouettes(const image_view *test, const image_view *ref, metrics *m)
 {
     size_t both = 0, either = 0;
@@ -51,7 +39,7 @@ static void silhouettes(const image_view *test, const image_view *ref, metrics *
             both += a && b;
             either += a || b;
             if (a != b)
-                m->edge_max_px = fmax(m->edge_max_px, edge_distance(ref, x, y));
+                m->edge_max_px = fmax(m->edge_max_px, edge_distance(ref, x, y, a));
         }
     m->iou = either ? (double)both / (double)either : 1.0;
 }

@@ -3,8 +3,9 @@
  * Colour: RMSE and PSNR of the display colour (8-bit sRGB after tone mapping, scaled to 0..1: what a
  * person sees). Depth: over pixels both renders hit, the error in pixel footprints,
  * |t − t_ref| / (t_ref · pixel angle), mean and max. Flips: share of pixels that hit in one render
- * and miss in the other; silhouettes: IoU of the two hit masks, and how far (pixels) the farthest
- * flipped pixel lies from an edge of the reference's mask. Steps: mean primary-ray march steps of the
+ * and miss in the other; silhouettes: IoU of the two hit masks, and how far the edge moved: over
+ * flipped pixels, the largest distance (pixels) to the nearest reference pixel that agrees with the
+ * test there (a silhouette one pixel too fat gives 1). Steps: mean primary-ray march steps of the
  * render under test, and the share of its pixels that ran out of steps (negative steps AOV).
  */
 #ifndef FATHOM_METRICS_H
@@ -24,7 +25,7 @@ typedef struct metrics {
     double depth_mean_fp, depth_max_fp;
     double flip_share;
     double iou;          /* hit masks: |both| / |either| (1 when neither hits anything) */
-    double edge_max_px;  /* the farthest flipped pixel from a reference edge (pixels; 0: no flip) */
+    double edge_max_px;  /* how far the edge moved (pixels; 0: no flip) */
     double mean_steps;
     double exhausted_share; /* pixels of the test render whose primary ray ran out of steps */
     int depth_pixels; /* pixels both hit */

@@ -69,6 +69,38 @@ static void known_errors(void **st)
     assert_near(m.mean_steps, (10.0 * (N - 1) + 25) / N, 1e-12);
 }
 
+/* Silhouettes on a 9×5 image: the reference hits a 3×3 square (columns 3–5, rows 1–3). The test
+ * hits the same square grown by one column to the right (column 6, rows 1–3: each one pixel from a
+ * reference hit) plus one stray pixel at (0, 4), whose nearest reference hit is (3, 3): √(3² + 1²).
+ * IoU = 9 / (9 + 3 + 1) = 9/13. One pixel of the test ran out of steps (negative steps). */
+static void silhouette_iou_and_edge(void **st)
+{
+    (void)st;
+    enum { SW = 9, SH = 5 };
+    uint8_t a[SW * SH * 4] = {0}, b[SW * SH * 4] = {0};
+    float aa[SW * SH * 8], ab[SW * SH * 8];
+    for (int i = 0; i < SW * SH; i++) {
+        int x = i % SW, y = i / SW;
+        for (int k = 0; k < 8; k++)
+            aa[i * 8 + k] = ab[i * 8 + k] = 0;
+        aa[i * 8 + 4] = ab[i * 8 + 4] = 1;
+        bool ref = x >= 3 && x <= 5 && y >= 1 && y <= 3;
+        bool test = (x >= 3 && x <= 6 && y >= 1 && y <= 3) || (x == 0 && y == 4);
+        ab[i * 8 + 3] = ref ? 2.0f : INFINITY;
+        aa[i * 8 + 3] = test ? 2.0f : INFINITY;
+    }
+    aa[(1 * SW + 4) * 8 + 4] = -7; /* ran out of steps */
+    image_view va = {SW, SH, a, aa}, vb = {SW, SH, b, ab};
+    metrics m = metrics_compare(&va, &vb, 0.01);
+    assert_near(m.iou, 9.0 / 13.0, 1e-12);
+    assert_near(m.edge_max_px, sqrt(10.0), 1e-12);
+    assert_near(m.exhausted_share, 1.0 / (SW * SH), 1e-12);
+    assert_near(m.mean_steps, (SW * SH - 1 + 7.0) / (SW * SH), 1e-12);
+    metrics same = metrics_compare(&vb, &vb, 0.01);
+    assert_near(same.iou, 1, 0);
+    assert_near(same.edge_max_px, 0, 0);
+}
+
 static void upscale_is_exact_on_flat_and_keeps_layout(void **st)
 {
     (void)st;
@@ -106,6 +138,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(identical_images),
         cmocka_unit_test(known_errors),
+        cmocka_unit_test(silhouette_iou_and_edge),
         cmocka_unit_test(upscale_is_exact_on_flat_and_keeps_layout),
         cmocka_unit_test(pareto_front),
     };
