@@ -19,6 +19,12 @@ camera camera_look_at(const vec3 eye, const vec3 target, float fov_y)
     return c;
 }
 
+bool camera_degenerate(const vec3 eye, const vec3 target)
+{
+    float d = glm_vec3_distance((float *)eye, (float *)target);
+    return !(d > 1e-6f * (1.0f + glm_vec3_norm((float *)eye)));
+}
+
 camera camera_look_at_deg(const vec3 eye, const vec3 target, float fov_y_deg)
 {
     return camera_look_at(eye, target, glm_rad(fov_y_deg));

@@ -32,6 +32,9 @@ typedef struct camera_input {
 
 #define CAMERA_MAX_PITCH 1.5533430f /* 89 degrees */
 
+/* True when target is (within float rounding of) eye: no direction to look in. Scene files and the
+ * command line refuse it. */
+bool camera_degenerate(const vec3 eye, const vec3 target);
 /* A camera at `eye` looking at `target` (target == eye keeps yaw = pitch = 0). */
 camera camera_look_at(const vec3 eye, const vec3 target, float fov_y);
 /* The same with the field of view in degrees (scene files and the command line speak degrees). */

@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "camera.h"
 #include "quality.h"
 
 enum { MAX_IMAGE_SIDE = 16384, MAX_SPP = 1 << 16, DEFAULT_RUNS = 5, MAX_RUNS = 1000 };
@@ -25,6 +26,7 @@ static const char USAGE[] =
     "  --output FILE         render headless to FILE (.png 8-bit sRGB, .exr linear float) and exit\n"
     "  --size WxH            image or window size in pixels [1280x720]\n"
     "  --spp N               samples per pixel (progressive, jittered: anti-aliasing) [preset]\n"
+    "  --strip-rows N        offline: render in bands of N rows (bounded memory at any size) [2 Mpixel]\n"
     "  --quality Q           draft | interactive | final | reference [the scene's]\n"
     "  --camera X,Y,Z        camera position\n"
     "  --look-at X,Y,Z       point the camera looks at\n"
@@ -139,6 +141,9 @@ static bool set_output_option(const char *name, const char *val, cli_options *o,
     } else if (!strcmp(name, "--spp")) {
         if (!parse_int(val, 1, MAX_SPP, &o->spp))
             return err_set(err, "bad --spp '%s': expected a whole number from 1 to %d", val, MAX_SPP);
+    } else if (!strcmp(name, "--strip-rows")) {
+        if (!parse_int(val, 1, MAX_IMAGE_SIDE, &o->strip_rows))
+            return err_set(err, "bad --strip-rows '%s': expected a whole number from 1 to %d", val, MAX_IMAGE_SIDE);
     } else if (!strcmp(name, "--runs")) {
         if (!parse_int(val, 1, MAX_RUNS, &o->runs))
             return err_set(err, "bad --runs '%s': expected a whole number from 1 to %d", val, MAX_RUNS);
@@ -242,6 +247,10 @@ static bool check_combinations(const cli_options *o, err_t *err)
         return err_set(err, "--runs, --knob, --out and --name belong to fathom bench");
     if (o->aovs && !o->output)
         return err_set(err, "--aov needs an offline shot: add --output FILE.exr");
+    if (o->strip_rows && !o->output)
+        return err_set(err, "--strip-rows needs an offline shot: add --output FILE");
+    if (o->has_camera && o->has_look_at && camera_degenerate(o->camera, o->look_at))
+        return err_set(err, "--camera and --look-at are the same point: the camera needs a direction to look in");
     if (o->output) {
         const char *dot = strrchr(o->output, '.');
         bool png = dot && !strcmp(dot, ".png"), exr = dot && !strcmp(dot, ".exr");
@@ -282,7 +291,7 @@ bool cli_parse(int argc, char **argv, cli_options *o, err_t *err)
         }
         static const char *const WITH_VALUE[] = {"--scene", "--output", "--size", "--spp", "--quality",
                                                  "--camera", "--look-at", "--fov", "--set", "--aov", "--frames",
-                                                 "--runs", "--out", "--knob", "--name"};
+                                                 "--runs", "--out", "--knob", "--name", "--strip-rows"};
         bool known = false;
         for (size_t k = 0; k < sizeof WITH_VALUE / sizeof WITH_VALUE[0]; k++)
             known |= !strcmp(name, WITH_VALUE[k]);

@@ -27,6 +27,7 @@ typedef struct cli_options {
     const char *output; /* NULL: window; else offline shot to .png or .exr */
     int width, height;  /* 0: default */
     int spp;            /* 0: the quality preset's */
+    int strip_rows;     /* offline: rows rendered and written at a time; 0: as many as fit 2 Mpixel */
     int frames;         /* window: exit after N frames; 0: run until closed */
     bool has_camera, has_look_at, has_fov;
     float camera[3], look_at[3], fov_deg;

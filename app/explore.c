@@ -350,6 +350,10 @@ bool explore_run(const cli_options *opt, err_t *err)
     app.speed = DEFAULT_SPEED;
     app.knob = next_knob((knob_id)(KNOB_COUNT - 1));
     list_scene_names();
+    scene first; /* a bad scene is the error to report, even where no window can open */
+    if (!scene_load(opt->scene, opt->sets, opt->set_count, &first, err))
+        return false;
+    scene_free(&first);
     if (!gpu_open(&(gpu_desc){.width = opt->width, .height = opt->height, .title = "fathom"}, err))
         return false;
     GLFWwindow *win = gpu_window();

@@ -8,6 +8,7 @@
 #include "bench.h"
 #include "cli.h"
 #include "explore.h"
+#include "image_io.h"
 #include "offline.h"
 #include "render.h"
 #include "scene.h"
@@ -35,6 +36,7 @@ static void print_variant(const scene *s)
 
 int main(int argc, char **argv)
 {
+    image_io_install_signal_cleanup();
     cli_options opt;
     err_t err;
     if (!cli_parse(argc, argv, &opt, &err)) {
@@ -85,15 +87,23 @@ int main(int argc, char **argv)
         print_variant(&s);
     } else {
         float fov = opt.has_fov ? opt.fov_deg : s.cam_fov_deg;
+        const float *eye = opt.has_camera ? opt.camera : s.cam_position;
+        const float *at = opt.has_look_at ? opt.look_at : s.cam_look_at;
+        if (camera_degenerate(eye, at)) {
+            fprintf(stderr, "fathom: the camera (%g, %g, %g) is at its look-at point: pass --look-at (or "
+                            "--camera) elsewhere\n", (double)eye[0], (double)eye[1], (double)eye[2]);
+            scene_free(&s);
+            return 1;
+        }
         offline_desc d = {
             .scene = &s,
-            .cam = camera_look_at_deg(opt.has_camera ? opt.camera : s.cam_position,
-                                  opt.has_look_at ? opt.look_at : s.cam_look_at, fov),
+            .cam = camera_look_at_deg(eye, at, fov),
             .width = opt.width ? opt.width : DEFAULT_WIDTH,
             .height = opt.height ? opt.height : DEFAULT_HEIGHT,
             .spp = s.quality.spp,
             .output = opt.output,
             .aovs = opt.aovs,
+            .strip_rows = opt.strip_rows,
             .quiet = opt.quiet,
         };
         if (!offline_render(&d, &err)) {

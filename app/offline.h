@@ -1,4 +1,5 @@
-/* offline — a headless shot: EGL context, progressive samples with a progress bar, atomic write.
+/* offline — a headless shot: EGL context, progressive samples with a progress bar, verified write.
+ * Any size up to 16384² renders in bands of rows, each written as it is done (bounded memory).
  * .png: tone-mapped 8-bit sRGB. .exr: linear float RGBA plus the requested AOV channels
  * (Z = depth along the unit ray, +inf on a miss; N.X N.Y N.Z; steps; exit.X exit.Y exit.Z). */
 #ifndef FATHOM_OFFLINE_H
@@ -16,11 +17,15 @@ typedef struct offline_desc {
     int width, height, spp;
     const char *output;
     unsigned aovs; /* cli.h aov_flag bits */
+    int strip_rows; /* rows a band (0: as many as fit 2 Mpixel); the image is rendered and written in bands */
     bool quiet;
 } offline_desc;
 
 /* Renders and writes d->output. Opens and closes its own headless context. */
 bool offline_render(const offline_desc *d, err_t *err);
+
+/* The same in the current GL context, after render_init (tests). */
+bool offline_render_current(const offline_desc *d, err_t *err);
 
 /* Writes the current render target to path (.png or .exr with aovs); used by offline and screenshots. */
 bool offline_write(const char *path, int width, int height, unsigned aovs, err_t *err);

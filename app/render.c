@@ -20,6 +20,7 @@ static struct {
     GLuint ref_fbo, ref_tex; /* a grabbed image for the difference view */
     int ref_samples;
     int width, height, samples;
+    int full_width, full_height, tile_x, tile_y; /* the image the target is a band of; its GL offset */
     GLuint prog; /* the current scene's program */
     camera cam;
     unsigned runtime_effects; /* effects switched on at run time (bits as in effect.h) */
@@ -89,11 +90,14 @@ bool render_set_scene(const scene *s, const char *extra_defines, err_t *err)
 void render_resize(int width, int height)
 {
     assert(width > 0 && height > 0);
-    if (state.fbo && width == state.width && height == state.height)
+    if (state.fbo && width == state.width && height == state.height) {
+        render_set_window(width, height, 0, 0);
         return;
+    }
     free_targets();
     state.width = width;
     state.height = height;
+    render_set_window(width, height, 0, 0);
     glGenFramebuffers(1, &state.fbo);
     glBindFramebuffer(GL_FRAMEBUFFER, state.fbo);
     glGenTextures(NUM_TARGETS, state.targets);
@@ -114,6 +118,14 @@ void render_resize(int width, int height)
     assert(glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     state.samples = 0;
+}
+
+void render_set_window(int full_width, int full_height, int left, int top)
+{
+    state.full_width = full_width;
+    state.full_height = full_height;
+    state.tile_x = left;
+    state.tile_y = full_height - top - state.height; /* GL counts rows from the bottom */
 }
 
 void render_begin(const camera *c)
@@ -157,13 +169,14 @@ void render_sample(void)
 
     glUseProgram(state.prog);
     camera_basis b = camera_get_basis(&state.cam);
-    glUniform2f(loc("uResolution"), (float)state.width, (float)state.height);
+    glUniform2f(loc("uResolution"), (float)state.full_width, (float)state.full_height);
+    glUniform2f(loc("uTileOffset"), (float)state.tile_x, (float)state.tile_y);
     glUniform3fv(loc("uCamPos"), 1, state.cam.position);
     glUniform3fv(loc("uCamForward"), 1, b.forward);
     glUniform3fv(loc("uCamRight"), 1, b.right);
     glUniform3fv(loc("uCamUp"), 1, b.up);
     glUniform1f(loc("uTanHalfFov"), tanf(0.5f * state.cam.fov_y));
-    glUniform1f(loc("uPixelAngle"), camera_pixel_angle(&state.cam, state.height));
+    glUniform1f(loc("uPixelAngle"), camera_pixel_angle(&state.cam, state.full_height));
     glUniform1ui(loc("uFxRuntime"), state.runtime_effects);
     bool jitter = (scene_gpu_current()->effects & state.runtime_effects & (1u << EFFECT_AA)) && !first;
     glUniform2f(loc("uJitter"), jitter ? halton(state.samples, 2) - 0.5f : 0.0f,

@@ -30,6 +30,10 @@ bool render_set_scene(const scene *s, const char *extra_defines, err_t *err);
 void render_set_runtime_effects(unsigned mask);
 
 void render_resize(int width, int height);
+/* The target (render_resize's size) holds the part of a full_width × full_height image whose top-left
+ * pixel is (left, top): offline shots of any size render in bands. render_resize resets it to the
+ * whole image. Call before render_begin. */
+void render_set_window(int full_width, int full_height, int left, int top);
 void render_begin(const camera *c); /* new view: restart accumulation */
 void render_sample(void);           /* add one sample */
 int render_samples(void);

@@ -81,6 +81,52 @@ static void line_col(const char *text, const char *at, int *line, int *col)
     }
 }
 
+/* JSON allows a key twice in an object and cJSON keeps both, reading the first: a second value would
+ * go unchecked and unused. Refused, with the key's path. */
+static bool check_duplicates(scene_ctx *c, const cJSON *node, const char *path)
+{
+    int index = 0;
+    for (const cJSON *it = node->child; it; it = it->next, index++) {
+        char p[KEY_PATH_MAX];
+        if (cJSON_IsObject(node)) {
+            child_path(p, sizeof p, path, it->string);
+            for (const cJSON *before = node->child; before != it; before = before->next)
+                if (!strcmp(before->string, it->string))
+                    return fail(c, p, "the key '%s' appears twice in the same object; keep one", it->string);
+        } else {
+            char idx[16];
+            snprintf(idx, sizeof idx, "%d", index);
+            child_path(p, sizeof p, path, idx);
+        }
+        if ((cJSON_IsObject(it) || cJSON_IsArray(it)) && !check_duplicates(c, it, p))
+            return false;
+    }
+    return true;
+}
+
+/* Deepest nesting of [ and { outside strings, and where it first passes `limit`. */
+static int nesting(const char *text, int limit, const char **at)
+{
+    int depth = 0, deepest = 0;
+    bool in_string = false;
+    for (const char *p = text; *p; p++) {
+        if (in_string) {
+            if (*p == '\\' && p[1])
+                p++;
+            else if (*p == '"')
+                in_string = false;
+        } else if (*p == '"') {
+            in_string = true;
+        } else if (*p == '[' || *p == '{') {
+            if (++depth > deepest && (deepest = depth) == limit + 1)
+                *at = p;
+        } else if (*p == ']' || *p == '}') {
+            depth--;
+        }
+    }
+    return deepest;
+}
+
 bool scene_load_text(const char *text, const char *path, const char *const *sets, int set_count, scene *s,
                      err_t *err)
 {
@@ -92,6 +138,12 @@ bool scene_load_text(const char *text, const char *path, const char *const *sets
     snprintf(s->name, sizeof s->name, "%.*s", (int)strcspn(base, "."), base);
 
     const char *end = NULL;
+    if (nesting(text, CJSON_NESTING_LIMIT, &end) > CJSON_NESTING_LIMIT) {
+        int line, col;
+        line_col(text, end, &line, &col);
+        return err_set(err, "%s:%d:%d: brackets nested deeper than %d levels; no scene needs that many", path, line,
+                       col, CJSON_NESTING_LIMIT);
+    }
     cJSON *root = cJSON_ParseWithOpts(text, &end, true);
     if (!root) {
         int line, col;
@@ -99,9 +151,9 @@ bool scene_load_text(const char *text, const char *path, const char *const *sets
         return err_set(err, "%s:%d:%d: malformed JSON near here (check commas, quotes and brackets)", path, line, col);
     }
     scene_ctx c = {.file = path, .err = err, .s = s};
-    bool ok = true;
+    bool ok = check_duplicates(&c, root, "");
     /* Check the file as written first, so a mistake there is reported as the file's, not an override's. */
-    if (set_count > 0) {
+    if (ok && set_count > 0) {
         scene probe;
         ok = scene_load_text(text, path, NULL, 0, &probe, err);
         scene_free(&probe);

@@ -4,6 +4,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "camera.h"
 #include "scene_parse.h"
 
 /* ---- materials ---------------------------------------------------------------------------- */
@@ -110,9 +111,13 @@ bool parse_camera(scene_ctx *c, const cJSON *root)
     } else {
         s->adaptive_speed = fractal;
     }
-    return get_vec3(c, cam, "camera", "position", cam_pos, -1e7f, 1e7f, s->cam_position) &&
-           get_vec3(c, cam, "camera", "look_at", cam_at, -1e7f, 1e7f, s->cam_look_at) &&
-           get_num(c, cam, "camera", "fov", 50, 1, 170, &s->cam_fov_deg);
+    if (!get_vec3(c, cam, "camera", "position", cam_pos, -1e7f, 1e7f, s->cam_position) ||
+        !get_vec3(c, cam, "camera", "look_at", cam_at, -1e7f, 1e7f, s->cam_look_at) ||
+        !get_num(c, cam, "camera", "fov", 50, 1, 170, &s->cam_fov_deg))
+        return false;
+    if (camera_degenerate(s->cam_position, s->cam_look_at))
+        return fail(c, "camera.look_at", "is the camera's position: the camera needs a point to look at");
+    return true;
 }
 
 bool parse_fog(scene_ctx *c, const cJSON *root)

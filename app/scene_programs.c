@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "scene_parse.h"
+#include "terrain.h"
 
 /* ---- fractals: the "fractal" block ------------------------------------------------------------ */
 
@@ -172,6 +173,8 @@ bool noise_parse(scene_ctx *c, const cJSON *root)
     return ok;
 }
 
+static bool spacing_ok(const cJSON *v) { return cJSON_IsNumber(v) && terrain_spacing_ok(v->valuedouble); }
+
 bool heightmap_parse(scene_ctx *c, const cJSON *root)
 {
     struct scene_terrain *t = &c->s->terrain;
@@ -193,9 +196,10 @@ bool heightmap_parse(scene_ctx *c, const cJSON *root)
         return false;
     const cJSON *spacing = cJSON_GetObjectItemCaseSensitive(tb, "spacing");
     if (spacing) {
-        if (!cJSON_IsArray(spacing) || cJSON_GetArraySize(spacing) != 2 || !cJSON_IsNumber(spacing->child) ||
-            !cJSON_IsNumber(spacing->child->next) || spacing->child->valuedouble <= 0 || spacing->child->next->valuedouble <= 0)
-            return fail(c, "terrain.spacing", "expected [dx, dz]: metres per texel, both above 0");
+        if (!cJSON_IsArray(spacing) || cJSON_GetArraySize(spacing) != 2 || !spacing_ok(spacing->child) ||
+            !spacing_ok(spacing->child->next))
+            return fail(c, "terrain.spacing", "expected [dx, dz]: metres per texel, both above 0 and at most %g",
+                        (double)TERRAIN_SPACING_MAX);
         sp[0] = (float)spacing->child->valuedouble;
         sp[1] = (float)spacing->child->next->valuedouble;
     } else {
@@ -210,6 +214,9 @@ bool heightmap_parse(scene_ctx *c, const cJSON *root)
         !get_num(c, tb, "terrain", "snow_line", 1e9f, -1e9f, 1e9f, &t->snow_line) ||
         !get_num(c, tb, "terrain", "grass_slope", 0.8f, 0, 1, &t->grass_slope))
         return false;
+    if (t->height_min > t->height_max)
+        return fail(c, "terrain.height_max", "%g is below height_min %g: height_min is the height of black, "
+                    "height_max of white", (double)t->height_max, (double)t->height_min);
     static const char *const METHODS[] = {"linear", "maxmip", NULL};
     int m;
     if (!get_enum(c, tb, "terrain", "method", "method", METHODS, 1, &m))

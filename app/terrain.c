@@ -81,7 +81,10 @@ void heightfield_from(const float *heights, int w, int h, float dx, float dz, he
     build(hf);
 }
 
-/* NAME.json beside NAME.png: spacing and the height range of an integer image. */
+bool terrain_spacing_ok(double metres) { return isfinite(metres) && metres > 0 && metres <= TERRAIN_SPACING_MAX; }
+
+/* NAME.json beside NAME.png: spacing and the height range of an integer image. Only the values the
+ * scene left unset are taken, and each is checked like the scene's own. */
 static bool read_sidecar(const char *path, float spacing[2], float *lo, float *hi, err_t *err)
 {
     char side[PATH_MAX_LEN];
@@ -96,18 +99,45 @@ static bool read_sidecar(const char *path, float spacing[2], float *lo, float *h
     free(text);
     if (!j)
         return err_set(err, "%s: malformed JSON", side);
+    bool ok = true;
     const cJSON *s = cJSON_GetObjectItemCaseSensitive(j, "spacing");
-    if (cJSON_IsArray(s) && cJSON_GetArraySize(s) == 2 && spacing[0] == 0) {
-        spacing[0] = (float)cJSON_GetArrayItem(s, 0)->valuedouble;
-        spacing[1] = (float)cJSON_GetArrayItem(s, 1)->valuedouble;
+    if (s && spacing[0] == 0) {
+        const cJSON *a = cJSON_GetArrayItem(s, 0), *b = cJSON_GetArrayItem(s, 1);
+        ok = cJSON_IsArray(s) && cJSON_GetArraySize(s) == 2 && cJSON_IsNumber(a) && cJSON_IsNumber(b) &&
+             terrain_spacing_ok(a->valuedouble) && terrain_spacing_ok(b->valuedouble);
+        if (!ok)
+            err_set(err, "%s: spacing: expected [dx, dz], metres per texel, both above 0 and at most %g", side,
+                    TERRAIN_SPACING_MAX);
+        else
+            spacing[0] = (float)a->valuedouble, spacing[1] = (float)b->valuedouble;
     }
     const cJSON *a = cJSON_GetObjectItemCaseSensitive(j, "height_min"), *b = cJSON_GetObjectItemCaseSensitive(j, "height_max");
-    if (cJSON_IsNumber(a) && cJSON_IsNumber(b) && *lo == 0 && *hi == 0) {
-        *lo = (float)a->valuedouble;
-        *hi = (float)b->valuedouble;
+    if (ok && (a || b) && *lo == 0 && *hi == 0) {
+        ok = cJSON_IsNumber(a) && cJSON_IsNumber(b) && isfinite(a->valuedouble) && isfinite(b->valuedouble) &&
+             fabs(a->valuedouble) <= 1e5 && fabs(b->valuedouble) <= 1e5 && a->valuedouble <= b->valuedouble;
+        if (!ok)
+            err_set(err, "%s: height_min, height_max: expected two numbers from -1e5 to 1e5, height_min at most "
+                         "height_max", side);
+        else
+            *lo = (float)a->valuedouble, *hi = (float)b->valuedouble;
     }
     cJSON_Delete(j);
-    return true;
+    return ok;
+}
+
+/* NaN and infinite heights cannot be drawn (the terrain issue turns them into nodata holes): refused,
+ * counted, with the first one's texel so the user can find it. */
+static bool check_finite(const char *path, const float *heights, int w, int h, err_t *err)
+{
+    size_t bad = 0, first = 0;
+    for (size_t i = 0, n = (size_t)w * (size_t)h; i < n; i++)
+        if (!isfinite(heights[i]) && bad++ == 0)
+            first = i;
+    if (bad == 0)
+        return true;
+    return err_set(err, "heightmap '%s': %zu of %zu heights are NaN or infinite (the first at column %zu, row %zu); "
+                        "replace them with real heights", path, bad, (size_t)w * (size_t)h, first % (size_t)w,
+                   first / (size_t)w);
 }
 
 bool heightfield_load(const heightfield_desc *d, heightfield *hf, err_t *err)
@@ -119,7 +149,7 @@ bool heightfield_load(const heightfield_desc *d, heightfield *hf, err_t *err)
         return err_set(err, "heightmap '%s': no spacing (set terrain.spacing=[dx,dz] in metres per texel)", d->path);
     int w, h, c;
     float *px;
-    if (!image_read_f32(d->path, &w, &h, &c, &px, err))
+    if (!image_read_f32(d->path, 1, IMAGE_MAX_SIDE, &w, &h, &c, &px, err))
         return false;
     if (w < 2 || h < 2) {
         free(px);
@@ -134,15 +164,21 @@ bool heightfield_load(const heightfield_desc *d, heightfield *hf, err_t *err)
                             "(metres for black and white)", d->path);
     }
     float *heights = malloc(sizeof(float) * (size_t)w * (size_t)h);
+    if (!heights) {
+        free(px);
+        return err_set(err, "heightmap '%s' (%dx%d): out of memory", d->path, w, h);
+    }
     float ex = d->exaggeration > 0 ? d->exaggeration : 1.0f;
-    for (int i = 0; i < w * h; i++) {
-        float v = px[(size_t)i * (size_t)c];
+    for (size_t i = 0, n = (size_t)w * (size_t)h; i < n; i++) {
+        float v = px[i * (size_t)c];
         heights[i] = (is_float ? v : lo + v * (hi - lo)) * ex;
     }
     free(px);
-    heightfield_from(heights, w, h, spacing[0], spacing[1], hf);
+    bool ok = check_finite(d->path, heights, w, h, err);
+    if (ok)
+        heightfield_from(heights, w, h, spacing[0], spacing[1], hf);
     free(heights);
-    return true;
+    return ok;
 }
 
 void heightfield_free(heightfield *hf)

@@ -39,6 +39,12 @@ typedef struct heightfield_desc {
     float exaggeration;
 } heightfield_desc;
 
+/* Spacing in metres per texel: above 0, finite, at most this (a light year of texels is a typo). */
+#define TERRAIN_SPACING_MAX 1e6
+bool terrain_spacing_ok(double metres);
+
+/* Refuses what cannot be drawn: a missing or non-finite spacing or height range, a reversed range, and
+ * heights that are NaN or infinite (the error counts them and names the first texel). */
 bool heightfield_load(const heightfield_desc *d, heightfield *hf, err_t *err);
 /* From heights already in memory (tests): w × h metres, row 0 north. */
 void heightfield_from(const float *heights, int w, int h, float dx, float dz, heightfield *hf);

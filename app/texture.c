@@ -21,11 +21,19 @@ static GLuint tiled_texture(GLint internal, int w, int h, GLenum format, GLenum 
     return tex;
 }
 
+/* The GL's limit (16384 on llvmpipe), and never more than image_io reads. */
+static int max_side(void)
+{
+    GLint n = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &n);
+    return n > 0 && n < IMAGE_MAX_SIDE ? n : IMAGE_MAX_SIDE;
+}
+
 GLuint texture_load_2d(const char *path, err_t *err)
 {
     int w, h;
     uint8_t *px;
-    if (!image_read_u8(path, 4, &w, &h, &px, err))
+    if (!image_read_u8(path, 4, max_side(), &w, &h, &px, err))
         return 0;
     /* Row order does not matter for a tiling texture; keep the file's. */
     GLuint tex = tiled_texture(GL_SRGB8_ALPHA8, w, h, GL_RGBA, GL_UNSIGNED_BYTE, px, 1);
@@ -37,7 +45,7 @@ GLuint texture_load_height(const char *path, int *width, err_t *err)
 {
     int w, h, c;
     float *px;
-    if (!image_read_f32(path, &w, &h, &c, &px, err))
+    if (!image_read_f32(path, 1, max_side(), &w, &h, &c, &px, err))
         return 0;
     float *one = malloc(sizeof(float) * (size_t)w * (size_t)h);
     float lo = INFINITY, hi = -INFINITY;
@@ -65,7 +73,7 @@ GLuint texture_load_cube(const char (*faces)[PATH_MAX_LEN], int *size, err_t *er
     for (int i = 0; i < 6; i++) {
         int w, h;
         uint8_t *px;
-        if (!image_read_u8(faces[i], 4, &w, &h, &px, err)) {
+        if (!image_read_u8(faces[i], 4, max_side(), &w, &h, &px, err)) {
             glDeleteTextures(1, &tex);
             return 0;
         }

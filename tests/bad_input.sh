@@ -51,6 +51,89 @@ expect unknown-set-key 1 "materials.glass.iro: unknown key 'iro'" 1 -- "$fathom"
 expect bad-set-value 1 "materials.glass.ior: expected a number from 1 to 4 (from --set)" 1 -- "$fathom" --set materials.glass.ior=9 $out
 expect unwritable-output 1 "folder '$tmp/no/such/dir' does not exist" 1 -- "$fathom" --output "$tmp/no/such/dir/out.png" --size 33x21 --quiet
 
+# ---- hostile files ------------------------------------------------------------------------------
+# a 68-byte PNG whose header claims 200000x200000 (zlib data for 10 bytes): refused before allocating
+printf '\211\120\116\107\015\012\032\012\000\000\000\015\111\110\104\122\000\003\015\100\000\003\015\100\010\002\000\000\000\166\131\037\135\000\000\000\013\111\104\101\124\170\234\143\140\200\001\000\000\012\000\001\177\200\164\136\000\000\000\000\111\105\116\104\256\102\140\202' >"$tmp/huge.png"
+sed "s|no/such.png|huge.png|" "$tmp/tex.json" >"$tmp/huge.json"
+expect huge-texture-header 1 "is 200000x200000: larger than the 16384x16384" 1 -- "$fathom" --scene "$tmp/huge.json" $out
+printf '{"program": "terrain", "materials": {"rock": {}}, "terrain": {"heightmap": "huge.png", "spacing": [1, 1], "height_min": 0, "height_max": 1}}' >"$tmp/hugeterrain.json"
+expect huge-heightmap-header 1 "is 200000x200000: larger than the 16384x16384" 1 -- "$fathom" --scene "$tmp/hugeterrain.json" $out
+# a PNG cut short: libpng's own complaint is folded into fathom's one line
+head -c 120 "$src/terrains/jacksboro.png" >"$tmp/cut.png"
+sed "s|no/such.png|cut.png|" "$tmp/tex.json" >"$tmp/cut.json"
+expect corrupt-png 1 "cannot read image '$tmp/cut.png'" 1 -- "$fathom" --scene "$tmp/cut.json" $out
+
+# heightmaps with NaN and infinite heights (PFM: a float image a shell can write)
+printf 'Pf\n3 2\n-1.0\n' >"$tmp/nan.pfm"
+printf '\000\000\200\077\000\000\300\177\000\000\200\077\000\000\200\177\000\000\200\077\000\000\200\077' >>"$tmp/nan.pfm"
+printf '{"program": "terrain", "materials": {"rock": {}}, "terrain": {"heightmap": "nan.pfm", "spacing": [1, 1]}}' >"$tmp/nan.json"
+expect nan-heights 1 "2 of 6 heights are NaN or infinite (the first at column 0, row 0)" 1 -- "$fathom" --scene "$tmp/nan.json" $out
+expect infinite-spacing 1 "terrain.spacing: expected [dx, dz]" 1 -- "$fathom" --scene jacksboro --set terrain.spacing=1e400,90 $out
+expect reversed-heights 1 "terrain.height_max: 10 is below height_min 500" 1 -- "$fathom" --scene jacksboro --set terrain.height_min=500 --set terrain.height_max=10 $out
+mkdir -p "$tmp/side"
+cp "$src/terrains/jacksboro.png" "$tmp/side/dem.png"
+printf '{"spacing": [1e400, 90], "height_min": 0, "height_max": 1}' >"$tmp/side/dem.json"
+printf '{"program": "terrain", "materials": {"rock": {}}, "terrain": {"heightmap": "dem.png"}}' >"$tmp/side/scene.json"
+expect sidecar-infinite-spacing 1 "dem.json: spacing: expected [dx, dz]" 1 -- "$fathom" --scene "$tmp/side/scene.json" $out
+printf '{"spacing": [90, 90], "height_min": 900, "height_max": 100}' >"$tmp/side/dem.json"
+expect sidecar-reversed-heights 1 "dem.json: height_min, height_max:" 1 -- "$fathom" --scene "$tmp/side/scene.json" $out
+
+# scene files: a key twice, absurd nesting, a camera looking at itself
+printf '{"program": "csg", "objects": [{"shape": "sphere", "radius": 1, "radius": -2}]}' >"$tmp/dup.json"
+expect duplicate-key 1 "objects.0.radius: the key 'radius' appears twice" 1 -- "$fathom" --scene "$tmp/dup.json" $out
+{ printf '{"program": "csg", "title": '; i=0; while [ $i -lt 1100 ]; do printf '['; i=$((i + 1)); done
+  i=0; while [ $i -lt 1100 ]; do printf ']'; i=$((i + 1)); done; printf '}'; } >"$tmp/deep.json"
+expect deep-nesting 1 "brackets nested deeper than 1000 levels" 1 -- "$fathom" --scene "$tmp/deep.json" $out
+printf '{"program": "csg", "camera": {"position": [1, 2, 3], "look_at": [1, 2, 3]}, "objects": []}' >"$tmp/cam.json"
+expect camera-at-look-at 1 "camera.look_at: is the camera's position" 1 -- "$fathom" --scene "$tmp/cam.json" $out
+expect cli-camera-at-look-at 2 "--camera and --look-at are the same point" 1 -- "$fathom" --camera 0,1,5 --look-at 0,1,5 $out
+expect no-display-bad-scene 1 "unknown scene 'nosuch'" 1 -- env -u DISPLAY -u WAYLAND_DISPLAY "$fathom" --scene nosuch --frames 1
+
+# ---- outputs that cannot be written -------------------------------------------------------------
+: >"$tmp/readonly.png"
+chmod 0444 "$tmp/readonly.png"
+expect readonly-output 1 "the file is read-only" 1 -- "$fathom" --output "$tmp/readonly.png" --size 33x21 --quiet
+[ -s "$tmp/readonly.png" ] && { failed=$((failed + 1)); echo "FAIL readonly-output: the read-only file was replaced"; }
+rm -f "$tmp/readonly.png"
+mkdir "$tmp/adir.png"
+expect output-is-folder 1 "it exists and is not a regular file" 1 -- "$fathom" --output "$tmp/adir.png" --size 33x21 --quiet
+rmdir "$tmp/adir.png"
+# a file-size limit (ulimit -f, 512-byte blocks) stands in for a full disk: the short file must not pass
+for ext in png exr; do
+    expect "file-size-limit-$ext" 1 "cannot write '$tmp/out.$ext'" 1 -- sh -c "ulimit -f 16; exec \"\$0\" \"\$@\"" \
+        "$fathom" --output "$tmp/out.$ext" --size 320x180 --spp 1 --quiet
+done
+# a really full disk where this machine lets us mount a small tmpfs (root, not in a locked container)
+mkdir -p "$tmp/small"
+if mount -t tmpfs -o size=64k fathomtest "$tmp/small" 2>/dev/null; then
+    for ext in png exr; do
+        expect "full-disk-$ext" 1 "cannot write '$tmp/small/full.$ext'" 1 -- "$fathom" --output "$tmp/small/full.$ext" --size 320x180 --spp 1 --quiet
+        left=$(ls -A "$tmp/small")
+        [ -z "$left" ] || { failed=$((failed + 1)); echo "FAIL full-disk-$ext: left $left"; }
+    done
+    umount "$tmp/small"
+else
+    echo "skip full-disk: cannot mount a tmpfs here (the file-size-limit cases cover the same path)"
+fi
+
+# a signal while the shot is being rendered into its temporary file: no file may remain
+for sig in TERM INT; do
+    rm -rf "$tmp/sig" && mkdir "$tmp/sig"
+    "$fathom" --output "$tmp/sig/out.exr" --size 640x360 --spp 64 --quiet --aov depth,normal &
+    pid=$!
+    i=0
+    while [ $i -lt 3000 ] && ! ls -A "$tmp/sig" | grep -q tmp; do sleep 0.01; i=$((i + 1)); done
+    kill -$sig $pid
+    wait $pid
+    code=$?
+    left=$(ls -A "$tmp/sig")
+    if [ $i -lt 3000 ] && [ $code -ne 0 ] && [ -z "$left" ]; then
+        passed=$((passed + 1)); echo "ok   signal-$sig: exit $code, nothing left"
+    else
+        failed=$((failed + 1)); echo "FAIL signal-$sig: waited $i polls, exit $code, left '$left'"
+    fi
+done
+
 # a shader that does not compile: a copy of the data folder with one broken line
 mkdir -p "$tmp/data"
 cp -r "$src/shaders" "$src/scenes" "$src/textures" "$src/terrains" "$tmp/data/"

@@ -14,6 +14,7 @@
 #include <epoxy/gl.h>
 
 #include "check.h"
+#include "cli.h"
 #include "gpu.h"
 #include "image_io.h"
 #include "offline.h"
@@ -486,7 +487,7 @@ static void png_orientation(void **st)
         fail_msg("%s", e.msg);
     int w, h;
     uint8_t *px;
-    if (!image_read_u8(path, 4, &w, &h, &px, &e))
+    if (!image_read_u8(path, 4, IMAGE_MAX_SIDE, &w, &h, &px, &e))
         fail_msg("%s", e.msg);
     unlink(path);
     rmdir(dir);
@@ -511,6 +512,56 @@ static void png_orientation(void **st)
     }
     assert_true(px[0] < 10 && px[1] < 10 && px[2] < 10); /* the black background */
     free(px);
+    scene_free(&s);
+}
+
+/* ---- a shot rendered in bands is the shot rendered whole, pixel for pixel -------------------------- */
+
+static float *shot(const scene *s, const camera *cam, const char *path, int strip_rows, int *channels)
+{
+    offline_desc d = {.scene = s, .cam = *cam, .width = W, .height = H, .spp = 3, .output = path,
+                      .aovs = AOV_DEPTH | AOV_NORMAL | AOV_STEPS, .quiet = true, .strip_rows = strip_rows};
+    err_t e;
+    if (!offline_render_current(&d, &e))
+        fail_msg("%s", e.msg);
+    int w, h;
+    float *px;
+    if (!image_read_f32(path, 0, IMAGE_MAX_SIDE, &w, &h, channels, &px, &e))
+        fail_msg("%s", e.msg);
+    assert_int_equal(w, W);
+    assert_int_equal(h, H);
+    unlink(path);
+    return px;
+}
+
+static void banded_shot_matches_whole(void **st)
+{
+    (void)st;
+    scene s;
+    load_text("{\"program\": \"csg\", \"quality\": {\"preset\": \"interactive\"},"
+              " \"materials\": {\"m\": {\"base_color\": [0.8, 0.5, 0.2]}},"
+              " \"objects\": [{\"shape\": \"sphere\", \"radius\": 0.8, \"material\": \"m\"},"
+              "  {\"shape\": \"box\", \"size\": [3, 0.1, 3], \"position\": [0, -0.9, 0], \"material\": \"m\"}]}",
+              NULL, 0, &s);
+    camera cam = cam_at(0.3, 0.9, 3.2, 0, 0, 0, 45);
+    char dir[] = "/tmp/fathom-bands-XXXXXX", path[64];
+    assert_non_null(mkdtemp(dir));
+    snprintf(path, sizeof path, "%s/shot.exr", dir);
+    int c0, c1;
+    float *whole = shot(&s, &cam, path, 0, &c0);
+    /* 14-row bands: 61 rows = a 5-row top band and four of 14; 2-row bands: the smallest there are */
+    for (int rows = 14; rows >= 2; rows -= 12) {
+        float *banded = shot(&s, &cam, path, rows, &c1);
+        assert_int_equal(c0, c1);
+        size_t differ = 0, n = (size_t)W * H * (size_t)c0;
+        for (size_t i = 0; i < n; i++)
+            differ += memcmp(&whole[i], &banded[i], sizeof(float)) != 0;
+        fprintf(stderr, "bands of %d rows: %zu of %zu values differ from the whole shot\n", rows, differ, n);
+        assert_int_equal(differ, 0);
+        free(banded);
+    }
+    free(whole);
+    rmdir(dir);
     scene_free(&s);
 }
 
@@ -577,6 +628,7 @@ int main(void)
         cmocka_unit_test(no_self_shadowing),
         cmocka_unit_test(no_nan_or_inf),
         cmocka_unit_test(png_orientation),
+        cmocka_unit_test(banded_shot_matches_whole),
         cmocka_unit_test(reload_keeps_last_good_program),
     };
     return cmocka_run_group_tests(tests, gl_setup, gl_teardown);

@@ -44,7 +44,7 @@ static void png_round_trip(void **st)
             fail_msg("%s", e.msg);
         int w, h;
         uint8_t *back;
-        if (!image_read_u8(path, 4, &w, &h, &back, &e))
+        if (!image_read_u8(path, 4, IMAGE_MAX_SIDE, &w, &h, &back, &e))
             fail_msg("%s", e.msg);
         assert_int_equal(w, W);
         assert_int_equal(h, H);
@@ -78,7 +78,7 @@ static void exr_round_trip(void **st)
         fail_msg("%s", e.msg);
     int w, h, c;
     float *back;
-    if (!image_read_f32(path, &w, &h, &c, &back, &e))
+    if (!image_read_f32(path, 0, IMAGE_MAX_SIDE, &w, &h, &c, &back, &e))
         fail_msg("%s", e.msg);
     assert_int_equal(w, W);
     assert_int_equal(h, H);
@@ -114,8 +114,62 @@ static void failed_writes_leave_nothing(void **st)
     snprintf(path, sizeof path, "%s/x.unknownformat", dir);
     assert_false(image_write_u8(path, W, H, 3, px, &e));
     assert_int_equal(count_files(), before);
-    assert_false(image_read_u8("/nonexistent.png", 4, &(int){0}, &(int){0}, &(uint8_t *){NULL}, &e));
+    assert_false(image_read_u8("/nonexistent.png", 4, IMAGE_MAX_SIDE, &(int){0}, &(int){0}, &(uint8_t *){NULL}, &e));
     assert_non_null(strstr(e.msg, "/nonexistent.png"));
+}
+
+/* Streaming writes in bands give the same file as one call; a writer that gets too few rows, or one
+ * abandoned half way, leaves nothing. */
+static void banded_writes(void **st)
+{
+    (void)st;
+    int before = count_files();
+    uint8_t px[W * H * 3];
+    for (int i = 0; i < W * H * 3; i++)
+        px[i] = (uint8_t)(i * 3 + 1);
+    char path[128];
+    snprintf(path, sizeof path, "%s/bands.png", dir);
+    err_t e;
+    image_writer *w = image_writer_open(path, W, H, 3, false, NULL, &e);
+    assert_non_null(w);
+    assert_true(image_writer_rows(w, 2, px, &e));
+    assert_true(image_writer_rows(w, H - 2, px + 2 * W * 3, &e));
+    assert_false(image_writer_rows(w, 1, px, &e)); /* past the last row */
+    assert_true(image_writer_finish(w, &e));
+    int w2, h2;
+    uint8_t *back;
+    assert_true(image_read_u8(path, 3, IMAGE_MAX_SIDE, &w2, &h2, &back, &e));
+    assert_memory_equal(back, px, sizeof px);
+    free(back);
+    unlink(path);
+
+    w = image_writer_open(path, W, H, 3, false, NULL, &e);
+    assert_true(image_writer_rows(w, 2, px, &e));
+    assert_false(image_writer_finish(w, &e));
+    assert_non_null(strstr(e.msg, "only 2 of 5 rows"));
+    w = image_writer_open(path, W, H, 3, false, NULL, &e);
+    assert_true(image_writer_rows(w, 2, px, &e));
+    image_writer_abort(w);
+    assert_int_equal(count_files(), before);
+}
+
+/* A header's size is checked before anything is allocated for it. */
+static void oversized_images_are_refused(void **st)
+{
+    (void)st;
+    uint8_t px[W * H * 3] = {0};
+    char path[128];
+    snprintf(path, sizeof path, "%s/wide.png", dir);
+    err_t e;
+    assert_true(image_write_u8(path, W, H, 3, px, &e));
+    int w, h;
+    uint8_t *back = NULL;
+    assert_false(image_read_u8(path, 4, H - 1, &w, &h, &back, &e));
+    assert_non_null(strstr(e.msg, "is 7x5: larger than the 4x4"));
+    assert_null(back);
+    assert_true(image_read_u8(path, 4, W, &w, &h, &back, &e));
+    free(back);
+    unlink(path);
 }
 
 int main(void)
@@ -124,6 +178,8 @@ int main(void)
         cmocka_unit_test(png_round_trip),
         cmocka_unit_test(exr_round_trip),
         cmocka_unit_test(failed_writes_leave_nothing),
+        cmocka_unit_test(banded_writes),
+        cmocka_unit_test(oversized_images_are_refused),
     };
     return cmocka_run_group_tests(tests, setup, NULL);
 }

@@ -6,7 +6,7 @@ struct Ray {
 
 Ray primaryRay(vec2 fragCoord)
 {
-    vec2 s = (2.0 * (fragCoord + uJitter) / uResolution - 1.0) * uTanHalfFov;
+    vec2 s = (2.0 * (fragCoord + uTileOffset + uJitter) / uResolution - 1.0) * uTanHalfFov;
     s.x *= uResolution.x / uResolution.y;
     Ray r;
     r.o = uCamPos;

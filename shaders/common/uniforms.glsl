@@ -1,6 +1,7 @@
 // Per-frame inputs shared by every scene program. Set by app/render.c.
 // World: right-handed, Y up, metres. Rays: see app/camera.h for the pixel → direction convention.
-uniform vec2 uResolution;   // pixels
+uniform vec2 uResolution;   // pixels of the whole image
+uniform vec2 uTileOffset;   // where this render target's pixel (0,0) sits in it (bands of big shots)
 uniform vec3 uCamPos;
 uniform vec3 uCamForward, uCamRight, uCamUp; // orthonormal basis
 uniform float uTanHalfFov;  // tan(vertical fov / 2)
