@@ -14,7 +14,7 @@
 #include "scene.h"
 
 /* Texture units: the scene's textures first, then these. */
-enum { UNIT_ENVMAP = SCENE_MAX_TEXTURES, UNIT_HEIGHT, UNIT_HEIGHT_MAX };
+enum { UNIT_ENVMAP = SCENE_MAX_TEXTURES, UNIT_HEIGHT, UNIT_HEIGHT_MAX, UNIT_CSG_LIST, UNIT_CSG_NODES };
 
 /* ---- render.c ---- */
 GLuint render_vao(void); /* core profile draws nothing without a bound VAO */

@@ -2,6 +2,7 @@
  * copy by value (the caller may free or change its scene at once), loads the textures, cube map and
  * heightfield it names, and uploads every uniform by name (scene_uniforms() says which). */
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "render_parts.h"
@@ -15,6 +16,7 @@ static struct {
     int texture_width[SCENE_MAX_TEXTURES]; /* heightmaps: texels across (relief step size) */
     int env_size;
     GLuint height_tex, height_max_tex; /* terrain: heights, max pyramid */
+    GLuint csg_list_tex, csg_nodes_tex; /* csg: the primitive list and its BVH */
     heightfield hf;
 } gpu;
 
@@ -25,6 +27,11 @@ static void free_textures(void)
         glDeleteTextures(1, &gpu.height_max_tex);
         gpu.height_tex = gpu.height_max_tex = 0;
         heightfield_free(&gpu.hf);
+    }
+    if (gpu.csg_list_tex) {
+        glDeleteTextures(1, &gpu.csg_list_tex);
+        glDeleteTextures(1, &gpu.csg_nodes_tex);
+        gpu.csg_list_tex = gpu.csg_nodes_tex = 0;
     }
     glDeleteTextures(SCENE_MAX_TEXTURES, gpu.textures);
     memset(gpu.textures, 0, sizeof gpu.textures);
@@ -72,6 +79,26 @@ static bool upload_heightfield(const scene *s, err_t *err)
     return true;
 }
 
+/* texels RGBA texels, row-major in rows CSG_TEXTURE_WIDTH wide (shaders/csg/list.glsl). */
+static GLuint texel_texture(const float *data, int texels)
+{
+    int rows = (texels + CSG_TEXTURE_WIDTH - 1) / CSG_TEXTURE_WIDTH;
+    float *padded = calloc((size_t)rows * CSG_TEXTURE_WIDTH * 4, sizeof(float));
+    if (!padded)
+        return 0;
+    memcpy(padded, data, sizeof(float) * 4 * (size_t)texels);
+    GLuint t;
+    glGenTextures(1, &t);
+    glBindTexture(GL_TEXTURE_2D, t);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, CSG_TEXTURE_WIDTH, rows, 0, GL_RGBA, GL_FLOAT, padded);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    free(padded);
+    return t;
+}
+
 bool scene_gpu_set(const scene *s, err_t *err)
 {
     free_textures();
@@ -86,6 +113,12 @@ bool scene_gpu_set(const scene *s, err_t *err)
     }
     if (s->terrain.heightmap[0] && !upload_heightfield(s, err))
         return false;
+    if (s->csg_list_count > 0) {
+        gpu.csg_list_tex = texel_texture(s->csg_list, s->csg_list_count * CSG_LIST_TEXELS);
+        gpu.csg_nodes_tex = texel_texture(s->csg_nodes, s->csg_node_count * CSG_NODE_TEXELS);
+        if (!gpu.csg_list_tex || !gpu.csg_nodes_tex)
+            return err_set(err, "%s: out of memory for %d primitives", s->path, s->csg_list_count);
+    }
     gpu.env_size = 0;
     if (s->has_cubemap && (s->effects & (1u << EFFECT_ENVMAP))) {
         gpu.envmap = texture_load_cube(s->cubemap, &gpu.env_size, err);
@@ -93,7 +126,8 @@ bool scene_gpu_set(const scene *s, err_t *err)
             return false;
     }
     gpu.scene = *s;
-    gpu.scene.map_glsl = NULL;
+    gpu.scene.map_glsl = NULL; /* the caller's: the copy keeps no pointer */
+    gpu.scene.csg_list = gpu.scene.csg_nodes = NULL;
     gpu.have_scene = true;
     return true;
 }
@@ -143,6 +177,8 @@ static void texture_uniforms(const scene *s, const uniform_sink *u)
     for (int i = 0; i < SCENE_MAX_TEXTURES; i++)
         uniform_i(u, tex_names[i], i);
     uniform_i(u, "uEnvMap", UNIT_ENVMAP);
+    uniform_i(u, "uCsgList", UNIT_CSG_LIST);
+    uniform_i(u, "uCsgNodes", UNIT_CSG_NODES);
     uniform_f(u, "uEnvMaxLod", gpu.env_size > 0 ? log2f((float)gpu.env_size) : 0.0f);
     float texels[SCENE_MAX_MATERIALS];
     for (int i = 0; i < s->material_count; i++)
@@ -177,6 +213,10 @@ void scene_gpu_bind_textures(void)
     glBindTexture(GL_TEXTURE_2D, gpu.height_tex);
     glActiveTexture(GL_TEXTURE0 + UNIT_HEIGHT_MAX);
     glBindTexture(GL_TEXTURE_2D, gpu.height_max_tex);
+    glActiveTexture(GL_TEXTURE0 + UNIT_CSG_LIST);
+    glBindTexture(GL_TEXTURE_2D, gpu.csg_list_tex);
+    glActiveTexture(GL_TEXTURE0 + UNIT_CSG_NODES);
+    glBindTexture(GL_TEXTURE_2D, gpu.csg_nodes_tex);
     glActiveTexture(GL_TEXTURE0);
 }
 

@@ -221,7 +221,10 @@ bool scene_load(const char *name_or_path, const char *const *sets, int set_count
 void scene_free(scene *s)
 {
     free(s->map_glsl);
+    free(s->csg_list);
+    free(s->csg_nodes);
     s->map_glsl = NULL;
+    s->csg_list = s->csg_nodes = NULL;
 }
 
 void scene_preamble(const scene *s, strbuf *out)

@@ -13,6 +13,10 @@
  * Every primitive is an exact signed distance; rotations and translations keep it exact; union,
  * intersection and difference give a bound (the smooth variants a bound within k/4 of it).
  * Material of a surface point = the material of the primitive whose surface it is.
+ * Many primitives: bounded primitives at the top level (or in plain unions, without position or
+ * rotation) go to a primitive list behind a bounding volume hierarchy (app/bvh.h) once there are
+ * CSG_LIST_MIN of them, so 10,000 compile like 10; at most CSG_CODE_MAX primitives are compiled as
+ * code (inside other operations), a limit stated in the error before anything compiles.
  */
 #ifndef FATHOM_SCENE_H
 #define FATHOM_SCENE_H
@@ -24,6 +28,11 @@
 #include "program.h"
 #include "quality.h"
 #include "uniforms.h"
+
+enum { CSG_LIST_MIN = 32, CSG_CODE_MAX = 256, CSG_LIST_MAX = 1 << 20 };
+/* The primitive list as the csg program reads it (shaders/csg/list.glsl): CSG_LIST_TEXELS RGBA texels a
+ * primitive, CSG_NODE_TEXELS a BVH node, in textures CSG_TEXTURE_WIDTH texels wide. */
+enum { CSG_LIST_TEXELS = 5, CSG_NODE_TEXELS = 2, CSG_TEXTURE_WIDTH = 4096 };
 
 enum { SCENE_MAX_MATERIALS = 16, SCENE_MAX_LIGHTS = 8, SCENE_MAX_TEXTURES = 4, SCENE_NAME_MAX = 64 };
 
@@ -117,6 +126,9 @@ typedef struct scene {
 
     char *map_glsl; /* the program's virtual "program.glsl": the CSG map, or an #include of the fractal */
     int primitive_count;
+    /* csg: the primitive list and its BVH, packed as texels (4 floats each); NULL when none */
+    float *csg_list, *csg_nodes;
+    int csg_list_count, csg_node_count;
 } scene;
 
 /* Finds the file for a scene name ("csg" -> <data>/scenes/csg.json) or checks a path. */

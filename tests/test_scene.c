@@ -44,6 +44,57 @@ static int count(const char *hay, const char *needle)
     return n;
 }
 
+/* n spheres on a grid, as JSON nodes: "{...}, {...}" */
+static void spheres(strbuf *out, int n)
+{
+    for (int i = 0; i < n; i++)
+        sb_printf(out, "%s{\"shape\": \"sphere\", \"radius\": 0.1, \"position\": [%d, %d, %d], \"material\": \"a\"}",
+                  i ? ", " : "", i % 100, (i / 100) % 100, i / 10000);
+}
+
+/* Many primitives: the bounded ones in the objects' union (also through plain unions) go to the list,
+ * whatever the count; code is limited, and the limit is an error before anything compiles. */
+static void big_csg_scenes(void **st)
+{
+    (void)st;
+    strbuf j = {0};
+    sb_append(&j, "{\"program\": \"csg\", \"materials\": {\"a\": {}}, \"objects\": [{\"shape\": \"plane\", "
+                  "\"material\": \"a\"}, {\"op\": \"union\", \"children\": [");
+    spheres(&j, 10000);
+    sb_append(&j, "]}]}");
+    scene s;
+    err_t e;
+    if (!load(j.data, NULL, 0, &s, &e))
+        fail_msg("%s", e.msg);
+    assert_int_equal(s.csg_list_count, 10000);
+    assert_int_equal(s.primitive_count, 10001); /* the plane stays code */
+    assert_true(s.csg_node_count >= 10000 / 4 && s.csg_node_count < 2 * 10000);
+    assert_int_equal(count(s.map_glsl, "sdSphere("), 1); /* the dispatch, once */
+    assert_int_equal(count(s.map_glsl, "sdPlane("), 1);
+    assert_non_null(strstr(s.map_glsl, "listMap(p, d"));
+    scene_free(&s);
+    sb_free(&j);
+
+    /* below CSG_LIST_MIN: all code, as before */
+    sb_append(&j, "{\"program\": \"csg\", \"materials\": {\"a\": {}}, \"objects\": [");
+    spheres(&j, CSG_LIST_MIN - 1);
+    sb_append(&j, "]}");
+    if (!load(j.data, NULL, 0, &s, &e))
+        fail_msg("%s", e.msg);
+    assert_int_equal(s.csg_list_count, 0);
+    assert_int_equal(count(s.map_glsl, "sdSphere("), CSG_LIST_MIN - 1);
+    scene_free(&s);
+    sb_free(&j);
+
+    /* a moved union is not plain: its primitives are code, and too many of them are refused */
+    sb_append(&j, "{\"program\": \"csg\", \"materials\": {\"a\": {}}, \"objects\": [{\"op\": \"union\", "
+                  "\"position\": [0, 1, 0], \"children\": [");
+    spheres(&j, CSG_CODE_MAX + 1);
+    sb_append(&j, "]}]}");
+    expect_error(j.data, NULL, 0, "257 primitives inside operations would be compiled into the shader; at most 256");
+    sb_free(&j);
+}
+
 static void shipped_csg_scene(void **st)
 {
     (void)st;
@@ -269,6 +320,7 @@ int main(void)
         cmocka_unit_test(overrides),
         cmocka_unit_test(effects_follow_content),
         cmocka_unit_test(csg_codegen),
+        cmocka_unit_test(big_csg_scenes),
         cmocka_unit_test(locate),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

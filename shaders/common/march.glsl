@@ -117,7 +117,10 @@ Hit castRay(vec3 ro, vec3 rd, float tmax, float side, float pathT)
         }
         float step = omega * dist * float(STEP_FACTOR);
 #if MARCH_REFINES
-        if (!bound && dist <= floorBase + PRECISION_REL * t) { // on the surface (or inside at the start)
+        // on the surface, or inside at the start (a camera inside a solid); a negative distance later
+        // is a crossing and is refined (a "dist <= floor" test here took an overshoot as the hit, up to
+        // a passing-by step behind the surface: seen where many solids overlap, test_silhouette)
+        if (!bound && (abs(dist) <= floorBase + PRECISION_REL * t || (i == 0 && dist < 0.0))) {
             h.hit = true;
         } else if (!bound && dist < 0.0) { // crossed since the last step: locate the surface
             t = refineCrossing(ro, rd, side, tPrev, fPrev, t, dist, pathT, h.steps);
