@@ -100,7 +100,7 @@ const char *util_data_dir(void)
     if (n > 0) {
         exe[n] = '\0';
         util_dirname(exe, dir, sizeof dir);
-        const char *const rel[] = {"/../" FATHOM_DATA_SUBDIR, "/..", ""};
+        const char *const rel[] = {("/../" FATHOM_DATA_SUBDIR), "/..", ""};
         for (size_t i = 0; i < sizeof rel / sizeof rel[0]; i++)
             if (snprintf(found, sizeof found, "%s%s", dir, rel[i]) < (int)sizeof found && is_data_dir(found)) {
                 char clean[PATH_MAX]; /* messages name the scene file: without "bin/.." */
