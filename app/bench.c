@@ -132,8 +132,8 @@ static double image(const scene *s, const camera *cam, int w, int h)
 
 static void read_back(int w, int h, uint8_t **srgb, float **aov)
 {
-    *srgb = malloc((size_t)w * (size_t)h * 4);
-    *aov = malloc(sizeof(float) * (size_t)w * (size_t)h * AOV_FLOATS);
+    *srgb = util_alloc((size_t)w * (size_t)h * 4, "a bench image");
+    *aov = util_alloc(sizeof(float) * (size_t)w * (size_t)h * AOV_FLOATS, "a bench image");
     render_read_srgb8(*srgb, 1.0f);
     render_read_aovs(*aov);
 }
@@ -157,7 +157,7 @@ static bool measure(const char *knob_name, const char *value, const char *const 
     snprintf(out->value, sizeof out->value, "%s", value);
     /* an image of LONG_SPP samples or more is long enough to time once, and needs no warm-up */
     int runs = s.quality.spp >= LONG_SPP ? 1 : B.opt->runs;
-    double *ms = malloc(sizeof *ms * (size_t)B.opt->runs);
+    double *ms = util_alloc(sizeof *ms * (size_t)B.opt->runs, "bench timings");
     for (int v = 0; v < VIEWS; v++) {
         if (runs > 1)
             image(&s, &B.views[v].cam, w, h); /* warm-up: compiles and caches */
@@ -264,7 +264,7 @@ static double effect_time(const char *set, unsigned runtime, err_t *err, bool *o
     if (!*ok)
         return 0;
     render_set_runtime_effects(runtime);
-    double *ms = malloc(sizeof *ms * (size_t)B.opt->runs);
+    double *ms = util_alloc(sizeof *ms * (size_t)B.opt->runs, "bench timings");
     image(&s, &B.views[0].cam, B.w, B.h);
     for (int r = 0; r < B.opt->runs; r++)
         ms[r] = image(&s, &B.views[0].cam, B.w, B.h);
@@ -351,11 +351,11 @@ static bool frame_times(const cli_options *opt, err_t *err)
         if (!ok)
             break;
         camera cam = camera_look_at_deg(s.cam_position, s.cam_look_at, s.cam_fov_deg);
-        double *ms = malloc(sizeof *ms * (size_t)opt->runs);
+        double *ms = util_alloc(sizeof *ms * (size_t)opt->runs, "bench timings");
         image(&s, &cam, B.w, B.h);
         for (int r = 0; r < opt->runs; r++)
             ms[r] = image(&s, &cam, B.w, B.h);
-        float *aov = malloc(sizeof(float) * (size_t)B.w * (size_t)B.h * AOV_FLOATS);
+        float *aov = util_alloc(sizeof(float) * (size_t)B.w * (size_t)B.h * AOV_FLOATS, "a bench image");
         render_read_aovs(aov);
         double steps = 0;
         for (int i = 0; i < B.w * B.h; i++)

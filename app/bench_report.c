@@ -82,7 +82,7 @@ static int write_plot_data(const bench_results *r, FILE *f, char (*knobs)[32], i
         fprintf(f, "%.4f %.6f %s\n", r->rows[i].ms, fmax(r->rows[i].m.rmse, 1e-5), r->rows[i].value);
     }
     fprintf(f, "\n\n");
-    const bench_row **front = malloc(sizeof *front * (size_t)(r->nrows + 1));
+    const bench_row **front = util_alloc(sizeof *front * (size_t)(r->nrows + 1), "the bench report");
     int n = 0;
     for (int i = 0; i < r->nrows; i++)
         if (r->rows[i].front)

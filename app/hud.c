@@ -23,9 +23,9 @@ bool hud_init(err_t *err)
     state.prog = shader_build(root, "hud.vert", "hud.frag", NULL, NULL, 0, err);
     if (!state.prog)
         return false;
-    state.verts = malloc((size_t)MAX_QUADS * 4 * VERTEX_BYTES);
+    state.verts = util_alloc((size_t)MAX_QUADS * 4 * VERTEX_BYTES, "the HUD");
     /* Quads → two triangles each, through a fixed index buffer. */
-    GLuint *idx = malloc(sizeof(GLuint) * MAX_QUADS * 6);
+    GLuint *idx = util_alloc(sizeof(GLuint) * MAX_QUADS * 6, "the HUD");
     for (GLuint q = 0; q < MAX_QUADS; q++) {
         GLuint b = q * 4, *o = idx + q * 6;
         o[0] = b, o[1] = b + 1, o[2] = b + 2, o[3] = b, o[4] = b + 2, o[5] = b + 3;
@@ -66,7 +66,7 @@ void hud_draw(const char *text, int width, int height, float scale)
 {
     if (!state.prog || !text || !*text)
         return;
-    char *copy = strdup(text);
+    char *copy = util_strdup(text);
     int quads = stb_easy_font_print(PAD, PAD, copy, NULL, state.verts, MAX_QUADS * 4 * VERTEX_BYTES);
     float w = (float)stb_easy_font_width(copy) + 2 * PAD, h = (float)stb_easy_font_height(copy) + 2 * PAD;
     free(copy);
@@ -85,7 +85,7 @@ void hud_draw(const char *text, int width, int height, float scale)
     glBindBuffer(GL_ARRAY_BUFFER, state.vbo);
 
     /* the panel first, reusing the text buffer's head for its one quad */
-    char *text_verts = malloc((size_t)quads * 4 * VERTEX_BYTES);
+    char *text_verts = util_alloc((size_t)quads * 4 * VERTEX_BYTES, "the HUD");
     memcpy(text_verts, state.verts, (size_t)quads * 4 * VERTEX_BYTES);
     float panel[4][4] = {{0, 0, 0, 0}, {w * scale, 0, 0, 0}, {w * scale, h * scale, 0, 0}, {0, h * scale, 0, 0}};
     memcpy(state.verts, panel, sizeof panel);

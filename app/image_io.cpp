@@ -41,8 +41,15 @@ extern "C" void on_fatal_signal(int sig)
     raise(sig);
 }
 
+static void at_exit(void)
+{
+    if (g_temp_live)
+        unlink(g_temp);
+}
+
 extern "C" void image_io_install_signal_cleanup(void)
 {
+    std::atexit(at_exit); /* util_alloc's exit on out-of-memory */
     for (int sig : {SIGINT, SIGTERM, SIGHUP, SIGQUIT})
         std::signal(sig, on_fatal_signal);
     std::signal(SIGXFSZ, SIG_IGN); /* over a file-size limit, write() fails with EFBIG instead */

@@ -52,7 +52,7 @@ bool image_write_f32(const char *path, int width, int height, int channels, cons
 bool image_can_write(const char *path, err_t *err);
 
 /* Removes the temporary file of a write in progress when SIGINT, SIGTERM, SIGHUP or SIGQUIT
- * arrives, then dies of the signal as it would have; SIGXFSZ is ignored so that a file-size limit
+ * arrives, then dies of the signal as it would have (and at exit()); SIGXFSZ is ignored so that a file-size limit
  * is an error the writer reports. Call once at start-up. */
 void image_io_install_signal_cleanup(void);
 

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 
 #include "aov.h"
+#include "util.h"
 
 static bool hits(const image_view *v, int x, int y)
 {
@@ -82,8 +83,8 @@ metrics metrics_compare(const image_view *test, const image_view *ref, double pi
 
 void metrics_upscale(const image_view *in, int w, int h, uint8_t **srgb, float **aov)
 {
-    *srgb = malloc((size_t)w * (size_t)h * 4);
-    *aov = malloc(sizeof(float) * (size_t)w * (size_t)h * AOV_FLOATS);
+    *srgb = util_alloc((size_t)w * (size_t)h * 4, "an image");
+    *aov = util_alloc(sizeof(float) * (size_t)w * (size_t)h * AOV_FLOATS, "an image");
     assert(*srgb && *aov);
     double sx = (double)in->width / w, sy = (double)in->height / h;
     for (int y = 0; y < h; y++)

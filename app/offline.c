@@ -11,7 +11,9 @@
 #include "image_io.h"
 #include "render.h"
 
-enum { BAR_WIDTH = 30, MAX_CHANNELS = 12, STRIP_PIXELS = 1 << 21 };
+/* A band: about 2 Mpixel by default; at most 16 Mpixel whatever --strip-rows asks (GPU targets 52 bytes
+ * a pixel, the readback about 140), so 16384 columns always render. */
+enum { BAR_WIDTH = 30, MAX_CHANNELS = 12, STRIP_PIXELS = 1 << 21, BAND_MAX_PIXELS = 1 << 24 };
 static const float EXPOSURE = 1.0f;
 
 static void progress(int done, int total, double elapsed)
@@ -117,12 +119,15 @@ bool offline_write(const char *path, int width, int height, unsigned aovs, err_t
     return image_writer_finish(w, err);
 }
 
-/* Rows a band: all of them up to STRIP_PIXELS, else an even count. Bands are cut from the bottom
- * (GL's row 0), so each band's offset is even and pixel quads keep their parity: screen-space
- * derivatives, and so every pixel, match an unbanded render. The top band takes the remainder. */
+/* Rows a band: all of them up to STRIP_PIXELS (or --strip-rows, at most BAND_MAX_PIXELS), else an even
+ * count. Bands are cut from the bottom (GL's row 0), so each band's offset is even and pixel quads keep
+ * their parity: screen-space derivatives, and so every pixel, match an unbanded render. The top band
+ * takes the remainder. */
 static int band_rows(const offline_desc *d)
 {
     int rows = d->strip_rows ? d->strip_rows : STRIP_PIXELS / d->width;
+    if (rows > BAND_MAX_PIXELS / d->width)
+        rows = BAND_MAX_PIXELS / d->width;
     if (rows >= d->height)
         return d->height;
     return rows > 2 ? rows & ~1 : 2;

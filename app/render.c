@@ -241,8 +241,7 @@ void render_display(GLuint fbo, int width, int height, float exposure, render_vi
 /* GL rows run bottom to top; files run top to bottom. */
 static void flip_rows(void *data, int height, size_t row_bytes)
 {
-    uint8_t *p = data, *tmp = malloc(row_bytes);
-    assert(tmp);
+    uint8_t *p = data, *tmp = util_alloc(row_bytes, "a row of the image");
     for (int y = 0; y < height / 2; y++) {
         uint8_t *a = p + (size_t)y * row_bytes, *b = p + (size_t)(height - 1 - y) * row_bytes;
         memcpy(tmp, a, row_bytes);
@@ -281,8 +280,7 @@ void render_read_linear(float *rgba)
 void render_read_aovs(float *aov8)
 {
     size_t n = (size_t)state.width * (size_t)state.height;
-    float *a = malloc(sizeof(float) * 4 * n), *b = malloc(sizeof(float) * 4 * n);
-    assert(a && b);
+    float *a = util_alloc(sizeof(float) * 4 * n, "the AOV readback"), *b = util_alloc(sizeof(float) * 4 * n, "the AOV readback");
     read_target(state.fbo, GL_COLOR_ATTACHMENT1, GL_FLOAT, a);
     read_target(state.fbo, GL_COLOR_ATTACHMENT2, GL_FLOAT, b);
     for (size_t i = 0; i < n; i++) {

@@ -24,7 +24,7 @@ bool render_probe_with(const scene *s, const char *frag, const char *extra_defin
     GLint max_side = 0;
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_side);
     int w = n < max_side ? n : max_side, h = (n + w - 1) / w;
-    float *px = calloc((size_t)w * (size_t)h * 4, sizeof(float));
+    float *px = util_calloc((size_t)w * (size_t)h * 4, sizeof(float), "probe points");
     for (int i = 0; i < n; i++)
         memcpy(px + (size_t)i * 4, points + (size_t)i * 3, sizeof(float) * 3);
     GLuint tex[2], fbo;

@@ -69,7 +69,7 @@ GLuint programs_get(const scene *s, const char *frag, const char *extra_defines,
         cache.count--;
     }
     cache.programs[cache.count++] =
-        (cached_program){.frag = frag, .preamble = pre.data, .map = strdup(s->map_glsl), .prog = prog};
+        (cached_program){.frag = frag, .preamble = pre.data, .map = util_strdup(s->map_glsl), .prog = prog};
     return prog;
 }
 

@@ -411,9 +411,7 @@ static void flatten(const cJSON *arr, const char *path, items *out)
         }
         if (out->n == out->cap) {
             out->cap = out->cap ? 2 * out->cap : 64;
-            out->v = realloc(out->v, sizeof *out->v * (size_t)out->cap);
-            if (!out->v)
-                abort(); /* a few hundred bytes a node: the JSON tree itself is larger */
+            out->v = util_realloc(out->v, sizeof *out->v * (size_t)out->cap, "the objects");
         }
         out->v[out->n].node = n;
         snprintf(out->v[out->n].path, sizeof out->v[out->n].path, "%s", p);

@@ -135,7 +135,7 @@ static GLuint compile(GLenum type, const char *root, const char *file, const cha
     if (!ok) {
         GLint len = 0;
         glGetShaderiv(sh, GL_INFO_LOG_LENGTH, &len);
-        char *log = calloc((size_t)len + 1, 1);
+        char *log = util_calloc((size_t)len + 1, 1, "a shader log");
         glGetShaderInfoLog(sh, len, NULL, log);
         strbuf msg = {0};
         shader_translate_log(log, &files, &msg);

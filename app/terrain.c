@@ -44,8 +44,8 @@ static void build(heightfield *hf)
     hf->levels = 1;
     for (int s = hf->pw > hf->ph ? hf->pw : hf->ph; s > 1; s /= 2)
         hf->levels++;
-    hf->max = calloc((size_t)hf->levels, sizeof *hf->max);
-    hf->max[0] = malloc(sizeof(float) * (size_t)hf->pw * (size_t)hf->ph);
+    hf->max = util_calloc((size_t)hf->levels, sizeof *hf->max, "the heightfield pyramid");
+    hf->max[0] = util_alloc(sizeof(float) * (size_t)hf->pw * (size_t)hf->ph, "the heightfield pyramid");
     for (int j = 0; j < hf->ph; j++)
         for (int i = 0; i < hf->pw; i++) {
             float m = -INFINITY;
@@ -58,7 +58,7 @@ static void build(heightfield *hf)
     for (int k = 1; k < hf->levels; k++) {
         int pw = hf->pw >> (k - 1), ph = hf->ph >> (k - 1);
         int w = pw > 1 ? pw / 2 : 1, h = ph > 1 ? ph / 2 : 1;
-        hf->max[k] = malloc(sizeof(float) * (size_t)w * (size_t)h);
+        hf->max[k] = util_alloc(sizeof(float) * (size_t)w * (size_t)h, "the heightfield pyramid");
         for (int j = 0; j < h; j++)
             for (int i = 0; i < w; i++) {
                 float m = -INFINITY;
@@ -76,7 +76,7 @@ static void build(heightfield *hf)
 void heightfield_from(const float *heights, int w, int h, float dx, float dz, heightfield *hf)
 {
     *hf = (heightfield){.width = w, .height = h, .dx = dx, .dz = dz};
-    hf->h = malloc(sizeof(float) * (size_t)w * (size_t)h);
+    hf->h = util_alloc(sizeof(float) * (size_t)w * (size_t)h, "the heightfield");
     memcpy(hf->h, heights, sizeof(float) * (size_t)w * (size_t)h);
     build(hf);
 }

@@ -47,7 +47,7 @@ GLuint texture_load_height(const char *path, int *width, err_t *err)
     float *px;
     if (!image_read_f32(path, 1, max_side(), &w, &h, &c, &px, err))
         return 0;
-    float *one = malloc(sizeof(float) * (size_t)w * (size_t)h);
+    float *one = util_alloc(sizeof(float) * (size_t)w * (size_t)h, "a relief heightmap");
     float lo = INFINITY, hi = -INFINITY;
     for (int i = 0; i < w * h; i++) {
         one[i] = px[(size_t)i * (size_t)c];

@@ -35,8 +35,7 @@ bool util_read_file(const char *path, char **out, size_t *len, err_t *err)
         return err_set(err, "'%s' is not a regular file", path);
     }
     size_t size = (size_t)st.st_size;
-    char *buf = malloc(size + 1);
-    assert(buf);
+    char *buf = util_alloc(size + 1, path);
     size_t got = fread(buf, 1, size, f);
     fclose(f);
     if (got != size) {
@@ -120,14 +119,50 @@ double util_now(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
+static void out_of_memory(size_t bytes, const char *what)
+{
+    fprintf(stderr, "fathom: out of memory: %s needs %.1f MB more than this machine or its limits (ulimit -v) "
+                    "give\n", what, (double)bytes / (1 << 20));
+    exit(1);
+}
+
+void *util_alloc(size_t bytes, const char *what)
+{
+    void *p = malloc(bytes ? bytes : 1);
+    if (!p)
+        out_of_memory(bytes, what);
+    return p;
+}
+
+void *util_calloc(size_t count, size_t size, const char *what)
+{
+    void *p = calloc(count ? count : 1, size ? size : 1);
+    if (!p)
+        out_of_memory(count * size, what);
+    return p;
+}
+
+void *util_realloc(void *old, size_t bytes, const char *what)
+{
+    void *p = realloc(old, bytes ? bytes : 1);
+    if (!p)
+        out_of_memory(bytes, what);
+    return p;
+}
+
+char *util_strdup(const char *s)
+{
+    size_t n = strlen(s) + 1;
+    return memcpy(util_alloc(n, "text"), s, n);
+}
+
 void sb_appendn(strbuf *sb, const char *s, size_t n)
 {
     if (sb->len + n + 1 > sb->cap) {
         size_t cap = sb->cap ? sb->cap : 256;
         while (cap < sb->len + n + 1)
             cap *= 2;
-        sb->data = realloc(sb->data, cap);
-        assert(sb->data);
+        sb->data = util_realloc(sb->data, cap, "text");
         sb->cap = cap;
     }
     memcpy(sb->data + sb->len, s, n);
@@ -145,8 +180,7 @@ void sb_printf(strbuf *sb, const char *fmt, ...)
     int n = vsnprintf(NULL, 0, fmt, ap);
     va_end(ap);
     assert(n >= 0);
-    char *tmp = malloc((size_t)n + 1);
-    assert(tmp);
+    char *tmp = util_alloc((size_t)n + 1, "text");
     vsnprintf(tmp, (size_t)n + 1, fmt, ap2);
     va_end(ap2);
     sb_appendn(sb, tmp, (size_t)n);
@@ -168,8 +202,7 @@ static int cmp_double(const void *a, const void *b)
 double util_median(const double *v, int n)
 {
     assert(n > 0);
-    double *c = malloc(sizeof *c * (size_t)n);
-    assert(c);
+    double *c = util_alloc(sizeof *c * (size_t)n, "a median");
     memcpy(c, v, sizeof *c * (size_t)n);
     qsort(c, (size_t)n, sizeof *c, cmp_double);
     double m = (n % 2) ? c[n / 2] : 0.5 * (c[n / 2 - 1] + c[n / 2]);

@@ -22,6 +22,15 @@ typedef struct err_t {
 /* Sets err->msg (printf format). Returns false so callers can `return err_set(...)`. */
 bool err_set(err_t *err, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 
+/* Allocation that cannot come back empty-handed: on failure it prints "fathom: out of memory: WHAT
+ * (N MB)" and exits with 1 (an output being written is removed first: image_io's exit handler). For
+ * the many small allocations whose failure leaves nothing sensible to do; big ones whose size comes
+ * from input (images, heightmaps, bands) check their own and say what to change. */
+void *util_alloc(size_t bytes, const char *what);
+void *util_calloc(size_t count, size_t size, const char *what);
+void *util_realloc(void *p, size_t bytes, const char *what);
+char *util_strdup(const char *s);
+
 /* Reads a whole file, NUL-terminated. *out is malloc'd; the caller frees it. */
 bool util_read_file(const char *path, char **out, size_t *len, err_t *err);
 

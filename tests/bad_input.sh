@@ -63,6 +63,17 @@ head -c 120 "$src/terrains/jacksboro.png" >"$tmp/cut.png"
 sed "s|no/such.png|cut.png|" "$tmp/tex.json" >"$tmp/cut.json"
 expect corrupt-png 1 "cannot read image '$tmp/cut.png'" 1 -- "$fathom" --scene "$tmp/cut.json" $out
 
+# a heightmap whose header claims 16384x16384 16-bit grey (allowed), under a 1.2 GB address-space limit:
+# the allocation fails, which must be a clean error (skipped where the limit stops fathom from starting,
+# as it does a sanitizer build)
+printf '\211\120\116\107\015\012\032\012\000\000\000\015\111\110\104\122\000\000\100\000\000\000\100\000\020\000\000\000\000\334\063\223\033\000\000\000\013\111\104\101\124\170\234\143\140\200\001\000\000\012\000\001\177\200\164\136\000\000\000\000\111\105\116\104\256\102\140\202' >"$tmp/h16.png"
+printf '{"program": "terrain", "materials": {"rock": {}}, "terrain": {"heightmap": "h16.png", "spacing": [1, 1], "height_min": 0, "height_max": 1}}' >"$tmp/h16.json"
+if sh -c 'ulimit -v 1200000; exec "$0" --version' "$fathom" >/dev/null 2>&1; then
+    expect out-of-memory 1 "out of memory" 1 -- sh -c 'ulimit -v 1200000; exec "$0" "$@"' "$fathom" --scene "$tmp/h16.json" $out
+else
+    echo "skip out-of-memory: fathom does not start under a 1.2 GB address-space limit here"
+fi
+
 # heightmaps with NaN and infinite heights (PFM: a float image a shell can write)
 printf 'Pf\n3 2\n-1.0\n' >"$tmp/nan.pfm"
 printf '\000\000\200\077\000\000\300\177\000\000\200\077\000\000\200\177\000\000\200\077\000\000\200\077' >>"$tmp/nan.pfm"
