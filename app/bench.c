@@ -407,6 +407,8 @@ bool bench_run(const cli_options *opt, err_t *err)
     B.h = opt->height ? opt->height : DEFAULT_HEIGHT;
     if (opt->frame_times)
         return frame_times(opt, err);
+    if (opt->interactive)
+        return bench_interactive(opt, opt->width ? opt->width : 1280, opt->height ? opt->height : 720, err);
     if (opt->out) {
         struct stat st;
         if (stat(opt->out, &st) != 0 || !S_ISDIR(st.st_mode))

@@ -18,4 +18,8 @@
 
 bool bench_run(const cli_options *opt, err_t *err);
 
+/* bench --interactive (bench_interactive.c): a scripted flight at window size w × h under the window's
+ * resolution controller; prints frame times, internal size, moving-frame error and time to converge. */
+bool bench_interactive(const cli_options *opt, int w, int h, err_t *err);
+
 #endif

@@ -21,6 +21,8 @@ static const char USAGE[] =
     "  apply), the presets and every effect; time = median of N [5] images after warm-up (wall clock\n"
     "  around glFinish); error against a reference render. --out writes CSV, plot, summary [320x180].\n"
     "  bench --frame-times: only each preset's frame time (one sample per pixel), median of N.\n"
+    "  bench --interactive [--fps N]: a scripted 100-frame flight as the window flies it (lower\n"
+    "  internal resolution for N fps [30]): frame times, internal size, error, time to converge [1280x720].\n"
     "\n"
     "  --scene NAME|FILE     scene to load: a name from scenes/ (csg) or a scene file path [csg]\n"
     "  --output FILE         render headless to FILE (.png 8-bit sRGB, .exr linear float) and exit\n"
@@ -36,6 +38,7 @@ static const char USAGE[] =
     "                        --set effects.fog=off, --set lights.0.intensity=40 (repeatable)\n"
     "  --aov LIST            extra EXR channels: depth,normal,steps,exit (needs .exr output)\n"
     "  --frames N            window mode: render N frames, then exit\n"
+    "  --fps N               window: frame rate to hold while moving (lower internal resolution) [30]\n"
     "  --print-variant       print the effects and #defines the scene compiles, then exit\n"
     "  --list-scenes         list the shipped scenes\n"
     "  --quiet               no progress bar\n"
@@ -160,6 +163,9 @@ static bool set_output_option(const char *name, const char *val, cli_options *o,
         if (o->knob_count == CLI_MAX_SETS)
             return err_set(err, "too many --knob options (at most %d)", CLI_MAX_SETS);
         o->knobs[o->knob_count++] = val;
+    } else if (!strcmp(name, "--fps")) {
+        if (!parse_int(val, 1, 1000, &o->fps))
+            return err_set(err, "bad --fps '%s': expected a whole number from 1 to 1000", val);
     } else if (!strcmp(name, "--frames")) {
         if (!parse_int(val, 1, 1 << 30, &o->frames))
             return err_set(err, "bad --frames '%s': expected a whole number >= 1", val);
@@ -230,6 +236,7 @@ static bool set_flag(const char *a, cli_options *o)
         {"--version", offsetof(cli_options, version)},     {"--print-variant", offsetof(cli_options, print_variant)},
         {"--list-scenes", offsetof(cli_options, list_scenes)}, {"--quiet", offsetof(cli_options, quiet)},
         {"--frame-times", offsetof(cli_options, frame_times)},
+        {"--interactive", offsetof(cli_options, interactive)},
     };
     for (size_t i = 0; i < sizeof FLAGS / sizeof FLAGS[0]; i++)
         if (!strcmp(a, FLAGS[i].name)) {
@@ -248,6 +255,10 @@ static bool check_combinations(const cli_options *o, err_t *err)
         return err_set(err, "--runs, --knob, --out and --name belong to fathom bench");
     if (o->aovs && !o->output)
         return err_set(err, "--aov needs an offline shot: add --output FILE.exr");
+    if (o->fps && (o->output || (o->bench && !o->interactive)))
+        return err_set(err, "--fps is the window's (and bench --interactive's): it does not apply here");
+    if (o->interactive && !o->bench)
+        return err_set(err, "--interactive belongs to fathom bench");
     if (o->strip_rows && !o->output)
         return err_set(err, "--strip-rows needs an offline shot: add --output FILE");
     if (o->has_camera && o->has_look_at && camera_degenerate(o->camera, o->look_at))
@@ -292,7 +303,7 @@ bool cli_parse(int argc, char **argv, cli_options *o, err_t *err)
         }
         static const char *const WITH_VALUE[] = {"--scene", "--output", "--size", "--spp", "--quality",
                                                  "--camera", "--look-at", "--fov", "--set", "--aov", "--frames",
-                                                 "--runs", "--out", "--knob", "--name", "--strip-rows"};
+                                                 "--runs", "--out", "--knob", "--name", "--strip-rows", "--fps"};
         bool known = false;
         for (size_t k = 0; k < sizeof WITH_VALUE / sizeof WITH_VALUE[0]; k++)
             known |= !strcmp(name, WITH_VALUE[k]);

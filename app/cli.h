@@ -29,6 +29,7 @@ typedef struct cli_options {
     int spp;            /* 0: the quality preset's */
     int strip_rows;     /* offline: rows rendered and written at a time; 0: as many as fit 2 Mpixel */
     int frames;         /* window: exit after N frames; 0: run until closed */
+    int fps;            /* window: frame rate to hold while moving; 0: the default (30) */
     bool has_camera, has_look_at, has_fov;
     float camera[3], look_at[3], fov_deg;
     const char *sets[CLI_MAX_SETS]; /* "key=value" scene overrides, in order */
@@ -41,6 +42,7 @@ typedef struct cli_options {
     const char *out;   /* bench: folder for CSV, plot and summary (NULL: print only) */
     const char *name;  /* bench: file name prefix in that folder (NULL: the scene's name) */
     bool frame_times;  /* bench: only the presets' frame times (1 sample per pixel), no error */
+    bool interactive;  /* bench: a scripted flight as the window flies it */
     const char *knobs[CLI_MAX_SETS]; /* bench: "NAME=v1,v2,..." sweeps (none: every knob, default values) */
     int knob_count;
 } cli_options;

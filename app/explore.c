@@ -14,9 +14,11 @@
 #include "hud.h"
 #include "offline.h"
 #include "render.h"
+#include "resolution.h"
 #include "scene.h"
 
-enum { MAX_SCENES = 9, FRAME_HISTORY = 30 };
+enum { MAX_SCENES = 9, FRAME_HISTORY = 30, DEFAULT_FPS = 30 };
+static const float MIN_SCALE = 0.125f; /* moving frames keep at least 1/8 of the window's side */
 static const float MOUSE_SENSITIVITY = 0.0025f; /* radians per pixel */
 static const float SPEED_STEP = 1.25f;          /* per scroll notch */
 static const float DEFAULT_SPEED = 2.0f;        /* m/s */
@@ -46,6 +48,8 @@ static struct {
     char message[ERR_MSG_MAX];
     double frame_ms[FRAME_HISTORY];
     int frame_index;
+    res_controller res; /* the internal resolution while moving */
+    bool scaled;        /* the last frame was rendered below full size */
 } app;
 
 /* The next knob the window steps, after k (QUALITY_KNOBS' step column says which). */
@@ -197,6 +201,14 @@ static void hud(int w, int h)
     if (app.scene.adaptive_speed && app.scene.quality.hit_k * d * pa < PRECISION_REL * (glm_vec3_norm((float *)c->position) + d))
         snprintf(limit, sizeof limit, "float precision reached: detail below %.2g m cannot be resolved here\n",
                  (double)(PRECISION_REL * (glm_vec3_norm((float *)c->position) + d)));
+    char internal[96];
+    int iw, ih;
+    render_active_size(&iw, &ih);
+    double fps = 1000.0 / (double)app.res.target_ms;
+    if (app.scaled)
+        snprintf(internal, sizeof internal, "moving: %dx%d inside (target %.0f fps)", iw, ih, fps);
+    else
+        snprintf(internal, sizeof internal, "still: full size (moving: target %.0f fps)", fps);
     char knobs[512];
     int len = 0;
     for (int k = 0; k < KNOB_COUNT; k++)
@@ -209,13 +221,13 @@ static void hud(int w, int h)
                                 (double)WALK_HEIGHT) < 0)
         limit[0] = '\0';
     snprintf(text, sizeof text,
-             "%s  [%s]  %dx%d%s\n"
+             "%s  [%s]  %dx%d%s  %s\n"
              "%.1f ms/sample  %.1f fps  %d/%d spp\n"
              "%s\n"
              "pos %.4g %.4g %.4g  %s  fov %.0f\n%s"
              "WASD move  mouse look  Space/C up/down  Shift fast  scroll speed\n"
              "1-%d scenes  K knob  =/- step it  H steps  G grab  V difference  T walk  R reload  P shot  Esc quit\n%s",
-             app.scene.name, preset_name(app.scene.preset), w, h, views[app.view], ms, ms > 0 ? 1000.0 / ms : 0.0,
+             app.scene.name, preset_name(app.scene.preset), w, h, views[app.view], internal, ms, ms > 0 ? 1000.0 / ms : 0.0,
              render_samples(), app.scene.quality.spp, knobs, (double)c->position[0], (double)c->position[1],
              (double)c->position[2], speed, (double)glm_deg(c->fov_y), limit, app.scene_count,
              app.message);
@@ -269,6 +281,8 @@ static bool handle_requests(const cli_options *opt)
         else
             app.message[0] = '\0';
         app.pending_scene = -1;
+        memset(app.frame_ms, 0, sizeof app.frame_ms); /* another scene's times say nothing of this one */
+        app.res = res_init(app.res.target_ms > 0 ? 1000.0f / app.res.target_ms : DEFAULT_FPS, MIN_SCALE);
         restart = true;
     }
     if (app.knob_step) {
@@ -292,12 +306,23 @@ static bool handle_requests(const cli_options *opt)
     return restart;
 }
 
-/* Adds a sample while the image is not converged (every frame with --frames). True while refining. */
+/* One frame. Moving (or restarted): one sample at the internal resolution the controller picks for the
+ * target frame rate, stretched to the window. Still: full resolution, samples accumulating up to the
+ * preset's spp. True while there is work left. */
 static bool draw(const cli_options *opt, int w, int h, bool restart, camera *shown, bool *moved)
 {
     render_resize(w, h);
     *moved = memcmp(shown, &app.cam, sizeof *shown) != 0;
-    if (*moved || restart || render_samples() == 0) {
+    bool moving = *moved || restart;
+    int iw = w, ih = h;
+    if (moving) {
+        iw = res_side(w, app.res.scale);
+        ih = res_side(h, app.res.scale);
+    }
+    int aw, ah;
+    render_active_size(&aw, &ah);
+    if (moving || aw != iw || ah != ih || render_samples() == 0) {
+        render_set_active(iw, ih);
         render_begin(&app.cam);
         *shown = app.cam;
     }
@@ -306,15 +331,19 @@ static bool draw(const cli_options *opt, int w, int h, bool restart, camera *sho
         double t0 = glfwGetTime();
         render_sample();
         glFinish();
-        app.frame_ms[app.frame_index++ % FRAME_HISTORY] = (glfwGetTime() - t0) * 1000.0;
+        double ms = (glfwGetTime() - t0) * 1000.0;
+        app.frame_ms[app.frame_index++ % FRAME_HISTORY] = ms;
+        if (moving)
+            res_update(&app.res, ms, (double)iw * ih, (double)w * h);
     }
+    app.scaled = iw != w || ih != h;
     render_display(0, w, h, EXPOSURE, app.view);
     hud(w, h);
     if (app.screenshot) {
-        screenshot(w, h);
+        screenshot(iw, ih);
         app.screenshot = false;
     }
-    return refining;
+    return refining || app.scaled;
 }
 
 static void loop(GLFWwindow *win, const cli_options *opt)
@@ -348,6 +377,7 @@ bool explore_run(const cli_options *opt, err_t *err)
     memset(&app, 0, sizeof app);
     app.pending_scene = -1;
     app.speed = DEFAULT_SPEED;
+    app.res = res_init((float)(opt->fps ? opt->fps : DEFAULT_FPS), MIN_SCALE);
     app.knob = next_knob((knob_id)(KNOB_COUNT - 1));
     list_scene_names();
     scene first; /* a bad scene is the error to report, even where no window can open */

@@ -19,7 +19,8 @@ static struct {
     GLuint out_fbo, out_tex; /* RGBA8 for sRGB readback */
     GLuint ref_fbo, ref_tex; /* a grabbed image for the difference view */
     int ref_samples;
-    int width, height, samples;
+    int width, height, samples;   /* the active image: all of the targets or, while flying, a corner */
+    int alloc_width, alloc_height; /* the targets' size */
     int full_width, full_height, tile_x, tile_y; /* the image the target is a band of; its GL offset */
     GLuint prog; /* the current scene's program */
     camera cam;
@@ -90,13 +91,13 @@ bool render_set_scene(const scene *s, const char *extra_defines, err_t *err)
 void render_resize(int width, int height)
 {
     assert(width > 0 && height > 0);
-    if (state.fbo && width == state.width && height == state.height) {
-        render_set_window(width, height, 0, 0);
+    if (state.fbo && width == state.alloc_width && height == state.alloc_height) {
+        render_set_active(width, height);
         return;
     }
     free_targets();
-    state.width = width;
-    state.height = height;
+    state.width = state.alloc_width = width;
+    state.height = state.alloc_height = height;
     render_set_window(width, height, 0, 0);
     glGenFramebuffers(1, &state.fbo);
     glBindFramebuffer(GL_FRAMEBUFFER, state.fbo);
@@ -118,6 +119,22 @@ void render_resize(int width, int height)
     assert(glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     state.samples = 0;
+}
+
+void render_set_active(int width, int height)
+{
+    assert(width > 0 && height > 0 && width <= state.alloc_width && height <= state.alloc_height);
+    if (width != state.width || height != state.height)
+        state.samples = 0;
+    state.width = width;
+    state.height = height;
+    render_set_window(width, height, 0, 0);
+}
+
+void render_active_size(int *width, int *height)
+{
+    *width = state.width;
+    *height = state.height;
 }
 
 void render_set_window(int full_width, int full_height, int left, int top)
@@ -194,7 +211,7 @@ void render_grab_reference(void)
     if (!state.ref_tex) {
         glGenTextures(1, &state.ref_tex);
         glBindTexture(GL_TEXTURE_2D, state.ref_tex);
-        glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, state.width, state.height, 0, GL_RGBA, GL_FLOAT, NULL);
+        glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, state.alloc_width, state.alloc_height, 0, GL_RGBA, GL_FLOAT, NULL);
         glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
         glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
         glGenFramebuffers(1, &state.ref_fbo);
@@ -234,6 +251,8 @@ void render_display(GLuint fbo, int width, int height, float exposure, render_vi
     glUniform1f(glGetUniformLocation(state.display_prog, "uInvSamples"),
                 state.samples > 0 ? 1.0f / (float)state.samples : 0.0f);
     glUniform1f(glGetUniformLocation(state.display_prog, "uExposure"), exposure);
+    glUniform2f(glGetUniformLocation(p, "uSrcSize"), (float)state.width, (float)state.height);
+    glUniform2f(glGetUniformLocation(p, "uDstSize"), (float)width, (float)height);
     glBindVertexArray(state.vao);
     glDrawArrays(GL_TRIANGLES, 0, 3);
 }
@@ -251,20 +270,31 @@ static void flip_rows(void *data, int height, size_t row_bytes)
     free(tmp);
 }
 
-static void read_target(GLuint fbo, GLenum attachment, GLenum type, void *out)
+static void read_rect(GLuint fbo, GLenum attachment, GLenum type, int w, int h, void *out)
 {
     glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
     glReadBuffer(attachment);
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadPixels(0, 0, state.width, state.height, GL_RGBA, type, out);
+    glReadPixels(0, 0, w, h, GL_RGBA, type, out);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+}
+
+static void read_target(GLuint fbo, GLenum attachment, GLenum type, void *out)
+{
+    read_rect(fbo, attachment, type, state.width, state.height, out);
+}
+
+void render_read_stretched_srgb8(uint8_t *rgba, int width, int height, float exposure)
+{
+    assert(width <= state.alloc_width && height <= state.alloc_height);
+    render_display(state.out_fbo, width, height, exposure, VIEW_COLOR);
+    read_rect(state.out_fbo, GL_COLOR_ATTACHMENT0, GL_UNSIGNED_BYTE, width, height, rgba);
+    flip_rows(rgba, height, (size_t)width * 4);
 }
 
 void render_read_srgb8(uint8_t *rgba, float exposure)
 {
-    render_display(state.out_fbo, state.width, state.height, exposure, VIEW_COLOR);
-    read_target(state.out_fbo, GL_COLOR_ATTACHMENT0, GL_UNSIGNED_BYTE, rgba);
-    flip_rows(rgba, state.height, (size_t)state.width * 4);
+    render_read_stretched_srgb8(rgba, state.width, state.height, exposure);
 }
 
 void render_read_linear(float *rgba)

@@ -30,6 +30,12 @@ bool render_set_scene(const scene *s, const char *extra_defines, err_t *err);
 void render_set_runtime_effects(unsigned mask);
 
 void render_resize(int width, int height);
+/* Renders into the bottom-left width × height of the targets (at most render_resize's size), which
+ * render_display stretches to its output (bilinear): the window flies at a lower internal resolution.
+ * Readback reads the active size. A change restarts accumulation. */
+void render_set_active(int width, int height);
+void render_active_size(int *width, int *height);
+
 /* The target (render_resize's size) holds the part of a full_width × full_height image whose top-left
  * pixel is (left, top): offline shots of any size render in bands. render_resize resets it to the
  * whole image. Call before render_begin. */
@@ -43,13 +49,16 @@ typedef enum render_view { VIEW_COLOR, VIEW_STEPS, VIEW_DIFFERENCE } render_view
 /* Keeps the current image as the reference that VIEW_DIFFERENCE compares against. */
 void render_grab_reference(void);
 
-/* Tone-mapped sRGB colour (or the steps heat map) into framebuffer `fbo` (0 = window). */
+/* Tone-mapped sRGB colour (or the steps heat map) into framebuffer `fbo` (0 = window), the active image
+ * stretched to width × height (bilinear; texel for texel when the sizes are equal). */
 void render_display(GLuint fbo, int width, int height, float exposure, render_view view);
 
 /* Readback, rows top first. srgb8: RGBA 8-bit after render_display's mapping. linear: averaged RGBA.
  * aovs: AOV_FLOATS a pixel, laid out as aov.h says (depth +inf on a miss). */
 void render_read_srgb8(uint8_t *rgba, float exposure);
 void render_read_linear(float *rgba);
+/* srgb8 of the active image stretched to width × height (at most the targets' size), as the window shows it. */
+void render_read_stretched_srgb8(uint8_t *rgba, int width, int height, float exposure);
 void render_read_aovs(float *aov8);
 
 /* Terrain scenes: the ground height under world (x, z); false for other scenes. */

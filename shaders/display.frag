@@ -10,7 +10,26 @@ uniform float uInvSamples;
 uniform float uExposure;
 uniform int uView;
 uniform float uMaxSteps;
+uniform vec2 uSrcSize; // the active image in the targets (bottom-left corner)
+uniform vec2 uDstSize; // the output
 out vec4 oColor;
+
+// The output pixel's centre in the active image's texel coordinates (texel centres at integers).
+vec2 srcPos() { return gl_FragCoord.xy * uSrcSize / uDstSize - 0.5; }
+
+ivec2 nearestTexel() { return clamp(ivec2(floor(srcPos() + 0.5)), ivec2(0), ivec2(uSrcSize) - 1); }
+
+// Bilinear from the four nearest texels (the targets are NEAREST-filtered float textures); exactly the
+// texel when the sizes are equal.
+vec3 bilinear(sampler2D t)
+{
+    vec2 p = srcPos();
+    ivec2 i = ivec2(floor(p)), hi = ivec2(uSrcSize) - 1;
+    vec2 f = p - vec2(i);
+    vec3 a = texelFetch(t, clamp(i, ivec2(0), hi), 0).rgb, b = texelFetch(t, clamp(i + ivec2(1, 0), ivec2(0), hi), 0).rgb;
+    vec3 c = texelFetch(t, clamp(i + ivec2(0, 1), ivec2(0), hi), 0).rgb, d = texelFetch(t, clamp(i + ivec2(1, 1), ivec2(0), hi), 0).rgb;
+    return mix(mix(a, b, f.x), mix(c, d, f.x), f.y);
+}
 
 vec3 heat(float x)
 {
@@ -28,18 +47,18 @@ vec3 linearToSrgb(vec3 c)
 void main()
 {
     if (uView == 1) {
-        float steps = texelFetch(uAux, ivec2(gl_FragCoord.xy), 0).x;
+        float steps = texelFetch(uAux, nearestTexel(), 0).x;
         const vec3 OUT_OF_STEPS = vec3(1.0, 0.0, 1.0); // magenta: the step budget ran out here
         oColor = vec4(steps < 0.0 ? OUT_OF_STEPS : heat(steps / uMaxSteps), 1.0);
         return;
     }
     if (uView == 2) {
         const float DIFF_GAIN = 8.0;
-        vec3 now = acesFit(texelFetch(uAccum, ivec2(gl_FragCoord.xy), 0).rgb * uInvSamples * uExposure);
-        vec3 ref = acesFit(texelFetch(uReference, ivec2(gl_FragCoord.xy), 0).rgb * uInvRefSamples * uExposure);
+        vec3 now = acesFit(texelFetch(uAccum, nearestTexel(), 0).rgb * uInvSamples * uExposure);
+        vec3 ref = acesFit(texelFetch(uReference, nearestTexel(), 0).rgb * uInvRefSamples * uExposure);
         oColor = vec4(heat(length(now - ref) * DIFF_GAIN), 1.0);
         return;
     }
-    vec3 c = texelFetch(uAccum, ivec2(gl_FragCoord.xy), 0).rgb * uInvSamples;
+    vec3 c = bilinear(uAccum) * uInvSamples;
     oColor = vec4(linearToSrgb(acesFit(c * uExposure)), 1.0);
 }
