@@ -23,7 +23,6 @@
 enum { FLIGHT_FRAMES = 100, ERROR_EVERY = 10, DEFAULT_FPS = 30 };
 static const float DOLLY = 0.35f;     /* of the way to the look-at point */
 static const float TURN_DEG = 25.0f;  /* yaw over the flight */
-static const float MIN_SCALE = 0.125f; /* as the window */
 
 static int cmp_double(const void *a, const void *b)
 {
@@ -73,7 +72,7 @@ bool bench_interactive(const cli_options *opt, int w, int h, err_t *err)
     }
     bool ok = render_init(err) && render_set_scene(&s, NULL, err);
     int fps = opt->fps ? opt->fps : DEFAULT_FPS;
-    res_controller res = res_init((float)fps, MIN_SCALE);
+    res_controller res = res_init((float)fps, RES_MIN_SCALE);
     double ms[FLIGHT_FRAMES], side[FLIGHT_FRAMES], err_sum = 0, err_max = 0;
     int err_n = 0;
     size_t n = (size_t)w * (size_t)h;

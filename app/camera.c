@@ -1,5 +1,7 @@
 #include "camera.h"
 
+#include <float.h>
+
 #include <math.h>
 
 static float clampf(float v, float lo, float hi) { return v < lo ? lo : v > hi ? hi : v; }
@@ -57,6 +59,32 @@ void camera_update(camera *c, const camera_input *in, float dt, float speed, flo
     glm_vec3_muladds(b.right, in->move[0] * step, c->position);
     glm_vec3_muladds(world_up, in->move[1] * step, c->position);
     glm_vec3_muladds(b.forward, in->move[2] * step, c->position);
+}
+
+float camera_clamp_step(const vec3 from, vec3 to, float free_from, float free_to)
+{
+    if (!(free_from > 0))
+        return 1.0f;
+    /* float resolution of the position, with room: a step that ends closer could round into a surface */
+    float margin = 8.0f * FLT_EPSILON * (1.0f + glm_vec3_norm((float *)from) + glm_vec3_norm(to));
+    float len = glm_vec3_distance((float *)from, to);
+    if (free_to > margin && len <= free_from + free_to - margin)
+        return 1.0f;
+    float limit = fmaxf(CAMERA_SAFE_FRACTION * free_from - margin, 0.0f);
+    if (len <= limit)
+        return 1.0f;
+    float keep = limit / len;
+    for (int i = 0; i < 3; i++)
+        to[i] = from[i] + (to[i] - from[i]) * keep;
+    return keep;
+}
+
+void camera_clamp_range(vec3 pos, const vec3 centre, float max_distance)
+{
+    float d = glm_vec3_distance(pos, (float *)centre);
+    if (d > max_distance)
+        for (int i = 0; i < 3; i++)
+            pos[i] = centre[i] + (pos[i] - centre[i]) * (max_distance / d);
 }
 
 void camera_ray(const camera *c, int width, int height, float x, float y, vec3 dir)

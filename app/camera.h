@@ -44,6 +44,18 @@ camera_basis camera_get_basis(const camera *c);
 /* Moves and turns by one frame of input: speed in m/s, sensitivity in radians per pixel. */
 void camera_update(camera *c, const camera_input *in, float dt, float speed, float sensitivity);
 
+/* Safe flight. free_from and free_to bound the free space around `from` and around the proposed `to`
+ * (a distance bound times its step factor: no surface lies closer). If the two free balls cover the
+ * segment (|to − from| < free_from + free_to, less float resolution) the move cannot cross a surface
+ * and is kept; else it is shortened to CAMERA_SAFE_FRACTION of free_from. Either way the camera stays
+ * float resolution away from any surface, and can always move away from one. free_from <= 0 (inside a
+ * solid, or unknown) leaves the move alone, so a camera inside can get out. Returns the fraction kept. */
+#define CAMERA_SAFE_FRACTION 0.9f
+float camera_clamp_step(const vec3 from, vec3 to, float free_from, float free_to);
+
+/* Keeps pos within max_distance of centre (along the line from centre): no flight to infinity. */
+void camera_clamp_range(vec3 pos, const vec3 centre, float max_distance);
+
 /* The unit primary-ray direction through pixel (x, y) of a width × height image (see top). */
 void camera_ray(const camera *c, int width, int height, float x, float y, vec3 dir);
 

@@ -18,10 +18,11 @@
 #include "scene.h"
 
 enum { MAX_SCENES = 9, FRAME_HISTORY = 30, DEFAULT_FPS = 30 };
-static const float MIN_SCALE = 0.125f; /* moving frames keep at least 1/8 of the window's side */
 static const float MOUSE_SENSITIVITY = 0.0025f; /* radians per pixel */
 static const float SPEED_STEP = 1.25f;          /* per scroll notch */
-static const float DEFAULT_SPEED = 2.0f;        /* m/s */
+static const float DEFAULT_SPEED = 2.0f;        /* × the distance to the surface (adaptive scenes) */
+static const float START_SPEED_FRACTION = 0.2f; /* others: the start view's distance to its look-at, per 5 s */
+static const float MIN_SPEED_FACTOR = 1e-3f, MAX_SPEED_FACTOR = 1e3f; /* scroll: of the start speed */
 static const float EXPOSURE = 1.0f;
 static const double IDLE_WAIT_S = 0.05;
 static const float MIN_ADAPTIVE_DISTANCE = 1e-7f; /* metres: keeps a little speed at the surface */
@@ -38,7 +39,8 @@ static struct {
     char names[MAX_SCENES][SCENE_NAME_MAX];
     int scene_count;
     int pending_scene; /* -1 none */
-    bool reload, screenshot;
+    bool reload, screenshot, go_home;
+    float start_speed; /* the scene's: m/s, or × distance in adaptive scenes */
     render_view view;
     bool walking; /* terrain: keep the eye WALK_HEIGHT above the ground */
     knob_id knob;                      /* the knob that =/- step (one the window steps) */
@@ -82,6 +84,8 @@ static void on_key(GLFWwindow *w, int key, int scancode, int action, int mods)
         app.view = app.view == VIEW_DIFFERENCE ? VIEW_COLOR : VIEW_DIFFERENCE;
     else if (key == GLFW_KEY_T)
         app.walking = !app.walking;
+    else if (key == GLFW_KEY_HOME || key == GLFW_KEY_BACKSPACE)
+        app.go_home = true;
     else if (key == GLFW_KEY_K)
         app.knob = next_knob(app.knob);
     else if (key == GLFW_KEY_EQUAL || key == GLFW_KEY_KP_ADD)
@@ -132,6 +136,10 @@ static bool load_scene(const char *name, const cli_options *opt, bool first, err
         const float *pos = first && opt->has_camera ? opt->camera : app.scene.cam_position;
         const float *at = first && opt->has_look_at ? opt->look_at : app.scene.cam_look_at;
         app.cam = camera_look_at_deg(pos, at, fov);
+        app.start_speed = app.scene.adaptive_speed
+                              ? DEFAULT_SPEED
+                              : START_SPEED_FRACTION * glm_vec3_distance(app.scene.cam_position, app.scene.cam_look_at);
+        app.speed = app.start_speed;
     }
     return true;
 }
@@ -226,7 +234,7 @@ static void hud(int w, int h)
              "%s\n"
              "pos %.4g %.4g %.4g  %s  fov %.0f\n%s"
              "WASD move  mouse look  Space/C up/down  Shift fast  scroll speed\n"
-             "1-%d scenes  K knob  =/- step it  H steps  G grab  V difference  T walk  R reload  P shot  Esc quit\n%s",
+             "1-%d scenes  K knob  =/- step it  H steps  G grab  V difference  T walk  Home start  R reload  P shot  Esc quit\n%s",
              app.scene.name, preset_name(app.scene.preset), w, h, views[app.view], internal, ms, ms > 0 ? 1000.0 / ms : 0.0,
              render_samples(), app.scene.quality.spp, knobs, (double)c->position[0], (double)c->position[1],
              (double)c->position[2], speed, (double)glm_deg(c->fov_y), limit, app.scene_count,
@@ -247,24 +255,40 @@ static void list_scene_names(void)
     sb_free(&list);
 }
 
-/* One frame's flight: scroll sets the speed, which follows the distance to the surface where the scene
- * asks for it (fractals: close up stays controllable); walking keeps the eye above the ground. */
+/* One frame's flight. Scroll sets the speed (within MIN/MAX_SPEED_FACTOR of the scene's start speed),
+ * which follows the distance to the surface where the scene asks for it (fractals: close up stays
+ * controllable). Every program's map() at the camera bounds the free space around it: the frame's step
+ * is clamped inside it, so the camera never enters or passes through a solid however fast it flies,
+ * and it stays within max_dist of the start view's look-at point. Home or Backspace: the start view. */
 static void fly(GLFWwindow *win, float dt)
 {
     if (app.scroll != 0) {
-        app.speed *= powf(SPEED_STEP, app.scroll);
+        app.speed = fminf(fmaxf(app.speed * powf(SPEED_STEP, app.scroll), MIN_SPEED_FACTOR * app.start_speed),
+                          MAX_SPEED_FACTOR * app.start_speed);
         app.scroll = 0;
     }
-    camera_input in = read_input(win);
-    float speed = app.speed;
-    if (app.scene.adaptive_speed) {
-        float dist[2];
-        err_t e;
-        if (render_probe(&app.scene, NULL, app.cam.position, 1, dist, &e))
-            app.surface_distance = fabsf(dist[0]);
-        speed = app.speed * fmaxf(app.surface_distance, MIN_ADAPTIVE_DISTANCE);
+    if (app.go_home) {
+        app.cam = camera_look_at_deg(app.scene.cam_position, app.scene.cam_look_at, app.scene.cam_fov_deg);
+        app.speed = app.start_speed;
+        app.go_home = false;
+        snprintf(app.message, sizeof app.message, "back at the start view");
     }
+    camera_input in = read_input(win);
+    float dist[2] = {0, 0};
+    err_t e;
+    bool probed = render_probe(&app.scene, NULL, app.cam.position, 1, dist, &e);
+    app.surface_distance = fabsf(dist[0]);
+    float speed = app.speed;
+    if (app.scene.adaptive_speed)
+        speed = app.speed * fmaxf(app.surface_distance, MIN_ADAPTIVE_DISTANCE);
+    vec3 before;
+    glm_vec3_copy(app.cam.position, before);
     camera_update(&app.cam, &in, dt, speed, MOUSE_SENSITIVITY);
+    float after[2];
+    if (probed && render_probe(&app.scene, NULL, app.cam.position, 1, after, &e))
+        camera_clamp_step(before, app.cam.position, dist[0] * app.scene.quality.step_factor,
+                          after[0] * app.scene.quality.step_factor);
+    camera_clamp_range(app.cam.position, app.scene.cam_look_at, app.scene.quality.max_dist);
     float ground;
     if (app.walking && render_ground_height(app.cam.position[0], app.cam.position[2], &ground))
         app.cam.position[1] = ground + WALK_HEIGHT;
@@ -282,7 +306,7 @@ static bool handle_requests(const cli_options *opt)
             app.message[0] = '\0';
         app.pending_scene = -1;
         memset(app.frame_ms, 0, sizeof app.frame_ms); /* another scene's times say nothing of this one */
-        app.res = res_init(app.res.target_ms > 0 ? 1000.0f / app.res.target_ms : DEFAULT_FPS, MIN_SCALE);
+        app.res = res_init(app.res.target_ms > 0 ? 1000.0f / app.res.target_ms : DEFAULT_FPS, RES_MIN_SCALE);
         restart = true;
     }
     if (app.knob_step) {
@@ -376,8 +400,7 @@ bool explore_run(const cli_options *opt, err_t *err)
 {
     memset(&app, 0, sizeof app);
     app.pending_scene = -1;
-    app.speed = DEFAULT_SPEED;
-    app.res = res_init((float)(opt->fps ? opt->fps : DEFAULT_FPS), MIN_SCALE);
+    app.res = res_init((float)(opt->fps ? opt->fps : DEFAULT_FPS), RES_MIN_SCALE);
     app.knob = next_knob((knob_id)(KNOB_COUNT - 1));
     list_scene_names();
     scene first; /* a bad scene is the error to report, even where no window can open */

@@ -11,6 +11,7 @@
 
 #define RES_HYSTERESIS 0.08f /* relative change of the scale below which it stays */
 #define RES_SMOOTHING 0.3f   /* weight of the newest measurement in the per-pixel cost */
+#define RES_MIN_SCALE 0.0625f /* the window and bench --interactive: at least 1/16 of the side (80x45 of 720p) */
 
 typedef struct res_controller {
     float target_ms;  /* frame time to aim for (1000 / fps) */

@@ -1,9 +1,10 @@
 /* scene_set — --set overrides: "a.b.0.c=value" edits the parsed JSON tree before it is read, so an
  * override meets exactly the checks the file does. Values parse as JSON ("1,2,3" as a vector), else
- * as a string. */
+ * as a string. File paths given this way are relative to the current folder. */
 #include <assert.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "scene_parse.h"
 
@@ -23,6 +24,39 @@ static cJSON *parse_value(const char *v)
     return cJSON_CreateString(v);
 }
 
+/* Keys that name files. In the scene file they are relative to the file's folder; on the command line
+ * the user means the folder they are in, so --set makes a relative path absolute from there. */
+static bool file_key(const char *key)
+{
+    const char *last = strrchr(key, '.');
+    last = last ? last + 1 : key;
+    if (!strncmp(key, "materials.", 10))
+        return !strcmp(last, "texture") || !strcmp(last, "relief");
+    return !strcmp(key, "terrain.heightmap") || !strncmp(key, "environment.cubemap", 19);
+}
+
+static void from_cwd(cJSON *v)
+{
+    if (cJSON_IsArray(v)) {
+        for (cJSON *e = v->child; e; e = e->next)
+            from_cwd(e);
+        return;
+    }
+    char cwd[PATH_MAX_LEN], abs[PATH_MAX_LEN];
+    if (!cJSON_IsString(v) || v->valuestring[0] == '/' || !getcwd(cwd, sizeof cwd) ||
+        !util_join(cwd, v->valuestring, abs, sizeof abs))
+        return;
+    cJSON_SetValuestring(v, abs);
+}
+
+static cJSON *override_value(const char *key, const char *v)
+{
+    cJSON *j = parse_value(v);
+    if (file_key(key))
+        from_cwd(j);
+    return j;
+}
+
 bool scene_apply_set(cJSON *root, const char *kv, err_t *err)
 {
     const char *eq = strchr(kv, '=');
@@ -32,6 +66,8 @@ bool scene_apply_set(cJSON *root, const char *kv, err_t *err)
         return err_set(err, "--set %s: key too long", kv);
     memcpy(key, kv, (size_t)(eq - kv));
     key[eq - kv] = '\0';
+    char full[256];
+    memcpy(full, key, sizeof full); /* strtok_r below cuts key */
     cJSON *node = root;
     char *save = NULL;
     for (char *seg = strtok_r(key, ".", &save); seg; seg = strtok_r(NULL, ".", &save)) {
@@ -43,16 +79,16 @@ bool scene_apply_set(cJSON *root, const char *kv, err_t *err)
                 return err_set(err, "--set %s: '%s' is not an index of that array (it has %d items)", kv, seg,
                                cJSON_GetArraySize(node));
             if (last)
-                return cJSON_ReplaceItemInArray(node, (int)idx, parse_value(eq + 1)) ||
+                return cJSON_ReplaceItemInArray(node, (int)idx, override_value(full, eq + 1)) ||
                        err_set(err, "--set %s: cannot replace", kv);
             node = cJSON_GetArrayItem(node, (int)idx);
         } else if (cJSON_IsObject(node)) {
             cJSON *next = cJSON_GetObjectItemCaseSensitive(node, seg);
             if (last) {
                 if (next)
-                    cJSON_ReplaceItemInObjectCaseSensitive(node, seg, parse_value(eq + 1));
+                    cJSON_ReplaceItemInObjectCaseSensitive(node, seg, override_value(full, eq + 1));
                 else
-                    cJSON_AddItemToObject(node, seg, parse_value(eq + 1));
+                    cJSON_AddItemToObject(node, seg, override_value(full, eq + 1));
                 return true;
             }
             if (!next)
