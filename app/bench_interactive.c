@@ -15,6 +15,7 @@
 
 #include "camera.h"
 #include "gpu.h"
+#include "image_io.h"
 #include "metrics.h"
 #include "render.h"
 #include "resolution.h"
@@ -47,6 +48,18 @@ static double one_sample(void)
     render_sample();
     glFinish();
     return (util_now() - t0) * 1000.0;
+}
+
+/* --out DIR: what the window shows, as DIR/SCENE-WHAT.png (RGBA8 → RGB). */
+static bool save(const cli_options *opt, const scene *s, const char *what, uint8_t *rgba, int w, int h, err_t *err)
+{
+    if (!opt->out)
+        return true;
+    char path[PATH_MAX_LEN];
+    snprintf(path, sizeof path, "%s/%s-%s.png", opt->out, s->name, what);
+    for (size_t i = 0, n = (size_t)w * (size_t)h; i < n; i++)
+        memmove(rgba + i * 3, rgba + i * 4, 3);
+    return image_write_u8(path, w, h, 3, rgba, err);
 }
 
 /* RMSE (0..1) between two sRGB8 RGBA images. */
@@ -113,6 +126,11 @@ bool bench_interactive(const cli_options *opt, int w, int h, err_t *err)
         }
         spp_ms = (util_now() - t0) * 1000.0;
         ok = glGetError() == GL_NO_ERROR || err_set(err, "GL error during the flight");
+        /* the last moving frame as the window showed it, and the converged one */
+        if (ok && opt->out) {
+            render_read_stretched_srgb8(full, w, h, 1.0f);
+            ok = save(opt, &s, "still", full, w, h, err) && save(opt, &s, "moving", moving, w, h, err);
+        }
     }
     if (ok) {
         double sorted[FLIGHT_FRAMES], sides[FLIGHT_FRAMES];
