@@ -11,6 +11,7 @@
 
 #include <stdbool.h>
 
+#include "camera.h"
 #include "util.h"
 
 enum { CLI_MAX_SETS = 64 };
@@ -31,6 +32,8 @@ typedef struct cli_options {
     int frames;         /* window: exit after N frames; 0: run until closed */
     int fps;            /* window: frame rate to hold while moving; 0: the default (30) */
     bool has_camera, has_look_at, has_fov;
+    bool has_view;      /* --scene SHOT.png: the shot's exact camera (shot.h) */
+    camera view;
     float camera[3], look_at[3], fov_deg;
     const char *sets[CLI_MAX_SETS]; /* "key=value" scene overrides, in order */
     char preset_sets[CLI_MAX_SETS][48]; /* storage for the overrides --quality writes (slot = its index) */

@@ -16,6 +16,7 @@
 #include "render.h"
 #include "resolution.h"
 #include "scene.h"
+#include "shot.h"
 
 enum { MAX_SCENES = 9, FRAME_HISTORY = 30, DEFAULT_FPS = 30 };
 static const float MOUSE_SENSITIVITY = 0.0025f; /* radians per pixel */
@@ -135,7 +136,7 @@ static bool load_scene(const char *name, const cli_options *opt, bool first, err
         float fov = first && opt->has_fov ? opt->fov_deg : app.scene.cam_fov_deg;
         const float *pos = first && opt->has_camera ? opt->camera : app.scene.cam_position;
         const float *at = first && opt->has_look_at ? opt->look_at : app.scene.cam_look_at;
-        app.cam = camera_look_at_deg(pos, at, fov);
+        app.cam = first && opt->has_view ? opt->view : camera_look_at_deg(pos, at, fov);
         app.start_speed = app.scene.adaptive_speed
                               ? DEFAULT_SPEED
                               : START_SPEED_FRACTION * glm_vec3_distance(app.scene.cam_position, app.scene.cam_look_at);
@@ -157,13 +158,25 @@ static void step_knob(const cli_options *opt, int dir)
         snprintf(app.message, sizeof app.message, "%s = %g", name, v);
 }
 
-static void screenshot(int w, int h)
+static void screenshot(const cli_options *opt, int w, int h)
 {
     char path[128];
     time_t now = time(NULL);
     strftime(path, sizeof path, "fathom-%Y%m%d-%H%M%S.png", localtime(&now));
     err_t err;
-    if (offline_write(path, w, h, 0, &err))
+    /* the shot remembers the scene, the overrides (the command line's, then the stepped knobs) and the view */
+    const char *sets[CLI_MAX_SETS + KNOB_COUNT];
+    int n = 0;
+    for (int i = 0; i < opt->set_count; i++)
+        sets[n++] = opt->sets[i];
+    for (int k = 0; k < KNOB_COUNT; k++)
+        if (app.knob_sets[k][0])
+            sets[n++] = app.knob_sets[k];
+    strbuf description = {0};
+    shot_describe(app.scene.path, sets, n, &app.cam, w, h, &description);
+    bool ok = offline_write(path, w, h, 0, description.data, &err);
+    sb_free(&description);
+    if (ok)
         snprintf(app.message, sizeof app.message, "saved %s", path);
     else
         snprintf(app.message, sizeof app.message, "%s", err.msg);
@@ -364,7 +377,7 @@ static bool draw(const cli_options *opt, int w, int h, bool restart, camera *sho
     render_display(0, w, h, EXPOSURE, app.view);
     hud(w, h);
     if (app.screenshot) {
-        screenshot(iw, ih);
+        screenshot(opt, iw, ih);
         app.screenshot = false;
     }
     return refining || app.scaled;

@@ -180,6 +180,13 @@ static ImageSpec make_spec(int width, int height, int channels, bool f32, const 
 extern "C" image_writer *image_writer_open(const char *path, int width, int height, int channels, bool f32,
                                            const char *const *names, err_t *err)
 {
+    return image_writer_open_text(path, width, height, channels, f32, names, nullptr, nullptr, err);
+}
+
+extern "C" image_writer *image_writer_open_text(const char *path, int width, int height, int channels, bool f32,
+                                                const char *const *names, const char *key, const char *value,
+                                                err_t *err)
+{
     image_writer *w = nullptr;
     try {
         w = new image_writer;
@@ -187,6 +194,8 @@ extern "C" image_writer *image_writer_open(const char *path, int width, int heig
         w->tmp = temp_path_for(path);
         w->type = f32 ? TypeDesc::FLOAT : TypeDesc::UINT8;
         w->spec = make_spec(width, height, channels, f32, names);
+        if (key && value)
+            w->spec.attribute(key, value);
         w->out = ImageOutput::create(path);
         if (!w->out) {
             err_set(err, "cannot write '%s': no image format for this file name (%s)", path, one_line(OIIO::geterror()).c_str());
@@ -356,6 +365,27 @@ extern "C" bool image_can_write(const char *path, err_t *err)
 }
 
 /* ---- reading ------------------------------------------------------------------------------------ */
+
+extern "C" bool image_read_text(const char *path, const char *key, char **value, err_t *err)
+{
+    try {
+        StderrCapture noise;
+        auto in = ImageInput::open(path);
+        if (!in)
+            return err_set(err, "cannot read image '%s': %s", path, with_noise(OIIO::geterror(), noise).c_str());
+        std::string v = in->spec().get_string_attribute(key);
+        if (v.empty())
+            return err_set(err, "image '%s' holds no fathom shot description (only PNG and EXR files fathom "
+                                "wrote do)", path);
+        *value = (char *)std::malloc(v.size() + 1);
+        if (!*value)
+            return err_set(err, "cannot read image '%s': out of memory", path);
+        std::memcpy(*value, v.c_str(), v.size() + 1);
+        return true;
+    } catch (const std::exception &e) {
+        return err_set(err, "cannot read image '%s': %s", path, e.what());
+    }
+}
 
 template <typename T>
 static bool read_image(const char *path, int want_channels, int max_side, int *width, int *height, int *channels,

@@ -35,6 +35,10 @@ typedef struct image_writer image_writer;
  * channels (NULL: R, G, B, A). NULL on failure (err set). */
 image_writer *image_writer_open(const char *path, int width, int height, int channels, bool f32,
                                 const char *const *names, err_t *err);
+/* The same with a text entry stored in the file (PNG: a tEXt chunk; EXR: a string attribute): key,
+ * value (NULL: none). fathom keeps the scene, overrides and camera of a shot there. */
+image_writer *image_writer_open_text(const char *path, int width, int height, int channels, bool f32,
+                                     const char *const *names, const char *key, const char *value, err_t *err);
 /* Appends `rows` rows (top first; uint8_t or float as opened, channels interleaved). */
 bool image_writer_rows(image_writer *w, int rows, const void *pixels, err_t *err);
 /* Closes, flushes, decodes the file again and renames it over the target. Frees w either way. */
@@ -63,6 +67,10 @@ void image_io_install_signal_cleanup(void);
  * *pixels is malloc'd. */
 bool image_read_u8(const char *path, int channels, int max_side, int *width, int *height, uint8_t **pixels,
                    err_t *err);
+
+/* The text entry `key` of an image file (see image_writer_open_text): *value malloc'd, or false with
+ * err set when the file cannot be read or has no such entry. */
+bool image_read_text(const char *path, const char *key, char **value, err_t *err);
 
 /* Reads as 32-bit float: `channels` channels, or the file's count when 0 (*channels_out). */
 bool image_read_f32(const char *path, int channels, int max_side, int *width, int *height, int *channels_out,

@@ -12,6 +12,7 @@
 #include "offline.h"
 #include "render.h"
 #include "scene.h"
+#include "shot.h"
 
 enum { EXIT_USAGE = 2, DEFAULT_WIDTH = 1280, DEFAULT_HEIGHT = 720 };
 
@@ -42,6 +43,11 @@ int main(int argc, char **argv)
     if (!cli_parse(argc, argv, &opt, &err)) {
         fprintf(stderr, "fathom: %s\n", err.msg);
         return EXIT_USAGE;
+    }
+    static shot_desc shot; /* --scene SHOT.png: opt points into it */
+    if (opt.scene && shot_is_image(opt.scene) && !shot_apply(&opt, &shot, &err)) {
+        fprintf(stderr, "fathom: %s\n", err.msg);
+        return 1;
     }
     if (opt.help) {
         strbuf knobs = {0};
@@ -89,7 +95,7 @@ int main(int argc, char **argv)
         float fov = opt.has_fov ? opt.fov_deg : s.cam_fov_deg;
         const float *eye = opt.has_camera ? opt.camera : s.cam_position;
         const float *at = opt.has_look_at ? opt.look_at : s.cam_look_at;
-        if (camera_degenerate(eye, at)) {
+        if (!opt.has_view && camera_degenerate(eye, at)) {
             fprintf(stderr, "fathom: the camera (%g, %g, %g) is at its look-at point: pass --look-at (or "
                             "--camera) elsewhere\n", (double)eye[0], (double)eye[1], (double)eye[2]);
             scene_free(&s);
@@ -97,7 +103,7 @@ int main(int argc, char **argv)
         }
         offline_desc d = {
             .scene = &s,
-            .cam = camera_look_at_deg(eye, at, fov),
+            .cam = opt.has_view ? opt.view : camera_look_at_deg(eye, at, fov),
             .width = opt.width ? opt.width : DEFAULT_WIDTH,
             .height = opt.height ? opt.height : DEFAULT_HEIGHT,
             .spp = s.quality.spp,
@@ -106,7 +112,21 @@ int main(int argc, char **argv)
             .strip_rows = opt.strip_rows,
             .quiet = opt.quiet,
         };
-        if (!offline_render(&d, &err)) {
+        /* the shot remembers the overrides, --spp as the one it stands for */
+        const char *sets[CLI_MAX_SETS + 1];
+        char spp[48];
+        memcpy(sets, opt.sets, sizeof(sets[0]) * (size_t)opt.set_count);
+        int nsets = opt.set_count;
+        if (opt.spp) {
+            snprintf(spp, sizeof spp, "quality.spp=%d", opt.spp);
+            sets[nsets++] = spp;
+        }
+        strbuf description = {0};
+        shot_describe(s.path, sets, nsets, &d.cam, d.width, d.height, &description);
+        d.description = description.data;
+        bool ok = offline_render(&d, &err);
+        sb_free(&description);
+        if (!ok) {
             fprintf(stderr, "fathom: %s\n", err.msg);
             rc = 1;
         }

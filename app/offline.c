@@ -10,6 +10,7 @@
 #include "gpu.h"
 #include "image_io.h"
 #include "render.h"
+#include "shot.h"
 
 /* A band: about 2 Mpixel by default; at most 16 Mpixel whatever --strip-rows asks (GPU targets 52 bytes
  * a pixel, the readback about 140), so 16384 columns always render. */
@@ -58,13 +59,15 @@ static bool is_png(const char *path)
     return dot && !strcmp(dot, ".png");
 }
 
-static image_writer *open_writer(const char *path, int width, int height, unsigned aovs, err_t *err)
+static image_writer *open_writer(const char *path, int width, int height, unsigned aovs, const char *description,
+                                 err_t *err)
 {
     const char *names[MAX_CHANNELS];
     int src[MAX_CHANNELS];
     if (is_png(path))
-        return image_writer_open(path, width, height, 3, false, NULL, err);
-    return image_writer_open(path, width, height, exr_channels(aovs, names, src), true, names, err);
+        return image_writer_open_text(path, width, height, 3, false, NULL, SHOT_KEY, description, err);
+    return image_writer_open_text(path, width, height, exr_channels(aovs, names, src), true, names, SHOT_KEY,
+                                  description, err);
 }
 
 /* Appends the current render target (width × rows, a band of the image or all of it) to w. */
@@ -107,9 +110,9 @@ static bool write_band(image_writer *w, const char *path, int width, int rows, u
     return ok;
 }
 
-bool offline_write(const char *path, int width, int height, unsigned aovs, err_t *err)
+bool offline_write(const char *path, int width, int height, unsigned aovs, const char *description, err_t *err)
 {
-    image_writer *w = open_writer(path, width, height, aovs, err);
+    image_writer *w = open_writer(path, width, height, aovs, description, err);
     if (!w)
         return false;
     if (!write_band(w, path, width, height, aovs, err)) {
@@ -163,7 +166,7 @@ bool offline_render_current(const offline_desc *d, err_t *err)
     if (!image_can_write(d->output, err) || !render_set_scene(d->scene, NULL, err))
         return false;
     double t0 = util_now();
-    image_writer *w = open_writer(d->output, d->width, d->height, d->aovs, err);
+    image_writer *w = open_writer(d->output, d->width, d->height, d->aovs, d->description, err);
     if (!w)
         return false;
     if (!render_bands(d, w, err)) {

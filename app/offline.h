@@ -17,6 +17,7 @@ typedef struct offline_desc {
     int width, height, spp;
     const char *output;
     unsigned aovs; /* cli.h aov_flag bits */
+    const char *description; /* shot.h's text, stored in the file (NULL: none) */
     int strip_rows; /* rows a band (0: as many as fit 2 Mpixel); the image is rendered and written in bands */
     bool quiet;
 } offline_desc;
@@ -28,6 +29,6 @@ bool offline_render(const offline_desc *d, err_t *err);
 bool offline_render_current(const offline_desc *d, err_t *err);
 
 /* Writes the current render target to path (.png or .exr with aovs); used by offline and screenshots. */
-bool offline_write(const char *path, int width, int height, unsigned aovs, err_t *err);
+bool offline_write(const char *path, int width, int height, unsigned aovs, const char *description, err_t *err);
 
 #endif

@@ -483,7 +483,7 @@ static void png_orientation(void **st)
     assert_non_null(mkdtemp(dir));
     snprintf(path, sizeof path, "%s/shot.png", dir);
     err_t e;
-    if (!offline_write(path, W, H, 0, &e))
+    if (!offline_write(path, W, H, 0, NULL, &e))
         fail_msg("%s", e.msg);
     int w, h;
     uint8_t *px;

@@ -12,6 +12,7 @@
 #include "check.h"
 
 #include "scene.h"
+#include "shot.h"
 
 #define FX(e) (1u << EFFECT_##e)
 
@@ -93,6 +94,42 @@ static void big_csg_scenes(void **st)
     sb_append(&j, "]}]}");
     expect_error(j.data, NULL, 0, "257 primitives inside operations would be compiled into the shader; at most 256");
     sb_free(&j);
+}
+
+/* A shot's description round-trips exactly, and damaged ones are refused. */
+static void shot_descriptions(void **st)
+{
+    (void)st;
+    camera cam = {.position = {0.1f, -2.5f, 1e6f}, .yaw = 3.0f, .pitch = -1.2f, .fov_y = 0.7f};
+    const char *sets[] = {"fractal.power=6", "materials.a.texture=/x y/z.png"};
+    strbuf t = {0};
+    shot_describe("/no/such/scene.json", sets, 2, &cam, 640, 360, &t);
+    shot_desc d;
+    err_t e;
+    if (!shot_parse(t.data, "t", &d, &e))
+        fail_msg("%s", e.msg);
+    assert_string_equal(d.scene, "/no/such/scene.json");
+    assert_int_equal(d.set_count, 2);
+    assert_string_equal(d.sets[1], sets[1]);
+    assert_memory_equal(&d.cam, &cam, sizeof cam); /* every float exact */
+    assert_int_equal(d.width, 640);
+    assert_int_equal(d.height, 360);
+    static const char *const BAD[] = {
+        "", "{}", "[1]", "{\"scene\": 3}",
+        "{\"scene\": \"/a.json\", \"sets\": [], \"camera\": {\"position\": [0, 0, 0], \"yaw\": 0, \"pitch\": 9, "
+        "\"fov_y\": 1}, \"size\": [10, 10]}",
+        "{\"scene\": \"/a.json\", \"sets\": [\"noequals\"], \"camera\": {\"position\": [0, 0, 0], \"yaw\": 0, "
+        "\"pitch\": 0, \"fov_y\": 1}, \"size\": [10, 10]}",
+        "{\"scene\": \"/a.json\", \"sets\": [], \"camera\": {\"position\": [0, 0, 1e400], \"yaw\": 0, \"pitch\": 0, "
+        "\"fov_y\": 1}, \"size\": [10, 10]}",
+        "{\"scene\": \"/a.json\", \"sets\": [], \"camera\": {\"position\": [0, 0, 0], \"yaw\": 0, \"pitch\": 0, "
+        "\"fov_y\": 1}, \"size\": [0, 10]}",
+    };
+    for (size_t i = 0; i < sizeof BAD / sizeof BAD[0]; i++) {
+        assert_false(shot_parse(BAD[i], "shot.png", &d, &e));
+        assert_non_null(strstr(e.msg, "shot.png: its fathom shot description is damaged"));
+    }
+    sb_free(&t);
 }
 
 static void shipped_csg_scene(void **st)
@@ -321,6 +358,7 @@ int main(void)
         cmocka_unit_test(effects_follow_content),
         cmocka_unit_test(csg_codegen),
         cmocka_unit_test(big_csg_scenes),
+        cmocka_unit_test(shot_descriptions),
         cmocka_unit_test(locate),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
