@@ -35,6 +35,7 @@ static const char USAGE[] =
     "  --camera X,Y,Z        camera position\n"
     "  --look-at X,Y,Z       point the camera looks at\n"
     "  --fov DEG             vertical field of view in degrees (0 < DEG < 179)\n"
+    "  --view NAME           start from a view saved with B in the window (1-9), with its overrides\n"
     "  --set KEY=VALUE       override any scene parameter, e.g. --set materials.glass.ior=1.33,\n"
     "                        --set effects.fog=off, --set lights.0.intensity=40 (repeatable)\n"
     "  --aov LIST            extra EXR channels: depth,normal,steps,exit (needs .exr output)\n"
@@ -164,6 +165,10 @@ static bool set_output_option(const char *name, const char *val, cli_options *o,
         if (o->knob_count == CLI_MAX_SETS)
             return err_set(err, "too many --knob options (at most %d)", CLI_MAX_SETS);
         o->knobs[o->knob_count++] = val;
+    } else if (!strcmp(name, "--view")) {
+        if (!*val || strchr(val, '/'))
+            return err_set(err, "bad --view '%s': the name of a saved view (B in the window saves views 1 to 9)", val);
+        o->view_name = val;
     } else if (!strcmp(name, "--fps")) {
         if (!parse_int(val, 1, 1000, &o->fps))
             return err_set(err, "bad --fps '%s': expected a whole number from 1 to 1000", val);
@@ -304,7 +309,7 @@ bool cli_parse(int argc, char **argv, cli_options *o, err_t *err)
         }
         static const char *const WITH_VALUE[] = {"--scene", "--output", "--size", "--spp", "--quality",
                                                  "--camera", "--look-at", "--fov", "--set", "--aov", "--frames",
-                                                 "--runs", "--out", "--knob", "--name", "--strip-rows", "--fps"};
+                                                 "--runs", "--out", "--knob", "--name", "--strip-rows", "--fps", "--view"};
         bool known = false;
         for (size_t k = 0; k < sizeof WITH_VALUE / sizeof WITH_VALUE[0]; k++)
             known |= !strcmp(name, WITH_VALUE[k]);

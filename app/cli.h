@@ -32,7 +32,8 @@ typedef struct cli_options {
     int frames;         /* window: exit after N frames; 0: run until closed */
     int fps;            /* window: frame rate to hold while moving; 0: the default (30) */
     bool has_camera, has_look_at, has_fov;
-    bool has_view;      /* --scene SHOT.png: the shot's exact camera (shot.h) */
+    bool has_view;      /* --scene SHOT.png or --view NAME: the shot's exact camera (shot.h) */
+    const char *view_name; /* --view NAME: a saved view of the scene (views.h) */
     camera view;
     float camera[3], look_at[3], fov_deg;
     const char *sets[CLI_MAX_SETS]; /* "key=value" scene overrides, in order */

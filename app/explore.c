@@ -17,6 +17,7 @@
 #include "resolution.h"
 #include "scene.h"
 #include "shot.h"
+#include "views.h"
 
 enum { MAX_SCENES = 9, FRAME_HISTORY = 30, DEFAULT_FPS = 30 };
 static const float MOUSE_SENSITIVITY = 0.0025f; /* radians per pixel */
@@ -40,7 +41,8 @@ static struct {
     char names[MAX_SCENES][SCENE_NAME_MAX];
     int scene_count;
     int pending_scene; /* -1 none */
-    bool reload, screenshot, go_home;
+    bool reload, screenshot, go_home, save_view;
+    int recall_view; /* Ctrl+1…9 pressed: 1…9; 0 none */
     float start_speed; /* the scene's: m/s, or × distance in adaptive scenes */
     render_view view;
     bool walking; /* terrain: keep the eye WALK_HEIGHT above the ground */
@@ -67,9 +69,12 @@ static knob_id next_knob(knob_id k)
 static void on_key(GLFWwindow *w, int key, int scancode, int action, int mods)
 {
     (void)scancode;
-    (void)mods;
     if (action != GLFW_PRESS)
         return;
+    if ((mods & GLFW_MOD_CONTROL) && key >= GLFW_KEY_1 && key <= GLFW_KEY_9) {
+        app.recall_view = key - GLFW_KEY_0;
+        return;
+    }
     if (key == GLFW_KEY_ESCAPE)
         glfwSetWindowShouldClose(w, GLFW_TRUE);
     else if (key == GLFW_KEY_R)
@@ -87,6 +92,8 @@ static void on_key(GLFWwindow *w, int key, int scancode, int action, int mods)
         app.walking = !app.walking;
     else if (key == GLFW_KEY_HOME || key == GLFW_KEY_BACKSPACE)
         app.go_home = true;
+    else if (key == GLFW_KEY_B)
+        app.save_view = true;
     else if (key == GLFW_KEY_K)
         app.knob = next_knob(app.knob);
     else if (key == GLFW_KEY_EQUAL || key == GLFW_KEY_KP_ADD)
@@ -158,13 +165,10 @@ static void step_knob(const cli_options *opt, int dir)
         snprintf(app.message, sizeof app.message, "%s = %g", name, v);
 }
 
-static void screenshot(const cli_options *opt, int w, int h)
+/* The current view as a shot description: scene, overrides (the command line's, then the stepped knobs),
+ * camera, size. */
+static void describe(const cli_options *opt, int w, int h, strbuf *out)
 {
-    char path[128];
-    time_t now = time(NULL);
-    strftime(path, sizeof path, "fathom-%Y%m%d-%H%M%S.png", localtime(&now));
-    err_t err;
-    /* the shot remembers the scene, the overrides (the command line's, then the stepped knobs) and the view */
     const char *sets[CLI_MAX_SETS + KNOB_COUNT];
     int n = 0;
     for (int i = 0; i < opt->set_count; i++)
@@ -172,8 +176,54 @@ static void screenshot(const cli_options *opt, int w, int h)
     for (int k = 0; k < KNOB_COUNT; k++)
         if (app.knob_sets[k][0])
             sets[n++] = app.knob_sets[k];
-    strbuf description = {0};
-    shot_describe(app.scene.path, sets, n, &app.cam, w, h, &description);
+    shot_describe(app.scene.path, sets, n, &app.cam, w, h, out);
+}
+
+/* B: the view into the first free slot 1…9; Ctrl+N: back to view N (its camera and fov). */
+static void views(const cli_options *opt, int w, int h)
+{
+    char file[PATH_MAX_LEN];
+    err_t e;
+    if (!app.save_view && !app.recall_view)
+        return;
+    if (!views_file(app.scene.name, file, sizeof file, &e)) {
+        snprintf(app.message, sizeof app.message, "%s", e.msg);
+    } else if (app.save_view) {
+        int slot = views_next_free(file);
+        char name[2] = {(char)('0' + (slot ? slot : 9)), '\0'};
+        strbuf d = {0};
+        describe(opt, w, h, &d);
+        if (views_save(file, name, d.data, &e))
+            snprintf(app.message, sizeof app.message, "saved view %s (Ctrl+%s recalls it; --view %s renders it)%s",
+                     name, name, name, slot ? "" : ": all nine were used, 9 replaced");
+        else
+            snprintf(app.message, sizeof app.message, "%s", e.msg);
+        sb_free(&d);
+    } else {
+        char name[2] = {(char)('0' + app.recall_view), '\0'}, *text;
+        shot_desc d;
+        bool ok = views_load(file, name, &text, &e);
+        if (ok) {
+            ok = shot_parse(text, file, &d, &e);
+            free(text);
+        }
+        if (ok)
+            app.cam = d.cam, snprintf(app.message, sizeof app.message, "back at view %s", name);
+        else
+            snprintf(app.message, sizeof app.message, "%s", e.msg);
+    }
+    app.save_view = false;
+    app.recall_view = 0;
+}
+
+static void screenshot(const cli_options *opt, int w, int h)
+{
+    char path[128];
+    time_t now = time(NULL);
+    strftime(path, sizeof path, "fathom-%Y%m%d-%H%M%S.png", localtime(&now));
+    err_t err;
+    strbuf description = {0}; /* the shot remembers how it was made */
+    describe(opt, w, h, &description);
     bool ok = offline_write(path, w, h, 0, description.data, &err);
     sb_free(&description);
     if (ok)
@@ -247,7 +297,8 @@ static void hud(int w, int h)
              "%s\n"
              "pos %.4g %.4g %.4g  %s  fov %.0f\n%s"
              "WASD move  mouse look  Space/C up/down  Shift fast  scroll speed\n"
-             "1-%d scenes  K knob  =/- step it  H steps  G grab  V difference  T walk  Home start  R reload  P shot  Esc quit\n%s",
+             "1-%d scenes  K knob  =/- step it  H steps  G grab  V difference  T walk  Home start  B save view  Ctrl+1-9 recall\n"
+             "R reload  P shot  Esc quit\n%s",
              app.scene.name, preset_name(app.scene.preset), w, h, views[app.view], internal, ms, ms > 0 ? 1000.0 / ms : 0.0,
              render_samples(), app.scene.quality.spp, knobs, (double)c->position[0], (double)c->position[1],
              (double)c->position[2], speed, (double)glm_deg(c->fov_y), limit, app.scene_count,
@@ -401,6 +452,7 @@ static void loop(GLFWwindow *win, const cli_options *opt)
             glfwWaitEventsTimeout(IDLE_WAIT_S);
             continue;
         }
+        views(opt, w, h);
         bool moved, refining = draw(opt, w, h, restart, &shown, &moved);
         restart = false;
         glfwSwapBuffers(win);

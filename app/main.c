@@ -13,6 +13,7 @@
 #include "render.h"
 #include "scene.h"
 #include "shot.h"
+#include "views.h"
 
 enum { EXIT_USAGE = 2, DEFAULT_WIDTH = 1280, DEFAULT_HEIGHT = 720 };
 
@@ -35,6 +36,23 @@ static void print_variant(const scene *s)
     sb_free(&pre);
 }
 
+/* --view NAME: the saved view of the scene named on the command line. */
+static bool apply_view(cli_options *o, shot_desc *shot, err_t *err)
+{
+    char path[PATH_MAX_LEN], file[PATH_MAX_LEN], *text;
+    if (!scene_locate(o->scene, path, sizeof path, err))
+        return false;
+    const char *base = strrchr(path, '/');
+    base = base ? base + 1 : path;
+    char name[SCENE_NAME_MAX];
+    snprintf(name, sizeof name, "%.*s", (int)strcspn(base, "."), base);
+    if (!views_file(name, file, sizeof file, err) || !views_load(file, o->view_name, &text, err))
+        return false;
+    bool ok = shot_apply_text(o, text, file, shot, err);
+    free(text);
+    return ok;
+}
+
 int main(int argc, char **argv)
 {
     image_io_install_signal_cleanup();
@@ -46,6 +64,11 @@ int main(int argc, char **argv)
     }
     static shot_desc shot; /* --scene SHOT.png: opt points into it */
     if (opt.scene && shot_is_image(opt.scene) && !shot_apply(&opt, &shot, &err)) {
+        fprintf(stderr, "fathom: %s\n", err.msg);
+        return 1;
+    }
+    static shot_desc view; /* --view NAME: likewise */
+    if (opt.view_name && !apply_view(&opt, &view, &err)) {
         fprintf(stderr, "fathom: %s\n", err.msg);
         return 1;
     }

@@ -89,19 +89,12 @@ bool shot_is_image(const char *name)
     return dot && (!strcmp(dot, ".png") || !strcmp(dot, ".exr"));
 }
 
-bool shot_apply(cli_options *o, shot_desc *d, err_t *err)
+bool shot_apply_text(cli_options *o, const char *text, const char *source, shot_desc *d, err_t *err)
 {
-    char *text;
-    if (!util_file_exists(o->scene))
-        return err_set(err, "image '%s' not found: check the path", o->scene);
-    if (!image_read_text(o->scene, SHOT_KEY, &text, err))
-        return false;
-    bool ok = shot_parse(text, o->scene, d, err);
-    free(text);
-    if (!ok)
+    if (!shot_parse(text, source, d, err))
         return false;
     if (d->set_count + o->set_count > CLI_MAX_SETS)
-        return err_set(err, "%s: its %d overrides and the command line's %d are more than %d", o->scene, d->set_count,
+        return err_set(err, "%s: its %d overrides and the command line's %d are more than %d", source, d->set_count,
                        o->set_count, CLI_MAX_SETS);
     const char *sets[CLI_MAX_SETS];
     int n = 0;
@@ -117,4 +110,16 @@ bool shot_apply(cli_options *o, shot_desc *d, err_t *err)
     if (!o->width)
         o->width = d->width, o->height = d->height;
     return true;
+}
+
+bool shot_apply(cli_options *o, shot_desc *d, err_t *err)
+{
+    char *text;
+    if (!util_file_exists(o->scene))
+        return err_set(err, "image '%s' not found: check the path", o->scene);
+    if (!image_read_text(o->scene, SHOT_KEY, &text, err))
+        return false;
+    bool ok = shot_apply_text(o, text, o->scene, d, err);
+    free(text);
+    return ok;
 }

@@ -36,5 +36,7 @@ bool shot_is_image(const char *name);
  * and the command line's after them (so they win); its camera and size are used unless the command
  * line gives its own. */
 bool shot_apply(cli_options *o, shot_desc *d, err_t *err);
+/* The same from a shot text already read (a saved view: views.h). */
+bool shot_apply_text(cli_options *o, const char *text, const char *source, shot_desc *d, err_t *err);
 
 #endif

@@ -24,5 +24,13 @@ sed 's/"yaw":/"yaw":"x",/' "$tmp/a.png" >"$tmp/bad.png" # also breaks the PNG's 
 check "a damaged shot: exit 1, one line, no file" '[ $? -eq 1 ] && [ $(wc -l <"$tmp/err") -eq 1 ] && [ ! -e "$tmp/g.png" ]'
 "$fathom" --scene "$tmp/nosuch.png" --output "$tmp/i.png" --quiet 2>"$tmp/err2"
 check "a missing shot: one line naming it" 'grep -q "nosuch.png" "$tmp/err2" && [ $(wc -l <"$tmp/err2") -eq 1 ]'
+# a saved view (as the window's B writes it) renders with --view, and an unknown one lists the saved
+mkdir -p "$tmp/views"
+printf '{"3": {"scene": "%s", "sets": ["fractal.power=5"], "camera": {"position": [0.1, 0.2, 2.5], "yaw": 0.25, "pitch": -0.125, "fov_y": 0.75}, "size": [64, 36]}}\n' \
+    "$("$fathom" --scene mandelbulb --print-variant | sed -n 's/^scene [^ ]* (\(.*\)):.*/\1/p')" >"$tmp/views/mandelbulb.json"
+FATHOM_VIEWS_DIR="$tmp/views" "$fathom" --scene mandelbulb --view 3 --output "$tmp/v.png" --quiet
+check "--view renders the saved view" 'grep -aq "\"yaw\":0.25,\"pitch\":-0.125" "$tmp/v.png" && grep -aq "fractal.power=5" "$tmp/v.png"'
+FATHOM_VIEWS_DIR="$tmp/views" "$fathom" --scene mandelbulb --view 4 --output "$tmp/w.png" --quiet 2>"$tmp/err3"
+check "an unknown view: one line listing the saved ones" 'grep -q "no saved view .4. .*(3)" "$tmp/err3" && [ ! -e "$tmp/w.png" ]'
 echo "shot_roundtrip: $passed passed, $failed failed"
 [ "$failed" -eq 0 ]

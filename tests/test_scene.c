@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include <cmocka.h>
 
@@ -13,6 +14,7 @@
 
 #include "scene.h"
 #include "shot.h"
+#include "views.h"
 
 #define FX(e) (1u << EFFECT_##e)
 
@@ -130,6 +132,44 @@ static void shot_descriptions(void **st)
         assert_non_null(strstr(e.msg, "shot.png: its fathom shot description is damaged"));
     }
     sb_free(&t);
+}
+
+/* Saved views: saved, replaced, loaded, listed when unknown, slots, a broken file refused. */
+static void saved_views(void **st)
+{
+    (void)st;
+    char dir[] = "/tmp/fathom-views-XXXXXX", file[PATH_MAX_LEN];
+    assert_non_null(mkdtemp(dir));
+    char nested[PATH_MAX_LEN];
+    snprintf(nested, sizeof nested, "%s/a/b", dir); /* a folder that does not exist yet */
+    setenv("FATHOM_VIEWS_DIR", nested, 1);
+    err_t e;
+    assert_true(views_file("menger", file, sizeof file, &e));
+    assert_int_equal(views_next_free(file), 1);
+    assert_true(views_save(file, "1", "{\"x\": 1}", &e));
+    assert_true(views_save(file, "2", "{\"x\": 2}", &e));
+    assert_true(views_save(file, "1", "{\"x\": 3}", &e)); /* replaces */
+    assert_int_equal(views_next_free(file), 3);
+    char *text;
+    assert_true(views_load(file, "1", &text, &e));
+    assert_string_equal(text, "{\"x\":3}");
+    free(text);
+    assert_false(views_load(file, "7", &text, &e));
+    assert_non_null(strstr(e.msg, "no saved view '7'"));
+    assert_non_null(strstr(e.msg, "(1, 2)"));
+    FILE *f = fopen(file, "w");
+    fputs("[1, 2]", f);
+    fclose(f);
+    assert_false(views_load(file, "1", &text, &e));
+    assert_non_null(strstr(e.msg, "not a views file"));
+    unsetenv("FATHOM_VIEWS_DIR");
+    unlink(file);
+    char p[PATH_MAX_LEN];
+    snprintf(p, sizeof p, "%s/a/b", dir);
+    rmdir(p);
+    snprintf(p, sizeof p, "%s/a", dir);
+    rmdir(p);
+    rmdir(dir);
 }
 
 static void shipped_csg_scene(void **st)
@@ -359,6 +399,7 @@ int main(void)
         cmocka_unit_test(csg_codegen),
         cmocka_unit_test(big_csg_scenes),
         cmocka_unit_test(shot_descriptions),
+        cmocka_unit_test(saved_views),
         cmocka_unit_test(locate),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
