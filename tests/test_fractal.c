@@ -421,6 +421,45 @@ static void bounding_sphere_is_never_drawn(void **st)
         }
 }
 
+/* The glow counts steps near the shape only: background rays that pass just outside the bounding sphere
+ * (many steps on the bound, none near the box) are as dark as rays far from it. Before, they drew a
+ * faint ring around the sphere's silhouette. */
+static void glow_draws_no_ring(void **st)
+{
+    (void)st;
+    enum { GW = 160, GH = 120 };
+    const char *sets[] = {"quality.spp=1", "effects.aa=off", "environment.intensity=0", "lights.0.intensity=0"};
+    scene s;
+    err_t e;
+    if (!scene_load("mandelbox", sets, 4, &s, &e))
+        fail_msg("%s", e.msg);
+    assert_true(s.effects & (1u << EFFECT_GLOW));
+    double d = 3.2 * s.fractal.bound_radius / sqrt(3.0);
+    camera cam = cam_at(d, d * 0.8, d * 1.1, 0, 0, 0, 50);
+    static float aov[GW * GH * AOV], rgba[GW * GH * 4];
+    draw(&s, &cam, GW, GH, 1, NULL, aov, rgba);
+    double near_sum = 0, far_sum = 0;
+    int near_n = 0, far_n = 0;
+    for (int row = 0; row < GH; row++)
+        for (int x = 0; x < GW; x++) {
+            if (!isinf(aov[(row * GW + x) * AOV + AOV_SLOT_DEPTH]))
+                continue;
+            dray r = pixel_ray(&cam, x, row, GW, GH);
+            double b = ref_dot(r.o, r.d), closest = sqrt(ref_dot(r.o, r.o) - b * b);
+            double lum = rgba[(row * GW + x) * 4] + rgba[(row * GW + x) * 4 + 1] + rgba[(row * GW + x) * 4 + 2];
+            if (closest > s.fractal.bound_radius * 1.001 && closest < s.fractal.bound_radius * 1.05)
+                near_sum += lum, near_n++;
+            else if (closest > s.fractal.bound_radius * 1.3)
+                far_sum += lum, far_n++;
+        }
+    double near = near_sum / near_n, far = far_sum / far_n;
+    fprintf(stderr, "  glow just outside the bounding sphere %.4g (%d px), far from it %.4g (%d px)\n", near, near_n,
+            far, far_n);
+    assert_true(near_n > 20 && far_n > 20);
+    assert_true(near - far < 2e-3); /* without the fix: 0.103 against 0.0065 */
+    scene_free(&s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -430,6 +469,7 @@ int main(void)
         cmocka_unit_test(extreme_cameras),
         cmocka_unit_test(over_relaxation),
         cmocka_unit_test(bounding_sphere_is_never_drawn),
+        cmocka_unit_test(glow_draws_no_ring),
     };
     return cmocka_run_group_tests(tests, gl_setup, gl_teardown);
 }

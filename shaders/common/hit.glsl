@@ -7,6 +7,7 @@ struct Hit {
     float mat;      // material index
     int steps;
     bool exhausted; // the step budget ran out: t is the best candidate along the ray, not a located surface
+    int boundSteps; // of `steps`, those taken on a bound (MATERIAL_BOUND): not near the shape
 };
 
 // map() may return this material for a conservative bound that is not a surface (the fractals'

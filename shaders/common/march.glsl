@@ -92,7 +92,7 @@ float refineCrossing(vec3 ro, vec3 rd, float side, float a, float fa, float b, f
 #ifndef PROGRAM_CAST_RAY // a program may march its own way (terrain)
 Hit castRay(vec3 ro, vec3 rd, float tmax, float side, float pathT)
 {
-    Hit h = Hit(false, 0.0, -1.0, 0, false);
+    Hit h = Hit(false, 0.0, -1.0, 0, false, 0);
     float omega = float(OVER_RELAX);
     float t = 0.0, tPrev = 0.0, rPrev = 0.0, fPrev = 0.0; // rPrev = |fPrev|: the last ball's radius
     float bestRatio = 1e30, tBest = 0.0, matBest = 0.0; // the closest approach, in thresholds
@@ -105,6 +105,7 @@ Hit castRay(vec3 ro, vec3 rd, float tmax, float side, float pathT)
         float eps = hitEps(pathT + t);
         bool bound = isBound(d);
         lastBound = bound;
+        h.boundSteps += bound ? 1 : 0;
         if (omega > 1.0 && i > 0 && (abs(dist) + rPrev < t - tPrev || (MARCH_REFINES == 1 && dist < 0.0))) {
             t = tPrev + rPrev * float(STEP_FACTOR);
             omega = 1.0;

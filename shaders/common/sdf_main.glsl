@@ -64,7 +64,7 @@ void main()
     float side = 1.0;      // +1 outside solids, −1 inside glass
     float firstT = -1.0, primaryT = float(MAX_DIST);
     vec3 firstN = vec3(0.0);
-    int firstSteps = 0;
+    int firstSteps = 0, firstBoundSteps = 0;
     bool firstExhausted = false; // the primary ray ran out of steps (its hit is a best candidate)
     bool escaped = false;
 #if FX_REFRACTION
@@ -78,6 +78,7 @@ void main()
         Hit h = castRay(ro, rd, float(MAX_DIST) - pathT, side, pathT);
         if (bounce == 0) {
             firstSteps = h.steps;
+            firstBoundSteps = h.boundSteps;
             firstExhausted = h.exhausted;
         }
         if (!h.hit) {
@@ -161,7 +162,9 @@ void main()
         radiance += throughput * environment(rd);
 
 #if FX_GLOW // light gathered where the primary ray crept along the surface (many steps)
-    float crept = float(firstSteps) / float(MAX_STEPS);
+    // Only steps near the shape count: steps on a bound (approaching the bounding sphere at a grazing
+    // angle) drew a faint ring around the bounding sphere's silhouette.
+    float crept = float(firstSteps - firstBoundSteps) / float(MAX_STEPS);
     if (fxOn(FX_GLOW_BIT))
         radiance += uGlowColor * uGlowStrength * crept * crept;
 #endif

@@ -89,7 +89,7 @@ float intersectCell(ivec2 cell, vec2 c0, vec2 cd, float y0, float dy, float sEnd
 #if TERRAIN_MAXMIP
 Hit terrainTrace(vec3 ro, vec3 rd, vec2 slab)
 {
-    Hit h = Hit(false, slab.y, 0.0, 0, false);
+    Hit h = Hit(false, slab.y, 0.0, 0, false, 0);
     vec2 c0 = toCell(ro.xz), cd = rd.xz / uTerrainSpacing;
     vec2 dirSign = vec2(cd.x >= 0.0 ? 1.0 : -1.0, cd.y >= 0.0 ? 1.0 : -1.0);
     const float NUDGE = 1e-4; // cells: moves a point on a node boundary into the node ahead
@@ -131,7 +131,7 @@ float hsSurfaceY(vec2 xz) { return terrainHeight(xz); }
 
 Hit terrainTrace(vec3 ro, vec3 rd, vec2 slab)
 {
-    Hit h = Hit(false, slab.y, 0.0, 0, false);
+    Hit h = Hit(false, slab.y, 0.0, 0, false, 0);
     float texel = min(uTerrainSpacing.x, uTerrainSpacing.y);
     float along = max(length(rd.xz), 1e-3); // horizontal metres per metre of ray
     float dt = min(float(LINEAR_STEP) * texel / along, (uTerrainHeightMax - uTerrainHeightMin) + texel);
@@ -149,7 +149,7 @@ Hit castRay(vec3 ro, vec3 rd, float tmax, float side, float pathT)
     vec2 slab = terrainSlab(ro, rd);
     slab.y = min(slab.y, tmax);
     if (slab.x > slab.y)
-        return Hit(false, tmax, 0.0, 1, false);
+        return Hit(false, tmax, 0.0, 1, false, 0);
     Hit h = terrainTrace(ro, rd, slab);
     if (!h.hit)
         h.t = tmax;
