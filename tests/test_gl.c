@@ -515,6 +515,47 @@ static void png_orientation(void **st)
     scene_free(&s);
 }
 
+/* ---- normals where thin solids and creases meet ------------------------------------------------------- */
+
+/* An 8 cm slab standing on the ground (the csg scene's mirror), seen small: the hit threshold (several cm
+ * here) exceeds half the slab's thickness. Every pixel that sees the slab's front face must get the
+ * face's normal, to the crease with the ground. With normals by differences a whole threshold wide, the
+ * samples crossed the slab and met the ground: the mirror reflected what lay behind it while flying at
+ * a low internal resolution, and its foot drew a bright line. */
+static void thin_slab_normals(void **st)
+{
+    (void)st;
+    enum { SW = 120, SH = 68 };
+    scene s;
+    load_text("{\"program\": \"csg\", \"materials\": {\"m\": {}},"
+              " \"objects\": [{\"shape\": \"box\", \"size\": [3.6, 2.4, 0.08], \"position\": [0.3, 1.2, -2.6],"
+              " \"material\": \"m\"}, {\"shape\": \"plane\", \"material\": \"m\"}]}",
+              (const char *const[]){"quality.preset=interactive", "quality.spp=1"}, 2, &s);
+    camera cam = cam_at(0.3, 1.5, 3.0, 0.3, 1.0, -2.6, 40);
+    static float aov[SW * SH * AOV];
+    draw(&s, &cam, SW, SH, 1, NULL, aov, NULL);
+    double eps = s.quality.hit_k * 5.6 * camera_pixel_angle(&cam, SH);
+    int face = 0, wrong = 0;
+    double worst = 1;
+    for (int row = 0; row < SH; row++)
+        for (int x = 0; x < SW; x++) {
+            dray r = pixel_ray(&cam, x, row, SW, SH);
+            double t = (-2.56 - r.o[2]) / r.d[2], px = r.o[0] + t * r.d[0], py = r.o[1] + t * r.d[1];
+            if (!(px > -1.5 + 0.01 && px < 2.1 - 0.01 && py > 0.0 && py < 2.4 - 0.01))
+                continue; /* not the face (a pixel-wide margin at its edges, none at the crease) */
+            const float *n = aov + (row * SW + x) * AOV + AOV_SLOT_NORMAL;
+            face++;
+            worst = fmin(worst, (double)n[2]);
+            wrong += n[2] < 0.999f;
+        }
+    fprintf(stderr, "  thin slab: threshold %.3f m against half-thickness 0.04; %d face pixels, %d with a wrong "
+                    "normal (worst n.z %.3f)\n", eps, face, wrong, worst);
+    assert_true(eps > 0.04);
+    assert_true(face > 1000);
+    assert_int_equal(wrong, 0);
+    scene_free(&s);
+}
+
 /* ---- a shot rendered in bands is the shot rendered whole, pixel for pixel -------------------------- */
 
 static float *shot(const scene *s, const camera *cam, const char *path, int strip_rows, int *channels)
@@ -629,6 +670,7 @@ int main(void)
         cmocka_unit_test(no_nan_or_inf),
         cmocka_unit_test(png_orientation),
         cmocka_unit_test(banded_shot_matches_whole),
+        cmocka_unit_test(thin_slab_normals),
         cmocka_unit_test(reload_keeps_last_good_program),
     };
     return cmocka_run_group_tests(tests, gl_setup, gl_teardown);

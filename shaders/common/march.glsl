@@ -55,6 +55,9 @@ float hitEps(float t)
 #ifndef NEAR_MIN_STEP
 #define NEAR_MIN_STEP 0.0
 #endif
+#ifndef NORMAL_EPS_FRACTION
+#define NORMAL_EPS_FRACTION 0.05
+#endif
 #if REFINE_STEPS > 0 && !defined(PROGRAM_FOOTPRINT_SURFACE)
 #define MARCH_REFINES 1
 #else
@@ -156,6 +159,20 @@ Hit castRay(vec3 ro, vec3 rd, float tmax, float side, float pathT)
     return h;
 }
 #endif
+
+// The finite-difference step of normals. Where hits are surfaces (MARCH_REFINES) a small fraction of the
+// threshold: a step of a whole threshold mixes in the other solid's gradient within eps of a crease, a
+// bright or dark line a pixel wide where two solids meet (the mirror's foot on the ground). Where the
+// surface is the footprint's (fractals), the threshold itself, so normals are as smooth as the surface.
+// Never below a few float steps of the position, where differences would be rounding noise.
+float normalEps(float eps, float t)
+{
+#if MARCH_REFINES
+    return max(NORMAL_EPS_FRACTION * eps, 16.0 * PRECISION_REL * (length(uCamPos) + t));
+#else
+    return eps;
+#endif
+}
 
 #ifndef PROGRAM_NORMAL // a program may know its normals better (terrain: from the heightfield)
 // Gradient of the distance by the tetrahedron of central differences (four map() calls).

@@ -89,7 +89,7 @@ void main()
         vec3 p = ro + rd * h.t;
         float T = pathT + h.t;
         float eps = hitEps(T);
-        vec3 nOut = calcNormal(p, eps, -rd); // outward normal of the solid
+        vec3 nOut = calcNormal(p, normalEps(eps, T), -rd); // outward normal of the solid
         if (bounce == 0) {
             firstT = h.t;
             primaryT = h.t;
