@@ -556,6 +556,48 @@ static void thin_slab_normals(void **st)
     scene_free(&s);
 }
 
+/* The csg scene's relief slab (top face y = 0.22, x -3.15…-1.95, z 1.55…2.55), seen so its far edge
+ * is near the top of the image: no pixel along the far edge may be far darker than the face's median.
+ * Where the parallax search found relief beyond the face's edge, outside the solid, shading there drew
+ * near-black blotches along that edge. */
+static void relief_edge_has_no_blotches(void **st)
+{
+    (void)st;
+    enum { RW = 160, RH = 90 };
+    scene s;
+    err_t e;
+    if (!scene_load("csg", (const char *const[]){"quality.spp=1"}, 1, &s, &e))
+        fail_msg("%s", e.msg);
+    camera cam = cam_at(-2.2, 0.9, 3.4, -2.6, 0.1, 1.8, 50);
+    static float aov[RW * RH * AOV], rgba[RW * RH * 4];
+    draw(&s, &cam, RW, RH, 1, NULL, aov, rgba);
+    static double lum[RW * RH];
+    static bool far_strip[RW * RH];
+    int n = 0;
+    for (int row = 0; row < RH; row++)
+        for (int x = 0; x < RW; x++) {
+            dray r = pixel_ray(&cam, x, row, RW, RH);
+            double t = (0.22 - r.o[1]) / r.d[1], px = r.o[0] + t * r.d[0], pz = r.o[2] + t * r.d[2];
+            const float *c = rgba + (row * RW + x) * 4;
+            if (t > 0 && px > -3.15 + 0.02 && px < -1.95 - 0.02 && pz > 1.55 + 0.02 && pz < 2.55 - 0.02) {
+                far_strip[n] = pz < 1.75;
+                lum[n++] = 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
+            }
+        }
+    double sorted[RW * RH];
+    memcpy(sorted, lum, sizeof(double) * (size_t)n);
+    double median = util_median(sorted, n);
+    int dark = 0, strip = 0;
+    for (int i = 0; i < n; i++)
+        if (far_strip[i])
+            strip++, dark += lum[i] < 0.1 * median;
+    fprintf(stderr, "  relief top face: %d pixels, median luminance %.3f; in the 0.2 m strip along the far edge "
+                    "%d pixels, %d below a tenth of it\n", n, median, strip, dark);
+    assert_true(n > 1000 && strip > 50);
+    assert_int_equal(dark, 0); /* 4 before the fix */
+    scene_free(&s);
+}
+
 /* ---- a shot rendered in bands is the shot rendered whole, pixel for pixel -------------------------- */
 
 static float *shot(const scene *s, const camera *cam, const char *path, int strip_rows, int *channels)
@@ -671,6 +713,7 @@ int main(void)
         cmocka_unit_test(png_orientation),
         cmocka_unit_test(banded_shot_matches_whole),
         cmocka_unit_test(thin_slab_normals),
+        cmocka_unit_test(relief_edge_has_no_blotches),
         cmocka_unit_test(reload_keeps_last_good_program),
     };
     return cmocka_run_group_tests(tests, gl_setup, gl_teardown);

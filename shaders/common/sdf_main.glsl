@@ -103,7 +103,15 @@ void main()
         vec3 pSurface = p; // shadows and AO start on the real surface, not inside a relief
 #if FX_RELIEF
         int reliefSteps = 0;
+        vec3 nFace = nOut;
         nOut = applyRelief(clamp(int(h.mat + 0.5), 0, NUM_MATERIALS - 1), p, nOut, rd, reliefSteps);
+        if (side * map(p).x > 0.0) {
+            // The relief the search found lies outside the solid (past the face's edge: the carved layer
+            // has no side walls in tangent space). Shading there drew dark blotches along the far edge;
+            // the flat face is shown instead.
+            p = pSurface;
+            nOut = nFace;
+        }
         if (bounce == 0) {
             firstN = nOut;
             firstSteps += reliefSteps;
