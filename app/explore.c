@@ -348,8 +348,9 @@ static void fly(GLFWwindow *win, float dt)
     vec3 before;
     glm_vec3_copy(app.cam.position, before);
     camera_update(&app.cam, &in, dt, speed, MOUSE_SENSITIVITY);
-    float after[2];
-    if (probed && render_probe(&app.scene, NULL, app.cam.position, 1, after, &e))
+    float after[2]; /* the second probe only when the camera moved */
+    bool moved = !glm_vec3_eqv(before, app.cam.position);
+    if (probed && moved && render_probe(&app.scene, NULL, app.cam.position, 1, after, &e))
         camera_clamp_step(before, app.cam.position, dist[0] * app.scene.quality.step_factor,
                           after[0] * app.scene.quality.step_factor);
     camera_clamp_range(app.cam.position, app.scene.cam_look_at, app.scene.quality.max_dist);

@@ -163,7 +163,7 @@ static bool render_bands(const offline_desc *d, image_writer *w, err_t *err)
 
 bool offline_render_current(const offline_desc *d, err_t *err)
 {
-    if (!image_can_write(d->output, err) || !render_set_scene(d->scene, NULL, err))
+    if (!render_set_scene(d->scene, NULL, err)) /* the output was checked by the caller, before the GPU */
         return false;
     double t0 = util_now();
     image_writer *w = open_writer(d->output, d->width, d->height, d->aovs, d->description, err);

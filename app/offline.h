@@ -25,7 +25,7 @@ typedef struct offline_desc {
 /* Renders and writes d->output. Opens and closes its own headless context. */
 bool offline_render(const offline_desc *d, err_t *err);
 
-/* The same in the current GL context, after render_init (tests). */
+/* The same in the current GL context, after render_init and image_can_write (tests). */
 bool offline_render_current(const offline_desc *d, err_t *err);
 
 /* Writes the current render target to path (.png or .exr with aovs); used by offline and screenshots. */
