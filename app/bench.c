@@ -41,6 +41,7 @@ static bool scope_applies(knob_scope scope, const scene *s)
         return !program_is_fractal(s->program) && !s->terrain.heightmap[0];
     case SCOPE_SEARCH: /* the lab's search runs: linear terrain, or relief materials */
         return (s->terrain.heightmap[0] && !s->terrain.maxmip) || (s->effects & (1u << EFFECT_RELIEF));
+    case SCOPE_DROPLETS: return s->effects & (1u << EFFECT_DROPLETS);
     }
     return false;
 }

@@ -56,6 +56,7 @@ unsigned effect_derive(const scene *s)
         [EFFECT_AA] = s->quality.spp > 1,
         [EFFECT_GLOW] = s->fractal.glow > 0,
         [EFFECT_RELIEF] = relief,
+        [EFFECT_DROPLETS] = s->has_droplets,
     };
     unsigned fx = 0;
     for (int e = 0; e < EFFECT_COUNT; e++) {
@@ -65,6 +66,9 @@ unsigned effect_derive(const scene *s)
     /* penumbrae are a kind of shadow: without shadow rays there is nothing to soften */
     if (!(fx & (1u << EFFECT_SHADOWS)))
         fx &= ~(1u << EFFECT_SOFT_SHADOWS);
+    /* droplets come from a file: a scene without one has none to draw */
+    if (!s->has_droplets)
+        fx &= ~(1u << EFFECT_DROPLETS);
     /* terrain programs run the lab's search themselves, over their own surface: no relief there */
     if (program_get(s->program)->family == FAMILY_TERRAIN)
         fx &= ~(1u << EFFECT_RELIEF);

@@ -42,6 +42,7 @@ typedef enum knob_scope {
     SCOPE_TEXTURES, /* scenes with filtered colour textures */
     SCOPE_SEARCH,   /* the lab's linear + binary search runs: linear terrain, relief materials */
     SCOPE_REFINES,  /* sphere-traced programs whose distance is exact or a bound (not fractals' level-of-detail surfaces) */
+    SCOPE_DROPLETS, /* scenes with droplets */
 } knob_scope;
 
 /* clang-format off */
@@ -73,6 +74,10 @@ typedef enum knob_scope {
       "the lab's search: each linear step is this much longer than the last")                                                             \
     X(binary_steps, INT,   "BINARY_STEPS", 0,     40,     4,    6,       8,     12,   0,   0,    "0,2,4,8,12",            SCOPE_SEARCH,   \
       "the lab's search: binary-search refinements once the linear search brackets a hit")                                                \
+    X(droplet_lod,  FLOAT, "DROPLET_LOD",  0,     1000,   1,    0.5,     0.25,  0,    2,   0,    "0,0.25,0.5,1,2",        SCOPE_DROPLETS, \
+      "droplets smaller than this many pixel footprints (radius) are not traced: the ray goes straight on, dimmed by the droplet's mean transmittance (0: trace every droplet)") \
+    X(droplet_events, INT, "DROPLET_EVENTS", 0,   1000,   4,    8,       16,    64,   2,   0,    "2,4,8,16,32",           SCOPE_DROPLETS, \
+      "droplet surfaces a path may cross (entries, exits, internal reflections); then it goes on straight")        \
     X(spp,          INT,   NULL,         1,     65536,  1,    4,       16,    256,  2,   0,    "1,2,4,8,16",            SCOPE_ANY,      \
       "samples per pixel for offline shots and a still window (progressive, jittered)")
 /* clang-format on */

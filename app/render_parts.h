@@ -14,7 +14,16 @@
 #include "scene.h"
 
 /* Texture units: the scene's textures first, then these. */
-enum { UNIT_ENVMAP = SCENE_MAX_TEXTURES, UNIT_HEIGHT, UNIT_HEIGHT_MAX, UNIT_CSG_LIST, UNIT_CSG_NODES };
+enum {
+    UNIT_ENVMAP = SCENE_MAX_TEXTURES,
+    UNIT_HEIGHT,
+    UNIT_HEIGHT_MAX,
+    UNIT_CSG_LIST,
+    UNIT_CSG_NODES,
+    UNIT_DROPLETS,
+    UNIT_DROPLET_CELLS,
+    UNIT_DROPLET_INDEX
+};
 
 /* ---- render.c ---- */
 GLuint render_vao(void); /* core profile draws nothing without a bound VAO */

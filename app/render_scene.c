@@ -2,9 +2,11 @@
  * copy by value (the caller may free or change its scene at once), loads the textures, cube map and
  * heightfield it names, and uploads every uniform by name (scene_uniforms() says which). */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "droplets.h"
 #include "render_parts.h"
 #include "terrain.h"
 #include "texture.h"
@@ -18,7 +20,26 @@ static struct {
     GLuint height_tex, height_max_tex; /* terrain: heights, max pyramid */
     GLuint csg_list_tex, csg_nodes_tex; /* csg: the primitive list and its BVH */
     heightfield hf;
+    /* droplets: kept while the next scene names the same file and scale (switching presets or
+     * effects does not read a million droplets again) */
+    droplets drops;
+    char drops_file[PATH_MAX_LEN];
+    float drops_scale;
+    GLuint drops_buf[3], drops_tex[3]; /* spheres, cells, index: texture buffers */
+    double drops_load_s;               /* reading the file and building the grid */
 } gpu;
+
+static void free_droplets(void)
+{
+    if (gpu.drops_tex[0]) {
+        glDeleteTextures(3, gpu.drops_tex);
+        glDeleteBuffers(3, gpu.drops_buf);
+    }
+    memset(gpu.drops_tex, 0, sizeof gpu.drops_tex);
+    memset(gpu.drops_buf, 0, sizeof gpu.drops_buf);
+    droplets_free(&gpu.drops);
+    gpu.drops_file[0] = '\0';
+}
 
 static void free_textures(void)
 {
@@ -43,6 +64,7 @@ static void free_textures(void)
 void scene_gpu_shutdown(void)
 {
     free_textures();
+    free_droplets();
     memset(&gpu, 0, sizeof gpu);
 }
 
@@ -99,6 +121,64 @@ static GLuint texel_texture(const float *data, int texels)
     return t;
 }
 
+/* A texture buffer over `bytes` of data (shaders read it with texelFetch). */
+static bool buffer_texture(GLenum format, const void *data, size_t bytes, GLuint *buf, GLuint *tex)
+{
+    glGenBuffers(1, buf);
+    glBindBuffer(GL_TEXTURE_BUFFER, *buf);
+    glBufferData(GL_TEXTURE_BUFFER, (GLsizeiptr)bytes, data, GL_STATIC_DRAW);
+    glBindBuffer(GL_TEXTURE_BUFFER, 0);
+    if (glGetError() == GL_OUT_OF_MEMORY)
+        return false;
+    glGenTextures(1, tex);
+    glBindTexture(GL_TEXTURE_BUFFER, *tex);
+    glTexBuffer(GL_TEXTURE_BUFFER, format, *buf);
+    glBindTexture(GL_TEXTURE_BUFFER, 0);
+    return true;
+}
+
+/* Droplets: the file, its grid, three texture buffers (app/droplets.h). */
+static bool upload_droplets(const scene *s, err_t *err)
+{
+    if (gpu.drops_tex[0] && !strcmp(gpu.drops_file, s->droplets.file) && gpu.drops_scale == s->droplets.scale)
+        return true;
+    free_droplets();
+    double t0 = util_now();
+    if (!droplets_read(s->droplets.file, s->droplets.scale, &gpu.drops, err) || !droplets_build_grid(&gpu.drops, err)) {
+        droplets_free(&gpu.drops);
+        return false;
+    }
+    gpu.drops_load_s = util_now() - t0;
+    GLint max_texels = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
+    size_t cells = droplets_cell_count(&gpu.drops) + 1;
+    if ((size_t)gpu.drops.count > (size_t)max_texels || gpu.drops.refs > (size_t)max_texels || cells > (size_t)max_texels) {
+        err_set(err, "droplets file '%s': %d droplets (%zu grid entries) pass this GPU's %d-texel texture buffers; "
+                     "thin the data", s->droplets.file, gpu.drops.count, gpu.drops.refs, max_texels);
+        free_droplets();
+        return false;
+    }
+    const droplets *d = &gpu.drops;
+    if (!buffer_texture(GL_RGBA32F, d->spheres, sizeof(float) * 4 * (size_t)d->count, &gpu.drops_buf[0], &gpu.drops_tex[0]) ||
+        !buffer_texture(GL_R32UI, d->cells, sizeof(uint32_t) * cells, &gpu.drops_buf[1], &gpu.drops_tex[1]) ||
+        !buffer_texture(GL_R32UI, d->index, sizeof(uint32_t) * (d->refs ? d->refs : 1), &gpu.drops_buf[2], &gpu.drops_tex[2])) {
+        err_set(err, "droplets file '%s': the GPU has no room for %d droplets (%.0f MB)", s->droplets.file, d->count,
+                (double)droplets_bytes(d) / 1e6);
+        free_droplets();
+        return false;
+    }
+    snprintf(gpu.drops_file, sizeof gpu.drops_file, "%s", s->droplets.file);
+    gpu.drops_scale = s->droplets.scale;
+    return true;
+}
+
+const droplets *render_droplets(double *load_s)
+{
+    if (load_s)
+        *load_s = gpu.drops_load_s;
+    return gpu.drops_tex[0] ? &gpu.drops : NULL;
+}
+
 bool scene_gpu_set(const scene *s, err_t *err)
 {
     free_textures();
@@ -118,6 +198,12 @@ bool scene_gpu_set(const scene *s, err_t *err)
         gpu.csg_nodes_tex = texel_texture(s->csg_nodes, s->csg_node_count * CSG_NODE_TEXELS);
         if (!gpu.csg_list_tex || !gpu.csg_nodes_tex)
             return err_set(err, "%s: out of memory for %d primitives", s->path, s->csg_list_count);
+    }
+    if (s->has_droplets && (s->effects & (1u << EFFECT_DROPLETS))) {
+        if (!upload_droplets(s, err))
+            return false;
+    } else {
+        free_droplets();
     }
     gpu.env_size = 0;
     if (s->has_cubemap && (s->effects & (1u << EFFECT_ENVMAP))) {
@@ -179,6 +265,9 @@ static void texture_uniforms(const scene *s, const uniform_sink *u)
     uniform_i(u, "uEnvMap", UNIT_ENVMAP);
     uniform_i(u, "uCsgList", UNIT_CSG_LIST);
     uniform_i(u, "uCsgNodes", UNIT_CSG_NODES);
+    uniform_i(u, "uDroplets", UNIT_DROPLETS);
+    uniform_i(u, "uDropletCells", UNIT_DROPLET_CELLS);
+    uniform_i(u, "uDropletIndex", UNIT_DROPLET_INDEX);
     uniform_f(u, "uEnvMaxLod", gpu.env_size > 0 ? log2f((float)gpu.env_size) : 0.0f);
     float texels[SCENE_MAX_MATERIALS];
     for (int i = 0; i < s->material_count; i++)
@@ -199,6 +288,13 @@ void scene_gpu_uniforms(GLuint prog, const scene *s)
     texture_uniforms(s, &u);
     if (gpu.height_tex)
         heightfield_uniforms(&gpu.hf, &u);
+    if (gpu.drops_tex[0]) { /* the grid (shaders/common/droplets.glsl) */
+        const droplets *d = &gpu.drops;
+        uniform_fv(&u, "uDropletLo", 3, 1, d->lo);
+        uniform_fv(&u, "uDropletHi", 3, 1, d->hi);
+        uniform_fv(&u, "uDropletCell", 3, 1, d->cell);
+        uniform_iv(&u, "uDropletDims", 3, 1, d->dims);
+    }
 }
 
 void scene_gpu_bind_textures(void)
@@ -217,6 +313,10 @@ void scene_gpu_bind_textures(void)
     glBindTexture(GL_TEXTURE_2D, gpu.csg_list_tex);
     glActiveTexture(GL_TEXTURE0 + UNIT_CSG_NODES);
     glBindTexture(GL_TEXTURE_2D, gpu.csg_nodes_tex);
+    for (int i = 0; i < 3; i++) {
+        glActiveTexture(GL_TEXTURE0 + UNIT_DROPLETS + (GLenum)i);
+        glBindTexture(GL_TEXTURE_BUFFER, gpu.drops_tex[i]);
+    }
     glActiveTexture(GL_TEXTURE0);
 }
 

@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "droplets.h"
 #include "scene_parse.h"
 
 /* A block that holds another family's shape is a mistake, not something to ignore. */
@@ -33,7 +34,8 @@ static bool parse_root(scene_ctx *c, cJSON *root)
 {
     scene *s = c->s;
     static const char *const keys[] = {"title", "program", "camera", "environment", "lights", "fog",
-                                       "materials", "objects", "fractal", "terrain", "quality", "effects", NULL};
+                                       "materials", "objects", "fractal", "terrain", "quality", "effects",
+                                       "droplets", NULL};
     if (!check_keys(c, root, "", keys))
         return false;
     const char *title = NULL, *prog = NULL;
@@ -53,7 +55,7 @@ static bool parse_root(scene_ctx *c, cJSON *root)
     if (!check_family_blocks(c, root, p))
         return false;
     if (!parse_camera(c, root) || !parse_fog(c, root) || !parse_environment(c, root) || !parse_lights(c, root) ||
-        !parse_quality(c, root) || !parse_effects(c, root))
+        !parse_quality(c, root) || !parse_effects(c, root) || !parse_droplets(c, root))
         return false;
     /* fractals colour their own surface: their "materials" are optional */
     bool materials = p->family != FAMILY_FRACTAL || cJSON_GetObjectItemCaseSensitive(root, "materials");
@@ -310,6 +312,16 @@ void scene_uniforms(const scene *s, const uniform_sink *u)
     uniform_f(u, "uFogDensity", s->fog_density);
     uniform_f(u, "uFogFalloff", s->fog_falloff);
     uniform_f(u, "uFogHeight", s->fog_height);
+    if (s->has_droplets) { /* shaders/common/droplets.glsl; the grid's uniforms come with its buffers */
+        uniform_f(u, "uDropletIor", s->droplets.ior);
+        uniform_fv(u, "uDropletAbsorption", 3, 1, s->droplets.absorption);
+        uniform_f(u, "uDropletRoughness", s->droplets.roughness);
+        droplet_lod_table lod;
+        droplets_lod_table(s->droplets.ior, &lod);
+        uniform_fv(u, "uDropletLodWeight", 1, DROPLET_LOD_NODES, lod.weight);
+        uniform_fv(u, "uDropletLodCosT", 1, DROPLET_LOD_NODES, lod.cos_t);
+        uniform_f(u, "uDropletReflect", lod.reflect);
+    }
     const program_def *p = program_get(s->program);
     if (p->uniforms)
         p->uniforms(s, u);

@@ -124,6 +124,17 @@ typedef struct scene {
     } terrain;
     bool adaptive_speed; /* window: flying speed follows the distance to the surface */
 
+    /* "droplets": liquid spheres from a file (app/droplets.h), a layer any program can hold; the file
+     * is read when the scene goes to the GPU (render_scene.c), like a terrain's heightmap */
+    bool has_droplets;
+    struct scene_droplets {
+        char file[PATH_MAX_LEN];
+        float scale;         /* multiplies the file's positions and radii */
+        float ior;           /* of the liquid (water 1.33) */
+        float absorption[3]; /* Bouguer–Beer–Lambert coefficient inside, per metre */
+        float roughness;     /* of the liquid's surface, for the lights' highlights */
+    } droplets;
+
     char *map_glsl; /* the program's virtual "program.glsl": the CSG map, or an #include of the fractal */
     int primitive_count;
     /* csg: the primitive list and its BVH, packed as texels (4 floats each); NULL when none */

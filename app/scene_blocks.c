@@ -92,6 +92,34 @@ int find_material(const scene *s, const char *name)
     return -1;
 }
 
+/* ---- droplets ---------------------------------------------------------------------------------- */
+
+bool parse_droplets(scene_ctx *c, const cJSON *root)
+{
+    scene *s = c->s;
+    const cJSON *d = cJSON_GetObjectItemCaseSensitive(root, "droplets");
+    if (!d)
+        return true;
+    static const char *const keys[] = {"file", "scale", "ior", "absorption", "roughness", NULL};
+    /* pure water, per metre at 650, 550 and 450 nm (Pope & Fry, "Absorption spectrum (380–700 nm) of
+     * pure water", Applied Optics 36(33), 1997) */
+    static const float water[3] = {0.34f, 0.0565f, 0.0092f};
+    const char *file = NULL;
+    if (!cJSON_IsObject(d))
+        return fail(c, "droplets", "expected an object like {\"file\": \"spray.csv\"}");
+    if (!check_keys(c, d, "droplets", keys) || !get_str(c, d, "droplets", "file", NULL, &file))
+        return false;
+    if (!file)
+        return fail(c, "droplets.file", "missing: name a CSV file of droplet centres and radii (ParaView's "
+                                        "Points:0..2 with radius or diameter, or x,y,z,r)");
+    s->has_droplets = true;
+    return resolve_file(c, "droplets.file", file, s->droplets.file) &&
+           get_num(c, d, "droplets", "scale", 1, 1e-9f, 1e9f, &s->droplets.scale) &&
+           get_num(c, d, "droplets", "ior", 1.33f, 1.0001f, 4, &s->droplets.ior) &&
+           get_vec3(c, d, "droplets", "absorption", water, 0, 1e6f, s->droplets.absorption) &&
+           get_num(c, d, "droplets", "roughness", 0.08f, 0.01f, 1, &s->droplets.roughness);
+}
+
 /* ---- camera and fog --------------------------------------------------------------------------- */
 
 bool parse_camera(scene_ctx *c, const cJSON *root)

@@ -55,6 +55,7 @@ bool parse_environment(scene_ctx *c, const cJSON *root);
 bool parse_lights(scene_ctx *c, const cJSON *root);
 bool parse_quality(scene_ctx *c, const cJSON *root);
 bool parse_effects(scene_ctx *c, const cJSON *root);
+bool parse_droplets(scene_ctx *c, const cJSON *root);
 
 /* The programs' rows in PROGRAM_LIST (app/program.h): block parsers, #defines, uniforms. */
 bool csg_parse(scene_ctx *c, const cJSON *root); /* scene_csg.c: "objects" → map() */

@@ -28,6 +28,9 @@
 #if FX_RELIEF
 #include "common/relief.glsl"
 #endif
+#if FX_DROPLETS
+#include "common/droplets.glsl"
+#endif
 
 #if FX_GLOW
 uniform vec3 uGlowColor;
@@ -67,6 +70,16 @@ void main()
     int firstSteps = 0, firstBoundSteps = 0;
     bool firstExhausted = false; // the primary ray ran out of steps (its hit is a best candidate)
     bool escaped = false;
+    bool primary = true; // nothing met yet: the next hit is the first (its normal and depth are the AOVs)
+#if FX_DROPLETS
+    // Droplets (common/droplets.glsl): the path is in air or inside droplet dropIn. A droplet's
+    // surfaces are found analytically, so they do not count against BOUNCES but against their own
+    // budget, DROPLET_EVENTS; once it is spent the path goes on straight, ignoring droplets.
+    bool drops = fxOn(FX_DROPLETS_BIT);
+    int dropIn = drops ? dropletAt(ro, -1) : -1;
+    int dropSkip = -1; // the droplet the path just left: the ray starts on its surface
+    int dropEvents = 0;
+#endif
 #if FX_REFRACTION
     // A camera inside glass starts on the inside: march to where the path leaves.
     vec2 start = map(ro);
@@ -75,12 +88,90 @@ void main()
 #endif
 
     for (int bounce = 0; bounce <= BOUNCES; bounce++) {
-        Hit h = castRay(ro, rd, float(MAX_DIST) - pathT, side, pathT);
-        if (bounce == 0) {
+        float tmax = float(MAX_DIST) - pathT;
+        Hit h;
+#if FX_DROPLETS
+        if (dropIn >= 0 && dropEvents >= DROPLET_EVENTS)
+            dropIn = -1; // out of droplet events: the path leaves the liquid unbent
+        if (dropIn >= 0) {
+            // Inside liquid: the path runs to the droplet's surface, unless the scene cuts the droplet
+            // (map() at its centre closer than its radius) and its surface comes first.
+            vec4 s = droplet(dropIn);
+            float t0, tOut;
+            sphereRoots(ro, rd, s, t0, tOut);
+            tOut = max(tOut, 0.0);
+            h.hit = false;
+            if (map(s.xyz).x < s.w)
+                h = castRay(ro, rd, tOut, side, pathT);
+            if (!h.hit) {
+                vec3 p = ro + rd * tOut;
+                throughput *= exp(-uDropletAbsorption * tOut);
+                pathT += tOut;
+                ro = p;
+                dropEvents++;
+                bounce--;
+                int next = dropletAt(p, dropIn);
+                if (next >= 0) { // overlapping droplets are one body of liquid: no surface here
+                    dropIn = next;
+                    continue;
+                }
+                float F = dropletCross(rd, normalize(p - s.xyz), false);
+                if (F < 1.0) { // out into the air (else totally reflected: still inside)
+                    throughput *= 1.0 - F;
+                    dropSkip = dropIn;
+                    dropIn = -1;
+                }
+                continue;
+            }
+            throughput *= exp(-uDropletAbsorption * h.t); // a surface in the liquid, seen through it
+        } else
+#endif
+        h = castRay(ro, rd, tmax, side, pathT);
+        if (primary) {
             firstSteps = h.steps;
             firstBoundSteps = h.boundSteps;
             firstExhausted = h.exhausted;
         }
+#if FX_DROPLETS
+        if (drops && dropIn < 0 && dropEvents < DROPLET_EVENTS) {
+            // The nearest droplet before the scene's hit (droplets behind the surface are never
+            // visited: the grid walk stops there). Sub-pixel ones on the way dim the ray.
+            float tDrop;
+            int cells;
+            vec3 reflected = vec3(0.0);
+            int id = dropletsWalk(ro, rd, 0.0, h.hit ? h.t : tmax, dropSkip, pathT, throughput, reflected, tDrop, cells);
+            radiance += reflected * environmentBlurred(rd, 1.0);
+            if (id >= 0) {
+                vec4 s = droplet(id);
+                vec3 p = ro + rd * tDrop;
+                vec3 nOut = normalize(p - s.xyz);
+                float T = pathT + tDrop;
+                if (primary) {
+                    firstT = primaryT = tDrop;
+                    firstN = nOut;
+                    primary = false;
+                }
+                // the surface: the environment mirrored, and the lights' highlights (Cook–Torrance, as
+                // the droplets paper's §3.2.2); then the transmitted part goes on inside
+                vec3 v = -rd;
+                vec3 dirIn = rd;
+                float F = dropletCross(rd, nOut, true);
+                radiance += throughput * F * environment(reflect(dirIn, nOut));
+                Material liquid = Material(vec3(0.0), 0.0, uDropletRoughness, 1.0, uDropletIor, uDropletAbsorption, vec3(0.0));
+                vec3 F0 = vec3(pow((uDropletIor - 1.0) / (uDropletIor + 1.0), 2.0));
+                radiance += throughput * directLight(p, nOut, v, liquid, F0, T);
+                throughput *= 1.0 - F;
+                ro = p;
+                pathT = T;
+                dropIn = id;
+                dropSkip = -1;
+                dropEvents++;
+                bounce--;
+                continue;
+            }
+        }
+        dropSkip = -1;
+#endif
         if (!h.hit) {
             radiance += throughput * environment(rd);
             escaped = true;
@@ -90,10 +181,12 @@ void main()
         float T = pathT + h.t;
         float eps = hitEps(T);
         vec3 nOut = calcNormal(p, normalEps(eps, T), -rd); // outward normal of the solid
-        if (bounce == 0) {
+        bool firstHit = primary;
+        if (primary) {
             firstT = h.t;
             primaryT = h.t;
             firstN = nOut;
+            primary = false;
         }
         // Where the neighbouring pixels' rays meet the tangent plane (texture filtering).
         float dn = dot(rd, nOut);
@@ -112,7 +205,7 @@ void main()
             p = pSurface;
             nOut = nFace;
         }
-        if (bounce == 0) {
+        if (firstHit) {
             firstN = nOut;
             firstSteps += reliefSteps;
         }
