@@ -392,11 +392,13 @@ bool droplets_build_grid(droplets *d, err_t *err)
     /* no finer than the smallest droplets' diameter: finer cells only list big droplets more often */
     side = fmax(side, 2.0 * d->r_min);
     int dims[3];
-    for (int k = 0; k < 3; k++)
-        dims[k] = clampi((int)ceil(ext[k] / side), 1, DROPLET_GRID_MAX_SIDE);
-    while ((size_t)dims[0] * (size_t)dims[1] * (size_t)dims[2] > DROPLET_GRID_MAX_CELLS)
+    for (;;) { /* within DROPLET_GRID_MAX_CELLS: cells a little bigger until it fits */
         for (int k = 0; k < 3; k++)
-            dims[k] = dims[k] > 1 ? (dims[k] + 1) / 2 : 1;
+            dims[k] = clampi((int)ceil(ext[k] / side), 1, DROPLET_GRID_MAX_SIDE);
+        if ((size_t)dims[0] * (size_t)dims[1] * (size_t)dims[2] <= DROPLET_GRID_MAX_CELLS)
+            break;
+        side *= 1.02;
+    }
     for (;;) {
         for (int k = 0; k < 3; k++) {
             d->dims[k] = dims[k];

@@ -78,6 +78,10 @@ bool render_probe(const scene *s, const char *extra_defines, const float *points
 /* The same with another probe shader: fogprobe.frag gives the fog's optical depth for (y, dir y, length). */
 bool render_probe_with(const scene *s, const char *frag, const char *extra_defines, const float *points, int n,
                        float *out, err_t *err);
+/* A probe shader over n rays (origin xyz, direction xyz each, in uPoints and uDirs) into out (4 floats
+ * each): dropletprobe.frag gives the droplets' grid walk for tests. */
+bool render_probe_rays(const scene *s, const char *frag, const char *extra_defines, const float *rays, int n,
+                       float *out, err_t *err);
 
 /* The #define preamble of the current scene's variant (for --print-variant). */
 void render_preamble(const scene *s, const char *extra_defines, strbuf *out);
