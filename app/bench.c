@@ -1,4 +1,5 @@
 #include "bench.h"
+#include "droplets.h"
 
 #include <assert.h>
 #include <epoxy/gl.h>
@@ -351,6 +352,11 @@ static bool frame_times(const cli_options *opt, err_t *err)
         ok = load(sets, 2, &s, err) && render_set_scene(&s, NULL, err);
         if (!ok)
             break;
+        double read_s, grid_s;
+        const droplets *d = render_droplets(&read_s, &grid_s);
+        if (d && p == 0)
+            printf("  droplets     %d: read %.3f s, grid %.3f s (%dx%dx%d cells, %zu listings, %.1f MB)\n", d->count,
+                   read_s, grid_s, d->dims[0], d->dims[1], d->dims[2], d->refs, (double)droplets_bytes(d) / 1e6);
         camera cam = camera_look_at_deg(s.cam_position, s.cam_look_at, s.cam_fov_deg);
         double *ms = util_alloc(sizeof *ms * (size_t)opt->runs, "bench timings");
         image(&s, &cam, B.w, B.h);

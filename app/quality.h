@@ -78,6 +78,8 @@ typedef enum knob_scope {
       "droplets smaller than this many pixel footprints (radius) are not traced: the ray goes straight on, dimmed by the droplet's mean transmittance (0: trace every droplet)") \
     X(droplet_events, INT, "DROPLET_EVENTS", 0,   1000,   4,    8,       16,    64,   2,   0,    "2,4,8,16,32",           SCOPE_DROPLETS, \
       "droplet surfaces a path may cross (entries, exits, internal reflections); then it goes on straight")        \
+    X(droplet_cull, INT,   "DROPLET_CULL", 0,     1,      1,    1,       1,     1,    0,   0,    "0,1",                   SCOPE_DROPLETS, \
+      "1: the droplets' grid walk stops at the scene's surface, so droplets behind it cost nothing; 0: it walks on (the same image, to measure the saving)") \
     X(spp,          INT,   NULL,         1,     65536,  1,    4,       16,    256,  2,   0,    "1,2,4,8,16",            SCOPE_ANY,      \
       "samples per pixel for offline shots and a still window (progressive, jittered)")
 /* clang-format on */

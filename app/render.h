@@ -65,9 +65,9 @@ void render_read_aovs(float *aov8);
 bool render_ground_height(float x, float z, float *height);
 
 /* The current scene's droplets and their grid (NULL when it has none), and the seconds reading the
- * file and building the grid took. */
+ * file and building the grid took (either pointer may be NULL). */
 struct droplets;
-const struct droplets *render_droplets(double *load_s);
+const struct droplets *render_droplets(double *read_s, double *grid_s);
 
 /* Recompiles every cached program from the files on disk; on error keeps the old programs. */
 bool render_reload(err_t *err);

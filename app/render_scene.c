@@ -26,7 +26,7 @@ static struct {
     char drops_file[PATH_MAX_LEN];
     float drops_scale;
     GLuint drops_buf[3], drops_tex[3]; /* spheres, cells, index: texture buffers */
-    double drops_load_s;               /* reading the file and building the grid */
+    double drops_read_s, drops_grid_s; /* reading the file, building the grid */
 } gpu;
 
 static void free_droplets(void)
@@ -144,11 +144,15 @@ static bool upload_droplets(const scene *s, err_t *err)
         return true;
     free_droplets();
     double t0 = util_now();
-    if (!droplets_read(s->droplets.file, s->droplets.scale, &gpu.drops, err) || !droplets_build_grid(&gpu.drops, err)) {
+    if (!droplets_read(s->droplets.file, s->droplets.scale, &gpu.drops, err))
+        return false;
+    double t1 = util_now();
+    if (!droplets_build_grid(&gpu.drops, err)) {
         droplets_free(&gpu.drops);
         return false;
     }
-    gpu.drops_load_s = util_now() - t0;
+    gpu.drops_read_s = t1 - t0;
+    gpu.drops_grid_s = util_now() - t1;
     GLint max_texels = 0;
     glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
     size_t cells = droplets_cell_count(&gpu.drops) + 1;
@@ -172,10 +176,12 @@ static bool upload_droplets(const scene *s, err_t *err)
     return true;
 }
 
-const droplets *render_droplets(double *load_s)
+const droplets *render_droplets(double *read_s, double *grid_s)
 {
-    if (load_s)
-        *load_s = gpu.drops_load_s;
+    if (read_s)
+        *read_s = gpu.drops_read_s;
+    if (grid_s)
+        *grid_s = gpu.drops_grid_s;
     return gpu.drops_tex[0] ? &gpu.drops : NULL;
 }
 

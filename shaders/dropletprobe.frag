@@ -23,7 +23,7 @@ void main()
     vec3 throughput = vec3(1.0), reflected = vec3(0.0);
     float t;
     int cells;
-    int id = dropletsWalk(a, rd, 0.0, 1e30, -1, 0.0, throughput, reflected, t, cells);
+    int id = dropletsWalk(a, rd, 0.0, 1e30, 1e30, -1, 0.0, throughput, reflected, t, cells);
 #ifdef DROPLET_PROBE_PASS
     if (id < 0) {
         oResult = vec4(0.0, 0.0, 0.0, -1.0);

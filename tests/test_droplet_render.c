@@ -49,7 +49,7 @@ static void droplet_scene(const double *spheres, int n, const char *extra_json, 
     char json[4096];
     snprintf(json, sizeof json,
              "{\"program\": \"csg\", \"materials\": {\"a\": {}}, %s \"droplets\": {\"file\": \"%s\", \"absorption\": "
-             "[0.5, 2, 8]}}",
+             "[0.5, 2, 300]}}",
              extra_json, csv_path);
     load_text(json, NULL, 0, s);
 }
@@ -389,6 +389,51 @@ static void overlapping_and_cut_droplets_leave_no_holes(void **st)
     scene_free(&s);
 }
 
+/* Sub-pixel droplets are not traced but dim the ray by their mean transmittance: a cloud of them in one
+ * sample per pixel gives the same mean image as the same cloud traced exactly with many jittered
+ * samples (the reference shares nothing with the level of detail but the droplets). */
+static void sub_pixel_droplets_dim_like_traced_ones(void **st)
+{
+    (void)st;
+    enum { N = 10000, S = 48 };
+    static double sph[4 * N];
+    unsigned seed = 99;
+    /* a 1.2 m square, 0.3 m deep, 3 m away; at 48 px over 30°, a pixel is 5.8 mm there: radii 2–4 mm,
+     * below the level of detail's 2 pixels (they cover about a fifth of the view; blue is absorbed
+     * strongly inside) */
+    for (int i = 0; i < N; i++) {
+        sph[4 * i] = 1.2 * frand(&seed) - 0.6;
+        sph[4 * i + 1] = 1 + 1.2 * frand(&seed) - 0.6;
+        sph[4 * i + 2] = 0.3 * frand(&seed);
+        sph[4 * i + 3] = 0.002 + 0.002 * frand(&seed);
+    }
+    to_float(sph, N);
+    static float lod[S * S * 4], traced[S * S * 4], aov[S * S * AOV];
+    camera cam = cam_at(0, 1, -3, 0, 1, 0, 30);
+    double mean[2] = {0, 0}, clear = 0;
+    for (int pass = 0; pass < 2; pass++) {
+        scene s;
+        char extra[512];
+        snprintf(extra, sizeof extra,
+                 "\"objects\": [{\"shape\": \"sphere\", \"radius\": 0.1, \"position\": [0, 1, 50], \"material\": "
+                 "\"a\"}], \"environment\": {\"color\": [1, 1, 1], \"intensity\": 1}, \"lights\": [], "
+                 "\"quality\": {\"droplet_lod\": %s, \"spp\": %d},",
+                 pass ? "0" : "2", pass ? 256 : 1);
+        droplet_scene(sph, N, extra, &s);
+        float *img = pass ? traced : lod;
+        draw(&s, &cam, S, S, pass ? 256 : 1, NULL, aov, img);
+        check_finite("sub-pixel droplets", aov, img, S * S);
+        for (int i = 0; i < S * S; i++)
+            mean[pass] += img[4 * i + 2] / (S * S);
+        unlink(csv_path);
+        scene_free(&s);
+    }
+    clear = 1; /* the environment: what the image would be without droplets */
+    fprintf(stderr, "  mean blue: level of detail %.5f, traced %.5f (no droplets %.1f)\n", mean[0], mean[1], clear);
+    assert_true(clear - mean[1] > 0.01); /* the droplets dim the image measurably */
+    assert_near(mean[0], mean[1], 0.1 * (clear - mean[1]));
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -396,6 +441,7 @@ int main(void)
         cmocka_unit_test(single_droplet_follows_snell),
         cmocka_unit_test(centre_pixel_is_the_closed_form),
         cmocka_unit_test(overlapping_and_cut_droplets_leave_no_holes),
+        cmocka_unit_test(sub_pixel_droplets_dim_like_traced_ones),
     };
     return cmocka_run_group_tests(tests, gl_setup, gl_teardown);
 }

@@ -56,11 +56,12 @@ bool dropletIsSubPixel(float r, float pathT)
 }
 
 // The nearest droplet the ray enters within (tmin, tmax), skipping droplet `skip` (the one whose
-// surface the ray starts on). Sub-pixel droplets before it (at path length pathT + t) are passed
-// through: throughput is dimmed by their mean transmittance and `reflected` gathers the weight of the
-// light they reflect. `cells` counts the grid cells visited. Returns the droplet's number or −1.
-int dropletsWalk(vec3 ro, vec3 rd, float tmin, float tmax, int skip, float pathT, inout vec3 throughput,
-                 inout vec3 reflected, out float tHit, out int cells)
+// surface the ray starts on). Sub-pixel droplets before it and before tSurface (at path length
+// pathT + t) are passed through: throughput is dimmed by their mean transmittance and `reflected`
+// gathers the weight of the light they reflect. `cells` counts the grid cells visited. Returns the
+// droplet's number or −1. Culling is tmax = tSurface, the scene's hit: the walk stops there.
+int dropletsWalk(vec3 ro, vec3 rd, float tmin, float tmax, float tSurface, int skip, float pathT,
+                 inout vec3 throughput, inout vec3 reflected, out float tHit, out int cells)
 {
     tHit = tmax;
     cells = 0;
@@ -90,25 +91,28 @@ int dropletsWalk(vec3 ro, vec3 rd, float tmin, float tmax, int skip, float pathT
         int first = int(texelFetch(uDropletCells, c).r), last = int(texelFetch(uDropletCells, c + 1).r);
         // the nearest traced droplet: a sphere's entry lies in a cell the sphere meets, so once the
         // nearest entry so far is inside this cell, no later cell can hold a nearer one
+        bool subPixel = false; // met one: the second pass is needed
         for (int k = first; k < last; k++) {
             int id = int(texelFetch(uDropletIndex, k).r);
             vec4 s = droplet(id);
             float t0, t1;
             if (id == skip || !sphereRoots(ro, rd, s, t0, t1) || t0 <= tmin || t0 >= tHit)
                 continue;
-            if (DROPLET_LOD_ON && dropletIsSubPixel(s.w, pathT + t0))
+            if (DROPLET_LOD_ON && dropletIsSubPixel(s.w, pathT + t0)) {
+                subPixel = true;
                 continue;
+            }
             tHit = t0;
             best = id;
         }
         // sub-pixel droplets whose entry lies in this cell and before the nearest traced one (each is
         // counted in the one cell its entry lies in)
-        for (int k = first; DROPLET_LOD_ON && k < last; k++) {
+        for (int k = first; subPixel && k < last; k++) {
             int id = int(texelFetch(uDropletIndex, k).r);
             vec4 s = droplet(id);
             float t0, t1;
             if (id == skip || !sphereRoots(ro, rd, s, t0, t1) || t0 <= tmin || t0 < cellEnter || t0 >= cellExit ||
-                t0 >= tHit || !dropletIsSubPixel(s.w, pathT + t0))
+                t0 >= tHit || t0 >= tSurface || !dropletIsSubPixel(s.w, pathT + t0))
                 continue;
             reflected += throughput * uDropletReflect;
             throughput *= dropletMeanTransmittance(s.w);

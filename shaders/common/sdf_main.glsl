@@ -134,12 +134,17 @@ void main()
         }
 #if FX_DROPLETS
         if (drops && dropIn < 0 && dropEvents < DROPLET_EVENTS) {
-            // The nearest droplet before the scene's hit (droplets behind the surface are never
-            // visited: the grid walk stops there). Sub-pixel ones on the way dim the ray.
-            float tDrop;
+            // The nearest droplet before the scene's hit: with DROPLET_CULL the grid walk stops at the
+            // surface, so droplets behind it are never visited; without, it walks on through the grid
+            // and the surface wins afterwards (the same image, to measure what culling saves).
+            // Sub-pixel droplets on the way dim the ray.
+            float tDrop, tSurface = h.hit ? h.t : tmax;
             int cells;
             vec3 reflected = vec3(0.0);
-            int id = dropletsWalk(ro, rd, 0.0, h.hit ? h.t : tmax, dropSkip, pathT, throughput, reflected, tDrop, cells);
+            int id = dropletsWalk(ro, rd, 0.0, DROPLET_CULL != 0 ? tSurface : tmax, tSurface, dropSkip, pathT,
+                                  throughput, reflected, tDrop, cells);
+            if (tDrop >= tSurface)
+                id = -1;
             radiance += reflected * environmentBlurred(rd, 1.0);
             if (id >= 0) {
                 vec4 s = droplet(id);

@@ -1,0 +1,53 @@
+#!/bin/sh
+# Droplets at scale: build time, memory and frame time for 1k, 10k, 100k and 1M droplets.
+# Usage: docs/droplets/run.sh FATHOM [OUT_DIR] [COUNTS]   (writes OUT_DIR/droplets.csv, prints a table)
+# Scene: N droplets uniform in a 1 m cube above a ground plane, radii ∝ N^(−1/2) so the droplets cover
+# about the same part of the screen at every N (N · π r² fixed); an opaque box hides the cube's left
+# third (what culling skips); a sun with hard shadows. 640x360.
+# Build: reading the CSV and building the grid (fathom's own clock); memory: peak resident set of a
+# 64x36 shot (/usr/bin/time). Frames: fathom bench --frame-times, 1 sample per pixel, median of 3:
+# the interactive and final presets, culling off (quality.droplet_cull=0) and level of detail off
+# (quality.droplet_lod=0: every droplet traced).
+set -eu
+fathom=$1
+out=${2:-$(dirname "$0")}
+counts=${3:-"1000 10000 100000 1000000"}
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+
+cat >"$tmp/s.json" <<JSON
+{"program": "csg", "camera": {"position": [0.2, 1.0, 2.4], "look_at": [0, 1.0, 0], "fov": 40},
+ "environment": {"color": [0.6, 0.7, 0.9], "intensity": 1},
+ "lights": [{"type": "directional", "direction": [0.4, 0.8, 0.45], "intensity": 2.5, "shadow": "hard"}],
+ "materials": {"ground": {"base_color": [0.5, 0.45, 0.4], "roughness": 0.8},
+               "wall": {"base_color": [0.7, 0.2, 0.15], "roughness": 0.5}},
+ "objects": [{"shape": "plane", "normal": [0, 1, 0], "material": "ground"},
+             {"shape": "box", "size": [0.4, 1.4, 0.1], "position": [-0.45, 0.9, 0.8], "material": "wall"}],
+ "droplets": {"file": "drops.csv"}}
+JSON
+
+bench() { # LABEL SET... : prints "interactive_ms final_ms"
+    "$fathom" bench --frame-times --scene "$tmp/s.json" --size 640x360 --runs 3 "$@" >"$tmp/bench" 2>&1 ||
+        { cat "$tmp/bench"; exit 1; }
+    awk '$1 == "interactive" {i = $2} $1 == "final" {f = $2} END {print i, f}' "$tmp/bench"
+}
+
+csv="$out/droplets.csv"
+echo "droplets,read_s,grid_s,cells,listings,gpu_mb,peak_rss_mb,interactive_ms,final_ms,interactive_nocull_ms,final_nocull_ms,interactive_nolod_ms,final_nolod_ms" >"$csv"
+for n in $counts; do
+    awk -v n="$n" 'BEGIN { srand(11); print "x,y,z,r"; r = 0.012 * sqrt(1000 / n)
+        for (i = 0; i < n; i++) printf "%.5f,%.5f,%.5f,%.4e\n", rand() - 0.5, 0.5 + rand(), rand() - 0.5, r * (0.5 + rand()) }' \
+        >"$tmp/drops.csv"
+    /usr/bin/time -f "%M" -o "$tmp/time" "$fathom" --scene "$tmp/s.json" --output "$tmp/o.png" --size 64x36 --spp 1 --quiet
+    kb=$(cat "$tmp/time")
+    set -- $(bench)
+    inter=$1 final=$2
+    build=$(awk '$1 == "droplets" {gsub(/[(),]/, " "); print $4, $7, $9, $11, $13}' "$tmp/bench")
+    set -- $build
+    read_s=$1 grid_s=$2 cells=$3 listings=$4 mb=$5
+    set -- $(bench --set quality.droplet_cull=0)
+    nocull_i=$1 nocull_f=$2
+    set -- $(bench --set quality.droplet_lod=0)
+    nolod_i=$1 nolod_f=$2
+    echo "$n,$read_s,$grid_s,$cells,$listings,$mb,$((kb / 1024)),$inter,$final,$nocull_i,$nocull_f,$nolod_i,$nolod_f" | tee -a "$csv"
+done
