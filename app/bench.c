@@ -354,7 +354,10 @@ static bool frame_times(const cli_options *opt, err_t *err)
             break;
         double read_s, grid_s;
         const droplets *d = render_droplets(&read_s, &grid_s);
-        if (d && p == 0)
+        if (d && p == 0 && d->nodes)
+            printf("  droplets     %d: read %.3f s, bvh %.3f s (%d nodes, %zu listings, %.1f MB)\n", d->count, read_s,
+                   grid_s, d->node_count, d->refs, (double)droplets_bytes(d) / 1e6);
+        else if (d && p == 0)
             printf("  droplets     %d: read %.3f s, grid %.3f s (%dx%dx%d cells, %zu listings, %.1f MB)\n", d->count,
                    read_s, grid_s, d->dims[0], d->dims[1], d->dims[2], d->refs, (double)droplets_bytes(d) / 1e6);
         camera cam = camera_look_at_deg(s.cam_position, s.cam_look_at, s.cam_fov_deg);

@@ -1,6 +1,8 @@
 /* droplets — see droplets.h. */
 #include "droplets.h"
 
+#include "bvh.h"
+
 #include <csv.h>
 #include <errno.h>
 #include <math.h>
@@ -224,9 +226,11 @@ static bool finish(reader *r, struct csv_parser *p)
         fail(r, "%s", csv_strerror(csv_error(p)));
     csv_free(p);
     reader_free(r);
-    if (!r->failed && r->d->count == 0)
-        fail(r, "no droplets: the file needs a header (ParaView's Points:0, Points:1, Points:2 and radius or "
-                "diameter, or x, y, z, r) and one row per droplet");
+    if (!r->failed && r->d->count == 0) { /* about the whole file: no line */
+        err_set(r->err, "droplets file '%s' holds no droplets: it needs a header (ParaView's Points:0, Points:1, "
+                        "Points:2 and radius or diameter, or x, y, z, r) and one row per droplet", r->path);
+        r->failed = true;
+    }
     if (r->failed) {
         droplets_free(r->d);
         return false;
@@ -362,11 +366,55 @@ static size_t visit(droplets *d, uint32_t *count, uint32_t *cursor)
     return refs;
 }
 
-bool droplets_build_grid(droplets *d, err_t *err)
+static void free_structure(droplets *d)
 {
     free(d->cells);
     free(d->index);
+    free(d->nodes);
     d->cells = d->index = NULL;
+    d->nodes = NULL;
+    d->node_count = 0;
+    memset(d->dims, 0, sizeof d->dims);
+}
+
+void droplets_build_bvh(droplets *d)
+{
+    free_structure(d);
+    int n = d->count;
+    float(*lo)[3] = util_alloc(sizeof *lo * (size_t)n, "droplet BVH"), (*hi)[3] = util_alloc(sizeof *hi * (size_t)n, "droplet BVH");
+    for (int i = 0; i < n; i++)
+        for (int k = 0; k < 3; k++) {
+            lo[i][k] = d->spheres[4 * (size_t)i + (size_t)k] - d->spheres[4 * (size_t)i + 3];
+            hi[i][k] = d->spheres[4 * (size_t)i + (size_t)k] + d->spheres[4 * (size_t)i + 3];
+        }
+    bvh_node *nodes = util_alloc(sizeof *nodes * (size_t)bvh_max_nodes(n), "droplet BVH");
+    int *order = util_alloc(sizeof *order * (size_t)n, "droplet BVH");
+    d->node_count = bvh_build(n, (const float(*)[3])lo, (const float(*)[3])hi, nodes, order);
+    /* unsigned texels: the ints stay exact past 2^24, and no float channel carries int bits (those
+     * would be denormals, which GPUs may flush to zero) */
+    d->nodes = util_alloc(sizeof(uint32_t) * 8 * (size_t)d->node_count, "droplet BVH");
+    for (int i = 0; i < d->node_count; i++) {
+        uint32_t *t = d->nodes + 8 * (size_t)i;
+        memcpy(t, nodes[i].lo, sizeof nodes[i].lo);
+        t[3] = (uint32_t)nodes[i].first;
+        memcpy(t + 4, nodes[i].hi, sizeof nodes[i].hi);
+        t[7] = (uint32_t)nodes[i].count;
+    }
+    memcpy(d->lo, nodes[0].lo, sizeof d->lo);
+    memcpy(d->hi, nodes[0].hi, sizeof d->hi);
+    d->index = util_alloc(sizeof(uint32_t) * (size_t)n, "droplet BVH");
+    for (int i = 0; i < n; i++)
+        d->index[i] = (uint32_t)order[i];
+    d->refs = (size_t)n;
+    free(order);
+    free(nodes);
+    free(lo);
+    free(hi);
+}
+
+bool droplets_build_grid(droplets *d, err_t *err)
+{
+    free_structure(d);
     for (int k = 0; k < 3; k++) {
         d->lo[k] = INFINITY;
         d->hi[k] = -INFINITY;
@@ -436,15 +484,14 @@ bool droplets_build_grid(droplets *d, err_t *err)
 
 size_t droplets_bytes(const droplets *d)
 {
-    return sizeof(float) * 4 * (size_t)d->count + sizeof(uint32_t) * (droplets_cell_count(d) + 1) +
-           sizeof(uint32_t) * d->refs;
+    return sizeof(float) * 4 * (size_t)d->count + (d->cells ? sizeof(uint32_t) * (droplets_cell_count(d) + 1) : 0) +
+           sizeof(uint32_t) * d->refs + sizeof(uint32_t) * 8 * (size_t)d->node_count;
 }
 
 void droplets_free(droplets *d)
 {
     free(d->spheres);
-    free(d->cells);
-    free(d->index);
+    free_structure(d);
     memset(d, 0, sizeof *d);
 }
 

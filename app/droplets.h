@@ -13,6 +13,11 @@
  *   spheres   RGBA32F: centre, radius (droplet i at texel i)
  *   cells     R32UI:   cell c's droplets are index[cells[c] .. cells[c+1])  (cell c = x + nx (y + ny z))
  *   index     R32UI:   droplet numbers, cell after cell
+ *
+ * The alternative (scene key droplets.structure = "bvh", to compare): a bounding volume hierarchy by
+ * median split (app/bvh.h), O(N log N) to build, walked front to back with a stack:
+ *   nodes     RGBA32UI: 2 texels a node, (lo, first) and (hi, count), lo and hi as float bits
+ *   index     R32UI:   droplet numbers in leaf order
  */
 #ifndef FATHOM_DROPLETS_H
 #define FATHOM_DROPLETS_H
@@ -45,6 +50,9 @@ typedef struct droplets {
     uint32_t *cells; /* dims[0]·dims[1]·dims[2] + 1 offsets into index */
     uint32_t *index;
     size_t refs; /* entries in index */
+    /* the BVH instead (droplets_build_bvh): nodes packed as the shader reads them; cells NULL */
+    uint32_t *nodes;
+    int node_count;
 } droplets;
 
 /* Reads a droplet file (scale multiplies positions and radii). Errors name file, line and column. */
@@ -58,6 +66,9 @@ bool droplets_read_text(const char *text, size_t len, const char *path, float sc
 bool droplets_build_grid(droplets *d, err_t *err);
 
 size_t droplets_cell_count(const droplets *d);
+
+/* Builds the BVH over d->spheres instead of the grid (lo/hi: the root's box). */
+void droplets_build_bvh(droplets *d);
 
 /* Bytes the spheres, cells and index take (on the GPU as well). */
 size_t droplets_bytes(const droplets *d);

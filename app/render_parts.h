@@ -22,7 +22,8 @@ enum {
     UNIT_CSG_NODES,
     UNIT_DROPLETS,
     UNIT_DROPLET_CELLS,
-    UNIT_DROPLET_INDEX
+    UNIT_DROPLET_INDEX,
+    UNIT_DROPLET_NODES
 };
 
 /* ---- render.c ---- */

@@ -25,7 +25,8 @@ static struct {
     droplets drops;
     char drops_file[PATH_MAX_LEN];
     float drops_scale;
-    GLuint drops_buf[3], drops_tex[3]; /* spheres, cells, index: texture buffers */
+    bool drops_bvh;
+    GLuint drops_buf[3], drops_tex[3]; /* spheres, cells (or BVH nodes), index: texture buffers */
     double drops_read_s, drops_grid_s; /* reading the file, building the grid */
 } gpu;
 
@@ -137,17 +138,26 @@ static bool buffer_texture(GLenum format, const void *data, size_t bytes, GLuint
     return true;
 }
 
-/* Droplets: the file, its grid, three texture buffers (app/droplets.h). */
+/* Texels of the second buffer: the grid's cell offsets, or the BVH's nodes (2 texels each). */
+static size_t d_cells_or_nodes(const droplets *d)
+{
+    return d->nodes ? 2 * (size_t)d->node_count : droplets_cell_count(d) + 1;
+}
+
+/* Droplets: the file, its grid (or BVH), three texture buffers (app/droplets.h). */
 static bool upload_droplets(const scene *s, err_t *err)
 {
-    if (gpu.drops_tex[0] && !strcmp(gpu.drops_file, s->droplets.file) && gpu.drops_scale == s->droplets.scale)
+    if (gpu.drops_tex[0] && !strcmp(gpu.drops_file, s->droplets.file) && gpu.drops_scale == s->droplets.scale &&
+        gpu.drops_bvh == s->droplets.bvh)
         return true;
     free_droplets();
     double t0 = util_now();
     if (!droplets_read(s->droplets.file, s->droplets.scale, &gpu.drops, err))
         return false;
     double t1 = util_now();
-    if (!droplets_build_grid(&gpu.drops, err)) {
+    if (s->droplets.bvh) {
+        droplets_build_bvh(&gpu.drops);
+    } else if (!droplets_build_grid(&gpu.drops, err)) {
         droplets_free(&gpu.drops);
         return false;
     }
@@ -155,7 +165,7 @@ static bool upload_droplets(const scene *s, err_t *err)
     gpu.drops_grid_s = util_now() - t1;
     GLint max_texels = 0;
     glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
-    size_t cells = droplets_cell_count(&gpu.drops) + 1;
+    size_t cells = d_cells_or_nodes(&gpu.drops);
     if ((size_t)gpu.drops.count > (size_t)max_texels || gpu.drops.refs > (size_t)max_texels || cells > (size_t)max_texels) {
         err_set(err, "droplets file '%s': %d droplets (%zu grid entries) pass this GPU's %d-texel texture buffers; "
                      "thin the data", s->droplets.file, gpu.drops.count, gpu.drops.refs, max_texels);
@@ -164,7 +174,8 @@ static bool upload_droplets(const scene *s, err_t *err)
     }
     const droplets *d = &gpu.drops;
     if (!buffer_texture(GL_RGBA32F, d->spheres, sizeof(float) * 4 * (size_t)d->count, &gpu.drops_buf[0], &gpu.drops_tex[0]) ||
-        !buffer_texture(GL_R32UI, d->cells, sizeof(uint32_t) * cells, &gpu.drops_buf[1], &gpu.drops_tex[1]) ||
+        !(d->nodes ? buffer_texture(GL_RGBA32UI, d->nodes, sizeof(uint32_t) * 4 * cells, &gpu.drops_buf[1], &gpu.drops_tex[1])
+                   : buffer_texture(GL_R32UI, d->cells, sizeof(uint32_t) * cells, &gpu.drops_buf[1], &gpu.drops_tex[1])) ||
         !buffer_texture(GL_R32UI, d->index, sizeof(uint32_t) * (d->refs ? d->refs : 1), &gpu.drops_buf[2], &gpu.drops_tex[2])) {
         err_set(err, "droplets file '%s': the GPU has no room for %d droplets (%.0f MB)", s->droplets.file, d->count,
                 (double)droplets_bytes(d) / 1e6);
@@ -173,6 +184,7 @@ static bool upload_droplets(const scene *s, err_t *err)
     }
     snprintf(gpu.drops_file, sizeof gpu.drops_file, "%s", s->droplets.file);
     gpu.drops_scale = s->droplets.scale;
+    gpu.drops_bvh = s->droplets.bvh;
     return true;
 }
 
@@ -274,6 +286,7 @@ static void texture_uniforms(const scene *s, const uniform_sink *u)
     uniform_i(u, "uDroplets", UNIT_DROPLETS);
     uniform_i(u, "uDropletCells", UNIT_DROPLET_CELLS);
     uniform_i(u, "uDropletIndex", UNIT_DROPLET_INDEX);
+    uniform_i(u, "uDropletNodes", UNIT_DROPLET_NODES);
     uniform_f(u, "uEnvMaxLod", gpu.env_size > 0 ? log2f((float)gpu.env_size) : 0.0f);
     float texels[SCENE_MAX_MATERIALS];
     for (int i = 0; i < s->material_count; i++)
@@ -323,6 +336,8 @@ void scene_gpu_bind_textures(void)
         glActiveTexture(GL_TEXTURE0 + UNIT_DROPLETS + (GLenum)i);
         glBindTexture(GL_TEXTURE_BUFFER, gpu.drops_tex[i]);
     }
+    glActiveTexture(GL_TEXTURE0 + UNIT_DROPLET_NODES); /* the BVH's nodes, in the cells' buffer */
+    glBindTexture(GL_TEXTURE_BUFFER, gpu.drops_tex[1]);
     glActiveTexture(GL_TEXTURE0);
 }
 

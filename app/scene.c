@@ -238,6 +238,8 @@ void scene_preamble(const scene *s, strbuf *out)
     sb_printf(out, "#define NUM_LIGHTS %d\n#define NUM_MATERIALS %d\n#define MIRROR_ROUGHNESS %.9g\n"
                    "#define PRECISION_REL %.9g\n",
               s->light_count, s->material_count, (double)MIRROR_ROUGHNESS, (double)PRECISION_REL);
+    if (s->has_droplets)
+        sb_printf(out, "#define DROPLET_BVH %d\n", s->droplets.bvh);
     if (p->defines)
         p->defines(s, out);
 }

@@ -133,6 +133,7 @@ typedef struct scene {
         float ior;           /* of the liquid (water 1.33) */
         float absorption[3]; /* Bouguer–Beer–Lambert coefficient inside, per metre */
         float roughness;     /* of the liquid's surface, for the lights' highlights */
+        bool bvh;            /* "structure": "bvh" instead of the uniform grid (to compare) */
     } droplets;
 
     char *map_glsl; /* the program's virtual "program.glsl": the CSG map, or an #include of the fractal */

@@ -100,7 +100,8 @@ bool parse_droplets(scene_ctx *c, const cJSON *root)
     const cJSON *d = cJSON_GetObjectItemCaseSensitive(root, "droplets");
     if (!d)
         return true;
-    static const char *const keys[] = {"file", "scale", "ior", "absorption", "roughness", NULL};
+    static const char *const keys[] = {"file", "scale", "ior", "absorption", "roughness", "structure", NULL};
+    static const char *const structures[] = {"grid", "bvh", NULL};
     /* pure water, per metre at 650, 550 and 450 nm (Pope & Fry, "Absorption spectrum (380–700 nm) of
      * pure water", Applied Optics 36(33), 1997) */
     static const float water[3] = {0.34f, 0.0565f, 0.0092f};
@@ -113,6 +114,10 @@ bool parse_droplets(scene_ctx *c, const cJSON *root)
         return fail(c, "droplets.file", "missing: name a CSV file of droplet centres and radii (ParaView's "
                                         "Points:0..2 with radius or diameter, or x,y,z,r)");
     s->has_droplets = true;
+    int structure = 0;
+    if (!get_enum(c, d, "droplets", "structure", "droplet structure", structures, 0, &structure))
+        return false;
+    s->droplets.bvh = structure == 1;
     return resolve_file(c, "droplets.file", file, s->droplets.file) &&
            get_num(c, d, "droplets", "scale", 1, 1e-9f, 1e9f, &s->droplets.scale) &&
            get_num(c, d, "droplets", "ior", 1.33f, 1.0001f, 4, &s->droplets.ior) &&

@@ -100,6 +100,19 @@ expect camera-at-look-at 1 "camera.look_at: is the camera's position" 1 -- "$fat
 expect cli-camera-at-look-at 2 "--camera and --look-at are the same point" 1 -- "$fathom" --camera 0,1,5 --look-at 0,1,5 $out
 expect no-display-bad-scene 1 "unknown scene 'nosuch'" 1 -- env -u DISPLAY -u WAYLAND_DISPLAY "$fathom" --scene nosuch --frames 1
 
+# droplet files: each bad one is one line naming file, line and column (tests/test_droplets.c has more)
+drops() { # NAME CSV-TEXT EXPECTED
+    printf '%b' "$2" >"$tmp/drops.csv"
+    expect "droplets-$1" 1 "$3" 1 -- "$fathom" --set droplets.file="$tmp/drops.csv" $out
+}
+drops empty '' "droplets file '$tmp/drops.csv' holds no droplets"
+drops no-radius 'Points:0,Points:1,Points:2\n1,2,3\n' ":1: no radius or diameter column"
+drops nan 'x,y,z,r\n0,1,0,0.01\n0,1,0,nan\n' ":3: column 4 (r): nan is not a finite number"
+drops negative 'x,y,z,diameter\n0,1,0,-2e-3\n' ":2: column 4 (diameter): -2e-3: a droplet's size must be positive"
+drops text 'x,y,z,r\n0,one,0,0.01\n' ":2: column 2 (y): 'one' is not a number"
+expect droplets-missing-file 1 "droplets.file: file '$tmp/nodrops.csv' not found" 1 -- "$fathom" --set droplets.file="$tmp/nodrops.csv" $out
+expect droplets-missing-key 1 "droplets.file: missing" 1 -- "$fathom" --set droplets.ior=1.5 $out
+
 # ---- outputs that cannot be written -------------------------------------------------------------
 : >"$tmp/readonly.png"
 chmod 0444 "$tmp/readonly.png"

@@ -1,6 +1,6 @@
 /* Droplets on the GPU (shaders/common/droplets.glsl and the path in common/sdf_main.glsl) against
  * references in double precision that share nothing with the shaders:
- *  - the grid walk: 10,000 random droplets (overlapping ones among them), rays from outside the
+ *  - the grid walk (and the BVH measured against it): 10,000 random droplets (overlapping ones among them), rays from outside the
  *    cloud, from inside it, from inside droplets, and rays grazing droplets just inside and just
  *    outside their radius, against a brute-force loop over every droplet;
  *  - one droplet: the direction a ray leaves in against Snell's law in vector form, the Beer–Lambert
@@ -32,6 +32,7 @@ static double frand(unsigned *seed)
 }
 
 static char csv_path[64];
+static const char *structure = "grid"; /* droplets.structure of the scenes made next */
 /* a csg scene needs an object: one far out of the way */
 #define FAR_OBJECT "\"objects\": [{\"shape\": \"sphere\", \"radius\": 0.1, \"position\": [0, 1, 50], \"material\": \"a\"}], "
 
@@ -49,8 +50,8 @@ static void droplet_scene(const double *spheres, int n, const char *extra_json, 
     char json[4096];
     snprintf(json, sizeof json,
              "{\"program\": \"csg\", \"materials\": {\"a\": {}}, %s \"droplets\": {\"file\": \"%s\", \"absorption\": "
-             "[0.5, 2, 300]}}",
-             extra_json, csv_path);
+             "[0.5, 2, 300], \"structure\": \"%s\"}}",
+             extra_json, csv_path, structure);
     load_text(json, NULL, 0, s);
 }
 
@@ -78,9 +79,10 @@ static double entry(const double o[3], const double d[3], const double *s, doubl
     return t > 0 ? t : -1;
 }
 
-static void walk_matches_brute_force(void **st)
+static void walk_matches_brute_force_in(const char *which)
 {
-    (void)st;
+    structure = which;
+    fprintf(stderr, "  %s:\n", which);
     enum { N = 10000, R = 8192 };
     static double sph[4 * N];
     unsigned seed = 2024;
@@ -202,6 +204,15 @@ static void walk_matches_brute_force(void **st)
     assert_true(near_tangent < R / 100);
     unlink(csv_path);
     scene_free(&s);
+    structure = "grid";
+}
+
+/* Both structures: the uniform grid fathom uses, and the BVH it was measured against. */
+static void walk_matches_brute_force(void **st)
+{
+    (void)st;
+    walk_matches_brute_force_in("grid");
+    walk_matches_brute_force_in("bvh");
 }
 
 static void refract_d(double d[3], const double n[3], double eta)
@@ -317,9 +328,9 @@ static void centre_pixel_is_the_closed_form(void **st)
     scene_free(&s);
 }
 
-static void overlapping_and_cut_droplets_leave_no_holes(void **st)
+static void no_holes_in(const char *kind)
 {
-    (void)st;
+    structure = kind;
     enum { N = 300, WW = 160, HH = 90 };
     static double sph[4 * N];
     unsigned seed = 31;
@@ -387,14 +398,22 @@ static void overlapping_and_cut_droplets_leave_no_holes(void **st)
     }
     unlink(csv_path);
     scene_free(&s);
+    structure = "grid";
+}
+
+static void overlapping_and_cut_droplets_leave_no_holes(void **st)
+{
+    (void)st;
+    no_holes_in("grid");
+    no_holes_in("bvh");
 }
 
 /* Sub-pixel droplets are not traced but dim the ray by their mean transmittance: a cloud of them in one
  * sample per pixel gives the same mean image as the same cloud traced exactly with many jittered
  * samples (the reference shares nothing with the level of detail but the droplets). */
-static void sub_pixel_droplets_dim_like_traced_ones(void **st)
+static void sub_pixel_in(const char *which)
 {
-    (void)st;
+    structure = which;
     enum { N = 10000, S = 48 };
     static double sph[4 * N];
     unsigned seed = 99;
@@ -429,9 +448,17 @@ static void sub_pixel_droplets_dim_like_traced_ones(void **st)
         scene_free(&s);
     }
     clear = 1; /* the environment: what the image would be without droplets */
-    fprintf(stderr, "  mean blue: level of detail %.5f, traced %.5f (no droplets %.1f)\n", mean[0], mean[1], clear);
+    fprintf(stderr, "  %s: mean blue: level of detail %.5f, traced %.5f (no droplets %.1f)\n", which, mean[0], mean[1], clear);
     assert_true(clear - mean[1] > 0.01); /* the droplets dim the image measurably */
     assert_near(mean[0], mean[1], 0.1 * (clear - mean[1]));
+    structure = "grid";
+}
+
+static void sub_pixel_droplets_dim_like_traced_ones(void **st)
+{
+    (void)st;
+    sub_pixel_in("grid");
+    sub_pixel_in("bvh");
 }
 
 int main(void)

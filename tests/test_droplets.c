@@ -68,8 +68,8 @@ static void bad_files(void **st)
     static const struct {
         const char *text, *want;
     } cases[] = {
-        {"", "no droplets"},
-        {"x,y,z,r\n", "no droplets"},
+        {"", "holds no droplets"},
+        {"x,y,z,r\n", "holds no droplets"},
         {"a,b,c\n1,2,3\n", ":1: no x column (the header has 'a', 'b', 'c')"},
         {"Points:0,Points:1,Points:2\n1,2,3\n", ":1: no radius or diameter column"},
         {"x,y,z,r\n1,2,3,0.1\n1,2,abc,0.1\n", ":3: column 3 (z): 'abc' is not a number"},
@@ -86,7 +86,7 @@ static void bad_files(void **st)
         droplets d;
         err_t e = {{0}};
         bool ok = droplets_read_text(cases[i].text, strlen(cases[i].text), "t.csv", 1, &d, &e);
-        if (ok || !strstr(e.msg, cases[i].want) || strncmp(e.msg, "droplets file 't.csv':", 22) != 0)
+        if (ok || !strstr(e.msg, cases[i].want) || strncmp(e.msg, "droplets file 't.csv'", 21) != 0)
             fail_msg("case %zu: %s; got '%s', expected '%s'", i, ok ? "accepted" : "refused", e.msg, cases[i].want);
         assert_null(d.spheres);
     }

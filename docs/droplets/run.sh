@@ -5,9 +5,9 @@
 # about the same part of the screen at every N (N · π r² fixed); an opaque box hides the cube's left
 # third (what culling skips); a sun with hard shadows. 640x360.
 # Build: reading the CSV and building the grid (fathom's own clock); memory: peak resident set of a
-# 64x36 shot (/usr/bin/time). Frames: fathom bench --frame-times, 1 sample per pixel, median of 3:
-# the interactive and final presets, culling off (quality.droplet_cull=0) and level of detail off
-# (quality.droplet_lod=0: every droplet traced).
+# 64x36 shot (/usr/bin/time). Frames: fathom bench --frame-times, 1 sample per pixel, median of 5:
+# the interactive and final presets, culling off (quality.droplet_cull=0), level of detail off
+# (quality.droplet_lod=0: every droplet traced), and the BVH instead of the grid (droplets.structure=bvh).
 set -eu
 fathom=$1
 out=${2:-$(dirname "$0")}
@@ -27,13 +27,13 @@ cat >"$tmp/s.json" <<JSON
 JSON
 
 bench() { # LABEL SET... : prints "interactive_ms final_ms"
-    "$fathom" bench --frame-times --scene "$tmp/s.json" --size 640x360 --runs 3 "$@" >"$tmp/bench" 2>&1 ||
+    "$fathom" bench --frame-times --scene "$tmp/s.json" --size 640x360 --runs 5 "$@" >"$tmp/bench" 2>&1 ||
         { cat "$tmp/bench"; exit 1; }
     awk '$1 == "interactive" {i = $2} $1 == "final" {f = $2} END {print i, f}' "$tmp/bench"
 }
 
 csv="$out/droplets.csv"
-echo "droplets,read_s,grid_s,cells,listings,gpu_mb,peak_rss_mb,interactive_ms,final_ms,interactive_nocull_ms,final_nocull_ms,interactive_nolod_ms,final_nolod_ms" >"$csv"
+echo "droplets,read_s,grid_s,cells,listings,gpu_mb,peak_rss_mb,interactive_ms,final_ms,interactive_nocull_ms,final_nocull_ms,interactive_nolod_ms,final_nolod_ms,bvh_build_s,interactive_bvh_ms,final_bvh_ms" >"$csv"
 for n in $counts; do
     awk -v n="$n" 'BEGIN { srand(11); print "x,y,z,r"; r = 0.012 * sqrt(1000 / n)
         for (i = 0; i < n; i++) printf "%.5f,%.5f,%.5f,%.4e\n", rand() - 0.5, 0.5 + rand(), rand() - 0.5, r * (0.5 + rand()) }' \
@@ -49,5 +49,8 @@ for n in $counts; do
     nocull_i=$1 nocull_f=$2
     set -- $(bench --set quality.droplet_lod=0)
     nolod_i=$1 nolod_f=$2
-    echo "$n,$read_s,$grid_s,$cells,$listings,$mb,$((kb / 1024)),$inter,$final,$nocull_i,$nocull_f,$nolod_i,$nolod_f" | tee -a "$csv"
+    set -- $(bench --set droplets.structure=bvh)
+    bvh_i=$1 bvh_f=$2
+    bvh_s=$(awk '$1 == "droplets" {gsub(/[(),]/, " "); print $7}' "$tmp/bench")
+    echo "$n,$read_s,$grid_s,$cells,$listings,$mb,$((kb / 1024)),$inter,$final,$nocull_i,$nocull_f,$nolod_i,$nolod_f,$bvh_s,$bvh_i,$bvh_f" | tee -a "$csv"
 done

@@ -4,8 +4,12 @@
 // Needs: fresnelDielectric (common/brdf.glsl), uPixelAngle (common/uniforms.glsl).
 
 uniform samplerBuffer uDroplets;      // droplet i: centre xyz, radius w
+uniform usamplerBuffer uDropletIndex; // droplet numbers, cell after cell (BVH: in leaf order)
+#if DROPLET_BVH
+uniform usamplerBuffer uDropletNodes; // 2 texels a node: (lo, first), (hi, count); lo, hi as float bits
+#else
 uniform usamplerBuffer uDropletCells; // cell c lists uDropletIndex[cells[c] .. cells[c + 1])
-uniform usamplerBuffer uDropletIndex; // droplet numbers, cell after cell
+#endif
 uniform vec3 uDropletLo, uDropletHi, uDropletCell;
 uniform ivec3 uDropletDims;
 uniform float uDropletIor, uDropletRoughness;
@@ -55,6 +59,26 @@ bool dropletIsSubPixel(float r, float pathT)
     return r < float(DROPLET_LOD) * uPixelAngle * pathT;
 }
 
+// The first droplet other than `skip` among uDropletIndex[first .. last) that holds p, or −1.
+int dropletHolding(vec3 p, int skip, int first, int last)
+{
+    for (int k = first; k < last; k++) {
+        int id = int(texelFetch(uDropletIndex, k).r);
+        vec4 s = droplet(id);
+        vec3 f = p - s.xyz;
+        if (id != skip && dot(f, f) < s.w * s.w)
+            return id;
+    }
+    return -1;
+}
+
+// 1 / rd without infinities: an axis the ray does not move on gets 1e30, so slab tests never form 0 · inf.
+vec3 safeInverse(vec3 rd)
+{
+    return 1.0 / mix(rd, vec3(1e-30), equal(rd, vec3(0.0)));
+}
+
+#if !DROPLET_BVH
 // The nearest droplet the ray enters within (tmin, tmax), skipping droplet `skip` (the one whose
 // surface the ray starts on). Sub-pixel droplets before it and before tSurface (at path length
 // pathT + t) are passed through: throughput is dimmed by their mean transmittance and `reflected`
@@ -65,7 +89,7 @@ int dropletsWalk(vec3 ro, vec3 rd, float tmin, float tmax, float tSurface, int s
 {
     tHit = tmax;
     cells = 0;
-    vec3 inv = 1.0 / rd; // ±inf along an axis the ray does not move on
+    vec3 inv = safeInverse(rd);
     vec3 ta = (uDropletLo - ro) * inv, tb = (uDropletHi - ro) * inv;
     vec3 tn = min(ta, tb), tf = max(ta, tb);
     float tEnter = max(max(tn.x, tn.y), max(tn.z, tmin));
@@ -136,6 +160,9 @@ int dropletsWalk(vec3 ro, vec3 rd, float tmin, float tmax, float tSurface, int s
     return best;
 }
 
+#endif
+
+#if !DROPLET_BVH
 // The droplet other than `skip` that holds point p (−1 when p is in air): the cell of p lists every
 // droplet that could.
 int dropletAt(vec3 p, int skip)
@@ -144,16 +171,123 @@ int dropletAt(vec3 p, int skip)
         return -1;
     ivec3 cell = clamp(ivec3(floor((p - uDropletLo) / uDropletCell)), ivec3(0), uDropletDims - 1);
     int c = cell.x + uDropletDims.x * (cell.y + uDropletDims.y * cell.z);
-    int first = int(texelFetch(uDropletCells, c).r), last = int(texelFetch(uDropletCells, c + 1).r);
-    for (int k = first; k < last; k++) {
-        int id = int(texelFetch(uDropletIndex, k).r);
-        vec4 s = droplet(id);
-        vec3 f = p - s.xyz;
-        if (id != skip && dot(f, f) < s.w * s.w)
+    return dropletHolding(p, skip, int(texelFetch(uDropletCells, c).r), int(texelFetch(uDropletCells, c + 1).r));
+}
+
+#else
+// The same two queries through the BVH (to compare with the grid; droplets.structure = "bvh").
+const int DROPLET_STACK = 48; // ≥ BVH depth + 1 (median split over 2^24 droplets: depth ≤ 24)
+
+void dropletNode(int n, out vec3 lo, out vec3 hi, out int first, out int count)
+{
+    uvec4 a = texelFetch(uDropletNodes, 2 * n), b = texelFetch(uDropletNodes, 2 * n + 1);
+    lo = uintBitsToFloat(a.xyz);
+    hi = uintBitsToFloat(b.xyz);
+    first = int(a.w);
+    count = int(b.w);
+}
+
+// Where the ray enters the box within [tmin, tmax]; a miss gives +inf-like 3e38.
+float boxEntry(vec3 ro, vec3 inv, vec3 lo, vec3 hi, float tmin, float tmax)
+{
+    vec3 ta = (lo - ro) * inv, tb = (hi - ro) * inv;
+    vec3 tn = min(ta, tb), tf = max(ta, tb);
+    float tEnter = max(max(tn.x, tn.y), max(tn.z, tmin));
+    float tExit = min(min(tf.x, tf.y), min(tf.z, tmax));
+    return tEnter <= tExit ? tEnter : 3e38;
+}
+
+// pass 0: the nearest traced droplet (tHit shrinks); pass 1: sub-pixel droplets before tHit and tSurface.
+int dropletsBvhPass(int pass, vec3 ro, vec3 rd, vec3 inv, float tmin, float tSurface, int skip, float pathT,
+                    inout float tHit, inout vec3 throughput, inout vec3 reflected, inout int nodes, out bool subPixel)
+{
+    int stack[DROPLET_STACK];
+    int sp = 0, best = -1;
+    subPixel = false;
+    stack[sp++] = 0;
+    while (sp > 0) {
+        int n = stack[--sp];
+        nodes++;
+        vec3 lo, hi;
+        int first, count;
+        dropletNode(n, lo, hi, first, count);
+        float tLimit = pass == 0 ? tHit : min(tHit, tSurface);
+        if (boxEntry(ro, inv, lo, hi, tmin, tLimit) >= tLimit)
+            continue;
+        if (count > 0) {
+            for (int k = first; k < first + count; k++) {
+                int id = int(texelFetch(uDropletIndex, k).r);
+                vec4 s = droplet(id);
+                float t0, t1;
+                if (id == skip || !sphereRoots(ro, rd, s, t0, t1) || t0 <= tmin || t0 >= tHit ||
+                    (pass == 1 && t0 >= tSurface))
+                    continue;
+                bool sub = DROPLET_LOD_ON && dropletIsSubPixel(s.w, pathT + t0);
+                if (pass == 0 && !sub) {
+                    tHit = t0;
+                    best = id;
+                } else if (pass == 0) {
+                    subPixel = true;
+                } else if (sub) {
+                    reflected += throughput * uDropletReflect;
+                    throughput *= dropletMeanTransmittance(s.w);
+                }
+            }
+            continue;
+        }
+        // both children, the nearer popped first
+        vec3 alo, ahi, blo, bhi;
+        int f, c;
+        dropletNode(first, alo, ahi, f, c);
+        dropletNode(first + 1, blo, bhi, f, c);
+        float ta = boxEntry(ro, inv, alo, ahi, tmin, tLimit), tb = boxEntry(ro, inv, blo, bhi, tmin, tLimit);
+        bool aFirst = ta <= tb;
+        if (max(ta, tb) < tLimit && sp < DROPLET_STACK)
+            stack[sp++] = aFirst ? first + 1 : first;
+        if (min(ta, tb) < tLimit && sp < DROPLET_STACK)
+            stack[sp++] = aFirst ? first : first + 1;
+    }
+    return best;
+}
+
+int dropletsWalk(vec3 ro, vec3 rd, float tmin, float tmax, float tSurface, int skip, float pathT,
+                 inout vec3 throughput, inout vec3 reflected, out float tHit, out int cells)
+{
+    vec3 inv = safeInverse(rd);
+    tHit = tmax;
+    cells = 0;
+    bool subPixel;
+    int best = dropletsBvhPass(0, ro, rd, inv, tmin, tSurface, skip, pathT, tHit, throughput, reflected, cells, subPixel);
+    if (subPixel)
+        dropletsBvhPass(1, ro, rd, inv, tmin, tSurface, skip, pathT, tHit, throughput, reflected, cells, subPixel);
+    return best;
+}
+
+int dropletAt(vec3 p, int skip)
+{
+    int stack[DROPLET_STACK];
+    int sp = 0;
+    stack[sp++] = 0;
+    while (sp > 0) {
+        vec3 lo, hi;
+        int first, count;
+        dropletNode(stack[--sp], lo, hi, first, count);
+        if (any(lessThan(p, lo)) || any(greaterThan(p, hi)))
+            continue;
+        if (count == 0) {
+            if (sp + 2 <= DROPLET_STACK) {
+                stack[sp++] = first;
+                stack[sp++] = first + 1;
+            }
+            continue;
+        }
+        int id = dropletHolding(p, skip, first, first + count);
+        if (id >= 0)
             return id;
     }
     return -1;
 }
+#endif
 
 // Crossing the liquid's surface along rd at outward normal nOut, into the droplet (entering) or out of
 // it: exact Fresnel for unpolarized light. rd becomes the refracted direction (Snell), or the mirrored
