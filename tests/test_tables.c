@@ -123,7 +123,7 @@ static char *all_shaders(void)
         "common/material.glsl", "common/lights.glsl", "common/fog.glsl",      "common/env.glsl",
         "common/relief.glsl",   "common/sdf_main.glsl", "fractal/common.glsl", "fractal/mandelbulb.glsl",
         "fractal/menger.glsl",  "fractal/mandelbox.glsl", "terrain/terrain.glsl", "terrain/noise.glsl",
-        "terrain/layers.glsl"};
+        "terrain/layers.glsl",  "common/droplets.glsl"};
     strbuf all = {0};
     for (size_t i = 0; i < sizeof FILES / sizeof FILES[0]; i++) {
         char path[PATH_MAX_LEN], *text;
