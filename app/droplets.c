@@ -148,6 +148,10 @@ static bool add_droplet(reader *r)
     if (!(v[COL_R] > 0))
         return fail(r, "column %d (%s): %s: a droplet's size must be positive", r->col[COL_R] + 1,
                     r->col_label[COL_R], r->value[COL_R]);
+    if (v[COL_R] < DROPLETS_RADIUS_MIN) /* (a float would round it to 0: found by tests/fuzz) */
+        return fail(r, "column %d (%s): %s: a droplet smaller than %g m across cannot be drawn; check the "
+                       "units (droplets.scale)",
+                    r->col[COL_R] + 1, r->col_label[COL_R], r->value[COL_R], 2 * DROPLETS_RADIUS_MIN);
     droplets *d = r->d;
     if (d->count == DROPLETS_MAX)
         return fail(r, "more than %d droplets: fathom holds at most that many; thin the data (ParaView's "
@@ -439,6 +443,8 @@ bool droplets_build_grid(droplets *d, err_t *err)
     double side = cbrt(vol / (DROPLET_GRID_DENSITY * d->count));
     /* no finer than the smallest droplets' diameter: finer cells only list big droplets more often */
     side = fmax(side, 2.0 * d->r_min);
+    if (!(side > 0 && isfinite(side))) /* one droplet, or all at one point: any positive cell will do */
+        side = fmax(largest, 1e-6);
     int dims[3];
     for (;;) { /* within DROPLET_GRID_MAX_CELLS: cells a little bigger until it fits */
         for (int k = 0; k < 3; k++)

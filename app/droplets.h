@@ -34,6 +34,9 @@
 /* Coordinates and radii beyond this many metres are refused: the shader's float grid walk would lose
  * the droplets' size against their position. */
 #define DROPLETS_COORD_MAX 1e6
+/* Radii below this (metres: a nanometre) are refused: a mistake in units, and floats cannot hold them
+ * next to metre-sized positions. */
+#define DROPLETS_RADIUS_MIN 1e-9
 /* Cells per droplet the grid aims at, and its limits (cells, and cell listings in all). */
 #define DROPLET_GRID_DENSITY 2.0
 #define DROPLET_GRID_MAX_SIDE 1024

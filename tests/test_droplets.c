@@ -79,6 +79,7 @@ static void bad_files(void **st)
         {"x,y,z,diameter\n1,2,3,0\n", ":2: column 4 (diameter): 0: a droplet's size must be positive"},
         {"x,y,z,r\n1,2,3,0.1\n1,2\n", ":3: the row has no column 3 (z)"},
         {"x,y,z,r\n1e300,2,3,0.1\n", ":2: column 1 (x): 1e300 is beyond"},
+        {"x,y,z,r\n0,0,0,4.3e-93\n", ":2: column 4 (r): 4.3e-93: a droplet smaller than 2e-09 m across"},
         {"x,y,z,r\n\"1,2,3,0.1\n", ":2: column 1 (x): '1,2,3,0.1"}, /* an open quote swallows the rest of the file */
         {"x,y,z,r\n1,2,3,\n", ":2: column 4 (r): '' is not a number"},
     };

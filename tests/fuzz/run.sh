@@ -1,16 +1,25 @@
 #!/bin/sh
-# Fuzzes the scene parser with libFuzzer (clang, ASan + UBSan) for MINUTES minutes [5].
-# Seeds: every shipped scene; dictionary: the keys and names of the scene format (scene.dict).
-# Findings (crash-*, leak-*, timeout-*) land in build-fuzz/findings; the corpus grows in build-fuzz/corpus.
-# Usage: tests/fuzz/run.sh [MINUTES]   (needs: apt-get install clang)
+# Fuzzes the scene parser (TARGET scene, the default) or the droplet-file reader and its grid and BVH
+# (TARGET droplets) with libFuzzer (clang, ASan + UBSan) for MINUTES minutes [5].
+# Seeds: every shipped scene (scenes: the keys and names of the format in scene.dict), or the head of
+# scenes/spray.csv and a ParaView-style file (droplets.dict).
+# Findings (crash-*, leak-*, timeout-*) land in build-fuzz/findings-TARGET; the corpus grows in
+# build-fuzz/corpus-TARGET.
+# Usage: tests/fuzz/run.sh [MINUTES] [scene|droplets]   (needs: apt-get install clang)
 set -eu
 minutes=${1:-5}
+target=${2:-scene}
 src=$(cd "$(dirname "$0")/../.." && pwd)
 build="$src/build-fuzz"
 CC=clang CXX=clang++ cmake -S "$src" -B "$build" -DFATHOM_FUZZ=ON -DBUILD_TESTING=OFF >/dev/null
-cmake --build "$build" -j 2 --target fuzz_scene >/dev/null
-mkdir -p "$build/corpus" "$build/findings"
-cp "$src"/scenes/*.json "$build/corpus/"
-cd "$build/findings"
-"$build/fuzz_scene" "$build/corpus" -dict="$src/tests/fuzz/scene.dict" -max_total_time=$((minutes * 60)) \
+cmake --build "$build" -j 2 --target "fuzz_$target" >/dev/null
+mkdir -p "$build/corpus-$target" "$build/findings-$target"
+if [ "$target" = scene ]; then
+    cp "$src"/scenes/*.json "$build/corpus-$target/"
+else
+    head -n 40 "$src/scenes/spray.csv" >"$build/corpus-$target/spray.csv"
+    printf '"Points:0","Points:1","Points:2","diameter"\n0.5,1.5,-2,0.002\n' >"$build/corpus-$target/paraview.csv"
+fi
+cd "$build/findings-$target"
+"$build/fuzz_$target" "$build/corpus-$target" -dict="$src/tests/fuzz/$target.dict" -max_total_time=$((minutes * 60)) \
     -max_len=16384 -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 2>&1 | tail -n 25
