@@ -1,0 +1,87 @@
+/* path — camera paths for flights: keyframes from a file, smooth in position, orientation, field of
+ * view and any numeric scene parameter, evaluated at any time. Pure C, double precision.
+ *
+ * File (JSON, human-editable; angles in degrees, times in seconds, metres):
+ *   { "keys": [
+ *       { "time": 0,   "position": [0, 1, 5], "yaw": 0, "pitch": -10, "fov": 50 },
+ *       { "time": 2.5, "position": [3, 1, 2], "look_at": [0, 0, 0],
+ *         "set": { "fractal.power": 9 } } ] }
+ * Each key gives yaw/pitch (camera.h's convention) or look_at; fov defaults to the previous key's
+ * (the first: 50). "set" holds numeric scene keys (as --set takes them); every key must list the same
+ * ones. Times strictly increase; at least two keys.
+ *
+ * Smoothness:
+ *   position     centripetal Catmull–Rom (α = 1/2: no cusps or self-intersections within a segment;
+ *                Yuksel, Schaefer & Keyser, "Parameterization and applications of Catmull–Rom
+ *                curves", CAD 2011), evaluated by the Barry–Goldman pyramid;
+ *   speed        the camera moves along the curve by arc length, and arc length follows time by a
+ *                monotone cubic through (key time, arc length at the key) (Fritsch & Carlson, "Monotone
+ *                piecewise cubic interpolation", SIAM J. Numer. Anal. 1980): it passes every key at
+ *                its time, never runs backwards, and its speed is continuous (C1);
+ *   orientation  unit quaternions, each key's sign chosen next to the previous one's (no flip across
+ *                180°); per segment a cubic Bézier on the quaternion sphere evaluated by repeated slerp
+ *                (Shoemake, "Animating rotation with quaternion curves", SIGGRAPH 1985), its inner
+ *                control points set from each key's turn rate (the mean of the adjacent segments'),
+ *                so the turn rate is continuous in time however unevenly the keys are spaced;
+ *   fov, "set"   cubic Hermite in time with Catmull–Rom tangents (C1, through the keys).
+ */
+#ifndef FATHOM_PATH_H
+#define FATHOM_PATH_H
+
+#include <stdbool.h>
+
+#include "util.h"
+
+enum { PATH_MAX_KEYS = 10000, PATH_MAX_PARAMS = 16, PATH_PARAM_NAME = 64, PATH_ARC_SAMPLES = 64 };
+
+typedef struct path_key {
+    double time;
+    double position[3];
+    double quat[4]; /* x, y, z, w: unit, sign-aligned with the previous key */
+    double fov_deg;
+    double values[PATH_MAX_PARAMS];
+} path_key;
+
+typedef struct path {
+    int count;
+    path_key *keys;
+    int param_count;
+    char params[PATH_MAX_PARAMS][PATH_PARAM_NAME]; /* scene keys of the "set" tracks */
+    /* arc length: cumulative at each key, and per segment a table of PATH_ARC_SAMPLES + 1 lengths
+     * at equal steps of the segment's spline parameter */
+    double *key_length;
+    double *arc;
+    double *speed; /* d(arc length)/dt at each key: the monotone cubic's tangents */
+} path;
+
+typedef struct path_sample {
+    double position[3];
+    double quat[4];
+    double yaw, pitch; /* radians, from the quaternion's forward direction */
+    double fov_deg;
+    double values[PATH_MAX_PARAMS];
+} path_sample;
+
+/* Reads a path file / path text (name is used in messages). Errors name the key and what to do. */
+bool path_load(const char *file, path *p, err_t *err);
+bool path_parse(const char *text, const char *name, path *p, err_t *err);
+void path_free(path *p);
+
+/* The camera and parameters at time t (clamped to the first and last key's times). */
+void path_eval(const path *p, double t, path_sample *out);
+
+double path_duration(const path *p);
+/* Arc length of the whole path (metres). */
+double path_length(const path *p);
+
+/* The path as a file path_parse reads back to the same keys (yaw and pitch written from the quaternions). */
+void path_write(const path *p, strbuf *out);
+
+/* "A-B" (inclusive) or "N": frame numbers ≥ 0. */
+bool path_parse_frames(const char *s, int *first, int *last, err_t *err);
+
+/* The frame's file name from a pattern with one printf integer conversion (%d, %04d, …; %% for a
+ * literal %). Returns false, with the reason, for a pattern without exactly one such conversion. */
+bool path_frame_name(const char *pattern, int frame, char *out, size_t n, err_t *err);
+
+#endif
