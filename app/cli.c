@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "camera.h"
+#include "path.h"
 #include "quality.h"
 
 enum { MAX_IMAGE_SIDE = 16384, MAX_SPP = 1 << 16, DEFAULT_RUNS = 5, MAX_RUNS = 1000 };
@@ -16,6 +17,7 @@ static const float MAX_FOV_DEG = 179.0f; /* vertical field of view; 180 degrees 
 static const char USAGE[] =
     "usage: fathom [options]\n"
     "       fathom bench [--scene S] [--size WxH] [--runs N] [--knob NAME=v1,v2,...]... [--out DIR] [--name N]\n"
+    "       fathom render --path FLIGHT.json [--frames A-B] [--fps N] --output DIR/frame_%04d.png [options]\n"
     "  Opens the explorer window, or renders an offline shot with --output (no display needed).\n"
     "  bench: headless; for fixed views, sweeps each accuracy knob on its own (default: all that\n"
     "  apply), the presets and every effect; time = median of N [5] images after warm-up (wall clock\n"
@@ -23,6 +25,8 @@ static const char USAGE[] =
     "  bench --frame-times: only each preset's frame time (one sample per pixel), median of N.\n"
     "  bench --interactive [--fps N]: a scripted 100-frame flight as the window flies it (lower\n"
     "  internal resolution for N fps [30]): frame times, internal size, error, time to converge [1280x720].\n"
+    "  render --path: the frames of a camera path (keyframe file: docs/flights.md) at N frames a second\n"
+    "  [30], each written atomically to the pattern's file; frames already on disk are skipped (resume).\n"
     "\n"
     "  --scene NAME|FILE     scene to load: a name from scenes/ (csg), a scene file path, or a PNG/EXR\n"
     "                        fathom wrote (reopens its scene, overrides and view) [csg]\n"
@@ -39,8 +43,10 @@ static const char USAGE[] =
     "  --set KEY=VALUE       override any scene parameter, e.g. --set materials.glass.ior=1.33,\n"
     "                        --set effects.fog=off, --set lights.0.intensity=40 (repeatable)\n"
     "  --aov LIST            extra EXR channels: depth,normal,steps,exit (needs .exr output)\n"
-    "  --frames N            window mode: render N frames, then exit\n"
-    "  --fps N               window: frame rate to hold while moving (lower internal resolution) [30]\n"
+    "  --frames N            window mode: render N frames, then exit; with --path: frames A-B or N\n"
+    "  --path FILE           a camera path (keyframes) to render frame by frame (with --output PATTERN)\n"
+    "  --fps N               window: frame rate to hold while moving (lower internal resolution) [30];\n"
+    "                        with --path: frames per second of the flight [30]\n"
     "  --print-variant       print the effects and #defines the scene compiles, then exit\n"
     "  --list-scenes         list the shipped scenes\n"
     "  --quiet               no progress bar\n"
@@ -173,8 +179,10 @@ static bool set_output_option(const char *name, const char *val, cli_options *o,
         if (!parse_int(val, 1, 1000, &o->fps))
             return err_set(err, "bad --fps '%s': expected a whole number from 1 to 1000", val);
     } else if (!strcmp(name, "--frames")) {
-        if (!parse_int(val, 1, 1 << 30, &o->frames))
-            return err_set(err, "bad --frames '%s': expected a whole number >= 1", val);
+        o->has_frames = true;
+        o->frames_arg = val; /* a count for the window, a range for --path: decided once all are read */
+    } else if (!strcmp(name, "--path")) {
+        o->path = val;
     } else {
         *handled = false;
     }
@@ -255,13 +263,23 @@ static bool set_flag(const char *a, cli_options *o)
 /* Options that only make sense together. */
 static bool check_combinations(const cli_options *o, err_t *err)
 {
+    if (o->path && (o->bench || !o->output))
+        return err_set(err, "--path renders a flight's frames: give --output with a %%d for the frame number, e.g. "
+                            "--output out/frame_%%04d.png");
+    if (o->path && (o->has_camera || o->has_look_at || o->has_fov || o->has_view))
+        return err_set(err, "--path gives the camera for every frame: drop --camera, --look-at, --fov and --view");
+    if (o->path) {
+        char name[PATH_MAX_LEN];
+        if (!path_frame_name(o->output, 0, name, sizeof name, err))
+            return false;
+    }
     if (o->bench && (o->output || o->aovs || o->frames || o->print_variant))
         return err_set(err, "fathom bench takes --scene, --size, --runs, --knob, --out, --name, --set and --quiet only");
     if (!o->bench && (o->out || o->name || o->knob_count || o->frame_times || o->runs != DEFAULT_RUNS))
         return err_set(err, "--runs, --knob, --out and --name belong to fathom bench");
     if (o->aovs && !o->output)
         return err_set(err, "--aov needs an offline shot: add --output FILE.exr");
-    if (o->fps && (o->output || (o->bench && !o->interactive)))
+    if (o->fps && ((o->output && !o->path) || (o->bench && !o->interactive)))
         return err_set(err, "--fps is the window's (and bench --interactive's): it does not apply here");
     if (o->interactive && !o->bench)
         return err_set(err, "--interactive belongs to fathom bench");
@@ -288,6 +306,8 @@ bool cli_parse(int argc, char **argv, cli_options *o, err_t *err)
     if (argc > 1 && !strcmp(argv[1], "bench")) {
         o->bench = true;
         first = 2;
+    } else if (argc > 1 && !strcmp(argv[1], "render")) { /* the offline word: --output says the same */
+        first = 2;
     }
     for (int i = first; i < argc; i++) {
         const char *a = argv[i];
@@ -309,7 +329,8 @@ bool cli_parse(int argc, char **argv, cli_options *o, err_t *err)
         }
         static const char *const WITH_VALUE[] = {"--scene", "--output", "--size", "--spp", "--quality",
                                                  "--camera", "--look-at", "--fov", "--set", "--aov", "--frames",
-                                                 "--runs", "--out", "--knob", "--name", "--strip-rows", "--fps", "--view"};
+                                                 "--runs", "--out", "--knob", "--name", "--strip-rows", "--fps", "--view",
+                                                 "--path"};
         bool known = false;
         for (size_t k = 0; k < sizeof WITH_VALUE / sizeof WITH_VALUE[0]; k++)
             known |= !strcmp(name, WITH_VALUE[k]);
@@ -323,5 +344,9 @@ bool cli_parse(int argc, char **argv, cli_options *o, err_t *err)
         if (!handled && !set_view_option(name, val, o, err))
             return false;
     }
+    if (o->has_frames && o->path && !path_parse_frames(o->frames_arg, &o->frame_first, &o->frame_last, err))
+        return false;
+    if (o->has_frames && !o->path && !parse_int(o->frames_arg, 1, 1 << 30, &o->frames))
+        return err_set(err, "bad --frames '%s': expected a whole number >= 1 (a range A-B needs --path)", o->frames_arg);
     return check_combinations(o, err);
 }

@@ -2,6 +2,7 @@
  *
  *   fathom [options]              explorer window (or an offline shot with --output)
  *   fathom bench [options]        what accuracy costs: knob sweeps, presets, effects (time and error)
+ *   fathom render --path F ...    a flight: the frames of a camera path (app/path.h) to numbered files
  *   fathom --help                 usage
  *
  * Angles are degrees on the command line (radians inside the code); sizes are pixels.
@@ -30,6 +31,10 @@ typedef struct cli_options {
     int spp;            /* 0: the quality preset's */
     int strip_rows;     /* offline: rows rendered and written at a time; 0: as many as fit 2 Mpixel */
     int frames;         /* window: exit after N frames; 0: run until closed */
+    const char *path;   /* --path FILE: render a flight's frames (flight.h) */
+    bool has_frames;    /* --frames given (with --path: the range) */
+    const char *frames_arg;
+    int frame_first, frame_last; /* --path: frames to render (inclusive); without --frames, all */
     int fps;            /* window: frame rate to hold while moving; 0: the default (30) */
     bool has_camera, has_look_at, has_fov;
     bool has_view;      /* --scene SHOT.png or --view NAME: the shot's exact camera (shot.h) */

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "bench.h"
+#include "flight.h"
 #include "cli.h"
 #include "explore.h"
 #include "image_io.h"
@@ -90,6 +91,12 @@ int main(int argc, char **argv)
         fputs(names.data ? names.data : "", stdout);
         sb_free(&names);
         return 0;
+    }
+    if (opt.path) {
+        bool ok = flight_render(&opt, &err);
+        if (!ok)
+            fprintf(stderr, "fathom: %s\n", err.msg);
+        return ok ? 0 : 1;
     }
     if (opt.bench) {
         bool ok = bench_run(&opt, &err);

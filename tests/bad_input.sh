@@ -113,6 +113,19 @@ drops text 'x,y,z,r\n0,one,0,0.01\n' ":2: column 2 (y): 'one' is not a number"
 expect droplets-missing-file 1 "droplets.file: file '$tmp/nodrops.csv' not found" 1 -- "$fathom" --set droplets.file="$tmp/nodrops.csv" $out
 expect droplets-missing-key 1 "droplets.file: missing" 1 -- "$fathom" --set droplets.ior=1.5 $out
 
+# flights: the path file and the frame pattern are checked before anything renders
+printf '{"keys": [{"time": 0, "position": [0, 1, 5], "yaw": 0, "pitch": 0}, {"time": 1, "position": [1, 1, 5], "yaw": 0, "pitch": 0}]}' >"$tmp/path.json"
+printf '{"keys": [{"time": 1, "position": [0, 1, 5], "yaw": 0, "pitch": 0}, {"time": 1, "position": [1, 1, 5], "yaw": 0, "pitch": 0}]}' >"$tmp/badpath.json"
+flight="--size 33x21 --spp 1 --quiet"
+expect path-no-pattern 2 "needs exactly one %d" 1 -- "$fathom" render --path "$tmp/path.json" --output "$tmp/out.png" $flight
+expect path-no-output 2 "--path renders a flight's frames: give --output" 1 -- "$fathom" render --path "$tmp/path.json" $flight
+expect path-with-camera 2 "--path gives the camera for every frame" 1 -- "$fathom" render --path "$tmp/path.json" --camera 0,1,2 --output "$tmp/out%d.png" $flight
+expect path-bad-frames 2 "bad --frames '5-2': the range ends before it starts" 1 -- "$fathom" render --path "$tmp/path.json" --frames 5-2 --output "$tmp/out%d.png" $flight
+expect path-bad-file 1 "keys.1.time: 1 is not after the previous key's 1" 1 -- "$fathom" render --path "$tmp/badpath.json" --output "$tmp/out%d.png" $flight
+expect path-missing-file 1 "$tmp/nopath.json" 1 -- "$fathom" render --path "$tmp/nopath.json" --output "$tmp/out%d.png" $flight
+expect path-past-end 1 "ends at frame 30" 1 -- "$fathom" render --path "$tmp/path.json" --frames 0-40 --output "$tmp/out%d.png" $flight
+ls "$tmp"/out*.png >/dev/null 2>&1 && { failed=$((failed + 1)); echo "FAIL flights: a frame was written by a refused flight"; }
+
 # ---- outputs that cannot be written -------------------------------------------------------------
 : >"$tmp/readonly.png"
 chmod 0444 "$tmp/readonly.png"

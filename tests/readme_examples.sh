@@ -10,7 +10,7 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 mkdir -p "$tmp/build"
 ln -s "$fathom" "$tmp/build/fathom"
-for d in scenes terrains textures shaders; do ln -s "$src/$d" "$tmp/$d"; done
+for d in scenes terrains textures shaders docs; do ln -s "$src/$d" "$tmp/$d"; done
 passed=0 failed=0
 awk '/^```sh/ {f = 1; next} /^```/ {f = 0} f && !/^apt-get/' "$src/README.md" | sed 's/[[:space:]]*#.*$//' |
     grep -v '^[[:space:]]*$' >"$tmp/commands"
