@@ -52,9 +52,15 @@ bool flight_render(const cli_options *opt, err_t *err)
     int last_frame = (int)floor(path_duration(&p) * fps + 1e-9);
     int first = opt->has_frames ? opt->frame_first : 0, last = opt->has_frames ? opt->frame_last : last_frame;
     bool ok = true;
-    if (last > last_frame)
+    if (first > last_frame)
         ok = err_set(err, "--frames %d-%d: the path '%s' ends at frame %d (%.3f s at %d frames a second)", first, last,
                      opt->path, last_frame, path_duration(&p), fps);
+    if (ok && last > last_frame) { /* a farm's last chunk may reach past the end: render what there is */
+        if (!opt->quiet)
+            fprintf(stderr, "frames %d-%d: the path ends at frame %d; rendering %d-%d\n", first, last, last_frame, first,
+                    last_frame);
+        last = last_frame;
+    }
     /* the scene and the output folder are checked before the GPU opens */
     scene s;
     const char *sets[CLI_MAX_SETS + PATH_MAX_PARAMS + 1];

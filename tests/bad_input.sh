@@ -123,7 +123,7 @@ expect path-with-camera 2 "--path gives the camera for every frame" 1 -- "$fatho
 expect path-bad-frames 2 "bad --frames '5-2': the range ends before it starts" 1 -- "$fathom" render --path "$tmp/path.json" --frames 5-2 --output "$tmp/out%d.png" $flight
 expect path-bad-file 1 "keys.1.time: 1 is not after the previous key's 1" 1 -- "$fathom" render --path "$tmp/badpath.json" --output "$tmp/out%d.png" $flight
 expect path-missing-file 1 "$tmp/nopath.json" 1 -- "$fathom" render --path "$tmp/nopath.json" --output "$tmp/out%d.png" $flight
-expect path-past-end 1 "ends at frame 30" 1 -- "$fathom" render --path "$tmp/path.json" --frames 0-40 --output "$tmp/out%d.png" $flight
+expect path-past-end 1 "ends at frame 30" 1 -- "$fathom" render --path "$tmp/path.json" --frames 40-50 --output "$tmp/out%d.png" $flight
 ls "$tmp"/out*.png >/dev/null 2>&1 && { failed=$((failed + 1)); echo "FAIL flights: a frame was written by a refused flight"; }
 
 # ---- outputs that cannot be written -------------------------------------------------------------

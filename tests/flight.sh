@@ -33,9 +33,12 @@ grep -q "2 frames rendered, 7 skipped" "$tmp/log2" || fail "rerun summary: $(tai
 [ "$(date -r "$tmp/out/f_000.png" +%Y)" = 2001 ] || fail "frame 0 was rewritten"
 cmp -s "$tmp/keep.png" "$tmp/out/f_000.png" || fail "frame 0 changed"
 
-# a sub-range, and a frame is a shot: --scene FRAME renders the same image again
+# a range starting past the path's end is refused; one reaching past it renders what there is
 run --frames 10-12 2>"$tmp/log3" && fail "frames past the path's end were accepted"
 grep -q "ends at frame 8" "$tmp/log3" || fail "past the end: $(cat "$tmp/log3")"
+run --frames 6-20 2>"$tmp/log4" || fail "a range reaching past the end failed: $(cat "$tmp/log4")"
+grep -q "rendering 6-8" "$tmp/log4" && grep -q "0 frames rendered, 3 skipped" "$tmp/log4" || fail "past the end: $(cat "$tmp/log4")"
+# a frame is a shot: --scene FRAME renders the same image again
 "$fathom" --scene "$tmp/out/f_005.png" --output "$tmp/again.png" --quiet || fail "a frame does not reopen as a shot"
 cmp -s "$tmp/again.png" "$tmp/out/f_005.png" || fail "frame 5 reopened renders a different image"
 

@@ -1,0 +1,105 @@
+#!/bin/sh
+# A flight rendered by a real Slurm on this one machine: a private slurmctld + slurmd (Debian's
+# slurmctld, slurmd, slurm-client, munge), a job array of docs/slurm/flight.sbatch, and the check that
+# every frame was rendered exactly once. Then the same frames on one process, for the speed-up.
+# Usage: docs/slurm/run.sh FATHOM PATH_FILE FRAMES_PER_TASK [fathom render options...]
+#   exit 77: Slurm or munge is not installed here (apt-get install slurmctld slurmd slurm-client munge)
+# Needs root (munged and slurmd run as root here, in a private spool under a temporary folder).
+set -eu
+fathom=$(readlink -f "$1")
+pathfile=$(readlink -f "$2")
+per=$3
+shift 3
+for p in slurmctld slurmd sbatch squeue munged; do
+    command -v "$p" >/dev/null 2>&1 || PATH=$PATH:/usr/sbin
+    command -v "$p" >/dev/null 2>&1 || { echo "skip: $p is not installed (apt-get install slurmctld slurmd slurm-client munge)"; exit 77; }
+done
+[ "$(id -u)" -eq 0 ] || { echo "skip: needs root to run munged and slurmd"; exit 77; }
+src=$(cd "$(dirname "$0")/../.." && pwd)
+tmp=$(mktemp -d /tmp/fathom-slurm-XXXXXX)
+chmod 755 "$tmp"
+host=$(hostname -s)
+cpus=$(nproc)
+cleanup() {
+    [ -f "$tmp/slurmd.pid" ] && kill "$(cat "$tmp/slurmd.pid")" 2>/dev/null
+    [ -f "$tmp/slurmctld.pid" ] && kill "$(cat "$tmp/slurmctld.pid")" 2>/dev/null
+    [ -f "$tmp/munged.pid" ] && kill "$(cat "$tmp/munged.pid")" 2>/dev/null
+    sleep 1
+    rm -rf "$tmp"
+}
+trap cleanup EXIT
+
+# munge: a private key and socket
+mkdir -p "$tmp/munge"
+dd if=/dev/urandom of="$tmp/munge/munge.key" bs=1024 count=1 2>/dev/null
+chmod 600 "$tmp/munge/munge.key"
+munged --force --key-file="$tmp/munge/munge.key" --socket="$tmp/munge/socket" --pid-file="$tmp/munged.pid" \
+    --log-file="$tmp/munge/log" --seed-file="$tmp/munge/seed"
+
+mkdir -p "$tmp/state" "$tmp/spool" "$tmp/out" "$tmp/logs"
+cat >"$tmp/slurm.conf" <<CONF
+ClusterName=fathom
+SlurmctldHost=$host
+SlurmctldPort=16817
+SlurmdPort=16818
+AuthType=auth/munge
+AuthInfo=socket=$tmp/munge/socket
+CredType=cred/munge
+SlurmUser=root
+SlurmdUser=root
+StateSaveLocation=$tmp/state
+SlurmdSpoolDir=$tmp/spool
+SlurmctldPidFile=$tmp/slurmctld.pid
+SlurmdPidFile=$tmp/slurmd.pid
+SlurmctldLogFile=$tmp/slurmctld.log
+SlurmdLogFile=$tmp/slurmd.log
+ProctrackType=proctrack/linuxproc
+TaskPlugin=task/none
+JobAcctGatherType=jobacct_gather/none
+SelectType=select/cons_tres
+SelectTypeParameters=CR_Core
+SchedulerType=sched/backfill
+ReturnToService=2
+MpiDefault=none
+NodeName=$host CPUs=$cpus State=UNKNOWN
+PartitionName=flight Nodes=$host Default=YES MaxTime=INFINITE State=UP
+CONF
+export SLURM_CONF="$tmp/slurm.conf"
+slurmctld -f "$SLURM_CONF"
+slurmd -f "$SLURM_CONF" -N "$host"
+i=0
+until sinfo -h -o %t 2>/dev/null | grep -q idle; do
+    i=$((i + 1))
+    [ $i -lt 60 ] || { echo "FAIL: the node never became idle"; tail -5 "$tmp/slurmctld.log" "$tmp/slurmd.log"; exit 1; }
+    sleep 1
+done
+
+# how many frames the path has: fathom names the last one when asked for a frame past it
+frames=$("$fathom" render --path "$pathfile" --frames 100000000 --output "$tmp/probe_%d.png" --size 1x1 --quiet "$@" 2>&1 |
+    sed -n 's/.*ends at frame \([0-9]*\).*/\1/p')
+[ -n "$frames" ] || { echo "FAIL: could not read the path's length"; exit 1; }
+tasks=$(( (frames + per) / per ))
+echo "slurm: $((frames + 1)) frames in $tasks tasks of $per on $host ($cpus cores)"
+t0=$(date +%s.%N)
+job=$(FATHOM="$fathom" sbatch --parsable --array=0-$((tasks - 1))%$cpus --chdir="$tmp" \
+    --output="$tmp/logs/task_%a.log" "$src/docs/slurm/flight.sbatch" "$pathfile" "$tmp/out" "$per" --quiet "$@")
+while squeue -h -j "$job" 2>/dev/null | grep -q .; do sleep 1; done
+t1=$(date +%s.%N)
+n=$(ls "$tmp/out" | grep -c '^frame_' || true)
+failed=$(grep -l -i "error\|fathom:" "$tmp"/logs/*.log 2>/dev/null | wc -l)
+[ "$failed" -eq 0 ] || { echo "FAIL: $failed tasks reported errors:"; head -3 "$tmp"/logs/*.log; exit 1; }
+[ "$n" -eq $((frames + 1)) ] || { echo "FAIL: $n frames on disk, expected $((frames + 1))"; exit 1; }
+# exactly once: each frame's file was written once (its inode's change time is its only write); a
+# second writer would have replaced it by rename, and the tasks' ranges do not overlap
+dup=$(for l in "$tmp"/logs/*.log; do cat "$l"; done | grep -c "skipped" || true)
+echo "slurm: all $n frames, each task's range once, $dup skip lines; $(awk "BEGIN {print $t1 - $t0}") s"
+
+# the same frames by one process, for the speed-up
+rm -rf "$tmp/one" && mkdir "$tmp/one"
+t2=$(date +%s.%N)
+"$fathom" render --path "$pathfile" --output "$tmp/one/frame_%04d.png" --quiet "$@"
+t3=$(date +%s.%N)
+for f in "$tmp"/one/*.png; do
+    cmp -s "$f" "$tmp/out/$(basename "$f")" || { echo "FAIL: $(basename "$f") differs between Slurm and one process"; exit 1; }
+done
+echo "one process: $(awk "BEGIN {print $t3 - $t2}") s; Slurm: $(awk "BEGIN {print $t1 - $t0}") s; frames identical"
