@@ -18,6 +18,7 @@ static const char USAGE[] =
     "usage: fathom [options]\n"
     "       fathom bench [--scene S] [--size WxH] [--runs N] [--knob NAME=v1,v2,...]... [--out DIR] [--name N]\n"
     "       fathom render --path FLIGHT.json [--frames A-B] [--fps N] --output DIR/frame_%04d.png [options]\n"
+    "       fathom stitch --output POSTER.png POSTER.tile-*.png\n"
     "  Opens the explorer window, or renders an offline shot with --output (no display needed).\n"
     "  bench: headless; for fixed views, sweeps each accuracy knob on its own (default: all that\n"
     "  apply), the presets and every effect; time = median of N [5] images after warm-up (wall clock\n"
@@ -27,6 +28,8 @@ static const char USAGE[] =
     "  internal resolution for N fps [30]): frame times, internal size, error, time to converge [1280x720].\n"
     "  render --path: the frames of a camera path (keyframe file: docs/flights.md) at N frames a second\n"
     "  [30], each written atomically to the pattern's file; frames already on disk are skipped (resume).\n"
+    "  --tile I/N renders tile I of N (horizontal strips) of the --output image to OUTPUT.tile-I-of-N.EXT;\n"
+    "  stitch joins the N tiles into the whole image, bit for bit as if rendered at once.\n"
     "\n"
     "  --scene NAME|FILE     scene to load: a name from scenes/ (csg), a scene file path, or a PNG/EXR\n"
     "                        fathom wrote (reopens its scene, overrides and view) [csg]\n"
@@ -45,6 +48,7 @@ static const char USAGE[] =
     "  --aov LIST            extra EXR channels: depth,normal,steps,exit (needs .exr output)\n"
     "  --frames N            window mode: render N frames, then exit; with --path: frames A-B or N\n"
     "  --path FILE           a camera path (keyframes) to render frame by frame (with --output PATTERN)\n"
+    "  --tile I/N            render only tile I of N of the --output image (for posters and farms)\n"
     "  --fps N               window: frame rate to hold while moving (lower internal resolution) [30];\n"
     "                        with --path: frames per second of the flight [30]\n"
     "  --print-variant       print the effects and #defines the scene compiles, then exit\n"
@@ -183,6 +187,12 @@ static bool set_output_option(const char *name, const char *val, cli_options *o,
         o->frames_arg = val; /* a count for the window, a range for --path: decided once all are read */
     } else if (!strcmp(name, "--path")) {
         o->path = val;
+    } else if (!strcmp(name, "--tile")) {
+        int i = 0, n = 0, used = 0;
+        if (sscanf(val, "%d/%d%n", &i, &n, &used) != 2 || val[used] || n < 1 || n > 4096 || i < 1 || i > n)
+            return err_set(err, "bad --tile '%s': expected I/N with 1 <= I <= N <= 4096, e.g. --tile 3/16", val);
+        o->tile_index = i;
+        o->tile_count = n;
     } else {
         *handled = false;
     }
@@ -263,6 +273,14 @@ static bool set_flag(const char *a, cli_options *o)
 /* Options that only make sense together. */
 static bool check_combinations(const cli_options *o, err_t *err)
 {
+    if (o->stitch && (!o->output || o->input_count == 0))
+        return err_set(err, "fathom stitch needs --output POSTER and the tile files, e.g. fathom stitch --output "
+                            "poster.png poster.tile-*.png");
+    if (o->tile_count && (!o->output || o->path || o->bench || o->stitch))
+        return err_set(err, "--tile renders one tile of an offline shot: give --output (and no --path)");
+    if (o->tile_count && o->tile_count > (o->height ? o->height : 720) / 2)
+        return err_set(err, "--tile %d/%d: at most %d tiles for an image %d rows tall (2 rows a tile at least)",
+                       o->tile_index, o->tile_count, (o->height ? o->height : 720) / 2, o->height ? o->height : 720);
     if (o->path && (o->bench || !o->output))
         return err_set(err, "--path renders a flight's frames: give --output with a %%d for the frame number, e.g. "
                             "--output out/frame_%%04d.png");
@@ -308,11 +326,20 @@ bool cli_parse(int argc, char **argv, cli_options *o, err_t *err)
         first = 2;
     } else if (argc > 1 && !strcmp(argv[1], "render")) { /* the offline word: --output says the same */
         first = 2;
+    } else if (argc > 1 && !strcmp(argv[1], "stitch")) {
+        o->stitch = true;
+        first = 2;
     }
     for (int i = first; i < argc; i++) {
         const char *a = argv[i];
         if (set_flag(a, o))
             continue;
+        if (o->stitch && strncmp(a, "--", 2) != 0) { /* stitch: the tile files */
+            if (o->input_count == (int)(sizeof o->inputs / sizeof o->inputs[0]))
+                return err_set(err, "fathom stitch: too many files (at most %d)", (int)(sizeof o->inputs / sizeof o->inputs[0]));
+            o->inputs[o->input_count++] = a;
+            continue;
+        }
         /* flags with a value: "--flag value" or "--flag=value" */
         const char *eq = strchr(a, '=');
         char name[32];
@@ -330,7 +357,7 @@ bool cli_parse(int argc, char **argv, cli_options *o, err_t *err)
         static const char *const WITH_VALUE[] = {"--scene", "--output", "--size", "--spp", "--quality",
                                                  "--camera", "--look-at", "--fov", "--set", "--aov", "--frames",
                                                  "--runs", "--out", "--knob", "--name", "--strip-rows", "--fps", "--view",
-                                                 "--path"};
+                                                 "--path", "--tile"};
         bool known = false;
         for (size_t k = 0; k < sizeof WITH_VALUE / sizeof WITH_VALUE[0]; k++)
             known |= !strcmp(name, WITH_VALUE[k]);

@@ -3,6 +3,7 @@
  *   fathom [options]              explorer window (or an offline shot with --output)
  *   fathom bench [options]        what accuracy costs: knob sweeps, presets, effects (time and error)
  *   fathom render --path F ...    a flight: the frames of a camera path (app/path.h) to numbered files
+ *   fathom stitch --output F T... tiles rendered with --tile I/N, joined into the whole image
  *   fathom --help                 usage
  *
  * Angles are degrees on the command line (radians inside the code); sizes are pixels.
@@ -35,6 +36,10 @@ typedef struct cli_options {
     bool has_frames;    /* --frames given (with --path: the range) */
     const char *frames_arg;
     int frame_first, frame_last; /* --path: frames to render (inclusive); without --frames, all */
+    int tile_index, tile_count; /* --tile I/N: render tile I (1 = top) of N; count 0: the whole image */
+    bool stitch;                /* `fathom stitch`: join the tile files in inputs into --output */
+    const char *inputs[4096];
+    int input_count;
     int fps;            /* window: frame rate to hold while moving; 0: the default (30) */
     bool has_camera, has_look_at, has_fov;
     bool has_view;      /* --scene SHOT.png or --view NAME: the shot's exact camera (shot.h) */

@@ -180,12 +180,11 @@ static ImageSpec make_spec(int width, int height, int channels, bool f32, const 
 extern "C" image_writer *image_writer_open(const char *path, int width, int height, int channels, bool f32,
                                            const char *const *names, err_t *err)
 {
-    return image_writer_open_text(path, width, height, channels, f32, names, nullptr, nullptr, err);
+    return image_writer_open_text(path, width, height, channels, f32, names, nullptr, err);
 }
 
 extern "C" image_writer *image_writer_open_text(const char *path, int width, int height, int channels, bool f32,
-                                                const char *const *names, const char *key, const char *value,
-                                                err_t *err)
+                                                const char *const *names, const char *const *texts, err_t *err)
 {
     image_writer *w = nullptr;
     try {
@@ -194,8 +193,9 @@ extern "C" image_writer *image_writer_open_text(const char *path, int width, int
         w->tmp = temp_path_for(path);
         w->type = f32 ? TypeDesc::FLOAT : TypeDesc::UINT8;
         w->spec = make_spec(width, height, channels, f32, names);
-        if (key && value)
-            w->spec.attribute(key, value);
+        for (int i = 0; texts && texts[i]; i += 2)
+            if (texts[i + 1])
+                w->spec.attribute(texts[i], texts[i + 1]);
         w->out = ImageOutput::create(path);
         if (!w->out) {
             err_set(err, "cannot write '%s': no image format for this file name (%s)", path, one_line(OIIO::geterror()).c_str());

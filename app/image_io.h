@@ -35,10 +35,11 @@ typedef struct image_writer image_writer;
  * channels (NULL: R, G, B, A). NULL on failure (err set). */
 image_writer *image_writer_open(const char *path, int width, int height, int channels, bool f32,
                                 const char *const *names, err_t *err);
-/* The same with a text entry stored in the file (PNG: a tEXt chunk; EXR: a string attribute): key,
- * value (NULL: none). fathom keeps the scene, overrides and camera of a shot there. */
+/* The same with text entries stored in the file (PNG: tEXt chunks; EXR: string attributes): texts
+ * holds key, value, key, value, …, NULL (NULL: none; a NULL value skips its key). fathom keeps the
+ * scene, overrides and camera of a shot there, and where a tile sits in its poster. */
 image_writer *image_writer_open_text(const char *path, int width, int height, int channels, bool f32,
-                                     const char *const *names, const char *key, const char *value, err_t *err);
+                                     const char *const *names, const char *const *texts, err_t *err);
 /* Appends `rows` rows (top first; uint8_t or float as opened, channels interleaved). */
 bool image_writer_rows(image_writer *w, int rows, const void *pixels, err_t *err);
 /* Closes, flushes, decodes the file again and renames it over the target. Frees w either way. */

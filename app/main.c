@@ -92,6 +92,12 @@ int main(int argc, char **argv)
         sb_free(&names);
         return 0;
     }
+    if (opt.stitch) {
+        bool ok = offline_stitch(opt.output, opt.inputs, opt.input_count, opt.quiet, &err);
+        if (!ok)
+            fprintf(stderr, "fathom: %s\n", err.msg);
+        return ok ? 0 : 1;
+    }
     if (opt.path) {
         bool ok = flight_render(&opt, &err);
         if (!ok)
@@ -154,7 +160,15 @@ int main(int argc, char **argv)
         strbuf description = {0};
         shot_describe(s.path, sets, nsets, &d.cam, d.width, d.height, &description);
         d.description = description.data;
-        bool ok = offline_render(&d, &err);
+        char tile[PATH_MAX_LEN];
+        bool ok = true;
+        if (opt.tile_count) { /* tile I of N goes to OUTPUT.tile-I-of-N.EXT */
+            d.tile_index = opt.tile_index;
+            d.tile_count = opt.tile_count;
+            ok = offline_tile_name(opt.output, opt.tile_index, opt.tile_count, tile, sizeof tile, &err);
+            d.output = tile;
+        }
+        ok = ok && offline_render(&d, &err);
         sb_free(&description);
         if (!ok) {
             fprintf(stderr, "fathom: %s\n", err.msg);
