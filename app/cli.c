@@ -57,7 +57,7 @@ static const char USAGE[] =
     "  --help, --version\n"
     "\n"
     "Window keys: WASD move, mouse look, Space/C up/down, Shift faster, scroll speed, 1-9 scenes,\n"
-    "R reload shaders, P or F12 screenshot, Esc quit.\n";
+    "R reload shaders, P or F12 screenshot, N keyframe (Shift+N clears, L plays the flight), Esc quit.\n";
 
 const char *cli_usage(void) { return USAGE; }
 

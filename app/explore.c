@@ -13,13 +13,14 @@
 #include "gpu.h"
 #include "hud.h"
 #include "offline.h"
+#include "path.h"
 #include "render.h"
 #include "resolution.h"
 #include "scene.h"
 #include "shot.h"
 #include "views.h"
 
-enum { MAX_SCENES = 9, FRAME_HISTORY = 30, DEFAULT_FPS = 30 };
+enum { MAX_SCENES = 9, FRAME_HISTORY = 30, DEFAULT_FPS = 30, MAX_RECORDED_KEYS = 1000 };
 static const float MOUSE_SENSITIVITY = 0.0025f; /* radians per pixel */
 static const float SPEED_STEP = 1.25f;          /* per scroll notch */
 static const float DEFAULT_SPEED = 2.0f;        /* × the distance to the surface (adaptive scenes) */
@@ -55,6 +56,12 @@ static struct {
     int frame_index;
     res_controller res; /* the internal resolution while moving */
     bool scaled;        /* the last frame was rendered below full size */
+    /* the recorded flight (N adds a keyframe, Shift+N clears, L plays): docs/flights.md */
+    path_camera keys[MAX_RECORDED_KEYS];
+    int key_count;
+    path flight; /* the keys as a path, once there are two */
+    bool add_key, clear_keys, toggle_play, playing;
+    double play_t;
 } app;
 
 /* The next knob the window steps, after k (QUALITY_KNOBS' step column says which). */
@@ -94,6 +101,12 @@ static void on_key(GLFWwindow *w, int key, int scancode, int action, int mods)
         app.go_home = true;
     else if (key == GLFW_KEY_B)
         app.save_view = true;
+    else if (key == GLFW_KEY_N && (mods & GLFW_MOD_SHIFT))
+        app.clear_keys = true;
+    else if (key == GLFW_KEY_N)
+        app.add_key = true;
+    else if (key == GLFW_KEY_L)
+        app.toggle_play = true;
     else if (key == GLFW_KEY_K)
         app.knob = next_knob(app.knob);
     else if (key == GLFW_KEY_EQUAL || key == GLFW_KEY_KP_ADD)
@@ -109,6 +122,102 @@ static void on_scroll(GLFWwindow *w, double dx, double dy)
     (void)w;
     (void)dx;
     app.scroll += (float)dy;
+}
+
+/* The scene's recorded flight, if there is one (views_flight_file), as keys to add to. */
+static void load_flight(void)
+{
+    char file[PATH_MAX_LEN];
+    err_t e;
+    path_free(&app.flight);
+    app.key_count = 0;
+    app.playing = false;
+    if (!views_flight_file(app.scene.name, file, sizeof file, &e) || !util_file_exists(file))
+        return;
+    if (!path_load(file, &app.flight, &e)) {
+        snprintf(app.message, sizeof app.message, "the recorded flight is unreadable (%.1500s); N starts a new one", e.msg);
+        return;
+    }
+    for (int i = 0; i < app.flight.count && i < MAX_RECORDED_KEYS; i++)
+        path_key_camera(&app.flight, i, &app.keys[app.key_count++]);
+}
+
+/* N, Shift+N, L: record, clear and play the flight. True when the camera was set by the flight. */
+static bool flight_keys(float dt)
+{
+    char file[PATH_MAX_LEN];
+    err_t e;
+    if (app.add_key || app.clear_keys) {
+        bool add = app.add_key;
+        app.add_key = app.clear_keys = false;
+        app.playing = false;
+        if (!views_flight_file(app.scene.name, file, sizeof file, &e)) {
+            snprintf(app.message, sizeof app.message, "%s", e.msg);
+            return false;
+        }
+        if (!add) {
+            app.key_count = 0;
+            path_free(&app.flight);
+            remove(file);
+            snprintf(app.message, sizeof app.message, "flight cleared (%s removed)", file);
+            return false;
+        }
+        if (app.key_count == MAX_RECORDED_KEYS) {
+            snprintf(app.message, sizeof app.message, "the flight has %d keys already", MAX_RECORDED_KEYS);
+            return false;
+        }
+        double pos[3] = {app.cam.position[0], app.cam.position[1], app.cam.position[2]};
+        double speed = app.scene.adaptive_speed ? (double)(app.speed * fmaxf(app.surface_distance, MIN_ADAPTIVE_DISTANCE))
+                                                : (double)app.speed;
+        path_camera *k = &app.keys[app.key_count];
+        k->time = path_next_key_time(app.keys, app.key_count, pos, speed);
+        memcpy(k->position, pos, sizeof pos);
+        k->yaw = app.cam.yaw;
+        k->pitch = app.cam.pitch;
+        k->fov_deg = glm_deg(app.cam.fov_y);
+        app.key_count++;
+        if (app.key_count < 2) {
+            snprintf(app.message, sizeof app.message, "keyframe 1 at t = 0 s: fly on and press N again");
+            return false;
+        }
+        strbuf text = {0};
+        path_text_from_cameras(app.keys, app.key_count, &text);
+        path_free(&app.flight);
+        bool ok = path_parse(text.data, file, &app.flight, &e) && util_write_text_atomic(file, text.data, "the flight", &e);
+        sb_free(&text);
+        if (ok)
+            snprintf(app.message, sizeof app.message, "keyframe %d at t = %.1f s, saved to %s (L plays; render it with "
+                     "fathom render --path)", app.key_count, k->time, file);
+        else
+            snprintf(app.message, sizeof app.message, "%s", e.msg);
+        return false;
+    }
+    if (app.toggle_play) {
+        app.toggle_play = false;
+        if (app.flight.count < 2) {
+            snprintf(app.message, sizeof app.message, "no flight to play: N records keyframes");
+        } else {
+            app.playing = !app.playing;
+            app.play_t = app.flight.keys[0].time;
+            snprintf(app.message, sizeof app.message, app.playing ? "playing the flight (L stops)" : "stopped");
+        }
+    }
+    if (!app.playing)
+        return false;
+    app.play_t += dt;
+    path_sample smp;
+    path_eval(&app.flight, app.play_t, &smp);
+    for (int k = 0; k < 3; k++)
+        app.cam.position[k] = (float)smp.position[k];
+    app.cam.yaw = (float)smp.yaw;
+    app.cam.pitch = (float)smp.pitch;
+    app.cam.fov_y = glm_rad((float)smp.fov_deg);
+    if (app.play_t >= app.flight.keys[app.flight.count - 1].time) {
+        app.playing = false;
+        snprintf(app.message, sizeof app.message, "flight played: %.1f s, %d keys", path_duration(&app.flight),
+                 app.flight.count);
+    }
+    return true;
 }
 
 static bool load_scene(const char *name, const cli_options *opt, bool first, err_t *err)
@@ -148,6 +257,7 @@ static bool load_scene(const char *name, const cli_options *opt, bool first, err
                               ? DEFAULT_SPEED
                               : START_SPEED_FRACTION * glm_vec3_distance(app.scene.cam_position, app.scene.cam_look_at);
         app.speed = app.start_speed;
+        load_flight();
     }
     return true;
 }
@@ -218,16 +328,16 @@ static void views(const cli_options *opt, int w, int h)
 
 static void screenshot(const cli_options *opt, int w, int h)
 {
-    char path[128];
+    char file[128];
     time_t now = time(NULL);
-    strftime(path, sizeof path, "fathom-%Y%m%d-%H%M%S.png", localtime(&now));
+    strftime(file, sizeof file, "fathom-%Y%m%d-%H%M%S.png", localtime(&now));
     err_t err;
     strbuf description = {0}; /* the shot remembers how it was made */
     describe(opt, w, h, &description);
-    bool ok = offline_write(path, w, h, 0, description.data, &err);
+    bool ok = offline_write(file, w, h, 0, description.data, &err);
     sb_free(&description);
     if (ok)
-        snprintf(app.message, sizeof app.message, "saved %s", path);
+        snprintf(app.message, sizeof app.message, "saved %s", file);
     else
         snprintf(app.message, sizeof app.message, "%s", err.msg);
     fprintf(stderr, "%s\n", app.message);
@@ -298,10 +408,10 @@ static void hud(int w, int h)
              "pos %.4g %.4g %.4g  %s  fov %.0f\n%s"
              "WASD move  mouse look  Space/C up/down  Shift fast  scroll speed\n"
              "1-%d scenes  K knob  =/- step it  H steps  G grab  V difference  T walk  Home start  B save view  Ctrl+1-9 recall\n"
-             "R reload  P shot  Esc quit\n%s",
+             "N keyframe (%d)  Shift+N clear  L play  R reload  P shot  Esc quit\n%s",
              app.scene.name, preset_name(app.scene.preset), w, h, views[app.view], internal, ms, ms > 0 ? 1000.0 / ms : 0.0,
              render_samples(), app.scene.quality.spp, knobs, (double)c->position[0], (double)c->position[1],
-             (double)c->position[2], speed, (double)glm_deg(c->fov_y), limit, app.scene_count,
+             (double)c->position[2], speed, (double)glm_deg(c->fov_y), limit, app.scene_count, app.key_count,
              app.message);
     hud_draw(text, w, h, h >= 900 ? 2.0f : 1.5f);
 }
@@ -445,7 +555,8 @@ static void loop(GLFWwindow *win, const cli_options *opt)
         float dt = (float)(now - last);
         last = now;
         glfwPollEvents();
-        fly(win, dt);
+        if (!flight_keys(dt))
+            fly(win, dt);
         restart |= handle_requests(opt);
         int w, h;
         glfwGetFramebufferSize(win, &w, &h);

@@ -491,6 +491,35 @@ void path_write(const path *p, strbuf *out)
     sb_append(out, "  ]\n}\n");
 }
 
+/* ---- recording ---- */
+
+double path_next_key_time(const path_camera *keys, int n, const double position[3], double speed)
+{
+    if (n == 0)
+        return 0;
+    double gap = speed > 0 ? dist(keys[n - 1].position, position) / speed : PATH_KEY_GAP_MIN;
+    return keys[n - 1].time + fmax(PATH_KEY_GAP_MIN, fmin(PATH_KEY_GAP_MAX, gap));
+}
+
+void path_text_from_cameras(const path_camera *keys, int n, strbuf *out)
+{
+    sb_append(out, "{\n  \"keys\": [\n");
+    for (int i = 0; i < n; i++)
+        sb_printf(out, "    {\"time\": %.9g, \"position\": [%.9g, %.9g, %.9g], \"yaw\": %.9g, \"pitch\": %.9g, \"fov\": %.9g}%s\n",
+                  keys[i].time, keys[i].position[0], keys[i].position[1], keys[i].position[2], keys[i].yaw / DEG,
+                  keys[i].pitch / DEG, keys[i].fov_deg, i + 1 < n ? "," : "");
+    sb_append(out, "  ]\n}\n");
+}
+
+void path_key_camera(const path *p, int i, path_camera *out)
+{
+    const path_key *K = &p->keys[i];
+    out->time = K->time;
+    memcpy(out->position, K->position, sizeof out->position);
+    q_to_yaw_pitch(K->quat, &out->yaw, &out->pitch);
+    out->fov_deg = K->fov_deg;
+}
+
 /* ---- frames ---- */
 
 static bool whole(const char *s, const char **end, long *v)

@@ -77,6 +77,19 @@ double path_length(const path *p);
 /* The path as a file path_parse reads back to the same keys (yaw and pitch written from the quaternions). */
 void path_write(const path *p, strbuf *out);
 
+/* Recording (the window's N key): keys as cameras, turned into a path file's text. */
+typedef struct path_camera {
+    double time, position[3], yaw, pitch, fov_deg; /* yaw and pitch in radians */
+} path_camera;
+#define PATH_KEY_GAP_MIN 0.5  /* seconds between recorded keys, at least … */
+#define PATH_KEY_GAP_MAX 10.0 /* … and at most */
+/* The time of a key added at `position` after keys[0 … n−1]: 0 for the first; else the last key's time
+ * plus the distance from it at `speed` m/s, within [PATH_KEY_GAP_MIN, PATH_KEY_GAP_MAX]. */
+double path_next_key_time(const path_camera *keys, int n, const double position[3], double speed);
+void path_text_from_cameras(const path_camera *keys, int n, strbuf *out);
+/* Key i of a loaded path as a camera. */
+void path_key_camera(const path *p, int i, path_camera *out);
+
 /* "A-B" (inclusive) or "N": frame numbers ≥ 0. */
 bool path_parse_frames(const char *s, int *first, int *last, err_t *err);
 

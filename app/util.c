@@ -24,6 +24,20 @@ bool err_set(err_t *err, const char *fmt, ...)
     return false;
 }
 
+bool util_write_text_atomic(const char *path, const char *text, const char *what, err_t *err)
+{
+    char tmp[PATH_MAX_LEN + 32];
+    snprintf(tmp, sizeof tmp, "%s.tmp%d", path, (int)getpid());
+    FILE *f = fopen(tmp, "w");
+    bool ok = f && fputs(text, f) >= 0;
+    ok = (f && fclose(f) == 0) && ok && rename(tmp, path) == 0;
+    if (!ok) {
+        err_set(err, "cannot save %s to '%s': %s", what, path, strerror(errno));
+        remove(tmp);
+    }
+    return ok;
+}
+
 bool util_read_file(const char *path, char **out, size_t *len, err_t *err)
 {
     FILE *f = fopen(path, "rb");

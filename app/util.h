@@ -34,6 +34,10 @@ char *util_strdup(const char *s);
 /* Reads a whole file, NUL-terminated. *out is malloc'd; the caller frees it. */
 bool util_read_file(const char *path, char **out, size_t *len, err_t *err);
 
+/* Writes text to path atomically: a temporary file beside it, then a rename (a reader never sees half
+ * a file). False with "cannot save WHAT to 'path': reason". */
+bool util_write_text_atomic(const char *path, const char *text, const char *what, err_t *err);
+
 /* Directory part of path ("." if none), and a path resolved against a directory (absolute paths
  * are kept). Both truncate nothing silently: they return false when out is too small. */
 bool util_dirname(const char *path, char *out, size_t n);

@@ -70,15 +70,11 @@ bool views_save(const char *file, const char *name, const char *shot_json, err_t
         else
             cJSON_AddItemToObject(views, name, shot);
         shot = NULL;
-        char *text = cJSON_Print(views), tmp[PATH_MAX_LEN + 16];
-        snprintf(tmp, sizeof tmp, "%s.tmp%d", file, (int)getpid());
-        FILE *f = fopen(tmp, "w");
-        ok = f && fputs(text, f) >= 0 && fputc('\n', f) != EOF;
-        ok = (f && fclose(f) == 0) && ok && rename(tmp, file) == 0;
-        if (!ok) {
-            err_set(err, "cannot save the view to '%s': %s", file, strerror(errno));
-            remove(tmp);
-        }
+        char *text = cJSON_Print(views);
+        strbuf line = {0};
+        sb_printf(&line, "%s\n", text);
+        ok = util_write_text_atomic(file, line.data, "the view", err);
+        sb_free(&line);
         free(text);
     }
     cJSON_Delete(shot);
@@ -104,6 +100,17 @@ bool views_load(const char *file, const char *name, char **shot_json, err_t *err
     }
     cJSON_Delete(views);
     return ok;
+}
+
+bool views_flight_file(const char *scene_name, char *out, size_t n, err_t *err)
+{
+    char views[PATH_MAX_LEN];
+    if (!views_file(scene_name, views, sizeof views, err))
+        return false;
+    size_t len = strlen(views);
+    if (len < 5 || snprintf(out, n, "%.*s.flight.json", (int)(len - 5), views) >= (int)n)
+        return err_set(err, "the flight file's name for '%s' is too long", scene_name);
+    return make_folder(out, err);
 }
 
 int views_next_free(const char *file)

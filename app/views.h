@@ -19,6 +19,10 @@ bool views_save(const char *file, const char *name, const char *shot_json, err_t
 /* The shot text of view `name` (*shot_json malloc'd). Unknown: the error lists the names there are. */
 bool views_load(const char *file, const char *name, char **shot_json, err_t *err);
 
+/* The window's recorded flight of the scene (N adds a keyframe): SCENE-NAME.flight.json beside the views
+ * file (its folder created if needed). */
+bool views_flight_file(const char *scene_name, char *out, size_t n, err_t *err);
+
 /* The first of "1" … "9" not yet used (0 when all are). */
 int views_next_free(const char *file);
 

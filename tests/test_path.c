@@ -297,6 +297,43 @@ static void file_round_trip_and_errors(void **st)
     }
 }
 
+/* The window's recording: cameras → a path file → the same cameras at the keys, times by distance/speed */
+static void recorded_keys(void **st)
+{
+    (void)st;
+    path_camera keys[3];
+    const double pos[3][3] = {{0, 1, 5}, {4, 1, 2}, {4.1, 1, 2}}, yaw[3] = {0.3, -2.9, 3.0}, pitch[3] = {0, -0.4, 0.2};
+    for (int i = 0; i < 3; i++) {
+        keys[i].time = path_next_key_time(keys, i, pos[i], 2.0);
+        memcpy(keys[i].position, pos[i], sizeof pos[i]);
+        keys[i].yaw = yaw[i];
+        keys[i].pitch = pitch[i];
+        keys[i].fov_deg = 45 + i;
+    }
+    assert_near(keys[0].time, 0, 0);
+    assert_near(keys[1].time, 2.5, 1e-12);                  /* 5 m at 2 m/s */
+    assert_near(keys[2].time, 2.5 + PATH_KEY_GAP_MIN, 1e-12); /* 0.1 m: the smallest gap */
+    strbuf text = {0};
+    path_text_from_cameras(keys, 3, &text);
+    path p;
+    load(text.data, &p);
+    for (int i = 0; i < 3; i++) {
+        path_camera c;
+        path_key_camera(&p, i, &c);
+        assert_near(c.time, keys[i].time, 1e-9);
+        for (int k = 0; k < 3; k++)
+            assert_near(c.position[k], pos[i][k], 1e-9);
+        double f[3], g[3];
+        forward(c.yaw, c.pitch, f);
+        forward(yaw[i], pitch[i], g);
+        for (int k = 0; k < 3; k++)
+            assert_near(f[k], g[k], 1e-8);
+        assert_near(c.fov_deg, 45 + i, 1e-9);
+    }
+    sb_free(&text);
+    path_free(&p);
+}
+
 static void frames_and_names(void **st)
 {
     (void)st;
@@ -327,7 +364,7 @@ int main(void)
         cmocka_unit_test(passes_through_keys),       cmocka_unit_test(continuous_at_keys),
         cmocka_unit_test(unit_quaternions_no_flip),  cmocka_unit_test(constant_speed_by_arc_length),
         cmocka_unit_test(straight_line_is_exact),    cmocka_unit_test(file_round_trip_and_errors),
-        cmocka_unit_test(frames_and_names),
+        cmocka_unit_test(recorded_keys),             cmocka_unit_test(frames_and_names),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
