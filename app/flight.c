@@ -43,6 +43,49 @@ static bool frame_scene(const cli_options *opt, const path *p, const path_sample
     return scene_load(opt->scene, sets, n, s, err);
 }
 
+/* The camera must never enter a solid (or a fractal's set): map() along the path, at 4 points a
+ * frame, in the first frame's scene. A path that dips inside is refused with where and when. */
+static bool check_clearance(const cli_options *opt, const path *p, int first, int last, int fps, err_t *err)
+{
+    enum { PER_FRAME = 4, MAX_POINTS = 1 << 17 };
+    int n = (last - first) * PER_FRAME + 1;
+    if (n > MAX_POINTS)
+        n = MAX_POINTS;
+    double t0 = p->keys[0].time + (double)first / fps, t1 = p->keys[0].time + (double)last / fps;
+    float *pts = util_alloc(sizeof(float) * 3 * (size_t)n, "path clearance"), *d = util_alloc(sizeof(float) * 2 * (size_t)n, "path clearance");
+    for (int i = 0; i < n; i++) {
+        path_sample smp;
+        path_eval(p, n > 1 ? t0 + (t1 - t0) * i / (n - 1) : t0, &smp);
+        for (int k = 0; k < 3; k++)
+            pts[3 * i + k] = (float)smp.position[k];
+    }
+    scene s = {0};
+    const char *sets[CLI_MAX_SETS + PATH_MAX_PARAMS + 1];
+    char track[PATH_MAX_PARAMS][PATH_PARAM_NAME + 32];
+    int nsets;
+    path_sample smp;
+    path_eval(p, t0, &smp);
+    bool ok = frame_scene(opt, p, &smp, &s, sets, &nsets, track, err) && render_set_scene(&s, NULL, err) &&
+              render_probe(&s, NULL, pts, n, d, err);
+    /* inside: a negative distance, or (a fractal's estimate, which need not turn negative in its set) one
+     * below float resolution at that point */
+    for (int i = 0; ok && i < n; i++)
+        if (d[2 * i] < 0 || d[2 * i] < PRECISION_REL * (1 + fabsf(pts[3 * i]) + fabsf(pts[3 * i + 1]) + fabsf(pts[3 * i + 2]))) {
+            double t = n > 1 ? t0 + (t1 - t0) * i / (n - 1) : t0;
+            int key = 0;
+            while (key + 1 < p->count && p->keys[key + 1].time <= t)
+                key++;
+            ok = err_set(err, "path '%s': at t = %.3f s (frame %d) the camera is inside the scene's surface at (%.4g, "
+                              "%.4g, %.4g), between keys %d and %d: move them or add a key that goes around",
+                         opt->path, t, (int)floor((t - p->keys[0].time) * fps), (double)pts[3 * i],
+                         (double)pts[3 * i + 1], (double)pts[3 * i + 2], key, key + 1 < p->count ? key + 1 : key);
+        }
+    scene_free(&s);
+    free(pts);
+    free(d);
+    return ok;
+}
+
 bool flight_render(const cli_options *opt, err_t *err)
 {
     path p;
@@ -76,7 +119,7 @@ bool flight_render(const cli_options *opt, err_t *err)
         path_free(&p);
         return false;
     }
-    ok = render_init(err);
+    ok = render_init(err) && check_clearance(opt, &p, first, last, fps, err);
     int rendered = 0, skipped = 0;
     bool loaded = false; /* s holds the scene for every frame */
     double t0 = util_now();

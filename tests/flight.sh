@@ -1,7 +1,7 @@
 #!/bin/sh
 # Flights (fathom render --path): every frame of a range exactly once, each a reopenable shot; a rerun
 # skips the frames on disk (resume) and renders only the missing ones, leaving the others untouched;
-# a path with a parameter track changes the scene along the way.
+# a path with a parameter track changes the scene along the way; a path through a solid is refused.
 # Usage: flight.sh FATHOM
 fathom=$1
 tmp=$(mktemp -d)
@@ -53,4 +53,16 @@ mkdir "$tmp/ior"
 "$fathom" render --path "$tmp/ior.json" --fps 1 --size 48x27 --spp 1 --output "$tmp/ior/f_%d.png" --quiet ||
     fail "the parameter track did not render"
 cmp -s "$tmp/ior/f_0.png" "$tmp/ior/f_1.png" && fail "the parameter track changed nothing"
+# a path through the glass sphere (centre (0, 0.7, 0.4), radius 0.7) is refused before anything renders
+cat >"$tmp/through.json" <<JSON
+{"keys": [
+  {"time": 0, "position": [-2, 0.7, 0.4], "yaw": -90, "pitch": 0},
+  {"time": 1, "position": [2, 0.7, 0.4], "yaw": -90, "pitch": 0}
+]}
+JSON
+mkdir "$tmp/through"
+"$fathom" render --path "$tmp/through.json" --fps 4 --size 48x27 --spp 1 --output "$tmp/through/f_%d.png" --quiet \
+    2>"$tmp/log5" && fail "a path through the glass sphere was rendered"
+grep -q "the camera is inside the scene's surface" "$tmp/log5" || fail "inside: $(cat "$tmp/log5")"
+[ -z "$(ls "$tmp/through")" ] || fail "a refused path left frames"
 echo "flight: 9 frames once each, resume renders only the 2 lost ones, frames reopen as shots, tracks change the scene"
