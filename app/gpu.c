@@ -60,9 +60,15 @@ static EGLDisplay device_display(void)
     EGLint n = 0;
     if (!eglQueryDevicesEXT(MAX_EGL_DEVICES, devices, &n))
         return EGL_NO_DISPLAY;
+    /* FATHOM_EGL_DEVICE=K: the K-th hardware device (farms whose scheduler does not hide the other
+     * GPUs); else the first that initialises (a task confined to its GPU by cgroups gets that one) */
+    const char *want = getenv("FATHOM_EGL_DEVICE");
+    int wanted = want && *want ? atoi(want) : -1, hardware = -1;
     for (EGLint i = 0; i < n; i++) {
         const char *ext = eglQueryDeviceStringEXT(devices[i], EGL_EXTENSIONS);
         if (ext && strstr(ext, "EGL_MESA_device_software"))
+            continue;
+        if (++hardware != wanted && wanted >= 0)
             continue;
         EGLDisplay dpy = eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, devices[i], NULL);
         if (dpy != EGL_NO_DISPLAY && eglInitialize(dpy, NULL, NULL))
