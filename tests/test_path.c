@@ -301,7 +301,7 @@ static void file_round_trip_and_errors(void **st)
 static void recorded_keys(void **st)
 {
     (void)st;
-    path_camera keys[3];
+    path_camera keys[3] = {{0}};
     const double pos[3][3] = {{0, 1, 5}, {4, 1, 2}, {4.1, 1, 2}}, yaw[3] = {0.3, -2.9, 3.0}, pitch[3] = {0, -0.4, 0.2};
     for (int i = 0; i < 3; i++) {
         keys[i].time = path_next_key_time(keys, i, pos[i], 2.0);
