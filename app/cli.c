@@ -284,6 +284,9 @@ static bool check_combinations(const cli_options *o, err_t *err)
     if (o->path && (o->bench || !o->output))
         return err_set(err, "--path renders a flight's frames: give --output with a %%d for the frame number, e.g. "
                             "--output out/frame_%%04d.png");
+    if (o->render_word && !o->output && !o->print_variant)
+        return err_set(err, "fathom render needs --output: a file for a shot, or a pattern with %%d and --path for a "
+                            "flight (fathom --help)");
     if (o->path && (o->has_camera || o->has_look_at || o->has_fov || o->has_view))
         return err_set(err, "--path gives the camera for every frame: drop --camera, --look-at, --fov and --view");
     if (o->path) {
@@ -325,6 +328,7 @@ bool cli_parse(int argc, char **argv, cli_options *o, err_t *err)
         o->bench = true;
         first = 2;
     } else if (argc > 1 && !strcmp(argv[1], "render")) { /* the offline word: --output says the same */
+        o->render_word = true;
         first = 2;
     } else if (argc > 1 && !strcmp(argv[1], "stitch")) {
         o->stitch = true;

@@ -38,6 +38,7 @@ typedef struct cli_options {
     int frame_first, frame_last; /* --path: frames to render (inclusive); without --frames, all */
     int tile_index, tile_count; /* --tile I/N: render tile I (1 = top) of N; count 0: the whole image */
     bool stitch;                /* `fathom stitch`: join the tile files in inputs into --output */
+    bool render_word;           /* `fathom render ...`: an offline shot or flight, never the window */
     const char *inputs[4096];
     int input_count;
     int fps;            /* window: frame rate to hold while moving; 0: the default (30) */

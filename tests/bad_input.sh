@@ -117,6 +117,7 @@ expect droplets-missing-key 1 "droplets.file: missing" 1 -- "$fathom" --set drop
 printf '{"keys": [{"time": 0, "position": [0, 1, 5], "yaw": 0, "pitch": 0}, {"time": 1, "position": [1, 1, 5], "yaw": 0, "pitch": 0}]}' >"$tmp/path.json"
 printf '{"keys": [{"time": 1, "position": [0, 1, 5], "yaw": 0, "pitch": 0}, {"time": 1, "position": [1, 1, 5], "yaw": 0, "pitch": 0}]}' >"$tmp/badpath.json"
 flight="--size 33x21 --spp 1 --quiet"
+expect render-no-output 2 "fathom render needs --output" 1 -- "$fathom" render --scene csg
 expect path-no-pattern 2 "needs exactly one %d" 1 -- "$fathom" render --path "$tmp/path.json" --output "$tmp/out.png" $flight
 expect path-no-output 2 "--path renders a flight's frames: give --output" 1 -- "$fathom" render --path "$tmp/path.json" $flight
 expect path-with-camera 2 "--path gives the camera for every frame" 1 -- "$fathom" render --path "$tmp/path.json" --camera 0,1,2 --output "$tmp/out%d.png" $flight
