@@ -75,7 +75,8 @@ float refineCrossing(vec3 ro, vec3 rd, float side, float a, float fa, float b, f
         float t = clamp(a + (b - a) * fa / (fa - fb), a, b);
         float f = side * map(ro + rd * t).x;
         steps++;
-        if (f > 0.0) {
+        if (f >= 0.0) { // on the surface counts as outside: the bracket then closes on it (with "> 0" a
+                        // step landing exactly on a plane left the outside end where it was: depth short)
             a = t;
             fa = f;
             if (lastSide == 1)
@@ -98,6 +99,7 @@ Hit castRay(vec3 ro, vec3 rd, float tmax, float side, float pathT)
     Hit h = Hit(false, 0.0, -1.0, 0, false, 0);
     float omega = float(OVER_RELAX);
     float t = 0.0, tPrev = 0.0, rPrev = 0.0, fPrev = 0.0; // rPrev = |fPrev|: the last ball's radius
+    float tPrev2 = 0.0, fPrev2 = 0.0;                       // the sample before that
     float bestRatio = 1e30, tBest = 0.0, matBest = 0.0; // the closest approach, in thresholds
     bool lastBound = false; // the last step was on a bound: the ray had left the surfaces' reach
     float floorBase = PRECISION_REL * (length(uCamPos) + pathT); // float resolution at t = 0
@@ -142,6 +144,8 @@ Hit castRay(vec3 ro, vec3 rd, float tmax, float side, float pathT)
             h.mat = d.y;
             break;
         }
+        tPrev2 = tPrev;
+        fPrev2 = fPrev;
         tPrev = t;
         fPrev = dist;
         rPrev = abs(dist);
@@ -154,6 +158,26 @@ Hit castRay(vec3 ro, vec3 rd, float tmax, float side, float pathT)
         h.exhausted = true;
         t = tBest;
         h.mat = matBest;
+#if MARCH_REFINES
+        // A ray grazing a face creeps toward it by plain steps that shrink geometrically (by 1 − sin of
+        // the angle: ~40 steps an e-fold at 1.5°) and runs out of steps short of it, a few % of the
+        // depth: the band along a ground plane's horizon. The last two samples predict the crossing
+        // (secant); one probe a little past it, and if that is inside, the bracket is refined as any
+        // crossing. Only out-of-steps rays take this guess, and only a confirmed crossing replaces
+        // the best candidate (a secant step in the main loop stepped across corner slivers).
+        if (fPrev > 0.0 && fPrev2 > fPrev) {
+            float tStar = tPrev + 1.5 * fPrev * (tPrev - tPrev2) / (fPrev2 - fPrev);
+            if (tStar < tmax) {
+                float fStar = side * map(ro + rd * tStar).x;
+                h.steps++;
+                if (fStar < 0.0) {
+                    t = refineCrossing(ro, rd, side, tPrev, fPrev, tStar, fStar, pathT, h.steps);
+                    h.mat = map(ro + rd * t).y;
+                    h.exhausted = false;
+                }
+            }
+        }
+#endif
     }
     h.t = t;
     return h;
