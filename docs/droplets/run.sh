@@ -15,16 +15,7 @@ counts=${3:-"1000 10000 100000 1000000"}
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
-cat >"$tmp/s.json" <<JSON
-{"program": "csg", "camera": {"position": [0.2, 1.0, 2.4], "look_at": [0, 1.0, 0], "fov": 40},
- "environment": {"color": [0.6, 0.7, 0.9], "intensity": 1},
- "lights": [{"type": "directional", "direction": [0.4, 0.8, 0.45], "intensity": 2.5, "shadow": "hard"}],
- "materials": {"ground": {"base_color": [0.5, 0.45, 0.4], "roughness": 0.8},
-               "wall": {"base_color": [0.7, 0.2, 0.15], "roughness": 0.5}},
- "objects": [{"shape": "plane", "normal": [0, 1, 0], "material": "ground"},
-             {"shape": "box", "size": [0.4, 1.4, 0.1], "position": [-0.45, 0.9, 0.8], "material": "wall"}],
- "droplets": {"file": "drops.csv"}}
-JSON
+. "$(dirname "$0")/scene.sh"
 
 bench() { # LABEL SET... : prints "interactive_ms final_ms"
     "$fathom" bench --frame-times --scene "$tmp/s.json" --size 640x360 --runs 5 "$@" >"$tmp/bench" 2>&1 ||
@@ -35,9 +26,7 @@ bench() { # LABEL SET... : prints "interactive_ms final_ms"
 csv="$out/droplets.csv"
 echo "droplets,read_s,grid_s,cells,listings,gpu_mb,peak_rss_mb,interactive_ms,final_ms,interactive_nocull_ms,final_nocull_ms,interactive_nolod_ms,final_nolod_ms,bvh_build_s,interactive_bvh_ms,final_bvh_ms" >"$csv"
 for n in $counts; do
-    awk -v n="$n" 'BEGIN { srand(11); print "x,y,z,r"; r = 0.012 * sqrt(1000 / n)
-        for (i = 0; i < n; i++) printf "%.5f,%.5f,%.5f,%.4e\n", rand() - 0.5, 0.5 + rand(), rand() - 0.5, r * (0.5 + rand()) }' \
-        >"$tmp/drops.csv"
+    droplet_scene "$tmp" "$n" "0.4, 1.4, 0.1" "-0.45, 0.9, 0.8"
     /usr/bin/time -f "%M" -o "$tmp/time" "$fathom" --scene "$tmp/s.json" --output "$tmp/o.png" --size 64x36 --spp 1 --quiet
     kb=$(cat "$tmp/time")
     set -- $(bench)
