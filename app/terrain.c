@@ -56,7 +56,12 @@ static void build(heightfield *hf)
             hf->max[0][j * hf->pw + i] = m;
         }
     for (int k = 1; k < hf->levels; k++) {
+        /* the level below's size, at least 1 on each side: on a long grid the short side reaches 1
+         * first (without the floor, its size shifted to 0, every upper level read nothing and became
+         * −inf, and rays skipped the whole terrain) */
         int pw = hf->pw >> (k - 1), ph = hf->ph >> (k - 1);
+        pw = pw > 0 ? pw : 1;
+        ph = ph > 0 ? ph : 1;
         int w = pw > 1 ? pw / 2 : 1, h = ph > 1 ? ph / 2 : 1;
         hf->max[k] = util_alloc(sizeof(float) * (size_t)w * (size_t)h, "the heightfield pyramid");
         for (int j = 0; j < h; j++)

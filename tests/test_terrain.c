@@ -1,4 +1,5 @@
-/* Terrain: first hits on a real DEM against an exact ray–bilinear-heightfield intersection in double,
+/* Terrain: first hits on a real DEM, and on a 4096² DEM and a long strip generated here, against an
+ * exact ray–bilinear-heightfield intersection in double,
  * a thin ridge that only the exact method never tunnels through, and the height fog against
  * numerical quadrature in double. */
 #include <math.h>
@@ -126,15 +127,19 @@ typedef struct view {
     double eye[3], at[3], fov;
 } view;
 
-static void check_views(const char *method, const char *const *sets, int nsets, bool exact, const view *views, int nv)
+static void check_views_in(const char *scene_name, const char *method, const char *const *sets, int nsets, bool exact,
+                           const view *views, int nv)
 {
     scene s;
     err_t e;
-    if (!scene_load("jacksboro", sets, nsets, &s, &e))
+    if (!scene_load(scene_name, sets, nsets, &s, &e))
         fail_msg("%s", e.msg);
     heightfield hf;
-    heightfield_desc d = {.path = s.terrain.heightmap, .exaggeration = s.terrain.exaggeration};
-    assert_true(heightfield_load(&d, &hf, &e));
+    heightfield_desc d = {.path = s.terrain.heightmap, .spacing = {s.terrain.spacing[0], s.terrain.spacing[1]},
+                          .height_min = s.terrain.height_min, .height_max = s.terrain.height_max,
+                          .exaggeration = s.terrain.exaggeration};
+    if (!heightfield_load(&d, &hf, &e))
+        fail_msg("%s", e.msg);
     static float aov[W * H * AOV];
     for (int v = 0; v < nv; v++) {
         camera cam = cam_at(views[v].eye[0], views[v].eye[1], views[v].eye[2], views[v].at[0], views[v].at[1],
@@ -189,6 +194,11 @@ static void check_views(const char *method, const char *const *sets, int nsets, 
     }
     heightfield_free(&hf);
     scene_free(&s);
+}
+
+static void check_views(const char *method, const char *const *sets, int nsets, bool exact, const view *views, int nv)
+{
+    check_views_in("jacksboro", method, sets, nsets, exact, views, nv);
 }
 
 static const view VIEWS[] = {
@@ -256,6 +266,71 @@ static void thin_ridge(void **st)
     assert_int_equal(hit_share[0], 100); /* exact: never tunnels, at any preset */
     assert_int_equal(hit_share[1], 100); /* quarter-texel steps catch a 0.6-texel ridge */
     assert_true(hit_share[2] < 50);      /* 2-texel steps jump it: the test can fail */
+}
+
+/* ---- DEMs the tests were not written on: big, long and thin, flat at the bottom ---------------------- */
+
+/* A w × h float DEM of rolling hills (sum of sines, 0–300 m) with a sea clamped flat at 0, 30 m
+ * texels, written as EXR with its scene file; returns the scene's path. */
+static void synthetic_dem(const char *dir, const char *name, int w, int h, char *scene_path, size_t n)
+{
+    float *heights = malloc(sizeof(float) * (size_t)w * (size_t)h);
+    for (int j = 0; j < h; j++)
+        for (int i = 0; i < w; i++) {
+            double x = i * 0.013, z = j * 0.017;
+            double v = 120 + 90 * sin(x) * cos(z * 0.7) + 60 * sin(0.37 * x + 1.3 * z) + 25 * cos(2.9 * x - 2.3 * z);
+            heights[(size_t)j * (size_t)w + (size_t)i] = (float)fmax(v, 0.0); /* the sea: exactly the minimum */
+        }
+    char exr[256];
+    snprintf(exr, sizeof exr, "%s/%s.exr", dir, name);
+    err_t e;
+    if (!image_write_f32(exr, w, h, 1, (const char *const[]){"Y"}, heights, &e))
+        fail_msg("%s", e.msg);
+    free(heights);
+    snprintf(scene_path, n, "%s/%s.json", dir, name);
+    FILE *f = fopen(scene_path, "w");
+    fprintf(f, "{\"program\": \"terrain\", \"materials\": {\"rock\": {}}, \"quality\": {\"max_dist\": 1e6}, \"terrain\": {\"heightmap\": \"%s.exr\", "
+               "\"spacing\": [30, 30]}}", name);
+    fclose(f);
+}
+
+/* The exact traversal on DEMs it was not written on. Each fails without one fix:
+ *  - 4096², far rays: the nudge past a node's face must exceed the rounding of a position recomputed
+ *    from an origin thousands of cells away, or the walk stalls and reports a miss (9 pixels);
+ *  - a 1000 × 150 strip: the max pyramid's upper levels need a side of at least 1 on the short axis,
+ *    or they are all −inf and nothing is drawn (every pixel);
+ *  - the sea exactly at the minimum height: the slab of a descending ray reaches a little below hmin,
+ *    or float rounding at the slab's exit decides hit or miss (16 pixels). */
+static void big_and_odd_grids(void **st)
+{
+    (void)st;
+    char dir[] = "/tmp/fathom-dems-XXXXXX", big[300], strip[300];
+    assert_non_null(mkdtemp(dir));
+    synthetic_dem(dir, "big", 4096, 4096, big, sizeof big);     /* 123 km square */
+    synthetic_dem(dir, "strip", 1000, 150, strip, sizeof strip); /* 30 × 4.5 km: 6.7:1 */
+    const char *sets[] = {"terrain.method=maxmip", "quality.spp=1", "quality.preset=final"};
+    /* over the big DEM: oblique from a corner across thousands of cells, grazing, and straight down on
+     * the flat sea (heights exactly the minimum) */
+    const view big_views[] = {
+        {"4096²: oblique, far", {-55000, 2500, -55000}, {20000, 0, 15000}, 50},
+        {"4096²: grazing", {-30000, 310, 40000}, {30000, 250, -40000}, 20},
+        {"4096²: down on the sea", {10000, 3000, 10000}, {10100, 0, 10050}, 60},
+    };
+    const view strip_views[] = {
+        {"1000×150: along the strip", {-16000, 900, 0}, {10000, 100, 0}, 40},
+        {"1000×150: across it", {0, 1500, 9000}, {0, 100, 0}, 60},
+    };
+    check_views_in(strip, "maxmip", sets, 3, true, strip_views, 2);
+    check_views_in(big, "maxmip", sets, 3, true, big_views, 3);
+    char file[320];
+    for (int k = 0; k < 2; k++) {
+        const char *name = k ? "strip" : "big";
+        snprintf(file, sizeof file, "%s/%s.exr", dir, name);
+        unlink(file);
+        snprintf(file, sizeof file, "%s/%s.json", dir, name);
+        unlink(file);
+    }
+    rmdir(dir);
 }
 
 /* ---- height fog against quadrature in double -------------------------------------------------------- */
@@ -376,6 +451,7 @@ int main(void)
         cmocka_unit_test(maxmip_first_hits),
         cmocka_unit_test(linear_first_hits),
         cmocka_unit_test(thin_ridge),
+        cmocka_unit_test(big_and_odd_grids),
         cmocka_unit_test(fog_against_quadrature),
         cmocka_unit_test(out_of_steps_is_not_a_miss),
     };

@@ -45,7 +45,12 @@ vec2 map(vec3 p) { return vec2((p.y - terrainHeight(p.xz)) * uTerrainStepScale, 
 // Where the ray is over the footprint and inside the slab [hmin, hmax]: (t enter, t exit).
 vec2 terrainSlab(vec3 ro, vec3 rd)
 {
-    vec3 lo = vec3(uTerrainOrigin.x + 0.5 * uTerrainSpacing.x, uTerrainHeightMin, uTerrainOrigin.y + 0.5 * uTerrainSpacing.y);
+    // For rays going down, the slab reaches a little below hmin: ground lying exactly at the minimum
+    // (a sea clamped flat) is then met inside the slab, not at its exit, where float rounding decided
+    // hit or miss. Rays from below still enter the column through its floor at hmin.
+    float below = rd.y < 0.0 ? 1e-4 * (uTerrainHeightMax - uTerrainHeightMin) + 1e-3 : 0.0;
+    vec3 lo = vec3(uTerrainOrigin.x + 0.5 * uTerrainSpacing.x, uTerrainHeightMin - below,
+                   uTerrainOrigin.y + 0.5 * uTerrainSpacing.y);
     vec3 hi = vec3(uTerrainOrigin.x + (float(uTerrainSize.x) - 0.5) * uTerrainSpacing.x, uTerrainHeightMax,
                    uTerrainOrigin.y + (float(uTerrainSize.y) - 0.5) * uTerrainSpacing.y);
     vec3 inv = 1.0 / rd; // ±inf for an axis the ray does not move along: the slab test still works
@@ -98,7 +103,9 @@ Hit terrainTrace(vec3 ro, vec3 rd, vec2 slab)
     for (int i = 0; i < uTerrainMaxNodes; i++) { // exact: its budget follows the grid, not a quality knob
         vec2 c = c0 + cd * t;
         float size = float(1 << level);
-        ivec2 node = ivec2(floor((c + dirSign * NUDGE * vec2(notEqual(cd, vec2(0.0)))) / size));
+        // the nudge must exceed the rounding of c, recomputed from an origin far away: relative to |c0|
+        vec2 nudge = max(vec2(NUDGE), 8.0 * PRECISION_REL * (abs(c0) + abs(cd * t)));
+        ivec2 node = ivec2(floor((c + dirSign * nudge * vec2(notEqual(cd, vec2(0.0)))) / size));
         vec2 far = (vec2(node) + max(dirSign, 0.0)) * size;
         vec2 tAxis = mix((far - c0) / cd, vec2(1e30), equal(cd, vec2(0.0)));
         float tExit = min(min(tAxis.x, tAxis.y), slab.y);
