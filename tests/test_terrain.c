@@ -404,6 +404,50 @@ static void load_text_file(const char *name, const char *const *sets, int n, sce
         fail_msg("%s", e.msg);
 }
 
+/* ---- ridges: no black dashes ------------------------------------------------------------------------
+ * The shading normal comes from ±1-texel differences; on a ridge seen from its back slope it can face
+ * away from the viewer by 9–13°. Flipped to face the viewer (what the shared main does for a camera
+ * inside a solid) it pointed into the ground: no sun, no sky, a black dash along the ridge. Lit
+ * terrain has no pixel that dark: count pixels that hit the ground and are darker than 10 % of the
+ * median hit pixel, at the shipped terrains' own views, 1280x720 (13 and 170 such pixels before the
+ * normal was bent instead of flipped, 0 after). */
+static void ridges_have_no_black_dashes(void **st)
+{
+    (void)st;
+    enum { RW = 1280, RH = 720 };
+    static float aov[RW * RH * AOV], rgba[RW * RH * 4];
+    static const char *const SCENES[] = {"jacksboro", "himalaya"};
+    int total = 0;
+    for (int k = 0; k < 2; k++) {
+        scene s;
+        const char *sets[] = {"quality.spp=1"};
+        load_text_file(SCENES[k], sets, 1, &s);
+        camera cam = camera_look_at_deg(s.cam_position, s.cam_look_at, s.cam_fov_deg);
+        draw(&s, &cam, RW, RH, 1, NULL, aov, rgba);
+        static float lum[RW * RH];
+        int n = 0;
+        for (int i = 0; i < RW * RH; i++)
+            if (!isinf(aov[i * AOV + AOV_SLOT_DEPTH]))
+                lum[n++] = 0.2126f * rgba[4 * i] + 0.7152f * rgba[4 * i + 1] + 0.0722f * rgba[4 * i + 2];
+        double sorted_median;
+        {
+            double *v = malloc(sizeof(double) * (size_t)n);
+            for (int i = 0; i < n; i++)
+                v[i] = lum[i];
+            sorted_median = util_median(v, n);
+            free(v);
+        }
+        int dark = 0;
+        for (int i = 0; i < n; i++)
+            dark += lum[i] < 0.1 * sorted_median;
+        fprintf(stderr, "  %s: %d ground pixels, %d darker than 10 %% of the median\n", SCENES[k], n, dark);
+        assert_true(n > RW * RH / 10);
+        total += dark;
+        scene_free(&s);
+    }
+    assert_int_equal(total, 0);
+}
+
 /* ---- running out of steps is not a miss ---------------------------------------------------------------
  * At every preset, from the shipped camera and a grazing one, no pixel may be a miss where a march
  * with a budget a hundred times longer hits: a ray that exhausts its steps near the ground returns
@@ -452,6 +496,7 @@ int main(void)
         cmocka_unit_test(linear_first_hits),
         cmocka_unit_test(thin_ridge),
         cmocka_unit_test(big_and_odd_grids),
+        cmocka_unit_test(ridges_have_no_black_dashes),
         cmocka_unit_test(fog_against_quadrature),
         cmocka_unit_test(out_of_steps_is_not_a_miss),
     };

@@ -17,6 +17,9 @@
 //   PROGRAM_NORMAL     vec3 calcNormal(vec3 p, float eps, vec3 fallback)
 //                      its own normals (terrain: from the heightfield; noise: analytic gradient);
 //                      default: central differences of map().
+//   PROGRAM_NORMAL_OUTWARD  its surface is only ever hit from outside (a heightfield): a shading
+//                      normal facing away from the viewer is bent toward it, not flipped (flipping is
+//                      for a camera inside a solid).
 //   PROGRAM_SHADOWS    float hardShadow(…), float softShadow(…) as in common/shadow.glsl
 //                      (terrain: its own marcher toward the sun).
 //   PROGRAM_FOOTPRINT_SURFACE  the footprint rule (a ray within HIT_K pixel footprints has hit)

@@ -248,8 +248,16 @@ void main()
 #endif
         vec3 v = -rd;
         vec3 n = nOut;
+#ifdef PROGRAM_NORMAL_OUTWARD
+        // a heightfield is always hit from outside: a shading normal that faces away (a ridge's smoothed
+        // normal seen from its back slope) is bent just enough to face the viewer, never flipped into
+        // the ground (which drew black dashes along ridges)
+        if (dot(n, v) < 0.02)
+            n = normalize(n + (0.02 - dot(n, v)) * v);
+#else
         if (dot(n, v) < 0.0) // camera inside a solid or a ray along the surface: light the side we see
             n = -n;
+#endif
         float ior = max(m.ior, 1.0);
         vec3 F0 = mix(vec3(pow((ior - 1.0) / (ior + 1.0), 2.0)), m.albedo, m.metallic);
         bool mirror = false;

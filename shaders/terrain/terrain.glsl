@@ -21,6 +21,7 @@ uniform int uTerrainMaxNodes;    // the max-mipmap traversal's node budget: enou
 
 #define PROGRAM_CAST_RAY 1
 #define PROGRAM_NORMAL 1
+#define PROGRAM_NORMAL_OUTWARD 1 // a heightfield is hit from outside: shading normals are bent, not flipped
 #define PROGRAM_ALBEDO 1
 
 // Cell space: c = (xz − x0z0) / dxdz − ½ puts texel centres on integers; cell (i, j) is [i, i+1]×[j, j+1].
