@@ -417,6 +417,8 @@ bool bench_run(const cli_options *opt, err_t *err)
     B.h = opt->height ? opt->height : DEFAULT_HEIGHT;
     if (opt->frame_times)
         return frame_times(opt, err);
+    if (opt->terrain_scale)
+        return bench_terrain_scale(opt, opt->width ? opt->width : 640, opt->height ? opt->height : 360, err);
     if (opt->interactive)
         return bench_interactive(opt, opt->width ? opt->width : 1280, opt->height ? opt->height : 720, err);
     if (opt->out) {

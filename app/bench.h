@@ -22,4 +22,8 @@ bool bench_run(const cli_options *opt, err_t *err);
  * resolution controller; prints frame times, internal size, moving-frame error and time to converge. */
 bool bench_interactive(const cli_options *opt, int w, int h, err_t *err);
 
+/* bench --terrain-scale (bench_terrain.c): load time, peak memory, frame time and height samples per
+ * pixel of generated DEMs from 256² up (--knob side=N1,N2,...), for maxmip and linear. */
+bool bench_terrain_scale(const cli_options *opt, int w, int h, err_t *err);
+
 #endif

@@ -26,6 +26,8 @@ static const char USAGE[] =
     "  bench --frame-times: only each preset's frame time (one sample per pixel), median of N.\n"
     "  bench --interactive [--fps N]: a scripted 100-frame flight as the window flies it (lower\n"
     "  internal resolution for N fps [30]): frame times, internal size, error, time to converge [1280x720].\n"
+    "  bench --terrain-scale [--knob side=N1,N2,...]: generated DEMs from 256² to 32768²: load time, peak\n"
+    "  memory, frame time and height samples per pixel, maxmip and linear [640x360].\n"
     "  render --path: the frames of a camera path (keyframe file: docs/flights.md) at N frames a second\n"
     "  [30], each written atomically to the pattern's file; frames already on disk are skipped (resume).\n"
     "  --tile I/N renders tile I of N (horizontal strips) of the --output image to OUTPUT.tile-I-of-N.EXT;\n"
@@ -33,6 +35,8 @@ static const char USAGE[] =
     "\n"
     "  --scene NAME|FILE     scene to load: a name from scenes/ (csg), a scene file path, or a PNG/EXR\n"
     "                        fathom wrote (reopens its scene, overrides and view) [csg]\n"
+    "  --dem FILE            open any DEM GDAL reads (GeoTIFF, .hgt, .asc, netCDF, VRT, ...) with a\n"
+    "                        camera framed from its extent (the dem scene, with terrain.heightmap=FILE)\n"
     "  --output FILE         render headless to FILE (.png 8-bit sRGB, .exr linear float) and exit\n"
     "  --size WxH            image or window size in pixels [1280x720]\n"
     "  --spp N               samples per pixel (progressive, jittered: anti-aliasing) [preset]\n"
@@ -147,7 +151,22 @@ static bool set_output_option(const char *name, const char *val, cli_options *o,
 {
     *handled = true;
     if (!strcmp(name, "--scene")) {
+        if (o->dem)
+            return err_set(err, "--scene and --dem both name what to render: give one");
         o->scene = val;
+        o->scene_given = true;
+    } else if (!strcmp(name, "--dem")) {
+        if (o->scene_given || o->dem)
+            return err_set(err, "--dem opens a DEM in the dem scene: give it once, without --scene");
+        if (!*val)
+            return err_set(err, "bad --dem '': the path of an elevation file (GeoTIFF, .hgt, .asc, netCDF, ...)");
+        if (o->set_count == CLI_MAX_SETS)
+            return err_set(err, "too many --set options (at most %d)", CLI_MAX_SETS);
+        if (snprintf(o->dem_set, sizeof o->dem_set, "terrain.heightmap=%s", val) >= (int)sizeof o->dem_set)
+            return err_set(err, "bad --dem: the path is longer than %d characters", PATH_MAX_LEN - 1);
+        o->dem = val;
+        o->scene = "dem";
+        o->sets[o->set_count++] = o->dem_set;
     } else if (!strcmp(name, "--output")) {
         o->output = val;
     } else if (!strcmp(name, "--size")) {
@@ -261,6 +280,7 @@ static bool set_flag(const char *a, cli_options *o)
         {"--list-scenes", offsetof(cli_options, list_scenes)}, {"--quiet", offsetof(cli_options, quiet)},
         {"--frame-times", offsetof(cli_options, frame_times)},
         {"--interactive", offsetof(cli_options, interactive)},
+        {"--terrain-scale", offsetof(cli_options, terrain_scale)},
     };
     for (size_t i = 0; i < sizeof FLAGS / sizeof FLAGS[0]; i++)
         if (!strcmp(a, FLAGS[i].name)) {
@@ -304,6 +324,8 @@ static bool check_combinations(const cli_options *o, err_t *err)
         return err_set(err, "--fps is the window's (and bench --interactive's): it does not apply here");
     if (o->interactive && !o->bench)
         return err_set(err, "--interactive belongs to fathom bench");
+    if (o->terrain_scale && !o->bench)
+        return err_set(err, "--terrain-scale belongs to fathom bench");
     if (o->strip_rows && !o->output)
         return err_set(err, "--strip-rows needs an offline shot: add --output FILE");
     if (o->has_camera && o->has_look_at && camera_degenerate(o->camera, o->look_at))
@@ -358,7 +380,7 @@ bool cli_parse(int argc, char **argv, cli_options *o, err_t *err)
             strcpy(name, a);
             val = (i + 1 < argc) ? argv[++i] : NULL;
         }
-        static const char *const WITH_VALUE[] = {"--scene", "--output", "--size", "--spp", "--quality",
+        static const char *const WITH_VALUE[] = {"--scene", "--dem", "--output", "--size", "--spp", "--quality",
                                                  "--camera", "--look-at", "--fov", "--set", "--aov", "--frames",
                                                  "--runs", "--out", "--knob", "--name", "--strip-rows", "--fps", "--view",
                                                  "--path", "--tile"};

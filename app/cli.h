@@ -27,6 +27,9 @@ typedef enum aov_flag {
 
 typedef struct cli_options {
     const char *scene;  /* scene name (scenes/NAME.json) or a path to a scene file */
+    bool scene_given;   /* --scene was on the command line */
+    const char *dem;    /* --dem FILE: the dem scene with terrain.heightmap=FILE */
+    char dem_set[PATH_MAX_LEN + 32];
     const char *output; /* NULL: window; else offline shot to .png or .exr */
     int width, height;  /* 0: default */
     int spp;            /* 0: the quality preset's */
@@ -58,6 +61,7 @@ typedef struct cli_options {
     const char *name;  /* bench: file name prefix in that folder (NULL: the scene's name) */
     bool frame_times;  /* bench: only the presets' frame times (1 sample per pixel), no error */
     bool interactive;  /* bench: a scripted flight as the window flies it */
+    bool terrain_scale; /* bench: generated DEMs from 256² up: load time, memory, frame time */
     const char *knobs[CLI_MAX_SETS]; /* bench: "NAME=v1,v2,..." sweeps (none: every knob, default values) */
     int knob_count;
 } cli_options;

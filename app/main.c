@@ -63,6 +63,10 @@ int main(int argc, char **argv)
         fprintf(stderr, "fathom: %s\n", err.msg);
         return EXIT_USAGE;
     }
+    if (opt.dem && !util_file_exists(opt.dem)) {
+        fprintf(stderr, "fathom: --dem: file '%s' not found (a path from the folder you are in)\n", opt.dem);
+        return 1;
+    }
     static shot_desc shot; /* --scene SHOT.png: opt points into it */
     if (opt.scene && shot_is_image(opt.scene) && !shot_apply(&opt, &shot, &err)) {
         fprintf(stderr, "fathom: %s\n", err.msg);

@@ -63,6 +63,10 @@ void render_read_aovs(float *aov8);
 
 /* Terrain scenes: the ground height under world (x, z); false for other scenes. */
 bool render_ground_height(float x, float z, float *height);
+/* Frees what the current scene put on the GPU (textures, heightfield, droplets). */
+void render_release_scene(void);
+/* The loaded terrain's texture tiles (1 x 1 when it fits one texture); false without a terrain. */
+bool render_terrain_tiles(int *tiles_x, int *tiles_y);
 
 /* The current scene's droplets and their grid (NULL when it has none), and the seconds reading the
  * file and building the grid took (either pointer may be NULL). */

@@ -23,7 +23,8 @@ enum {
     UNIT_DROPLETS,
     UNIT_DROPLET_CELLS,
     UNIT_DROPLET_INDEX,
-    UNIT_DROPLET_NODES
+    UNIT_DROPLET_NODES,
+    UNIT_HEIGHT_TOP /* the terrain's upper pyramid levels, above its tiles */
 };
 
 /* ---- render.c ---- */

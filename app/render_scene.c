@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "droplets.h"
 #include "render_parts.h"
@@ -17,7 +18,16 @@ static struct {
     GLuint textures[SCENE_MAX_TEXTURES], envmap;
     int texture_width[SCENE_MAX_TEXTURES]; /* heightmaps: texels across (relief step size) */
     int env_size;
-    GLuint height_tex, height_max_tex; /* terrain: heights, max pyramid */
+    GLuint height_tex, height_max_tex, height_top_tex; /* terrain: heights, max pyramid (tiles, top) */
+    struct terrain_tiles {
+        int hx, hy;          /* texels per height tile (the whole grid when it fits one texture) */
+        int tiles_x, tiles_y;
+        int shift_x, shift_y; /* log2 of cells per pyramid tile */
+        int tile_level;      /* the highest pyramid level in the tiles; the ones above are in the top */
+    } tiles;
+    /* the heightfield is kept while the next scene reads the same file the same way (a flight's
+     * frames, preset and knob switches): a big DEM is read once; a changed file is read again */
+    char hf_key[PATH_MAX_LEN + 160];
     GLuint csg_list_tex, csg_nodes_tex; /* csg: the primitive list and its BVH */
     heightfield hf;
     /* droplets: kept while the next scene names the same file and scale (switching presets or
@@ -42,14 +52,20 @@ static void free_droplets(void)
     gpu.drops_file[0] = '\0';
 }
 
-static void free_textures(void)
+static void free_heightfield(void)
 {
     if (gpu.height_tex) {
         glDeleteTextures(1, &gpu.height_tex);
         glDeleteTextures(1, &gpu.height_max_tex);
-        gpu.height_tex = gpu.height_max_tex = 0;
+        glDeleteTextures(1, &gpu.height_top_tex);
+        gpu.height_tex = gpu.height_max_tex = gpu.height_top_tex = 0;
         heightfield_free(&gpu.hf);
     }
+    gpu.hf_key[0] = '\0';
+}
+
+static void free_textures(void)
+{
     if (gpu.csg_list_tex) {
         glDeleteTextures(1, &gpu.csg_list_tex);
         glDeleteTextures(1, &gpu.csg_nodes_tex);
@@ -65,40 +81,156 @@ static void free_textures(void)
 void scene_gpu_shutdown(void)
 {
     free_textures();
+    free_heightfield();
     free_droplets();
     memset(&gpu, 0, sizeof gpu);
 }
 
 const scene *scene_gpu_current(void) { return gpu.have_scene ? &gpu.scene : NULL; }
 
-static GLuint float_texture(int w, int h, const float *data, int levels, float *const *mips)
+static int log2i(int v)
+{
+    int k = 0;
+    while ((1 << k) < v)
+        k++;
+    return k;
+}
+
+/* Terrain tiles: one when the grid fits a texture; else square tiles of `tile` texels (a power of
+ * two; FATHOM_TERRAIN_TILE overrides it, so the tests cross many seams on a small DEM). */
+static bool plan_tiles(const heightfield *hf, struct terrain_tiles *t, err_t *err)
+{
+    GLint max_side = 0, max_layers = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_side);
+    glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &max_layers);
+    int tile = 4096;
+    const char *env = getenv("FATHOM_TERRAIN_TILE");
+    if (env && atoi(env) >= 4)
+        tile = 1 << log2i(atoi(env));
+    while (tile > max_side)
+        tile /= 2;
+    bool one = hf->width <= tile && hf->height <= tile;
+    if (!env && hf->width <= max_side && hf->height <= max_side)
+        one = true; /* the whole grid in one texture: no seams */
+    *t = (struct terrain_tiles){0};
+    if (one) {
+        t->hx = hf->width, t->hy = hf->height;
+        t->shift_x = log2i(hf->pw), t->shift_y = log2i(hf->ph);
+    } else {
+        t->hx = hf->width < tile ? hf->width : tile;
+        t->hy = hf->height < tile ? hf->height : tile;
+        t->shift_x = log2i(hf->pw < tile ? hf->pw : tile);
+        t->shift_y = log2i(hf->ph < tile ? hf->ph : tile);
+    }
+    t->tiles_x = (hf->width + t->hx - 1) / t->hx;
+    t->tiles_y = (hf->height + t->hy - 1) / t->hy;
+    int shift = t->shift_x > t->shift_y ? t->shift_x : t->shift_y;
+    t->tile_level = shift < hf->levels - 1 ? shift : hf->levels - 1;
+    if (t->tiles_x * t->tiles_y > max_layers)
+        return err_set(err, "heightmap '%s' (%dx%d) needs %d tiles of %d texels; this GPU holds %d: cut the DEM",
+                       hf->about, hf->width, hf->height, t->tiles_x * t->tiles_y, tile, max_layers);
+    return true;
+}
+
+static GLuint array_texture(int w, int h, int layers, int mips)
 {
     GLuint t;
     glGenTextures(1, &t);
-    glBindTexture(GL_TEXTURE_2D, t);
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    if (data)
-        glTexImage2D(GL_TEXTURE_2D, 0, GL_R32F, w, h, 0, GL_RED, GL_FLOAT, data);
-    for (int k = 0; k < levels; k++) {
-        int lw = w >> k, lh = h >> k;
-        glTexImage2D(GL_TEXTURE_2D, k, GL_R32F, lw > 0 ? lw : 1, lh > 0 ? lh : 1, 0, GL_RED, GL_FLOAT, mips[k]);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, t);
+    for (int m = 0; m < mips; m++) {
+        int lw = w >> m, lh = h >> m;
+        glTexImage3D(GL_TEXTURE_2D_ARRAY, m, GL_R32F, lw > 0 ? lw : 1, lh > 0 ? lh : 1, layers, 0, GL_RED, GL_FLOAT, NULL);
     }
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, levels > 0 ? levels - 1 : 0);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAX_LEVEL, mips - 1);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     return t;
 }
 
-/* Terrain: heights (exact texelFetch, bilinear done in the shader) and the max pyramid. */
+/* Uploads the block at (x0, y0) of a src_w × src_h grid, at most tw × th and clipped to the grid, as
+ * `layer` of mip `mip`, straight from the grid (no copy: GL reads the rows in place). Texels of an edge
+ * tile beyond the grid stay undefined: the shader clamps to the grid and the pyramid's padding
+ * nodes above them are −inf, so none is ever read. */
+static void upload_block(const float *src, int src_w, int src_h, int x0, int y0, int tw, int th, int mip, int layer)
+{
+    int w = src_w - x0 < tw ? src_w - x0 : tw, h = src_h - y0 < th ? src_h - y0 : th;
+    if (w <= 0 || h <= 0)
+        return;
+    glPixelStorei(GL_UNPACK_ROW_LENGTH, src_w);
+    glPixelStorei(GL_UNPACK_SKIP_PIXELS, x0);
+    glPixelStorei(GL_UNPACK_SKIP_ROWS, y0);
+    glTexSubImage3D(GL_TEXTURE_2D_ARRAY, mip, 0, 0, layer, w, h, 1, GL_RED, GL_FLOAT, src);
+    glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
+    glPixelStorei(GL_UNPACK_SKIP_PIXELS, 0);
+    glPixelStorei(GL_UNPACK_SKIP_ROWS, 0);
+}
+
+/* Terrain: heights (exact texelFetch, bilinear done in the shader) and the max pyramid, in tiles. */
 static bool upload_heightfield(const scene *s, err_t *err)
 {
     heightfield_desc d = {.path = s->terrain.heightmap, .spacing = {s->terrain.spacing[0], s->terrain.spacing[1]},
                           .height_min = s->terrain.height_min, .height_max = s->terrain.height_max,
-                          .exaggeration = s->terrain.exaggeration};
+                          .exaggeration = s->terrain.exaggeration, .fill_nodata = s->terrain.fill_nodata};
+    char key[sizeof gpu.hf_key];
+    struct stat st = {0};
+    stat(d.path, &st);
+    snprintf(key, sizeof key, "%s|%.9g %.9g|%.9g %.9g|%.9g|%d|%lld %lld.%09ld|%s", d.path, (double)d.spacing[0],
+             (double)d.spacing[1], (double)d.height_min, (double)d.height_max, (double)d.exaggeration, d.fill_nodata,
+             (long long)st.st_size, (long long)st.st_mtim.tv_sec, st.st_mtim.tv_nsec,
+             getenv("FATHOM_TERRAIN_TILE") ? getenv("FATHOM_TERRAIN_TILE") : "");
+    if (gpu.height_tex && !strcmp(key, gpu.hf_key))
+        return true;
+    free_heightfield();
     if (!heightfield_load(&d, &gpu.hf, err))
         return false;
-    gpu.height_tex = float_texture(gpu.hf.width, gpu.hf.height, gpu.hf.h, 0, NULL);
-    gpu.height_max_tex = float_texture(gpu.hf.pw, gpu.hf.ph, NULL, gpu.hf.levels, gpu.hf.max);
+    heightfield *hf = &gpu.hf;
+    struct terrain_tiles *t = &gpu.tiles;
+    if (!plan_tiles(hf, t, err)) {
+        heightfield_free(hf);
+        return false;
+    }
+    int layers = t->tiles_x * t->tiles_y;
+    int px = 1 << t->shift_x, py = 1 << t->shift_y; /* cells per pyramid tile */
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    gpu.height_tex = array_texture(t->hx, t->hy, layers, 1);
+    for (int ty = 0; ty < t->tiles_y; ty++)
+        for (int tx = 0; tx < t->tiles_x; tx++)
+            upload_block(hf->h, hf->width, hf->height, tx * t->hx, ty * t->hy, t->hx, t->hy, 0, ty * t->tiles_x + tx);
+    /* pyramid levels 1…tile_level in the tiles (mip k−1 = level k), each tile's share of the level; a
+     * tile's nodes beyond the level's padded size do not exist (their parents are −inf) */
+    int mips = t->tile_level > 0 ? t->tile_level : 1;
+    gpu.height_max_tex = array_texture(px > 1 ? px / 2 : 1, py > 1 ? py / 2 : 1, layers, mips);
+    for (int k = 1; k <= t->tile_level; k++) {
+        int lw = hf->pw >> k, lh = hf->ph >> k; /* the level's size, at least 1 */
+        lw = lw > 0 ? lw : 1, lh = lh > 0 ? lh : 1;
+        int nx = px >> k, ny = py >> k; /* nodes per tile */
+        nx = nx > 0 ? nx : 1, ny = ny > 0 ? ny : 1;
+        for (int ty = 0; ty < t->tiles_y; ty++)
+            for (int tx = 0; tx < t->tiles_x; tx++)
+                upload_block(hf->max[k], lw, lh, tx * nx, ty * ny, nx, ny, k - 1, ty * t->tiles_x + tx);
+    }
+    /* the levels above, whole */
+    int top = hf->levels - 1 - t->tile_level;
+    glGenTextures(1, &gpu.height_top_tex);
+    glBindTexture(GL_TEXTURE_2D, gpu.height_top_tex);
+    float none = -INFINITY;
+    for (int m = 0; m < (top > 0 ? top : 1); m++) {
+        int k = t->tile_level + 1 + m, lw = hf->pw >> k, lh = hf->ph >> k;
+        glTexImage2D(GL_TEXTURE_2D, m, GL_R32F, lw > 0 ? lw : 1, lh > 0 ? lh : 1, 0, GL_RED, GL_FLOAT,
+                     top > 0 ? hf->max[k] : &none);
+    }
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, top > 0 ? top - 1 : 0);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    heightfield_drop_pyramid(hf); /* on the GPU now: the heights stay for the camera's clearance */
+    if (glGetError() == GL_OUT_OF_MEMORY) {
+        free_heightfield();
+        return err_set(err, "heightmap '%s' (%dx%d): the GPU has no room for it", d.path, hf->width, hf->height);
+    }
+    fprintf(stderr, "fathom: %s\n", hf->about);
+    if (layers > 1)
+        fprintf(stderr, "fathom: %d x %d tiles of %d x %d texels\n", t->tiles_x, t->tiles_y, t->hx, t->hy);
+    snprintf(gpu.hf_key, sizeof gpu.hf_key, "%s", key);
     return true;
 }
 
@@ -209,7 +341,9 @@ bool scene_gpu_set(const scene *s, err_t *err)
         if (!gpu.textures[i])
             return false;
     }
-    if (s->terrain.heightmap[0] && !upload_heightfield(s, err))
+    if (!s->terrain.heightmap[0])
+        free_heightfield();
+    else if (!upload_heightfield(s, err))
         return false;
     if (s->csg_list_count > 0) {
         gpu.csg_list_tex = texel_texture(s->csg_list, s->csg_list_count * CSG_LIST_TEXELS);
@@ -261,6 +395,12 @@ static void heightfield_uniforms(const heightfield *hf, const uniform_sink *u)
 {
     uniform_i(u, "uHeight", UNIT_HEIGHT);
     uniform_i(u, "uHeightMax", UNIT_HEIGHT_MAX);
+    uniform_i(u, "uHeightMaxTop", UNIT_HEIGHT_TOP);
+    const struct terrain_tiles *t = &gpu.tiles;
+    uniform_iv(u, "uTerrainTile", 2, 1, (const int[]){t->hx, t->hy});
+    uniform_i(u, "uTerrainTilesX", t->tiles_x);
+    uniform_iv(u, "uTerrainTileShift", 2, 1, (const int[]){t->shift_x, t->shift_y});
+    uniform_i(u, "uTerrainTileLevel", t->tile_level);
     uniform_fv(u, "uTerrainOrigin", 2, 1, (const float[]){hf->x0, hf->z0});
     uniform_fv(u, "uTerrainSpacing", 2, 1, (const float[]){hf->dx, hf->dz});
     uniform_f(u, "uTerrainHeightMin", hf->hmin);
@@ -325,9 +465,11 @@ void scene_gpu_bind_textures(void)
     glActiveTexture(GL_TEXTURE0 + UNIT_ENVMAP);
     glBindTexture(GL_TEXTURE_CUBE_MAP, gpu.envmap);
     glActiveTexture(GL_TEXTURE0 + UNIT_HEIGHT);
-    glBindTexture(GL_TEXTURE_2D, gpu.height_tex);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, gpu.height_tex);
     glActiveTexture(GL_TEXTURE0 + UNIT_HEIGHT_MAX);
-    glBindTexture(GL_TEXTURE_2D, gpu.height_max_tex);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, gpu.height_max_tex);
+    glActiveTexture(GL_TEXTURE0 + UNIT_HEIGHT_TOP);
+    glBindTexture(GL_TEXTURE_2D, gpu.height_top_tex);
     glActiveTexture(GL_TEXTURE0 + UNIT_CSG_LIST);
     glBindTexture(GL_TEXTURE_2D, gpu.csg_list_tex);
     glActiveTexture(GL_TEXTURE0 + UNIT_CSG_NODES);
@@ -339,6 +481,21 @@ void scene_gpu_bind_textures(void)
     glActiveTexture(GL_TEXTURE0 + UNIT_DROPLET_NODES); /* the BVH's nodes, in the cells' buffer */
     glBindTexture(GL_TEXTURE_BUFFER, gpu.drops_tex[1]);
     glActiveTexture(GL_TEXTURE0);
+}
+
+void render_release_scene(void)
+{
+    free_textures();
+    free_heightfield();
+    free_droplets();
+    gpu.have_scene = false;
+}
+
+bool render_terrain_tiles(int *tiles_x, int *tiles_y)
+{
+    *tiles_x = gpu.tiles.tiles_x;
+    *tiles_y = gpu.tiles.tiles_y;
+    return gpu.height_tex != 0;
 }
 
 bool render_ground_height(float x, float z, float *height)

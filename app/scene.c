@@ -167,7 +167,7 @@ bool scene_load_text(const char *text, const char *path, const char *const *sets
     for (int i = 0; ok && i < set_count; i++)
         ok = scene_apply_set(root, sets[i], err);
     if (ok) {
-        ok = parse_root(&c, root);
+        ok = parse_root(&c, root) && (!s->cam_auto || terrain_frame(s, err));
         if (!ok && set_count > 0) { /* the file alone was fine, so an override broke it */
             static const char SUFFIX[] = " (from --set)";
             size_t len = strlen(err->msg);

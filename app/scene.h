@@ -87,6 +87,7 @@ typedef struct scene {
     program_kind program;
 
     float cam_position[3], cam_look_at[3], cam_fov_deg;
+    bool cam_auto; /* "camera": "auto" (terrain): camera, distances, fog and layers framed from the DEM */
 
     float env_color[3];
     float env_intensity;
@@ -116,6 +117,8 @@ typedef struct scene {
         char heightmap[PATH_MAX_LEN];
         float spacing[2], height_min, height_max, exaggeration;
         bool maxmip;      /* method: "maxmip" (exact, hierarchical) or "linear" (the lab's search) */
+        bool fill_nodata; /* nodata: "hole" (rays pass) or "fill" (GDALFillNodata) */
+        bool patch_normals; /* normals: "smooth" (vertex normals blended across the cell) or "patch" (exact) */
         float sand_line, snow_line; /* metres: sand below, snow above (after exaggeration) */
         float grass_slope;          /* grass where the normal's y is above this, else rock */
         /* program noise: f(p) = y − base − amplitude · fbm(p · frequency), `octaves` octaves */

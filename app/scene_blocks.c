@@ -133,6 +133,13 @@ bool parse_camera(scene_ctx *c, const cJSON *root)
     bool fractal = program_is_fractal(s->program);
     const cJSON *cam = cJSON_GetObjectItemCaseSensitive(root, "camera");
     static const float cam_pos[3] = {0, 1, 5}, cam_at[3] = {0, 0, 0};
+    if (cJSON_IsString(cam)) { /* "auto": framed from the terrain's extent once it is known (scene.c) */
+        if (strcmp(cam->valuestring, "auto") || s->program != PROGRAM_TERRAIN)
+            return fail(c, "camera", "expected an object with position and look_at%s",
+                        s->program == PROGRAM_TERRAIN ? ", or \"auto\" (framed from the DEM)" : "");
+        s->cam_auto = true;
+        cam = NULL;
+    }
     if (cam) {
         static const char *const ckeys[] = {"position", "look_at", "fov", "adaptive_speed", NULL};
         if (!check_keys(c, cam, "camera", ckeys))

@@ -63,6 +63,8 @@ bool mandelbulb_parse(scene_ctx *c, const cJSON *root);
 bool menger_parse(scene_ctx *c, const cJSON *root);
 bool mandelbox_parse(scene_ctx *c, const cJSON *root);
 bool heightmap_parse(scene_ctx *c, const cJSON *root);
+/* "camera": "auto": frames the camera, distances, haze and layers from the DEM (heightfield_probe). */
+bool terrain_frame(scene *s, err_t *err);
 bool noise_parse(scene_ctx *c, const cJSON *root);
 void fractal_defines(const scene *s, strbuf *out);
 void heightmap_defines(const scene *s, strbuf *out);

@@ -180,7 +180,7 @@ bool heightmap_parse(scene_ctx *c, const cJSON *root)
     struct scene_terrain *t = &c->s->terrain;
     const cJSON *tb = cJSON_GetObjectItemCaseSensitive(root, "terrain");
     static const char *const keys[] = {"heightmap", "spacing", "height_min", "height_max", "exaggeration", "method",
-                                       "sand_line", "snow_line", "grass_slope", NULL};
+                                       "sand_line", "snow_line", "grass_slope", "nodata", "normals", NULL};
     if (!tb)
         return fail(c, "terrain", "a terrain scene needs a \"terrain\" block with a \"heightmap\"");
     if (!check_keys(c, tb, "terrain", keys))
@@ -222,13 +222,58 @@ bool heightmap_parse(scene_ctx *c, const cJSON *root)
     if (!get_enum(c, tb, "terrain", "method", "method", METHODS, 1, &m))
         return false;
     t->maxmip = m == 1;
+    static const char *const NODATA[] = {"hole", "fill", NULL}, *const NORMALS[] = {"smooth", "patch", NULL};
+    if (!get_enum(c, tb, "terrain", "nodata", "nodata handling", NODATA, 0, &m))
+        return false;
+    t->fill_nodata = m == 1;
+    if (!get_enum(c, tb, "terrain", "normals", "normals", NORMALS, 0, &m))
+        return false;
+    t->patch_normals = m == 1;
     return true;
 }
 
 
+/* "camera": "auto": a view across the DEM from above its southern edge, and what follows from its
+ * size: the far distance, haze over its width, sand and snow by the height range, textures that
+ * repeat every 24 texels. A DEM whose relief is under 2 % of its width (a continent, at true scale a
+ * flat plate) is exaggerated up to that, at most ×20, unless the scene sets terrain.exaggeration. */
+bool terrain_frame(scene *s, err_t *err)
+{
+    struct scene_terrain *t = &s->terrain;
+    heightfield_desc d = {.path = t->heightmap, .spacing = {t->spacing[0], t->spacing[1]}, .height_min = t->height_min,
+                          .height_max = t->height_max, .exaggeration = t->exaggeration};
+    double size[2], range[2], spacing[2];
+    if (!heightfield_probe(&d, size, range, spacing, err))
+        return false;
+    double R = fmax(size[0], size[1]), relief = fmax(range[1] - range[0], 1e-3 * R);
+    if (t->exaggeration == 1 && relief < 0.02 * R) { /* continental DEMs look flat at true scale */
+        double ex = fmin(0.02 * R / relief, 20);
+        t->exaggeration = (float)ex;
+        range[0] *= ex, range[1] *= ex, relief *= ex;
+    }
+    /* over the southern edge, looking north across the middle: the near half fills the view */
+    float at[3] = {0, (float)(range[0] + 0.3 * relief), (float)(-0.1 * size[1])};
+    float eye[3] = {(float)(-0.1 * size[0]), (float)(range[1] + 0.12 * R), (float)(0.5 * size[1] + 0.05 * R)};
+    memcpy(s->cam_position, eye, sizeof eye);
+    memcpy(s->cam_look_at, at, sizeof at);
+    s->cam_fov_deg = 50;
+    s->quality.max_dist = (float)fmin(4 * R + range[1], 1e7);
+    s->fog_density = (float)(0.35 / R); /* about a third of the light lost across the DEM, low down */
+    s->fog_falloff = (float)(2.0 / relief);
+    s->fog_height = (float)range[0];
+    t->sand_line = (float)(range[0] + 0.03 * relief);
+    t->snow_line = (float)(range[0] + 0.85 * relief);
+    for (int i = 0; i < s->material_count; i++)
+        if (s->materials[i].texture >= 0)
+            s->materials[i].uv_scale = (float)(1.0 / (24.0 * fmin(spacing[0], spacing[1])));
+    return true;
+}
+
 void heightmap_defines(const scene *s, strbuf *out)
 {
     sb_printf(out, "#define TERRAIN_MAXMIP %d\n", s->terrain.maxmip);
+    if (s->terrain.patch_normals)
+        sb_printf(out, "#define TERRAIN_PATCH_NORMALS 1\n");
 }
 
 /* The layered albedo (shaders/terrain/layers.glsl): which material each layer uses, and where. */

@@ -1,11 +1,14 @@
 #!/usr/bin/env python3
-"""Makes the heightmaps in terrains/ from Debian packages (standard library + oiiotool only).
+"""Makes the heightmaps in terrains/ from Debian packages (standard library, oiiotool, gdal-bin).
 
-    python3 terrains/convert.py        # from the repository root; needs apt-get and oiiotool
+    python3 terrains/convert.py        # from the repository root; needs apt-get, oiiotool, gdal_translate
 
-Each terrain becomes NAME.png (16-bit grey: 0..65535 maps to height_min..height_max metres) and
-NAME.json (spacing in metres per texel along x and z, the height range, origin and licence).
-Rows run north to south (the image's top row is the northern edge, world −Z); columns west to east (+X).
+jacksboro becomes jacksboro.png (16-bit grey: 0..65535 maps to height_min..height_max metres) and
+jacksboro.json (spacing in metres per texel along x and z, the height range, origin and licence): an
+image with a sidecar, as a user without GIS tools would make one. himalaya becomes himalaya.tif, a
+georeferenced Int16 GeoTIFF in metres (EPSG:4326) that GDAL cuts from ETOPO5's netCDF: a real DEM as a
+GIS user has one. Rows run north to south (the top row is the northern edge, world −Z); columns west
+to east (+X).
 """
 import glob, json, math, os, struct, subprocess, sys, tempfile, zipfile
 
@@ -69,24 +72,24 @@ def jacksboro():
 
 
 def himalaya():
+    """ETOPO5's netCDF, cut to 26-38 N, 76-96 E by GDAL into a georeferenced Int16 GeoTIFF: fathom reads
+    it through GDAL, which gives the spacing (5 arc minutes at the central latitude) and the heights."""
     path = fetch("ferret-datasets", "/usr/share/ferret-vis/data/etopo5.cdf")
-    W, H, OFFSET = 4320, 2161, 52552  # float32 big-endian grid, rows south→north, lon 0→360 (design.md)
-    lat0, lat1, lon0, lon1 = 26.0, 38.0, 76.0, 96.0  # the Himalaya and the southern Tibetan plateau
-    step = 1.0 / 12.0  # 5 arc minutes
-    i0, i1 = round(lon0 / step), round(lon1 / step)
-    j0, j1 = round((lat0 + 90) / step), round((lat1 + 90) / step)
-    rows = []
-    with open(path, "rb") as f:
-        for j in range(j1, j0 - 1, -1):  # north first
-            f.seek(OFFSET + 4 * (j * W + i0))
-            rows.append(list(struct.unpack(">%df" % (i1 - i0 + 1), f.read(4 * (i1 - i0 + 1)))))
-    metres_per_degree = 6371000.0 * math.pi / 180.0
-    lat_mid = math.radians(0.5 * (lat0 + lat1))
-    write("himalaya", rows, [step * metres_per_degree * math.cos(lat_mid), step * metres_per_degree],
-          "ETOPO5 world relief (NOAA NGDC, 5 arc minutes), 26-38 N, 76-96 E; package ferret-datasets, "
-          "usr/share/ferret-vis/data/etopo5.cdf",
-          "public domain (US government data, NOAA NGDC)",
-          "python3 terrains/convert.py")
+    # grid: 4320 x 2161, rows north to south from 90 N, columns from 0 E, 12 per degree
+    lon0, lat1, cols, rows = 76, 38, 241, 145  # 76-96 E, 38-26 N, every 5 arc minutes
+    out = os.path.join(HERE, "himalaya.tif")
+    subprocess.run(["gdal_translate", "-q", "-of", "GTiff", "-ot", "Int16", "-a_nodata", "-32768", "-a_srs", "EPSG:4326",
+                    "-srcwin", str(lon0 * 12), str((90 - lat1) * 12), str(cols), str(rows),
+                    "-co", "COMPRESS=DEFLATE", "-co", "PREDICTOR=2",
+                    "-mo", "ORIGIN=ETOPO5 world relief (NOAA NGDC, 5 arc minutes); package ferret-datasets, "
+                    "usr/share/ferret-vis/data/etopo5.cdf",
+                    "-mo", "LICENCE=public domain (US government data, NOAA NGDC)",
+                    "-mo", "MADE_BY=python3 terrains/convert.py",
+                    "NETCDF:" + path + ":ROSE", out], check=True)
+    print("himalaya: " + subprocess.run(["gdalinfo", "-stats", out], check=True, stdout=subprocess.PIPE,
+                                        text=True).stdout.split("Size is ")[1].split("\n")[0] + " texels")
+    for junk in glob.glob(out + ".aux.xml"):
+        os.remove(junk)
 
 
 if __name__ == "__main__":

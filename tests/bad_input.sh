@@ -57,7 +57,7 @@ printf '\211\120\116\107\015\012\032\012\000\000\000\015\111\110\104\122\000\003
 sed "s|no/such.png|huge.png|" "$tmp/tex.json" >"$tmp/huge.json"
 expect huge-texture-header 1 "is 200000x200000: larger than the 16384x16384" 1 -- "$fathom" --scene "$tmp/huge.json" $out
 printf '{"program": "terrain", "materials": {"rock": {}}, "terrain": {"heightmap": "huge.png", "spacing": [1, 1], "height_min": 0, "height_max": 1}}' >"$tmp/hugeterrain.json"
-expect huge-heightmap-header 1 "is 200000x200000: larger than the 16384x16384" 1 -- "$fathom" --scene "$tmp/hugeterrain.json" $out
+expect huge-heightmap-header 1 "is 200000x200000: larger than the 65536x65536" 1 -- "$fathom" --scene "$tmp/hugeterrain.json" $out
 # a PNG cut short: libpng's own complaint is folded into fathom's one line
 head -c 120 "$src/terrains/jacksboro.png" >"$tmp/cut.png"
 sed "s|no/such.png|cut.png|" "$tmp/tex.json" >"$tmp/cut.json"
@@ -74,11 +74,24 @@ else
     echo "skip out-of-memory: fathom does not start under a 1.2 GB address-space limit here"
 fi
 
-# heightmaps with NaN and infinite heights (PFM: a float image a shell can write)
+# a heightmap with only NaN and infinite heights (PFM: a float image a shell can write); NaN among real
+# heights are nodata holes (test_terrain nodata_holes)
 printf 'Pf\n3 2\n-1.0\n' >"$tmp/nan.pfm"
-printf '\000\000\200\077\000\000\300\177\000\000\200\077\000\000\200\177\000\000\200\077\000\000\200\077' >>"$tmp/nan.pfm"
+printf '\000\000\300\177\000\000\300\177\000\000\200\177\000\000\200\177\000\000\300\177\000\000\300\177' >>"$tmp/nan.pfm"
 printf '{"program": "terrain", "materials": {"rock": {}}, "terrain": {"heightmap": "nan.pfm", "spacing": [1, 1]}}' >"$tmp/nan.json"
-expect nan-heights 1 "2 of 6 heights are NaN or infinite (the first at column 0, row 0)" 1 -- "$fathom" --scene "$tmp/nan.json" $out
+expect nan-heights 1 "has no heights: all 6 texels are nodata or NaN" 1 -- "$fathom" --scene "$tmp/nan.json" $out
+# DEMs through GDAL: an ASCII grid with a cell size but no CRS (unit unknown), a file GDAL cannot read,
+# and a height range given for a DEM whose values are metres
+printf 'ncols 3\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 0.001\n1 2 3\n4 5 6\n' >"$tmp/dem.asc"
+printf '{"program": "terrain", "materials": {"rock": {}}, "terrain": {"heightmap": "dem.asc"}}' >"$tmp/asc.json"
+expect dem-without-crs 1 "has a pixel size (0.001 x 0.001) but no CRS, so its unit is unknown: set terrain.spacing" 1 -- "$fathom" --scene "$tmp/asc.json" $out
+printf 'II*\000garbage' >"$tmp/junk.tif"
+printf '{"program": "terrain", "materials": {"rock": {}}, "terrain": {"heightmap": "junk.tif", "spacing": [1, 1]}}' >"$tmp/badtif.json"
+expect unreadable-dem 1 "cannot read DEM '$tmp/junk.tif'" 1 -- "$fathom" --scene "$tmp/badtif.json" $out
+expect dem-not-found 1 "--dem: file 'no/such.tif' not found (a path from the folder you are in)" 1 -- "$fathom" --dem no/such.tif $out
+expect dem-and-scene 2 "--scene and --dem both name what to render: give one" 1 -- "$fathom" --dem "$tmp/dem.asc" --scene csg $out
+expect dem-without-crs-cli 1 "has a pixel size (0.001 x 0.001) but no CRS" 1 -- "$fathom" --dem "$tmp/dem.asc" $out
+expect dem-with-range 1 "is a DEM whose values are heights already: remove terrain.height_min" 1 -- "$fathom" --scene himalaya --set terrain.height_min=0 --set terrain.height_max=9000 $out
 expect infinite-spacing 1 "terrain.spacing: expected [dx, dz]" 1 -- "$fathom" --scene jacksboro --set terrain.spacing=1e400,90 $out
 expect reversed-heights 1 "terrain.height_max: 10 is below height_min 500" 1 -- "$fathom" --scene jacksboro --set terrain.height_min=500 --set terrain.height_max=10 $out
 mkdir -p "$tmp/side"

@@ -7,8 +7,17 @@
 //    STEP_GROWTH, and refine the first bracketed crossing by BINARY_STEPS bisections. A step can jump
 //    over a ridge thinner than itself (tests/test_terrain.c shows where).
 // Hit.steps counts height samples (texel fetches of four corners count once) for --aov steps.
-uniform sampler2D uHeight;    // R32F metres: texel (i, j) = column i (west → east), row j (north → south)
-uniform sampler2D uHeightMax; // R32F max pyramid: level 0 = cells between four centres
+// The grid in tiles (app/render_scene.c; one tile when it fits a texture): R32F metres, texel (i, j) =
+// column i (west → east), row j (north → south), in layer (j / tile.y) · tilesX + i / tile.x.
+uniform sampler2DArray uHeight;
+// The max pyramid: level 0 (cells between four centres) is not stored (the walk intersects a cell
+// instead); levels 1 … uTerrainTileLevel per tile (mip k − 1 = level k), the levels above in uHeightMaxTop.
+uniform sampler2DArray uHeightMax;
+uniform sampler2D uHeightMaxTop;
+uniform ivec2 uTerrainTile;      // texels per height tile
+uniform int uTerrainTilesX;
+uniform ivec2 uTerrainTileShift; // log2 of cells per pyramid tile
+uniform int uTerrainTileLevel;
 uniform vec2 uTerrainOrigin;     // x0, z0: the north-west corner of the grid
 uniform vec2 uTerrainSpacing;    // dx, dz: metres per texel
 uniform float uTerrainHeightMin, uTerrainHeightMax; // metres (also read by terrain/layers.glsl)
@@ -26,7 +35,32 @@ uniform int uTerrainMaxNodes;    // the max-mipmap traversal's node budget: enou
 
 // Cell space: c = (xz − x0z0) / dxdz − ½ puts texel centres on integers; cell (i, j) is [i, i+1]×[j, j+1].
 vec2 toCell(vec2 xz) { return (xz - uTerrainOrigin) / uTerrainSpacing - 0.5; }
-float texelHeight(ivec2 t) { return texelFetch(uHeight, clamp(t, ivec2(0), uTerrainSize - 1), 0).r; }
+float texelHeight(ivec2 t)
+{
+    t = clamp(t, ivec2(0), uTerrainSize - 1);
+    ivec2 tile = t / uTerrainTile;
+    return texelFetch(uHeight, ivec3(t - tile * uTerrainTile, tile.y * uTerrainTilesX + tile.x), 0).r;
+}
+
+// The maximum of pyramid node `node` at `level` (≥ 1).
+float nodeMax(ivec2 node, int level)
+{
+    if (level > uTerrainTileLevel)
+        return texelFetch(uHeightMaxTop, node, level - uTerrainTileLevel - 1).r;
+    ivec2 shift = max(uTerrainTileShift - level, 0); // log2 of this level's nodes per tile
+    ivec2 tile = node >> shift;
+    return texelFetch(uHeightMax, ivec3(node - (tile << shift), tile.y * uTerrainTilesX + tile.x), level - 1).r;
+}
+// Nodata texels hold −1e30 (app/terrain.h TERRAIN_HOLE): a cell with one at a corner has no surface,
+// and a height interpolated with any weight on one is far below every real height.
+bool isHole(float h) { return h < -1e20; }
+bool cellSolid(ivec2 cell)
+{
+    if (any(lessThan(cell, ivec2(0))) || any(greaterThan(cell, uTerrainSize - 2)))
+        return false;
+    return !isHole(min(min(texelHeight(cell), texelHeight(cell + ivec2(1, 0))),
+                       min(texelHeight(cell + ivec2(0, 1)), texelHeight(cell + ivec2(1, 1)))));
+}
 
 float heightAtCell(vec2 c)
 {
@@ -35,6 +69,8 @@ float heightAtCell(vec2 c)
     vec2 f = c - vec2(i);
     float h00 = texelHeight(i), h10 = texelHeight(i + ivec2(1, 0));
     float h01 = texelHeight(i + ivec2(0, 1)), h11 = texelHeight(i + ivec2(1, 1));
+    if (isHole(min(min(h00, h10), min(h01, h11))))
+        return -1e30; // no surface in a cell with a nodata corner, even on its edges
     return mix(mix(h00, h10, f.x), mix(h01, h11, f.x), f.y);
 }
 
@@ -69,6 +105,8 @@ float intersectCell(ivec2 cell, vec2 c0, vec2 cd, float y0, float dy, float sEnd
 {
     float h00 = texelHeight(cell), h10 = texelHeight(cell + ivec2(1, 0));
     float h01 = texelHeight(cell + ivec2(0, 1)), h11 = texelHeight(cell + ivec2(1, 1));
+    if (isHole(min(min(h00, h10), min(h01, h11))))
+        return -1.0; // a nodata hole: rays pass (the max pyramid skips it; the linear search comes here)
     float a = h10 - h00, b = h01 - h00, c = h00 - h10 - h01 + h11;
     vec2 uv = c0 - vec2(cell);
     // y(s) − h(s) = A s² + B s + C
@@ -120,7 +158,7 @@ Hit terrainTrace(vec3 ro, vec3 rd, vec2 slab)
             }
         } else {
             float ymin = min(ro.y + rd.y * t, ro.y + rd.y * tExit);
-            if (ymin <= texelFetch(uHeightMax, node, level).r) {
+            if (ymin <= nodeMax(node, level)) {
                 level--; // the ray may meet something in here: look closer
                 continue;
             }
@@ -194,19 +232,45 @@ float softShadow(vec3 ro, vec3 rd, float tmax, float k, float pathT)
     return res * res * (3.0 - 2.0 * res);
 }
 
-// The surface normal from the heightfield at texel scale (central differences over one texel); on the
-// side of the terrain's column (a ray that reached the footprint's edge below the surface) the side's.
+// The normal of the surface the ray hit. On the wall of the terrain's column (a ray that reached the
+// footprint's edge, or a nodata hole's, below the surface) the wall's: the nearest cell face, facing
+// the side without a surface; on its floor (hmin, met from below) straight down. On the surface, with TERRAIN_PATCH_NORMALS the hit bilinear patch's
+// exact normal; otherwise (the default, a documented choice) a smooth normal, the heightfield's
+// central differences one texel either side, which hides the patches' creases at the cost of
+// disagreeing with the patch by up to ~10° on sharp ridges. A smooth normal that would look across a
+// hole falls back to the patch's.
+vec3 patchNormal(vec2 c)
+{
+    ivec2 i = clamp(ivec2(floor(c)), ivec2(0), uTerrainSize - 2);
+    vec2 f = clamp(c - vec2(i), 0.0, 1.0);
+    float h00 = texelHeight(i), h10 = texelHeight(i + ivec2(1, 0));
+    float h01 = texelHeight(i + ivec2(0, 1)), h11 = texelHeight(i + ivec2(1, 1));
+    float a = h10 - h00, b = h01 - h00, k = h00 - h10 - h01 + h11;
+    vec2 g = vec2(a + k * f.y, b + k * f.x) / uTerrainSpacing; // dh/dx, dh/dz in metres per metre
+    return normalize(vec3(-g.x, 1.0, -g.y));
+}
+
 vec3 calcNormal(vec3 p, float eps, vec3 fallback)
 {
     float dx = uTerrainSpacing.x, dz = uTerrainSpacing.y;
-    if (p.y < terrainHeight(p.xz) - eps) {
-        vec2 c = toCell(p.xz), far = vec2(uTerrainSize - 1) - c;
-        float m = min(min(c.x, c.y), min(far.x, far.y));
-        return m == c.x ? vec3(-1, 0, 0) : m == far.x ? vec3(1, 0, 0) : m == c.y ? vec3(0, 0, -1) : vec3(0, 0, 1);
+    vec2 c = toCell(p.xz);
+    if (p.y < terrainHeight(p.xz) - eps || !cellSolid(clamp(ivec2(floor(c)), ivec2(0), uTerrainSize - 2))) {
+        if (p.y < uTerrainHeightMin + eps) // the column's floor, met from below
+            return vec3(0, -1, 0);
+        vec2 r = round(c), d = abs(c - r) * uTerrainSpacing;
+        if (d.x < d.y) // an x face: the normal points to the cell on its side without a surface
+            return cellSolid(ivec2(int(r.x) - 1, int(floor(c.y)))) ? vec3(1, 0, 0) : vec3(-1, 0, 0);
+        return cellSolid(ivec2(int(floor(c.x)), int(r.y) - 1)) ? vec3(0, 0, 1) : vec3(0, 0, -1);
     }
-    float hx = terrainHeight(p.xz + vec2(dx, 0.0)) - terrainHeight(p.xz - vec2(dx, 0.0));
-    float hz = terrainHeight(p.xz + vec2(0.0, dz)) - terrainHeight(p.xz - vec2(0.0, dz));
-    return normalize(vec3(-hx / (2.0 * dx), 1.0, -hz / (2.0 * dz)));
+#if TERRAIN_PATCH_NORMALS
+    return patchNormal(c);
+#else
+    float xp = terrainHeight(p.xz + vec2(dx, 0.0)), xm = terrainHeight(p.xz - vec2(dx, 0.0));
+    float zp = terrainHeight(p.xz + vec2(0.0, dz)), zm = terrainHeight(p.xz - vec2(0.0, dz));
+    if (isHole(min(min(xp, xm), min(zp, zm))))
+        return patchNormal(c);
+    return normalize(vec3(-(xp - xm) / (2.0 * dx), 1.0, -(zp - zm) / (2.0 * dz)));
+#endif
 }
 
 // Materials by slope and altitude: sand low, snow high and flat, grass on gentle slopes, rock on

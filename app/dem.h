@@ -1,0 +1,46 @@
+/* dem — elevation rasters through GDAL (GeoTIFF, SRTM .hgt, ESRI/AAIGrid ASCII, netCDF, VRT, and
+ * every other raster format GDAL reads). Band 1 is taken; its scale and offset are applied, so the
+ * heights are the file's own units (metres for every common DEM); nodata texels become NaN.
+ *
+ * Georeferencing sets the spacing: a projected CRS gives the geotransform's pixel size times the
+ * CRS's linear unit; a geographic CRS gives degrees, turned into metres at the DEM's central latitude
+ * on a sphere of radius 6,371 km (the IUGG mean Earth radius; the WGS84 ellipsoid differs by < 0.5 %
+ * in x and < 1 % in z). Rows that run south to north (a positive y pixel size) are flipped, so row 0
+ * is always north. A rotated geotransform is refused: fathom's grid is axis-aligned. */
+#ifndef FATHOM_DEM_H
+#define FATHOM_DEM_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "util.h"
+
+typedef struct dem_info {
+    bool georeferenced;  /* a geotransform and a CRS: spacing holds metres */
+    bool geographic;     /* degrees (the spacing is for the central latitude) */
+    double spacing[2];   /* metres per texel, x and z (0 without georeferencing) */
+    double latitude;     /* geographic: the central latitude the spacing holds at */
+    double pixel[2];     /* a geotransform without a CRS: its pixel size, unit unknown (else 0) */
+    char crs[96];        /* the CRS's name, e.g. "WGS 84" or "WGS 84 / UTM zone 33N" */
+    char type[16];       /* GDAL's name of the band's data type: Int16, Float32, ... */
+    bool is_float;       /* Float32/Float64: real values; otherwise integers (still metres) */
+    size_t holes;        /* nodata (and NaN) texels */
+} dem_info;
+
+/* True for a path fathom reads as a plain image (OpenImageIO: PNG, JPEG, EXR, HDR, PFM), whose values
+ * are normalised colours; everything else goes to GDAL. */
+bool dem_is_image(const char *path);
+
+/* Reads band 1 of `path`: *heights (malloc'd, w × h, row 0 north) in the file's units with scale and
+ * offset applied, nodata and NaN as NaN. Sides above max_side are refused with the size. */
+bool dem_read(const char *path, int max_side, int *w, int *h, float **heights, dem_info *info, err_t *err);
+
+/* What framing a camera needs, without reading every texel: size, georeferencing and the height range
+ * (GDAL's approximate minimum and maximum, scale and offset applied). */
+bool dem_probe(const char *path, int *w, int *h, double range[2], dem_info *info, err_t *err);
+
+/* Fills NaN texels by GDAL's inverse-distance interpolation from the nearest valid ones
+ * (GDALFillNodata); false with a message if it cannot. */
+bool dem_fill_holes(float *heights, int w, int h, err_t *err);
+
+#endif
