@@ -90,6 +90,8 @@ bool bench_interactive(const cli_options *opt, int w, int h, err_t *err)
     int err_n = 0;
     size_t n = (size_t)w * (size_t)h;
     uint8_t *moving = util_alloc(n * 4, "a bench image"), *full = util_alloc(n * 4, "a bench image");
+    uint8_t *edge = util_alloc(n * 4, "a bench image");
+    double edge_sum = 0, edge_max = 0;
     if (ok)
         render_resize(w, h);
     for (int f = 0; ok && f < FLIGHT_FRAMES; f++) {
@@ -101,37 +103,55 @@ bool bench_interactive(const cli_options *opt, int w, int h, err_t *err)
         side[f] = (double)ih / h;
         res_update(&res, ms[f], (double)iw * ih, (double)n);
         if (f % ERROR_EVERY == ERROR_EVERY - 1) { /* what the window shows against the full-size frame */
+            render_set_edge_aware(false);
             render_read_stretched_srgb8(moving, w, h, 1.0f);
+            render_set_edge_aware(true);
+            render_read_stretched_srgb8(edge, w, h, 1.0f);
             render_set_active(w, h);
             render_begin(&cam);
             render_sample();
             render_read_stretched_srgb8(full, w, h, 1.0f);
-            double e = rmse(moving, full, n);
+            double e = rmse(moving, full, n), ee = rmse(edge, full, n);
             err_sum += e, err_max = fmax(err_max, e), err_n++;
+            edge_sum += ee, edge_max = fmax(edge_max, ee);
         }
         if (!opt->quiet)
             fprintf(stderr, "\rbench --interactive %s: frame %d/%d", s.name, f + 1, FLIGHT_FRAMES);
     }
-    /* the camera stops: the window's still path */
-    double first_ms = 0, spp_ms = 0;
-    if (ok) {
+    /* the camera stops: the window's still path, every pixel sampled to the preset's spp, then with
+     * adaptive sampling as the window does it (further samples only on the edge mask) */
+    double first_ms = 0, spp_ms = 0, adaptive_ms = 0, adaptive_rmse = 0, one_rmse = 0, kept = 0;
+    uint8_t *one = util_alloc(n * 4, "a bench image"), *adapt = util_alloc(n * 4, "a bench image");
+    for (int pass = 0; ok && pass < 2; pass++) {
         render_set_active(w, h);
+        render_set_adaptive(pass == 1);
         camera cam = flight_camera(&s, FLIGHT_FRAMES - 1);
         render_begin(&cam);
         double t0 = util_now();
         for (int i = 0; i < s.quality.spp; i++) {
             one_sample();
-            if (i == 0)
+            if (i == 0 && pass == 0) {
                 first_ms = (util_now() - t0) * 1000.0;
+                double t1 = util_now();
+                render_read_stretched_srgb8(one, w, h, 1.0f);
+                t0 += util_now() - t1; /* the readback is the bench's, not the window's */
+            }
         }
-        spp_ms = (util_now() - t0) * 1000.0;
+        *(pass ? &adaptive_ms : &spp_ms) = (util_now() - t0) * 1000.0;
+        render_read_stretched_srgb8(pass ? adapt : full, w, h, 1.0f);
+        if (pass) {
+            kept = (double)render_adaptive_pixels() / (double)n;
+            adaptive_rmse = rmse(adapt, full, n);
+            one_rmse = rmse(one, full, n);
+        }
+        render_set_adaptive(false);
         ok = glGetError() == GL_NO_ERROR || err_set(err, "GL error during the flight");
-        /* the last moving frame as the window showed it, and the converged one */
-        if (ok && opt->out) {
-            render_read_stretched_srgb8(full, w, h, 1.0f);
-            ok = save(opt, &s, "still", full, w, h, err) && save(opt, &s, "moving", moving, w, h, err);
-        }
     }
+    /* the last moving frame as the window showed it, and the converged one */
+    if (ok && opt->out)
+        ok = save(opt, &s, "still", adapt, w, h, err) && save(opt, &s, "moving", edge, w, h, err);
+    free(one);
+    free(adapt);
     if (ok) {
         double sorted[FLIGHT_FRAMES], sides[FLIGHT_FRAMES];
         memcpy(sorted, ms, sizeof sorted);
@@ -143,17 +163,21 @@ bool bench_interactive(const cli_options *opt, int w, int h, err_t *err)
             fputc('\n', stderr);
         printf("%s, window %dx%d, target %d fps, %s\n", s.name, w, h, fps, gpu_describe());
         printf("  moving (%d frames): median %.1f ms (%.1f fps), p95 %.1f ms; median inside %dx%d; "
-               "error vs full size RMSE %.4f mean, %.4f worst\n",
+               "error vs full size RMSE %.4f mean, %.4f worst bilinear; %.4f, %.4f depth-aware\n",
                FLIGHT_FRAMES, med, 1000.0 / med, p95, res_side(w, (float)sides[FLIGHT_FRAMES / 2]),
-               res_side(h, (float)sides[FLIGHT_FRAMES / 2]), err_n ? err_sum / err_n : 0.0, err_max);
-        printf("  stopped: first full-size frame after %.0f ms, the preset's %d spp after %.0f ms\n", first_ms,
-               s.quality.spp, spp_ms);
-        printf("csv,%s,%d,%d,%d,%.2f,%.2f,%d,%d,%.5f,%.5f,%.0f,%d,%.0f\n", s.name, w, h, fps, med, p95,
-               res_side(w, (float)sides[FLIGHT_FRAMES / 2]), res_side(h, (float)sides[FLIGHT_FRAMES / 2]),
-               err_n ? err_sum / err_n : 0.0, err_max, first_ms, s.quality.spp, spp_ms);
+               res_side(h, (float)sides[FLIGHT_FRAMES / 2]), err_n ? err_sum / err_n : 0.0, err_max,
+               err_n ? edge_sum / err_n : 0.0, edge_max);
+        printf("  stopped: first full-size frame after %.0f ms, the preset's %d spp after %.0f ms; adaptive (%.1f %% of "
+               "pixels on edges) after %.0f ms, RMSE %.4f to every pixel's %d spp (1 spp: %.4f)\n", first_ms,
+               s.quality.spp, spp_ms, 100 * kept, adaptive_ms, adaptive_rmse, s.quality.spp, one_rmse);
+        printf("csv,%s,%d,%d,%d,%.2f,%.2f,%d,%d,%.5f,%.5f,%.0f,%d,%.0f,%.4f,%.0f,%.5f,%.5f,%.5f,%.5f\n", s.name, w, h, fps, med,
+               p95, res_side(w, (float)sides[FLIGHT_FRAMES / 2]), res_side(h, (float)sides[FLIGHT_FRAMES / 2]),
+               err_n ? err_sum / err_n : 0.0, err_max, first_ms, s.quality.spp, spp_ms, kept, adaptive_ms, adaptive_rmse,
+               one_rmse, err_n ? edge_sum / err_n : 0.0, edge_max);
     }
     free(moving);
     free(full);
+    free(edge);
     render_shutdown();
     gpu_close();
     scene_free(&s);

@@ -398,19 +398,23 @@ static void hud(int w, int h)
                             knob_get_def((knob_id)k)->name, knob_value(&app.scene.quality, (knob_id)k),
                             k == (int)app.knob ? "]" : "");
     static const char *const views[] = {"", "  [steps]", "  [difference to grabbed frame]"};
+    char adaptive[48] = "";
+    if (render_samples() > 1 && !app.scaled)
+        snprintf(adaptive, sizeof adaptive, " (after the 1st: %.0f %% of pixels, on edges)",
+                 100.0 * render_adaptive_pixels() / ((double)w * h));
     if (app.walking && snprintf(limit + strlen(limit), sizeof limit - strlen(limit), "walking %.1f m above the ground\n",
                                 (double)WALK_HEIGHT) < 0)
         limit[0] = '\0';
     snprintf(text, sizeof text,
              "%s  [%s]  %dx%d%s  %s\n"
-             "%.1f ms/sample  %.1f fps  %d/%d spp\n"
+             "%.1f ms/sample  %.1f fps  %d/%d spp%s\n"
              "%s\n"
              "pos %.4g %.4g %.4g  %s  fov %.0f\n%s"
              "WASD move  mouse look  Space/C up/down  Shift fast  scroll speed\n"
              "1-%d scenes  K knob  =/- step it  H steps  G grab  V difference  T walk  Home start  B save view  Ctrl+1-9 recall\n"
              "N keyframe (%d)  Shift+N clear  L play  R reload  P shot  Esc quit\n%s",
              app.scene.name, preset_name(app.scene.preset), w, h, views[app.view], internal, ms, ms > 0 ? 1000.0 / ms : 0.0,
-             render_samples(), app.scene.quality.spp, knobs, (double)c->position[0], (double)c->position[1],
+             render_samples(), app.scene.quality.spp, adaptive, knobs, (double)c->position[0], (double)c->position[1],
              (double)c->position[2], speed, (double)glm_deg(c->fov_y), limit, app.scene_count, app.key_count,
              app.message);
     hud_draw(text, w, h, h >= 900 ? 2.0f : 1.5f);
@@ -588,6 +592,7 @@ bool explore_run(const cli_options *opt, err_t *err)
         return false;
     GLFWwindow *win = gpu_window();
     bool ok = render_init(err) && hud_init(err) && load_scene(opt->scene, opt, true, err);
+    render_set_adaptive(true); /* still images: samples after the first only on edges */
     if (!ok) {
         render_shutdown();
         gpu_close();

@@ -23,6 +23,12 @@ static struct {
     int alloc_width, alloc_height; /* the targets' size */
     int full_width, full_height, tile_x, tile_y; /* the image the target is a band of; its GL offset */
     GLuint prog; /* the current scene's program */
+    /* adaptive sampling (render_set_adaptive): after the first sample, further samples only where the
+     * edge mask (shaders/edgemask.frag) is set; each pixel's alpha counts its own samples */
+    bool adaptive;
+    bool edge_aware; /* stretched images: depth-aware upsampling (display.frag) */
+    GLuint mask_prog, mask_fbo, mask_tex;
+    int masked; /* pixels the mask kept, of the last mask */
     camera cam;
     unsigned runtime_effects; /* effects switched on at run time (bits as in effect.h) */
 } state = {.runtime_effects = ~0u};
@@ -33,13 +39,19 @@ static GLuint build_display(err_t *err)
     return shader_build(programs_shader_root(), "fullscreen.vert", "display.frag", NULL, NULL, 0, err);
 }
 
+static GLuint build_mask(err_t *err)
+{
+    return shader_build(programs_shader_root(), "fullscreen.vert", "edgemask.frag", NULL, NULL, 0, err);
+}
+
 bool render_init(err_t *err)
 {
     programs_init();
     glGenVertexArrays(1, &state.vao); /* core profile draws nothing without a bound VAO */
     glBindVertexArray(state.vao);
     state.display_prog = build_display(err);
-    return state.display_prog != 0;
+    state.mask_prog = state.display_prog ? build_mask(err) : 0;
+    return state.display_prog != 0 && state.mask_prog != 0;
 }
 
 static void free_targets(void)
@@ -51,7 +63,9 @@ static void free_targets(void)
         glDeleteTextures(1, &state.out_tex);
         glDeleteFramebuffers(1, &state.ref_fbo);
         glDeleteTextures(1, &state.ref_tex);
-        state.fbo = state.out_fbo = state.ref_fbo = state.ref_tex = 0;
+        glDeleteFramebuffers(1, &state.mask_fbo);
+        glDeleteTextures(1, &state.mask_tex);
+        state.fbo = state.out_fbo = state.ref_fbo = state.ref_tex = state.mask_fbo = state.mask_tex = 0;
         state.ref_samples = 0;
     }
 }
@@ -66,6 +80,7 @@ void render_shutdown(void)
     scene_gpu_shutdown();
     programs_shutdown();
     glDeleteProgram(state.display_prog);
+    glDeleteProgram(state.mask_prog);
     glDeleteVertexArrays(1, &state.vao);
     memset(&state, 0, sizeof state);
     state.runtime_effects = ~0u;
@@ -117,6 +132,15 @@ void render_resize(int width, int height)
     glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, width, height, 0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, state.out_tex, 0);
     assert(glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE);
+    glGenFramebuffers(1, &state.mask_fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, state.mask_fbo);
+    glGenTextures(1, &state.mask_tex);
+    glBindTexture(GL_TEXTURE_2D, state.mask_tex);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_R8, width, height, 0, GL_RED, GL_UNSIGNED_BYTE, NULL);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, state.mask_tex, 0);
+    assert(glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     state.samples = 0;
 }
@@ -153,6 +177,42 @@ void render_begin(const camera *c)
 
 int render_samples(void) { return state.samples; }
 
+void render_set_adaptive(bool on) { state.adaptive = on; }
+
+void render_set_edge_aware(bool on) { state.edge_aware = on; }
+
+int render_adaptive_pixels(void) { return state.masked; }
+
+/* The edge mask from the first sample (shaders/edgemask.frag), into mask_tex. */
+static void build_edge_mask(void)
+{
+    glBindFramebuffer(GL_FRAMEBUFFER, state.mask_fbo);
+    glViewport(0, 0, state.width, state.height);
+    glUseProgram(state.mask_prog);
+    glActiveTexture(GL_TEXTURE1);
+    glBindTexture(GL_TEXTURE_2D, state.targets[1]);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, state.targets[0]);
+    glUniform1i(glGetUniformLocation(state.mask_prog, "uAccum"), 0);
+    glUniform1i(glGetUniformLocation(state.mask_prog, "uNormalDepth"), 1);
+    glUniform1f(glGetUniformLocation(state.mask_prog, "uExposure"), 1.0f);
+    glUniform2i(glGetUniformLocation(state.mask_prog, "uSize"), state.width, state.height);
+    glBindVertexArray(state.vao);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    /* how many pixels it kept: for the HUD and the bench (a small readback, once per still image) */
+    size_t n = (size_t)state.width * (size_t)state.height;
+    uint8_t *m = malloc(n);
+    state.masked = 0;
+    if (m) {
+        glPixelStorei(GL_PACK_ALIGNMENT, 1);
+        glReadPixels(0, 0, state.width, state.height, GL_RED, GL_UNSIGNED_BYTE, m);
+        for (size_t i = 0; i < n; i++)
+            state.masked += m[i] > 127;
+        free(m);
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
 /* Halton (2, 3) points, centred: low-discrepancy sub-pixel offsets. Sample 0 is the pixel centre. */
 static float halton(int i, int base)
 {
@@ -169,6 +229,9 @@ static GLint loc(const char *name) { return glGetUniformLocation(state.prog, nam
 void render_sample(void)
 {
     assert(state.fbo && state.prog);
+    bool adaptive = state.adaptive && state.samples > 0;
+    if (adaptive && state.samples == 1)
+        build_edge_mask();
     glBindFramebuffer(GL_FRAMEBUFFER, state.fbo);
     glViewport(0, 0, state.width, state.height);
     static const GLenum all[NUM_TARGETS] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
@@ -195,10 +258,15 @@ void render_sample(void)
     glUniform1f(loc("uTanHalfFov"), tanf(0.5f * state.cam.fov_y));
     glUniform1f(loc("uPixelAngle"), camera_pixel_angle(&state.cam, state.full_height));
     glUniform1ui(loc("uFxRuntime"), state.runtime_effects);
+    glUniform1i(loc("uAdaptive"), adaptive ? 1 : 0);
+    glUniform1i(loc("uEdgeMask"), UNIT_EDGE_MASK);
     bool jitter = (scene_gpu_current()->effects & state.runtime_effects & (1u << EFFECT_AA)) && !first;
     glUniform2f(loc("uJitter"), jitter ? halton(state.samples, 2) - 0.5f : 0.0f,
                 jitter ? halton(state.samples, 3) - 0.5f : 0.0f);
     scene_gpu_bind_textures();
+    glActiveTexture(GL_TEXTURE0 + UNIT_EDGE_MASK);
+    glBindTexture(GL_TEXTURE_2D, state.mask_tex);
+    glActiveTexture(GL_TEXTURE0);
 
     glBindVertexArray(state.vao);
     glDrawArrays(GL_TRIANGLES, 0, 3);
@@ -243,13 +311,15 @@ void render_display(GLuint fbo, int width, int height, float exposure, render_vi
         view = VIEW_COLOR; /* nothing grabbed yet */
     glActiveTexture(GL_TEXTURE2);
     glBindTexture(GL_TEXTURE_2D, state.ref_tex);
+    glActiveTexture(GL_TEXTURE3);
+    glBindTexture(GL_TEXTURE_2D, state.targets[1]);
     glActiveTexture(GL_TEXTURE0);
     glUniform1i(glGetUniformLocation(p, "uReference"), 2);
+    glUniform1i(glGetUniformLocation(p, "uNormalDepth"), 3);
+    glUniform1i(glGetUniformLocation(p, "uEdgeAware"), state.edge_aware ? 1 : 0);
     glUniform1f(glGetUniformLocation(p, "uInvRefSamples"), state.ref_samples ? 1.0f / (float)state.ref_samples : 0.0f);
     glUniform1i(glGetUniformLocation(p, "uView"), (GLint)view);
     glUniform1f(glGetUniformLocation(p, "uMaxSteps"), scene_gpu_current() ? (float)scene_gpu_current()->quality.max_steps : 1.0f);
-    glUniform1f(glGetUniformLocation(state.display_prog, "uInvSamples"),
-                state.samples > 0 ? 1.0f / (float)state.samples : 0.0f);
     glUniform1f(glGetUniformLocation(state.display_prog, "uExposure"), exposure);
     glUniform2f(glGetUniformLocation(p, "uSrcSize"), (float)state.width, (float)state.height);
     glUniform2f(glGetUniformLocation(p, "uDstSize"), (float)width, (float)height);
@@ -300,10 +370,12 @@ void render_read_srgb8(uint8_t *rgba, float exposure)
 void render_read_linear(float *rgba)
 {
     read_target(state.fbo, GL_COLOR_ATTACHMENT0, GL_FLOAT, rgba);
-    size_t n = (size_t)state.width * (size_t)state.height * 4;
-    float inv = state.samples > 0 ? 1.0f / (float)state.samples : 0.0f;
-    for (size_t i = 0; i < n; i++)
-        rgba[i] *= inv;
+    size_t n = (size_t)state.width * (size_t)state.height;
+    for (size_t i = 0; i < n; i++) { /* alpha counts the pixel's own samples (adaptive sampling) */
+        float inv = rgba[i * 4 + 3] > 0.0f ? 1.0f / rgba[i * 4 + 3] : 0.0f;
+        for (int c = 0; c < 4; c++)
+            rgba[i * 4 + (size_t)c] *= inv;
+    }
     flip_rows(rgba, state.height, (size_t)state.width * 4 * sizeof(float));
 }
 
@@ -327,15 +399,16 @@ void render_read_aovs(float *aov8)
 bool render_reload(err_t *err)
 {
     /* Build everything first: one failure keeps every old program. */
-    GLuint display = build_display(err);
-    if (!display)
-        return false;
-    if (!programs_reload(&state.prog, err)) {
+    GLuint display = build_display(err), mask = display ? build_mask(err) : 0;
+    if (!display || !mask || !programs_reload(&state.prog, err)) {
         glDeleteProgram(display);
+        glDeleteProgram(mask);
         return false;
     }
     glDeleteProgram(state.display_prog);
+    glDeleteProgram(state.mask_prog);
     state.display_prog = display;
+    state.mask_prog = mask;
     if (scene_gpu_current())
         scene_gpu_uniforms(state.prog, scene_gpu_current());
     state.samples = 0;

@@ -43,6 +43,15 @@ void render_set_window(int full_width, int full_height, int left, int top);
 void render_begin(const camera *c); /* new view: restart accumulation */
 void render_sample(void);           /* add one sample */
 int render_samples(void);
+/* Adaptive sampling: after the first sample of an image, further samples only where the edge mask
+ * (shaders/edgemask.frag: colour, depth, hit or normal differs in the 3x3 block) is set. Off by
+ * default (offline images sample every pixel); the window turns it on. */
+void render_set_adaptive(bool on);
+/* A stretched (moving) image: depth-aware upsampling, no blending across silhouettes, or plain
+ * bilinear (the default: bench --interactive measures both, and bilinear is nearer the full frame). */
+void render_set_edge_aware(bool on);
+/* Pixels the last edge mask kept. */
+int render_adaptive_pixels(void);
 
 typedef enum render_view { VIEW_COLOR, VIEW_STEPS, VIEW_DIFFERENCE } render_view;
 

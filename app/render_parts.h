@@ -24,7 +24,8 @@ enum {
     UNIT_DROPLET_CELLS,
     UNIT_DROPLET_INDEX,
     UNIT_DROPLET_NODES,
-    UNIT_HEIGHT_TOP /* the terrain's upper pyramid levels, above its tiles */
+    UNIT_HEIGHT_TOP, /* the terrain's upper pyramid levels, above its tiles */
+    UNIT_EDGE_MASK   /* adaptive sampling's mask (render.c) */
 };
 
 /* ---- render.c ---- */

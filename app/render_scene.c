@@ -224,8 +224,12 @@ static bool upload_heightfield(const scene *s, err_t *err)
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     heightfield_drop_pyramid(hf); /* on the GPU now: the heights stay for the camera's clearance */
     if (glGetError() == GL_OUT_OF_MEMORY) {
+        int W = hf->width, H = hf->height;
+        double mb = 4.0 * (double)t->hx * t->hy * layers / 1048576.0;
         free_heightfield();
-        return err_set(err, "heightmap '%s' (%dx%d): the GPU has no room for it", d.path, hf->width, hf->height);
+        return err_set(err, "heightmap '%s' (%dx%d): the GPU driver refused its %.0f MB of heights (llvmpipe holds at "
+                            "most 1 GB in one texture: about 16384x16384); cut or resample the DEM (gdal_translate "
+                            "-outsize)", d.path, W, H, mb);
     }
     fprintf(stderr, "fathom: %s\n", hf->about);
     if (layers > 1)

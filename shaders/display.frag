@@ -5,8 +5,9 @@
 uniform sampler2D uAccum;
 uniform sampler2D uAux; // target 2: steps, exit direction
 uniform sampler2D uReference;
+uniform sampler2D uNormalDepth; // target 1: depth in w (−1: a miss)
+uniform int uEdgeAware;         // 1: a stretched image does not blend across depth edges
 uniform float uInvRefSamples;
-uniform float uInvSamples;
 uniform float uExposure;
 uniform int uView;
 uniform float uMaxSteps;
@@ -21,14 +22,34 @@ ivec2 nearestTexel() { return clamp(ivec2(floor(srcPos() + 0.5)), ivec2(0), ivec
 
 // Bilinear from the four nearest texels (the targets are NEAREST-filtered float textures); exactly the
 // texel when the sizes are equal.
-vec3 bilinear(sampler2D t)
+vec4 bilinear4(sampler2D t)
 {
     vec2 p = srcPos();
     ivec2 i = ivec2(floor(p)), hi = ivec2(uSrcSize) - 1;
     vec2 f = p - vec2(i);
-    vec3 a = texelFetch(t, clamp(i, ivec2(0), hi), 0).rgb, b = texelFetch(t, clamp(i + ivec2(1, 0), ivec2(0), hi), 0).rgb;
-    vec3 c = texelFetch(t, clamp(i + ivec2(0, 1), ivec2(0), hi), 0).rgb, d = texelFetch(t, clamp(i + ivec2(1, 1), ivec2(0), hi), 0).rgb;
-    return mix(mix(a, b, f.x), mix(c, d, f.x), f.y);
+    vec4 a = texelFetch(t, clamp(i, ivec2(0), hi), 0), b = texelFetch(t, clamp(i + ivec2(1, 0), ivec2(0), hi), 0);
+    vec4 c = texelFetch(t, clamp(i + ivec2(0, 1), ivec2(0), hi), 0), d = texelFetch(t, clamp(i + ivec2(1, 1), ivec2(0), hi), 0);
+    // each texel as its mean (alpha counts its samples), so texels with different counts mix right
+    a /= max(a.a, 1e-6), b /= max(b.a, 1e-6), c /= max(c.a, 1e-6), d /= max(d.a, 1e-6);
+    vec4 w = vec4((1.0 - f.x) * (1.0 - f.y), f.x * (1.0 - f.y), (1.0 - f.x) * f.y, f.x * f.y);
+    if (uEdgeAware != 0 && uSrcSize != uDstSize) {
+        // Depth-aware upsampling (after Kopf et al. 2007, "Joint Bilateral Upsampling", with the
+        // low-resolution depth as its own guide): the taps whose depth differs from the nearest
+        // tap's by more than a few percent (the other side of a silhouette) are left out, so edges
+        // stay sharp instead of blending foreground into background.
+        vec4 z = vec4(texelFetch(uNormalDepth, clamp(i, ivec2(0), hi), 0).w,
+                      texelFetch(uNormalDepth, clamp(i + ivec2(1, 0), ivec2(0), hi), 0).w,
+                      texelFetch(uNormalDepth, clamp(i + ivec2(0, 1), ivec2(0), hi), 0).w,
+                      texelFetch(uNormalDepth, clamp(i + ivec2(1, 1), ivec2(0), hi), 0).w);
+        z = mix(z, vec4(1e30), lessThan(z, vec4(0.0))); // a miss: infinitely far
+        int near = f.x < 0.5 ? (f.y < 0.5 ? 0 : 2) : (f.y < 0.5 ? 1 : 3);
+        float zn = z[near];
+        const float DEPTH_EDGE = 0.05;
+        vec4 keep = vec4(lessThanEqual(abs(z - zn), vec4(DEPTH_EDGE * min(zn, 1e29))));
+        w *= keep;
+        w /= max(w.x + w.y + w.z + w.w, 1e-6);
+    }
+    return a * w.x + b * w.y + c * w.z + d * w.w;
 }
 
 vec3 heat(float x)
@@ -54,11 +75,13 @@ void main()
     }
     if (uView == 2) {
         const float DIFF_GAIN = 8.0;
-        vec3 now = acesFit(texelFetch(uAccum, nearestTexel(), 0).rgb * uInvSamples * uExposure);
+        vec4 acc = texelFetch(uAccum, nearestTexel(), 0);
+        vec3 now = acesFit(acc.rgb / max(acc.a, 1e-6) * uExposure);
         vec3 ref = acesFit(texelFetch(uReference, nearestTexel(), 0).rgb * uInvRefSamples * uExposure);
         oColor = vec4(heat(length(now - ref) * DIFF_GAIN), 1.0);
         return;
     }
-    vec3 c = bilinear(uAccum) * uInvSamples;
+    vec4 a = bilinear4(uAccum);
+    vec3 c = a.rgb / max(a.a, 1e-6); // alpha counts each pixel's own samples (adaptive sampling)
     oColor = vec4(linearToSrgb(acesFit(c * uExposure)), 1.0);
 }

@@ -708,6 +708,50 @@ static void reload_keeps_last_good_program(void **st)
  * refinement step landing exactly on the plane left the bracket's outside end behind. Every ground
  * pixel within 20 m must be the plane's depth (analytic) within 1e-4, at the interactive and final
  * presets. (Without the fixes in common/march.glsl: 846 pixels off, worst 17 %.) */
+/* Adaptive sampling (the window's still images): after the centre sample, only pixels on the edge
+ * mask take further samples. Every other pixel must keep exactly its centre value (each pixel's alpha
+ * counts its own samples), and the image must come near the one where every pixel took all its
+ * samples: the reference, independent of the mask. */
+static void adaptive_sampling(void **st)
+{
+    (void)st;
+    enum { AW = 320, AH = 180, SPP = 8 };
+    size_t n = (size_t)AW * AH;
+    float *full = malloc(sizeof(float) * 4 * n), *one = malloc(sizeof(float) * 4 * n), *ad = malloc(sizeof(float) * 4 * n);
+    scene s;
+    err_t e;
+    if (!scene_load("csg", NULL, 0, &s, &e))
+        fail_msg("%s", e.msg);
+    camera cam = camera_look_at_deg(s.cam_position, s.cam_look_at, s.cam_fov_deg);
+    draw(&s, &cam, AW, AH, SPP, NULL, NULL, full);
+    draw(&s, &cam, AW, AH, 1, NULL, NULL, one);
+    render_set_adaptive(true);
+    draw(&s, &cam, AW, AH, SPP, NULL, NULL, ad);
+    render_set_adaptive(false);
+    int kept = render_adaptive_pixels();
+    size_t same = 0;
+    double e_one = 0, e_ad = 0;
+    for (size_t i = 0; i < n; i++) {
+        same += !memcmp(ad + 4 * i, one + 4 * i, sizeof(float) * 3);
+        for (int c = 0; c < 3; c++) {
+            double a = full[4 * i + (size_t)c];
+            e_one += (one[4 * i + (size_t)c] - a) * (one[4 * i + (size_t)c] - a);
+            e_ad += (ad[4 * i + (size_t)c] - a) * (ad[4 * i + (size_t)c] - a);
+        }
+    }
+    e_one = sqrt(e_one / (3.0 * (double)n)), e_ad = sqrt(e_ad / (3.0 * (double)n));
+    fprintf(stderr, "adaptive: %d of %zu pixels on the edge mask; %zu keep their centre sample; RMSE to %d spp "
+            "everywhere: %.5f (1 spp: %.5f)\n", kept, n, same, SPP, e_ad, e_one);
+    assert_true(kept > 0 && (size_t)kept < 3 * n / 4); /* a small image: many of its pixels are on edges */
+    assert_true(same >= n - (size_t)kept);       /* off the mask: exactly the centre sample */
+    assert_true(same < n - (size_t)kept + n / 50); /* on it: the samples were taken */
+    assert_true(e_ad < 0.5 * e_one);
+    scene_free(&s);
+    free(full);
+    free(one);
+    free(ad);
+}
+
 static void grazing_ground_depth(void **st)
 {
     (void)st;
@@ -764,6 +808,7 @@ int main(void)
         cmocka_unit_test(relief_edge_has_no_blotches),
         cmocka_unit_test(reload_keeps_last_good_program),
         cmocka_unit_test(grazing_ground_depth),
+        cmocka_unit_test(adaptive_sampling),
     };
     return cmocka_run_group_tests(tests, gl_setup, gl_teardown);
 }

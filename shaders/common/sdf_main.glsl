@@ -60,6 +60,8 @@ vec3 shadeSurface(vec3 p, vec3 n, vec3 v, Material m, vec3 F0, float pathT, bool
 
 void main()
 {
+    if (uAdaptive != 0 && texelFetch(uEdgeMask, ivec2(gl_FragCoord.xy), 0).r < 0.5)
+        discard; // adaptive sampling: the centre sample is this pixel's mean already
     Ray ray = primaryRay(gl_FragCoord.xy);
     vec3 ro = ray.o, rd = ray.d;
     vec3 radiance = vec3(0.0), throughput = vec3(1.0);

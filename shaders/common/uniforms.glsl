@@ -6,6 +6,8 @@ uniform vec3 uCamPos;
 uniform vec3 uCamForward, uCamRight, uCamUp; // orthonormal basis
 uniform float uTanHalfFov;  // tan(vertical fov / 2)
 uniform float uPixelAngle;  // 2 tan(fov/2) / height: the angle one pixel spans
+uniform int uAdaptive;          // 1: only pixels the edge mask keeps take this sample (app/render.c)
+uniform sampler2D uEdgeMask;
 uniform vec2 uJitter;       // sub-pixel offset of this sample, pixels; (0,0) for the first
 
 // Run-time switches for the compiled-in effects (bit FX_NAME_BIT), all on unless the bench measures
