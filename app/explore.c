@@ -514,17 +514,20 @@ static bool handle_requests(const cli_options *opt)
  * preset's spp. True while there is work left. */
 static bool draw(const cli_options *opt, int w, int h, bool restart, camera *shown, bool *moved)
 {
-    render_resize(w, h);
     *moved = memcmp(shown, &app.cam, sizeof *shown) != 0;
     bool moving = *moved || restart;
+    int aw, ah;
+    render_active_size(&aw, &ah);
+    if (!moving && render_samples() > 0 && (aw != w || ah != h))
+        render_keep_preview(); /* the last moving image: shown until the still one's first sample covers it */
+    render_resize(w, h);
     int iw = w, ih = h;
     if (moving) {
         iw = res_side(w, app.res.scale);
         ih = res_side(h, app.res.scale);
     }
-    int aw, ah;
     render_active_size(&aw, &ah);
-    if (moving || aw != iw || ah != ih || render_samples() == 0) {
+    if (moving || aw != iw || ah != ih || (render_samples() == 0 && render_band_rows() == 0)) {
         render_set_active(iw, ih);
         render_begin(&app.cam);
         *shown = app.cam;
@@ -532,7 +535,16 @@ static bool draw(const cli_options *opt, int w, int h, bool restart, camera *sho
     bool refining = render_samples() < app.scene.quality.spp;
     if (refining || opt->frames) {
         double t0 = glfwGetTime();
-        render_sample();
+        if (moving || !refining) {
+            render_sample();
+        } else {
+            /* a full-size sample in bands of about one frame's time (the moving frames measured the
+             * cost of a pixel), so the window reads input between them instead of freezing */
+            const res_controller *r = &app.res;
+            double per_row = (double)r->per_pixel_ms * (double)w;
+            int rows = per_row > 0 ? (int)(r->target_ms / per_row) : h / 8;
+            render_sample_band(rows < 4 ? 4 : rows > h ? h : rows);
+        }
         glFinish();
         double ms = (glfwGetTime() - t0) * 1000.0;
         app.frame_ms[app.frame_index++ % FRAME_HISTORY] = ms;

@@ -29,6 +29,9 @@ static struct {
     bool edge_aware; /* stretched images: depth-aware upsampling (display.frag) */
     GLuint mask_prog, mask_fbo, mask_tex;
     int masked; /* pixels the mask kept, of the last mask */
+    int band_done; /* rows of the current sample done by render_sample_band, from the top */
+    GLuint preview_fbo, preview_tex; /* the last moving image, shown where a still one has no sample yet */
+    int preview_w, preview_h;
     camera cam;
     unsigned runtime_effects; /* effects switched on at run time (bits as in effect.h) */
 } state = {.runtime_effects = ~0u};
@@ -65,6 +68,10 @@ static void free_targets(void)
         glDeleteTextures(1, &state.ref_tex);
         glDeleteFramebuffers(1, &state.mask_fbo);
         glDeleteTextures(1, &state.mask_tex);
+        glDeleteFramebuffers(1, &state.preview_fbo);
+        glDeleteTextures(1, &state.preview_tex);
+        state.preview_fbo = state.preview_tex = 0;
+        state.preview_w = state.preview_h = 0;
         state.fbo = state.out_fbo = state.ref_fbo = state.ref_tex = state.mask_fbo = state.mask_tex = 0;
         state.ref_samples = 0;
     }
@@ -103,6 +110,20 @@ bool render_set_scene(const scene *s, const char *extra_defines, err_t *err)
     return true;
 }
 
+/* A framebuffer with one NEAREST-filtered colour texture. */
+static void single_target(GLenum internal, GLenum format, GLenum type, int w, int h, GLuint *fbo, GLuint *tex)
+{
+    glGenFramebuffers(1, fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, *fbo);
+    glGenTextures(1, tex);
+    glBindTexture(GL_TEXTURE_2D, *tex);
+    glTexImage2D(GL_TEXTURE_2D, 0, (GLint)internal, w, h, 0, format, type, NULL);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, *tex, 0);
+    assert(glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE);
+}
+
 void render_resize(int width, int height)
 {
     assert(width > 0 && height > 0);
@@ -125,31 +146,21 @@ void render_resize(int width, int height)
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + (GLenum)i, GL_TEXTURE_2D, state.targets[i], 0);
     }
     assert(glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE);
-    glGenFramebuffers(1, &state.out_fbo);
-    glBindFramebuffer(GL_FRAMEBUFFER, state.out_fbo);
-    glGenTextures(1, &state.out_tex);
-    glBindTexture(GL_TEXTURE_2D, state.out_tex);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, width, height, 0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, state.out_tex, 0);
-    assert(glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE);
-    glGenFramebuffers(1, &state.mask_fbo);
-    glBindFramebuffer(GL_FRAMEBUFFER, state.mask_fbo);
-    glGenTextures(1, &state.mask_tex);
-    glBindTexture(GL_TEXTURE_2D, state.mask_tex);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_R8, width, height, 0, GL_RED, GL_UNSIGNED_BYTE, NULL);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, state.mask_tex, 0);
-    assert(glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE);
+    single_target(GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE, width, height, &state.out_fbo, &state.out_tex);
+    single_target(GL_R8, GL_RED, GL_UNSIGNED_BYTE, width, height, &state.mask_fbo, &state.mask_tex);
+    single_target(GL_RGBA32F, GL_RGBA, GL_FLOAT, width, height, &state.preview_fbo, &state.preview_tex);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     state.samples = 0;
+    state.band_done = 0;
 }
 
 void render_set_active(int width, int height)
 {
     assert(width > 0 && height > 0 && width <= state.alloc_width && height <= state.alloc_height);
-    if (width != state.width || height != state.height)
+    if (width != state.width || height != state.height) {
         state.samples = 0;
+        state.band_done = 0;
+    }
     state.width = width;
     state.height = height;
     render_set_window(width, height, 0, 0);
@@ -173,6 +184,7 @@ void render_begin(const camera *c)
 {
     state.cam = *c;
     state.samples = 0;
+    state.band_done = 0;
 }
 
 int render_samples(void) { return state.samples; }
@@ -226,11 +238,12 @@ static float halton(int i, int base)
 
 static GLint loc(const char *name) { return glGetUniformLocation(state.prog, name); }
 
-void render_sample(void)
+/* Rows [y0, y1) of the current sample (GL rows, bottom up). */
+static void sample_rows(int y0, int y1)
 {
     assert(state.fbo && state.prog);
     bool adaptive = state.adaptive && state.samples > 0;
-    if (adaptive && state.samples == 1)
+    if (adaptive && state.samples == 1 && state.band_done == 0)
         build_edge_mask();
     glBindFramebuffer(GL_FRAMEBUFFER, state.fbo);
     glViewport(0, 0, state.width, state.height);
@@ -238,10 +251,12 @@ void render_sample(void)
     static const GLenum colour_only[NUM_TARGETS] = {GL_COLOR_ATTACHMENT0, GL_NONE, GL_NONE};
     bool first = state.samples == 0;
     glDrawBuffers(NUM_TARGETS, first ? all : colour_only);
-    if (first) {
+    if (first && state.band_done == 0) {
         glClearColor(0, 0, 0, 0);
         glClear(GL_COLOR_BUFFER_BIT);
     }
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(0, y0, state.width, y1 - y0);
     glEnablei(GL_BLEND, 0);
     glBlendFunc(GL_ONE, GL_ONE);
     glDisablei(GL_BLEND, 1);
@@ -271,7 +286,42 @@ void render_sample(void)
     glBindVertexArray(state.vao);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glDisablei(GL_BLEND, 0);
+    glDisable(GL_SCISSOR_TEST);
+}
+
+void render_sample(void)
+{
+    sample_rows(0, state.height - state.band_done);
     state.samples++;
+    state.band_done = 0;
+}
+
+int render_band_rows(void) { return state.band_done; }
+
+bool render_sample_band(int rows)
+{
+    rows = rows < 1 ? 1 : rows;
+    int top = state.height - state.band_done, bottom = top - rows > 0 ? top - rows : 0;
+    sample_rows(bottom, top);
+    state.band_done += top - bottom;
+    if (state.band_done < state.height)
+        return false;
+    state.samples++;
+    state.band_done = 0;
+    return true;
+}
+
+void render_keep_preview(void)
+{
+    if (!state.samples)
+        return;
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, state.fbo);
+    glReadBuffer(GL_COLOR_ATTACHMENT0);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, state.preview_fbo);
+    glBlitFramebuffer(0, 0, state.width, state.height, 0, 0, state.width, state.height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    state.preview_w = state.width;
+    state.preview_h = state.height;
 }
 
 void render_grab_reference(void)
@@ -313,7 +363,11 @@ void render_display(GLuint fbo, int width, int height, float exposure, render_vi
     glBindTexture(GL_TEXTURE_2D, state.ref_tex);
     glActiveTexture(GL_TEXTURE3);
     glBindTexture(GL_TEXTURE_2D, state.targets[1]);
+    glActiveTexture(GL_TEXTURE4);
+    glBindTexture(GL_TEXTURE_2D, state.preview_tex);
     glActiveTexture(GL_TEXTURE0);
+    glUniform1i(glGetUniformLocation(p, "uPreview"), 4);
+    glUniform2f(glGetUniformLocation(p, "uPreviewSize"), (float)state.preview_w, (float)state.preview_h);
     glUniform1i(glGetUniformLocation(p, "uReference"), 2);
     glUniform1i(glGetUniformLocation(p, "uNormalDepth"), 3);
     glUniform1i(glGetUniformLocation(p, "uEdgeAware"), state.edge_aware ? 1 : 0);
@@ -412,5 +466,6 @@ bool render_reload(err_t *err)
     if (scene_gpu_current())
         scene_gpu_uniforms(state.prog, scene_gpu_current());
     state.samples = 0;
+    state.band_done = 0;
     return true;
 }

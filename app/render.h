@@ -43,6 +43,14 @@ void render_set_window(int full_width, int full_height, int left, int top);
 void render_begin(const camera *c); /* new view: restart accumulation */
 void render_sample(void);           /* add one sample */
 int render_samples(void);
+/* The next `rows` rows (from the top) of the current sample: the window spreads a full-size sample
+ * over display frames so it keeps reading input. True when the sample is complete. */
+bool render_sample_band(int rows);
+/* Keeps the current (moving, smaller) image: until a still image's first sample reaches a row, the
+ * display shows this one stretched there. */
+void render_keep_preview(void);
+/* Rows of the current sample render_sample_band has done (0: none, or the sample is complete). */
+int render_band_rows(void);
 /* Adaptive sampling: after the first sample of an image, further samples only where the edge mask
  * (shaders/edgemask.frag: colour, depth, hit or normal differs in the 3x3 block) is set. Off by
  * default (offline images sample every pixel); the window turns it on. */

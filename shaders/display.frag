@@ -7,6 +7,8 @@ uniform sampler2D uAux; // target 2: steps, exit direction
 uniform sampler2D uReference;
 uniform sampler2D uNormalDepth; // target 1: depth in w (−1: a miss)
 uniform int uEdgeAware;         // 1: a stretched image does not blend across depth edges
+uniform sampler2D uPreview;     // the last moving image (render_keep_preview), bottom-left corner
+uniform vec2 uPreviewSize;      // its size; 0: none
 uniform float uInvRefSamples;
 uniform float uExposure;
 uniform int uView;
@@ -82,6 +84,15 @@ void main()
         return;
     }
     vec4 a = bilinear4(uAccum);
+    if (texelFetch(uAccum, nearestTexel(), 0).a == 0.0 && uPreviewSize.x > 0.0) {
+        // a still image whose first sample has not reached this row yet: the last moving image
+        vec2 p = gl_FragCoord.xy * uPreviewSize / uDstSize - 0.5;
+        ivec2 i = ivec2(floor(p)), hi = ivec2(uPreviewSize) - 1;
+        vec2 f = p - vec2(i);
+        vec4 t00 = texelFetch(uPreview, clamp(i, ivec2(0), hi), 0), t10 = texelFetch(uPreview, clamp(i + ivec2(1, 0), ivec2(0), hi), 0);
+        vec4 t01 = texelFetch(uPreview, clamp(i + ivec2(0, 1), ivec2(0), hi), 0), t11 = texelFetch(uPreview, clamp(i + ivec2(1, 1), ivec2(0), hi), 0);
+        a = mix(mix(t00 / max(t00.a, 1e-6), t10 / max(t10.a, 1e-6), f.x), mix(t01 / max(t01.a, 1e-6), t11 / max(t11.a, 1e-6), f.x), f.y);
+    }
     vec3 c = a.rgb / max(a.a, 1e-6); // alpha counts each pixel's own samples (adaptive sampling)
     oColor = vec4(linearToSrgb(acesFit(c * uExposure)), 1.0);
 }
