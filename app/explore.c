@@ -50,12 +50,21 @@ static struct {
     knob_id knob;                      /* the knob that =/- step (one the window steps) */
     int knob_step;                     /* pending: +1 or -1 */
     char knob_sets[KNOB_COUNT][64];    /* the stepped knobs, as --set overrides */
+    /* a recalled view's overrides (its command line and stepped knobs when saved): they replace the
+     * command line's for this scene until another scene is picked */
+    char view_sets[CLI_MAX_SETS][256];
+    int view_set_count;
+    /* the overrides in force besides the stepped knobs: the command line's (first scene only) or a
+     * recalled view's; what screenshots and saved views record */
+    const char *base_sets[CLI_MAX_SETS];
+    int base_set_count;
     float surface_distance; /* the distance estimate at the camera (fractals: sets the flying speed) */
     char message[ERR_MSG_MAX];
     double frame_ms[FRAME_HISTORY];
     int frame_index;
     res_controller res; /* the internal resolution while moving */
     bool scaled;        /* the last frame was rendered below full size */
+    double band_rows;   /* rows of a still image's sample per display frame (0: not yet known) */
     /* the recorded flight (N adds a keyframe, Shift+N clears, L plays): docs/flights.md */
     path_camera keys[MAX_RECORDED_KEYS];
     int key_count;
@@ -226,8 +235,11 @@ static bool load_scene(const char *name, const cli_options *opt, bool first, err
     /* --set overrides belong to the scene named on the command line; stepped knobs to every scene */
     const char *sets[CLI_MAX_SETS + KNOB_COUNT];
     int n = 0;
-    for (int i = 0; first && i < opt->set_count; i++)
+    for (int i = 0; i < app.view_set_count; i++)
+        sets[n++] = app.view_sets[i];
+    for (int i = 0; first && !app.view_set_count && i < opt->set_count; i++)
         sets[n++] = opt->sets[i];
+    int base = n;
     for (int k = 0; k < KNOB_COUNT; k++)
         if (app.knob_sets[k][0])
             sets[n++] = app.knob_sets[k];
@@ -248,6 +260,8 @@ static bool load_scene(const char *name, const cli_options *opt, bool first, err
         scene_free(&app.scene);
     app.scene = next;
     app.have_scene = true;
+    memcpy(app.base_sets, sets, sizeof(char *) * (size_t)base);
+    app.base_set_count = base;
     if (!same_file) { /* a reload of the same file keeps the camera where the user flew it */
         float fov = first && opt->has_fov ? opt->fov_deg : app.scene.cam_fov_deg;
         const float *pos = first && opt->has_camera ? opt->camera : app.scene.cam_position;
@@ -279,23 +293,26 @@ static void step_knob(const cli_options *opt, int dir)
  * camera, size. */
 static void describe(const cli_options *opt, int w, int h, strbuf *out)
 {
+    (void)opt;
     const char *sets[CLI_MAX_SETS + KNOB_COUNT];
     int n = 0;
-    for (int i = 0; i < opt->set_count; i++)
-        sets[n++] = opt->sets[i];
+    for (int i = 0; i < app.base_set_count; i++)
+        sets[n++] = app.base_sets[i];
     for (int k = 0; k < KNOB_COUNT; k++)
         if (app.knob_sets[k][0])
             sets[n++] = app.knob_sets[k];
     shot_describe(app.scene.path, sets, n, &app.cam, w, h, out);
 }
 
-/* B: the view into the first free slot 1…9; Ctrl+N: back to view N (its camera and fov). */
-static void views(const cli_options *opt, int w, int h)
+/* B: the view into the first free slot 1…9; Ctrl+N: back to view N (its camera, fov and overrides).
+ * B and Ctrl+1-9. True when a recalled view changed the scene's overrides (the image restarts). */
+static bool views(const cli_options *opt, int w, int h)
 {
     char file[PATH_MAX_LEN];
     err_t e;
+    bool restart = false;
     if (!app.save_view && !app.recall_view)
-        return;
+        return false;
     if (!views_file(app.scene.name, file, sizeof file, &e)) {
         snprintf(app.message, sizeof app.message, "%s", e.msg);
     } else if (app.save_view) {
@@ -317,13 +334,32 @@ static void views(const cli_options *opt, int w, int h)
             ok = shot_parse(text, file, &d, &e);
             free(text);
         }
-        if (ok)
-            app.cam = d.cam, snprintf(app.message, sizeof app.message, "back at view %s", name);
-        else
+        if (ok) { /* the view's overrides replace the ones in force (its knobs were saved among them) */
+            char keep_sets[KNOB_COUNT][64];
+            memcpy(keep_sets, app.knob_sets, sizeof keep_sets);
+            int keep_count = app.view_set_count;
+            memset(app.knob_sets, 0, sizeof app.knob_sets);
+            for (int i = 0; i < d.set_count; i++)
+                snprintf(app.view_sets[i], sizeof app.view_sets[0], "%s", d.sets[i]);
+            app.view_set_count = d.set_count > 0 ? d.set_count : 0;
+            ok = load_scene(app.scene.path, opt, false, &e);
+            if (!ok) { /* keep what was in force */
+                memcpy(app.knob_sets, keep_sets, sizeof keep_sets);
+                app.view_set_count = keep_count;
+            }
+        }
+        if (ok) {
+            app.cam = d.cam;
+            snprintf(app.message, sizeof app.message, "back at view %s (%d override%s)", name, d.set_count,
+                     d.set_count == 1 ? "" : "s");
+            restart = true;
+        } else {
             snprintf(app.message, sizeof app.message, "%s", e.msg);
+        }
     }
     app.save_view = false;
     app.recall_view = 0;
+    return restart;
 }
 
 static void screenshot(const cli_options *opt, int w, int h)
@@ -479,6 +515,7 @@ static bool handle_requests(const cli_options *opt)
     bool restart = false;
     if (app.pending_scene >= 0) {
         err_t e;
+        app.view_set_count = 0; /* a recalled view's overrides belong to its own scene */
         if (!load_scene(app.names[app.pending_scene], opt, false, &e))
             snprintf(app.message, sizeof app.message, "%s", e.msg), fprintf(stderr, "%s\n", e.msg);
         else
@@ -538,18 +575,23 @@ static bool draw(const cli_options *opt, int w, int h, bool restart, camera *sho
         if (moving || !refining) {
             render_sample();
         } else {
-            /* a full-size sample in bands of about one frame's time (the moving frames measured the
-             * cost of a pixel), so the window reads input between them instead of freezing */
+            /* a full-size sample in bands of about one frame's time, so the window reads input between
+             * them instead of freezing: the first band's rows from the moving frames' cost of a pixel,
+             * then each band's from the last one's time */
             const res_controller *r = &app.res;
             double per_row = (double)r->per_pixel_ms * (double)w;
-            int rows = per_row > 0 ? (int)(r->target_ms / per_row) : h / 8;
-            render_sample_band(rows < 4 ? 4 : rows > h ? h : rows);
+            if (app.band_rows <= 0)
+                app.band_rows = per_row > 0 ? r->target_ms / per_row : h / 8.0;
+            app.band_rows = fmin(fmax(app.band_rows, 4.0), (double)h);
+            render_sample_band((int)app.band_rows);
         }
         glFinish();
         double ms = (glfwGetTime() - t0) * 1000.0;
         app.frame_ms[app.frame_index++ % FRAME_HISTORY] = ms;
         if (moving)
             res_update(&app.res, ms, (double)iw * ih, (double)w * h);
+        else if (refining && ms > 0) /* the next band: as many rows as fit the target */
+            app.band_rows *= fmin(fmax(app.res.target_ms / ms, 0.5), 2.0);
     }
     app.scaled = iw != w || ih != h;
     render_display(0, w, h, EXPOSURE, app.view);
@@ -580,7 +622,7 @@ static void loop(GLFWwindow *win, const cli_options *opt)
             glfwWaitEventsTimeout(IDLE_WAIT_S);
             continue;
         }
-        views(opt, w, h);
+        restart |= views(opt, w, h);
         bool moved, refining = draw(opt, w, h, restart, &shown, &moved);
         restart = false;
         glfwSwapBuffers(win);

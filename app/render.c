@@ -30,6 +30,7 @@ static struct {
     GLuint mask_prog, mask_fbo, mask_tex;
     int masked; /* pixels the mask kept, of the last mask */
     int band_done; /* rows of the current sample done by render_sample_band, from the top */
+    int first_jitter; /* the Halton point of an image's first sample (0: the pixel centre) */
     GLuint preview_fbo, preview_tex; /* the last moving image, shown where a still one has no sample yet */
     int preview_w, preview_h;
     camera cam;
@@ -191,6 +192,8 @@ int render_samples(void) { return state.samples; }
 
 void render_set_adaptive(bool on) { state.adaptive = on; }
 
+void render_set_first_jitter(int k) { state.first_jitter = k; }
+
 void render_set_edge_aware(bool on) { state.edge_aware = on; }
 
 int render_adaptive_pixels(void) { return state.masked; }
@@ -275,9 +278,9 @@ static void sample_rows(int y0, int y1)
     glUniform1ui(loc("uFxRuntime"), state.runtime_effects);
     glUniform1i(loc("uAdaptive"), adaptive ? 1 : 0);
     glUniform1i(loc("uEdgeMask"), UNIT_EDGE_MASK);
-    bool jitter = (scene_gpu_current()->effects & state.runtime_effects & (1u << EFFECT_AA)) && !first;
-    glUniform2f(loc("uJitter"), jitter ? halton(state.samples, 2) - 0.5f : 0.0f,
-                jitter ? halton(state.samples, 3) - 0.5f : 0.0f);
+    int k = first ? state.first_jitter : state.samples; /* Halton point k; 0 is the pixel centre */
+    bool jitter = (scene_gpu_current()->effects & state.runtime_effects & (1u << EFFECT_AA)) && k > 0;
+    glUniform2f(loc("uJitter"), jitter ? halton(k, 2) - 0.5f : 0.0f, jitter ? halton(k, 3) - 0.5f : 0.0f);
     scene_gpu_bind_textures();
     glActiveTexture(GL_TEXTURE0 + UNIT_EDGE_MASK);
     glBindTexture(GL_TEXTURE_2D, state.mask_tex);

@@ -55,6 +55,9 @@ int render_band_rows(void);
  * (shaders/edgemask.frag: colour, depth, hit or normal differs in the 3x3 block) is set. Off by
  * default (offline images sample every pixel); the window turns it on. */
 void render_set_adaptive(bool on);
+/* The sub-pixel point of an image's first sample: Halton point k (0, the default: the pixel centre).
+ * Moving frames that change it frame to frame let a reprojected history gather detail. */
+void render_set_first_jitter(int k);
 /* A stretched (moving) image: depth-aware upsampling, no blending across silhouettes, or plain
  * bilinear (the default: bench --interactive measures both, and bilinear is nearer the full frame). */
 void render_set_edge_aware(bool on);
