@@ -16,6 +16,11 @@ static struct {
     scene scene; /* a copy; map_glsl is not kept (the program cache owns its own copy) */
     bool have_scene;
     GLuint textures[SCENE_MAX_TEXTURES], envmap;
+    /* what each texture and the cube map were read from (path, size, mtime; the heights' flag): the
+     * next scene reuses a texture read from the same unchanged file (a flight's every frame, preset
+     * and knob switches), and a file changed on disk (R reload) is read again */
+    char texture_key[SCENE_MAX_TEXTURES][PATH_MAX_LEN + 64];
+    char envmap_key[6 * (PATH_MAX_LEN + 64)];
     int texture_width[SCENE_MAX_TEXTURES]; /* heightmaps: texels across (relief step size) */
     int env_size;
     GLuint height_tex, height_max_tex, height_top_tex; /* terrain: heights, max pyramid (tiles, top) */
@@ -64,18 +69,88 @@ static void free_heightfield(void)
     gpu.hf_key[0] = '\0';
 }
 
-static void free_textures(void)
+static void free_csg_list(void)
 {
     if (gpu.csg_list_tex) {
         glDeleteTextures(1, &gpu.csg_list_tex);
         glDeleteTextures(1, &gpu.csg_nodes_tex);
         gpu.csg_list_tex = gpu.csg_nodes_tex = 0;
     }
+}
+
+static void free_textures(void)
+{
+    free_csg_list();
     glDeleteTextures(SCENE_MAX_TEXTURES, gpu.textures);
     memset(gpu.textures, 0, sizeof gpu.textures);
+    memset(gpu.texture_key, 0, sizeof gpu.texture_key);
     if (gpu.envmap)
         glDeleteTextures(1, &gpu.envmap);
     gpu.envmap = 0;
+    gpu.envmap_key[0] = '\0';
+}
+
+/* Appends "path|bytes|mtime" of a file to a cache key. */
+static void file_key(const char *path, char *key, size_t n)
+{
+    struct stat st = {0};
+    stat(path, &st);
+    size_t len = strlen(key);
+    snprintf(key + len, n - len, "%s|%lld|%lld.%09ld;", path, (long long)st.st_size, (long long)st.st_mtim.tv_sec,
+             st.st_mtim.tv_nsec);
+}
+
+/* The scene's textures: each reused from the last scene when read from the same unchanged file, else
+ * read; the last scene's others are freed. */
+static bool set_textures(const scene *s, err_t *err)
+{
+    GLuint old[SCENE_MAX_TEXTURES];
+    char old_key[SCENE_MAX_TEXTURES][sizeof gpu.texture_key[0]];
+    int old_width[SCENE_MAX_TEXTURES];
+    memcpy(old, gpu.textures, sizeof old);
+    memcpy(old_key, gpu.texture_key, sizeof old_key);
+    memcpy(old_width, gpu.texture_width, sizeof old_width);
+    memset(gpu.textures, 0, sizeof gpu.textures);
+    memset(gpu.texture_key, 0, sizeof gpu.texture_key);
+    bool ok = true;
+    for (int i = 0; ok && i < s->texture_count; i++) {
+        char key[sizeof gpu.texture_key[0]] = "";
+        snprintf(key, sizeof key, "%d;", s->texture_linear[i]);
+        file_key(s->textures[i], key, sizeof key);
+        for (int j = 0; j < SCENE_MAX_TEXTURES && !gpu.textures[i]; j++)
+            if (old[j] && !strcmp(old_key[j], key)) {
+                gpu.textures[i] = old[j], gpu.texture_width[i] = old_width[j];
+                old[j] = 0;
+            }
+        if (!gpu.textures[i]) {
+            int w = 0;
+            gpu.textures[i] = s->texture_linear[i] ? texture_load_height(s->textures[i], &w, err)
+                                                   : texture_load_2d(s->textures[i], err);
+            gpu.texture_width[i] = w;
+            ok = gpu.textures[i] != 0;
+        }
+        if (ok)
+            snprintf(gpu.texture_key[i], sizeof gpu.texture_key[i], "%s", key);
+    }
+    for (int j = 0; j < SCENE_MAX_TEXTURES; j++)
+        if (old[j])
+            glDeleteTextures(1, &old[j]);
+    return ok;
+}
+
+/* The cube map: kept when its six files are unchanged, else read. */
+static bool set_envmap(const scene *s, err_t *err)
+{
+    char key[sizeof gpu.envmap_key] = "";
+    for (int f = 0; f < 6; f++)
+        file_key(s->cubemap[f], key, sizeof key);
+    if (gpu.envmap && !strcmp(key, gpu.envmap_key))
+        return true;
+    if (gpu.envmap)
+        glDeleteTextures(1, &gpu.envmap);
+    gpu.envmap = texture_load_cube(s->cubemap, &gpu.env_size, err);
+    snprintf(gpu.envmap_key, sizeof gpu.envmap_key, "%s", gpu.envmap ? key : "");
+    return gpu.envmap != 0;
 }
 
 void scene_gpu_shutdown(void)
@@ -172,12 +247,14 @@ static bool upload_heightfield(const scene *s, err_t *err)
                           .height_min = s->terrain.height_min, .height_max = s->terrain.height_max,
                           .exaggeration = s->terrain.exaggeration, .fill_nodata = s->terrain.fill_nodata};
     char key[sizeof gpu.hf_key];
-    struct stat st = {0};
-    stat(d.path, &st);
-    snprintf(key, sizeof key, "%s|%.9g %.9g|%.9g %.9g|%.9g|%d|%lld %lld.%09ld|%s", d.path, (double)d.spacing[0],
-             (double)d.spacing[1], (double)d.height_min, (double)d.height_max, (double)d.exaggeration, d.fill_nodata,
-             (long long)st.st_size, (long long)st.st_mtim.tv_sec, st.st_mtim.tv_nsec,
+    snprintf(key, sizeof key, "%.9g %.9g|%.9g %.9g|%.9g|%d|%s;", (double)d.spacing[0], (double)d.spacing[1],
+             (double)d.height_min, (double)d.height_max, (double)d.exaggeration, d.fill_nodata,
              getenv("FATHOM_TERRAIN_TILE") ? getenv("FATHOM_TERRAIN_TILE") : "");
+    file_key(d.path, key, sizeof key);
+    char side[PATH_MAX_LEN]; /* the sidecar NAME.json (spacing, height range) counts too */
+    const char *dot = strrchr(d.path, '.');
+    snprintf(side, sizeof side, "%.*s.json", (int)(dot ? dot - d.path : (long)strlen(d.path)), d.path);
+    file_key(side, key, sizeof key);
     if (gpu.height_tex && !strcmp(key, gpu.hf_key))
         return true;
     free_heightfield();
@@ -335,16 +412,10 @@ const droplets *render_droplets(double *read_s, double *grid_s)
 
 bool scene_gpu_set(const scene *s, err_t *err)
 {
-    free_textures();
+    free_csg_list();
     gpu.have_scene = false;
-    for (int i = 0; i < s->texture_count; i++) {
-        int w = 0;
-        gpu.textures[i] = s->texture_linear[i] ? texture_load_height(s->textures[i], &w, err)
-                                               : texture_load_2d(s->textures[i], err);
-        gpu.texture_width[i] = w;
-        if (!gpu.textures[i])
-            return false;
-    }
+    if (!set_textures(s, err))
+        return false;
     if (!s->terrain.heightmap[0])
         free_heightfield();
     else if (!upload_heightfield(s, err))
@@ -361,11 +432,14 @@ bool scene_gpu_set(const scene *s, err_t *err)
     } else {
         free_droplets();
     }
-    gpu.env_size = 0;
     if (s->has_cubemap && (s->effects & (1u << EFFECT_ENVMAP))) {
-        gpu.envmap = texture_load_cube(s->cubemap, &gpu.env_size, err);
-        if (!gpu.envmap)
+        if (!set_envmap(s, err))
             return false;
+    } else if (gpu.envmap) {
+        glDeleteTextures(1, &gpu.envmap);
+        gpu.envmap = 0;
+        gpu.envmap_key[0] = '\0';
+        gpu.env_size = 0;
     }
     gpu.scene = *s;
     gpu.scene.map_glsl = NULL; /* the caller's: the copy keeps no pointer */

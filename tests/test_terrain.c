@@ -438,6 +438,42 @@ static void tiled_grids(void **st)
     remove_dems(dir, (const char *const[]){"strip", "holes", "wide", NULL});
 }
 
+/* The heightfield stays on the GPU while scenes read the same file (a flight's frames), and a file
+ * rewritten on disk (R reload) is read again: the key holds its size and modification time. */
+static void changed_file_is_read_again(void **st)
+{
+    (void)st;
+    enum { N = 16 };
+    float heights[N * N];
+    char dir[] = "/tmp/fathom-reread-XXXXXX", path[128], json[512];
+    assert_non_null(mkdtemp(dir));
+    snprintf(path, sizeof path, "%s/dem.exr", dir);
+    snprintf(json, sizeof json, "{\"program\": \"terrain\", \"materials\": {\"rock\": {}}, \"quality\": {\"spp\": 1}, "
+             "\"terrain\": {\"heightmap\": \"%s\", \"spacing\": [1, 1]}}", path);
+    camera cam = cam_at(0, 50, 0.01, 0, 0, 0, 30); /* straight down on the middle */
+    static float aov[W * H * AOV];
+    double depth[3];
+    err_t e;
+    for (int k = 0; k < 3; k++) {
+        if (k != 1) { /* k = 1 draws again without touching the file */
+            for (int i = 0; i < N * N; i++)
+                heights[i] = k ? 20.0f : 5.0f;
+            assert_true(image_write_f32(path, N, N, 1, (const char *const[]){"Y"}, heights, &e));
+        }
+        scene s;
+        load_text(json, NULL, 0, &s);
+        draw(&s, &cam, W, H, 1, NULL, aov, NULL);
+        depth[k] = aov[(H / 2 * W + W / 2) * AOV + AOV_SLOT_DEPTH];
+        scene_free(&s);
+    }
+    fprintf(stderr, "depth to the middle: %.3f, again %.3f, after the file changed %.3f\n", depth[0], depth[1], depth[2]);
+    assert_near(depth[0], 45, 0.05);
+    assert_near(depth[1], 45, 0.05);
+    assert_near(depth[2], 30, 0.05);
+    unlink(path);
+    rmdir(dir);
+}
+
 /* terrain.normals=patch: the normal at each hit is the hit bilinear patch's own, against its gradient
  * in double at the reference's hit point (pixels whose hit lies within 0.01 cell of a cell edge are
  * left out: the surface has a crease there). The smooth default differs: the test can fail. */
@@ -669,6 +705,7 @@ int main(void)
         cmocka_unit_test(nodata_holes),
         cmocka_unit_test(patch_normals_are_exact),
         cmocka_unit_test(tiled_grids),
+        cmocka_unit_test(changed_file_is_read_again),
         cmocka_unit_test(ridges_have_no_black_dashes),
         cmocka_unit_test(fog_against_quadrature),
         cmocka_unit_test(out_of_steps_is_not_a_miss),
