@@ -105,6 +105,16 @@ bool dem_read(const char *path, int max_side, int *w, int *h, float **heights, d
                      "(gdal_translate -outsize)", path, W, H, max_side);
         goto done;
     }
+    /* what drawing it takes (app/terrain.h: heights on the CPU and the GPU, the pyramid): refused up
+     * front when it is more than this machine's memory, rather than after minutes of reading */
+    double need = (double)W * (double)H * DEM_BYTES_PER_TEXEL;
+    long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
+    double have = pages > 0 && page > 0 ? (double)pages * (double)page : INFINITY;
+    if (need > have) {
+        err_set(err, "DEM '%s' is %dx%d: drawing it takes about %.0f GB and this machine has %.0f GB; cut or resample it "
+                     "(gdal_translate -outsize)", path, W, H, need / 1e9, have / 1e9);
+        goto done;
+    }
     snprintf(info->type, sizeof info->type, "%s", GDALGetDataTypeName(type));
     info->is_float = GDALDataTypeIsFloating(type);
     if (!georeference(ds, path, H, info, err))

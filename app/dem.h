@@ -27,6 +27,10 @@ typedef struct dem_info {
     size_t holes;        /* nodata (and NaN) texels */
 } dem_info;
 
+/* Memory a drawn DEM takes per texel (measured: docs/terrain-scale, 11.7 at 16384²): a DEM that needs
+ * more than the machine's memory is refused before it is read. */
+#define DEM_BYTES_PER_TEXEL 12.0
+
 /* True for a path fathom reads as a plain image (OpenImageIO: PNG, JPEG, EXR, HDR, PFM), whose values
  * are normalised colours; everything else goes to GDAL. */
 bool dem_is_image(const char *path);
