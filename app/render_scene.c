@@ -8,12 +8,14 @@
 #include <sys/stat.h>
 
 #include "droplets.h"
+#include "render.h"
 #include "render_parts.h"
 #include "terrain.h"
 #include "texture.h"
 
 static struct {
-    scene scene; /* a copy; map_glsl is not kept (the program cache owns its own copy) */
+    scene scene; /* a copy, with map_glsl pointing to our own copy of the caller's */
+    char *map_glsl;
     bool have_scene;
     GLuint textures[SCENE_MAX_TEXTURES], envmap;
     /* what each texture and the cube map were read from (path, size, mtime; the heights' flag): the
@@ -158,6 +160,7 @@ void scene_gpu_shutdown(void)
     free_textures();
     free_heightfield();
     free_droplets();
+    free(gpu.map_glsl);
     memset(&gpu, 0, sizeof gpu);
 }
 
@@ -273,6 +276,10 @@ static bool upload_heightfield(const scene *s, err_t *err)
     for (int ty = 0; ty < t->tiles_y; ty++)
         for (int tx = 0; tx < t->tiles_x; tx++)
             upload_block(hf->h, hf->width, hf->height, tx * t->hx, ty * t->hy, t->hx, t->hy, 0, ty * t->tiles_x + tx);
+    /* the heights live on the GPU from here (the pyramid was built from them; the ground under the
+     * walking camera is a probe of the shader's own surface): a DEM is not held twice */
+    free(hf->h);
+    hf->h = NULL;
     /* pyramid levels 1…tile_level in the tiles (mip k−1 = level k), each tile's share of the level; a
      * tile's nodes beyond the level's padded size do not exist (their parents are −inf) */
     int mips = t->tile_level > 0 ? t->tile_level : 1;
@@ -299,7 +306,7 @@ static bool upload_heightfield(const scene *s, err_t *err)
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, top > 0 ? top - 1 : 0);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    heightfield_drop_pyramid(hf); /* on the GPU now: the heights stay for the camera's clearance */
+    heightfield_drop_pyramid(hf); /* on the GPU now */
     if (glGetError() == GL_OUT_OF_MEMORY) {
         int W = hf->width, H = hf->height;
         double mb = 4.0 * (double)t->hx * t->hy * layers / 1048576.0;
@@ -442,7 +449,9 @@ bool scene_gpu_set(const scene *s, err_t *err)
         gpu.env_size = 0;
     }
     gpu.scene = *s;
-    gpu.scene.map_glsl = NULL; /* the caller's: the copy keeps no pointer */
+    free(gpu.map_glsl);
+    gpu.map_glsl = s->map_glsl ? util_strdup(s->map_glsl) : NULL;
+    gpu.scene.map_glsl = gpu.map_glsl; /* its own copy: probes of the current scene compile with it */
     gpu.scene.csg_list = gpu.scene.csg_nodes = NULL;
     gpu.have_scene = true;
     return true;
@@ -578,8 +587,16 @@ bool render_terrain_tiles(int *tiles_x, int *tiles_y)
 
 bool render_ground_height(float x, float z, float *height)
 {
-    if (!gpu.height_tex)
+    if (!gpu.height_tex || !gpu.have_scene)
         return false;
-    *height = heightfield_at(&gpu.hf, x, z);
+    /* the terrain's map() at height 0 is −h · (its slope bound): probed on the GPU, the heights' home */
+    float p[3] = {x, 0.0f, z}, out[2];
+    err_t e;
+    if (!render_probe(&gpu.scene, NULL, p, 1, out, &e))
+        return false;
+    float h = -out[0] * sqrtf(1.0f + gpu.hf.lipschitz * gpu.hf.lipschitz);
+    if (!isfinite(h) || TERRAIN_IS_HOLE(h)) /* over a nodata hole: no ground */
+        return false;
+    *height = h;
     return true;
 }

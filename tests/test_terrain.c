@@ -474,6 +474,54 @@ static void changed_file_is_read_again(void **st)
     rmdir(dir);
 }
 
+/* The heights live only on the GPU once uploaded; the walking camera's ground is a probe of the
+ * shader's surface. It must equal the bilinear surface in double (the CPU reference) everywhere on the
+ * footprint, and report no ground over a nodata hole. */
+static void ground_height_probe(void **st)
+{
+    (void)st;
+    char dir[] = "/tmp/fathom-ground-XXXXXX", scene_path[300];
+    assert_non_null(mkdtemp(dir));
+    synthetic_dem(dir, "holes", 256, 192, true, scene_path, sizeof scene_path);
+    scene s;
+    err_t e;
+    if (!scene_load(scene_path, NULL, 0, &s, &e))
+        fail_msg("%s", e.msg);
+    heightfield hf;
+    heightfield_desc d = {.path = s.terrain.heightmap, .spacing = {s.terrain.spacing[0], s.terrain.spacing[1]},
+                          .exaggeration = 1};
+    if (!heightfield_load(&d, &hf, &e))
+        fail_msg("%s", e.msg);
+    camera cam = cam_at(0, 3000, 1, 0, 0, 0, 40);
+    draw(&s, &cam, 8, 8, 1, NULL, NULL, NULL); /* puts the scene on the GPU */
+    int checked = 0, holes = 0;
+    double worst = 0;
+    for (int k = 0; k < 400; k++) {
+        double x = hf.x0 + hf.dx * (0.5 + (hf.width - 1) * ((k * 0.6180339887) - floor(k * 0.6180339887)));
+        double z = hf.z0 + hf.dz * (0.5 + (hf.height - 1) * ((k * 0.7548776662) - floor(k * 0.7548776662)));
+        double cx = (x - hf.x0) / hf.dx - 0.5, cz = (z - hf.z0) / hf.dz - 0.5;
+        int i = (int)fmin(floor(cx), hf.width - 2), j = (int)fmin(floor(cz), hf.height - 2);
+        bool hole = TERRAIN_IS_HOLE(fmin(fmin(texel(&hf, i, j), texel(&hf, i + 1, j)),
+                                         fmin(texel(&hf, i, j + 1), texel(&hf, i + 1, j + 1))));
+        float g;
+        bool got = render_ground_height((float)x, (float)z, &g);
+        if (hole) {
+            assert_false(got);
+            holes++;
+            continue;
+        }
+        assert_true(got);
+        worst = fmax(worst, fabs(g - height_cell(&hf, cx, cz)));
+        checked++;
+    }
+    fprintf(stderr, "ground probe: %d points within %.2g m of the bilinear surface in double, %d over holes\n", checked,
+            worst, holes);
+    assert_true(worst < 1e-3 * (hf.hmax - hf.hmin) && holes > 0 && checked > 300);
+    heightfield_free(&hf);
+    scene_free(&s);
+    remove_dems(dir, (const char *const[]){"holes", NULL});
+}
+
 /* terrain.normals=patch: the normal at each hit is the hit bilinear patch's own, against its gradient
  * in double at the reference's hit point (pixels whose hit lies within 0.01 cell of a cell edge are
  * left out: the surface has a crease there). The smooth default differs: the test can fail. */
@@ -706,6 +754,7 @@ int main(void)
         cmocka_unit_test(patch_normals_are_exact),
         cmocka_unit_test(tiled_grids),
         cmocka_unit_test(changed_file_is_read_again),
+        cmocka_unit_test(ground_height_probe),
         cmocka_unit_test(ridges_have_no_black_dashes),
         cmocka_unit_test(fog_against_quadrature),
         cmocka_unit_test(out_of_steps_is_not_a_miss),
