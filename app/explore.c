@@ -291,9 +291,8 @@ static void step_knob(const cli_options *opt, int dir)
 
 /* The current view as a shot description: scene, overrides (the command line's, then the stepped knobs),
  * camera, size. */
-static void describe(const cli_options *opt, int w, int h, strbuf *out)
+static void describe(int w, int h, strbuf *out)
 {
-    (void)opt;
     const char *sets[CLI_MAX_SETS + KNOB_COUNT];
     int n = 0;
     for (int i = 0; i < app.base_set_count; i++)
@@ -319,7 +318,7 @@ static bool views(const cli_options *opt, int w, int h)
         int slot = views_next_free(file);
         char name[2] = {(char)('0' + (slot ? slot : 9)), '\0'};
         strbuf d = {0};
-        describe(opt, w, h, &d);
+        describe(w, h, &d);
         if (views_save(file, name, d.data, &e))
             snprintf(app.message, sizeof app.message, "saved view %s (Ctrl+%s recalls it; --view %s renders it)%s",
                      name, name, name, slot ? "" : ": all nine were used, 9 replaced");
@@ -362,14 +361,14 @@ static bool views(const cli_options *opt, int w, int h)
     return restart;
 }
 
-static void screenshot(const cli_options *opt, int w, int h)
+static void screenshot(int w, int h)
 {
     char file[128];
     time_t now = time(NULL);
     strftime(file, sizeof file, "fathom-%Y%m%d-%H%M%S.png", localtime(&now));
     err_t err;
     strbuf description = {0}; /* the shot remembers how it was made */
-    describe(opt, w, h, &description);
+    describe(w, h, &description);
     bool ok = offline_write(file, w, h, 0, description.data, &err);
     sb_free(&description);
     if (ok)
@@ -597,7 +596,7 @@ static bool draw(const cli_options *opt, int w, int h, bool restart, camera *sho
     render_display(0, w, h, EXPOSURE, app.view);
     hud(w, h);
     if (app.screenshot) {
-        screenshot(opt, iw, ih);
+        screenshot(iw, ih);
         app.screenshot = false;
     }
     return refining || app.scaled;

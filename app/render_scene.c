@@ -254,9 +254,8 @@ static bool upload_heightfield(const scene *s, err_t *err)
              (double)d.height_min, (double)d.height_max, (double)d.exaggeration, d.fill_nodata,
              getenv("FATHOM_TERRAIN_TILE") ? getenv("FATHOM_TERRAIN_TILE") : "");
     file_key(d.path, key, sizeof key);
-    char side[PATH_MAX_LEN]; /* the sidecar NAME.json (spacing, height range) counts too */
-    const char *dot = strrchr(d.path, '.');
-    snprintf(side, sizeof side, "%.*s.json", (int)(dot ? dot - d.path : (long)strlen(d.path)), d.path);
+    char side[PATH_MAX_LEN]; /* the sidecar (spacing, height range) counts too */
+    terrain_sidecar_path(d.path, side, sizeof side);
     file_key(side, key, sizeof key);
     if (gpu.height_tex && !strcmp(key, gpu.hf_key))
         return true;

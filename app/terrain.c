@@ -112,11 +112,16 @@ bool terrain_spacing_ok(double metres) { return isfinite(metres) && metres > 0 &
 
 /* NAME.json beside NAME.png: spacing and the height range of an integer image. Only the values the
  * scene left unset are taken, and each is checked like the scene's own. */
+void terrain_sidecar_path(const char *path, char *out, size_t n)
+{
+    const char *dot = strrchr(path, '.');
+    snprintf(out, n, "%.*s.json", (int)(dot ? dot - path : (long)strlen(path)), path);
+}
+
 static bool read_sidecar(const char *path, float spacing[2], float *lo, float *hi, err_t *err)
 {
     char side[PATH_MAX_LEN];
-    const char *dot = strrchr(path, '.');
-    snprintf(side, sizeof side, "%.*s.json", (int)(dot ? dot - path : (long)strlen(path)), path);
+    terrain_sidecar_path(path, side, sizeof side);
     if (!util_file_exists(side))
         return true;
     char *text;
@@ -322,17 +327,4 @@ void heightfield_free(heightfield *hf)
     free(hf->max);
     free(hf->h);
     *hf = (heightfield){0};
-}
-
-float heightfield_at(const heightfield *hf, float x, float z)
-{
-    float u = (x - hf->x0) / hf->dx - 0.5f, v = (z - hf->z0) / hf->dz - 0.5f;
-    u = fminf(fmaxf(u, 0.0f), (float)(hf->width - 1));
-    v = fminf(fmaxf(v, 0.0f), (float)(hf->height - 1));
-    int i = (int)fminf(floorf(u), (float)(hf->width - 2)), j = (int)fminf(floorf(v), (float)(hf->height - 2));
-    float a = u - (float)i, b = v - (float)j;
-    const float *r0 = hf->h + (size_t)j * (size_t)hf->width + (size_t)i, *r1 = r0 + hf->width;
-    if (TERRAIN_IS_HOLE(fminf(fminf(r0[0], r0[1]), fminf(r1[0], r1[1]))))
-        return TERRAIN_HOLE;
-    return (1 - b) * ((1 - a) * r0[0] + a * r0[1]) + b * ((1 - a) * r1[0] + a * r1[1]);
 }

@@ -73,10 +73,10 @@ float heightfield_cell_max(const heightfield *hf, int i, int j);
 /* Frames a camera without loading the heights: the footprint in metres (x, z), the height range after
  * exaggeration (GDAL's approximate one for DEMs) and the spacing. */
 bool heightfield_probe(const heightfield_desc *d, double size[2], double range[2], double spacing[2], err_t *err);
-/* Frees the max pyramid once it is on the GPU (the heights stay for heightfield_at). */
+/* Frees the max pyramid once it is on the GPU. */
 void heightfield_drop_pyramid(heightfield *hf);
 
-/* Bilinear height at world (x, z), clamped to the footprint. */
-float heightfield_at(const heightfield *hf, float x, float z);
+/* The sidecar of a heightmap: NAME.json beside NAME.EXT (spacing and height range of an image). */
+void terrain_sidecar_path(const char *path, char *out, size_t n);
 
 #endif
