@@ -7,9 +7,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "camera.h"
-#include "path.h"
-#include "quality.h"
+#include "view/camera.h"
+#include "view/path.h"
+#include "scene/quality.h"
+#include "data/image_io.h"
 
 enum { MAX_IMAGE_SIDE = 16384, MAX_SPP = 1 << 16, DEFAULT_RUNS = 5, MAX_RUNS = 1000 };
 static const float MAX_FOV_DEG = 179.0f; /* vertical field of view; 180 degrees has no perspective */
@@ -402,4 +403,41 @@ bool cli_parse(int argc, char **argv, cli_options *o, err_t *err)
     if (o->has_frames && !o->path && !parse_int(o->frames_arg, 1, 1 << 30, &o->frames))
         return err_set(err, "bad --frames '%s': expected a whole number >= 1 (a range A-B needs --path)", o->frames_arg);
     return check_combinations(o, err);
+}
+
+_Static_assert((int)SHOT_SET_MAX <= (int)CLI_MAX_SETS, "a shot's overrides must fit the command line's");
+
+bool cli_apply_shot_text(cli_options *o, const char *text, const char *source, shot_desc *d, err_t *err)
+{
+    if (!shot_parse(text, source, d, err))
+        return false;
+    if (d->set_count + o->set_count > CLI_MAX_SETS)
+        return err_set(err, "%s: its %d overrides and the command line's %d are more than %d", source, d->set_count,
+                       o->set_count, CLI_MAX_SETS);
+    const char *sets[CLI_MAX_SETS];
+    int n = 0;
+    for (int i = 0; i < d->set_count; i++)
+        sets[n++] = d->sets[i];
+    for (int i = 0; i < o->set_count; i++)
+        sets[n++] = o->sets[i];
+    memcpy(o->sets, sets, sizeof(sets[0]) * (size_t)n);
+    o->set_count = n;
+    o->scene = d->scene;
+    if (!o->has_camera && !o->has_look_at && !o->has_fov)
+        o->has_view = true, o->view = d->cam;
+    if (!o->width)
+        o->width = d->width, o->height = d->height;
+    return true;
+}
+
+bool cli_apply_shot(cli_options *o, shot_desc *d, err_t *err)
+{
+    char *text;
+    if (!util_file_exists(o->scene))
+        return err_set(err, "image '%s' not found: check the path", o->scene);
+    if (!image_read_text(o->scene, SHOT_KEY, &text, err))
+        return false;
+    bool ok = cli_apply_shot_text(o, text, o->scene, d, err);
+    free(text);
+    return ok;
 }

@@ -2,7 +2,7 @@
  *
  *   fathom [options]              explorer window (or an offline shot with --output)
  *   fathom bench [options]        what accuracy costs: knob sweeps, presets, effects (time and error)
- *   fathom render --path F ...    a flight: the frames of a camera path (app/path.h) to numbered files
+ *   fathom render --path F ...    a flight: the frames of a camera path (app/view/path.h) to numbered files
  *   fathom stitch --output F T... tiles rendered with --tile I/N, joined into the whole image
  *   fathom --help                 usage
  *
@@ -13,7 +13,8 @@
 
 #include <stdbool.h>
 
-#include "camera.h"
+#include "view/camera.h"
+#include "view/shot.h"
 #include "util.h"
 
 enum { CLI_MAX_SETS = 64 };
@@ -76,5 +77,12 @@ bool cli_parse_size(const char *s, int *w, int *h);
 bool cli_parse_vec3(const char *s, float v[3]);
 
 const char *cli_usage(void);
+
+/* --scene IMAGE: reads the image's shot and rewrites o to reopen it. The image's overrides come first
+ * and the command line's after them (so they win); its camera and size are used unless the command
+ * line gives its own. */
+bool cli_apply_shot(cli_options *o, shot_desc *d, err_t *err);
+/* The same from a shot text already read (a saved view: views.h). */
+bool cli_apply_shot_text(cli_options *o, const char *text, const char *source, shot_desc *d, err_t *err);
 
 #endif

@@ -5,16 +5,16 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "bench.h"
-#include "flight.h"
+#include "jobs/bench.h"
+#include "jobs/flight.h"
 #include "cli.h"
-#include "explore.h"
-#include "image_io.h"
-#include "offline.h"
-#include "render.h"
-#include "scene.h"
-#include "shot.h"
-#include "views.h"
+#include "window/explore.h"
+#include "data/image_io.h"
+#include "jobs/offline.h"
+#include "gpu/render.h"
+#include "scene/scene.h"
+#include "view/shot.h"
+#include "view/views.h"
 
 enum { EXIT_USAGE = 2, DEFAULT_WIDTH = 1280, DEFAULT_HEIGHT = 720 };
 
@@ -49,7 +49,7 @@ static bool apply_view(cli_options *o, shot_desc *shot, err_t *err)
     snprintf(name, sizeof name, "%.*s", (int)strcspn(base, "."), base);
     if (!views_file(name, file, sizeof file, err) || !views_load(file, o->view_name, &text, err))
         return false;
-    bool ok = shot_apply_text(o, text, file, shot, err);
+    bool ok = cli_apply_shot_text(o, text, file, shot, err);
     free(text);
     return ok;
 }
@@ -68,7 +68,7 @@ int main(int argc, char **argv)
         return 1;
     }
     static shot_desc shot; /* --scene SHOT.png: opt points into it */
-    if (opt.scene && shot_is_image(opt.scene) && !shot_apply(&opt, &shot, &err)) {
+    if (opt.scene && shot_is_image(opt.scene) && !cli_apply_shot(&opt, &shot, &err)) {
         fprintf(stderr, "fathom: %s\n", err.msg);
         return 1;
     }

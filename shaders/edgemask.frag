@@ -1,4 +1,4 @@
-// Adaptive sampling's mask (app/render.c): after the first sample (the pixel centres), a pixel gets
+// Adaptive sampling's mask (app/gpu/render.c): after the first sample (the pixel centres), a pixel gets
 // further, jittered samples only where a neighbour in its 3×3 block differs: in displayed colour by
 // more than EDGE_COLOR (tone-mapped, so a difference in the dark counts as it is seen), in depth by
 // more than EDGE_DEPTH of the nearer, in hit/miss, or in normal by more than ~25°. Elsewhere the

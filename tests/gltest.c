@@ -9,8 +9,8 @@
 #include <cmocka.h>
 #include <epoxy/gl.h>
 
-#include "gpu.h"
-#include "render.h"
+#include "gpu/gpu.h"
+#include "gpu/render.h"
 
 
 int gl_setup(void **st)

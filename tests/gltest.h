@@ -3,10 +3,10 @@
 #ifndef FATHOM_TEST_GLTEST_H
 #define FATHOM_TEST_GLTEST_H
 
-#include "aov.h"
-#include "camera.h"
+#include "gpu/aov.h"
+#include "view/camera.h"
 #include "reference.h"
-#include "scene.h"
+#include "scene/scene.h"
 
 enum { W = 97, H = 61, AOV = AOV_FLOATS };
 #define DEG2RAD (GLM_PI / 180.0)

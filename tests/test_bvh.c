@@ -11,7 +11,7 @@
 
 #include <cmocka.h>
 
-#include "bvh.h"
+#include "data/bvh.h"
 
 static double frand(unsigned *seed)
 {

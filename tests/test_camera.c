@@ -9,7 +9,7 @@
 
 #include "check.h"
 
-#include "camera.h"
+#include "view/camera.h"
 
 static const double TOL = 2e-6;
 

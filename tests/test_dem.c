@@ -17,9 +17,9 @@
 #include <ogr_srs_api.h>
 
 #include "check.h"
-#include "dem.h"
-#include "scene.h"
-#include "terrain.h"
+#include "data/dem.h"
+#include "scene/scene.h"
+#include "data/terrain.h"
 
 static char dir[] = "/tmp/fathom-dem-XXXXXX";
 

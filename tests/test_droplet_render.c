@@ -23,7 +23,7 @@
 
 #include "check.h"
 #include "gltest.h"
-#include "render.h"
+#include "gpu/render.h"
 
 static double frand(unsigned *seed)
 {

@@ -13,7 +13,7 @@
 
 #include "check.h"
 #include "gltest.h"
-#include "render.h"
+#include "gpu/render.h"
 
 static uint32_t rng = 987654321u;
 static double rnd(double lo, double hi)

@@ -15,12 +15,12 @@
 
 #include "check.h"
 #include "cli.h"
-#include "gpu.h"
-#include "image_io.h"
-#include "offline.h"
+#include "gpu/gpu.h"
+#include "data/image_io.h"
+#include "jobs/offline.h"
 #include "reference.h"
-#include "render.h"
-#include "scene.h"
+#include "gpu/render.h"
+#include "scene/scene.h"
 
 #include "gltest.h"
 

@@ -13,7 +13,7 @@
 
 #include <cmocka.h>
 
-#include "image_io.h"
+#include "data/image_io.h"
 
 enum { W = 7, H = 5 };
 static char dir[64];

@@ -10,7 +10,7 @@
 #include <cmocka.h>
 
 #include "check.h"
-#include "metrics.h"
+#include "jobs/metrics.h"
 
 enum { W = 5, H = 3, N = W * H };
 

@@ -1,4 +1,4 @@
-/* Camera paths (app/path.c) against hand-worked values and numerical derivatives:
+/* Camera paths (app/view/path.c) against hand-worked values and numerical derivatives:
  *  - the path passes through every key at its time (position, view direction, fov, parameters);
  *  - velocity, the turn rate and the parameter tracks are continuous at the keys (C1);
  *  - orientations stay unit quaternions, and yaw 170° → 190° (written −170°) turns 20°, not 340°;
@@ -18,7 +18,7 @@
 #include <cmocka.h>
 
 #include "check.h"
-#include "path.h"
+#include "view/path.h"
 
 static const double DEG = 3.14159265358979323846 / 180.0;
 

@@ -9,7 +9,7 @@
 
 #include <cmocka.h>
 
-#include "resolution.h"
+#include "view/resolution.h"
 
 enum { WW = 1280, WH = 720 };
 

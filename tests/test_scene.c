@@ -12,9 +12,9 @@
 
 #include "check.h"
 
-#include "scene.h"
-#include "shot.h"
-#include "views.h"
+#include "scene/scene.h"
+#include "view/shot.h"
+#include "view/views.h"
 
 #define FX(e) (1u << EFFECT_##e)
 

@@ -10,7 +10,7 @@
 
 #include <cmocka.h>
 
-#include "shader.h"
+#include "gpu/shader.h"
 
 static char root[64];
 

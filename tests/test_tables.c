@@ -1,5 +1,5 @@
-/* The tables every concept is generated from: QUALITY_KNOBS (app/quality.h), PROGRAM_LIST
- * (app/program.h) and the named uniforms the scene module uploads. Each check compares the generated
+/* The tables every concept is generated from: QUALITY_KNOBS (app/scene/quality.h), PROGRAM_LIST
+ * (app/scene/program.h) and the named uniforms the scene module uploads. Each check compares the generated
  * parts with each other or with the shader sources, so a row that drifts from its uses fails here. */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -12,7 +12,7 @@
 
 #include "check.h"
 
-#include "scene.h"
+#include "scene/scene.h"
 
 /* Every preset's struct equals its column in the table, and the preamble names every GLSL knob once. */
 static void presets_and_preamble_follow_the_table(void **st)

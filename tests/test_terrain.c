@@ -19,9 +19,9 @@
 
 #include "check.h"
 #include "gltest.h"
-#include "image_io.h"
-#include "render.h"
-#include "terrain.h"
+#include "data/image_io.h"
+#include "gpu/render.h"
+#include "data/terrain.h"
 
 /* ---- the reference: a ray against the solid column under a bilinear heightfield, in double ------- */
 

@@ -1,7 +1,7 @@
 // The program contract: what a scene program supplies and what it may override. Every program's
 // fragment shader (sdf.frag, probe.frag) includes this file, which brings in the
-// program as the virtual file program.glsl (app/scene.c writes it: the csg program's generated map(),
-// or an #include of the program's file from PROGRAM_LIST in app/program.h).
+// program as the virtual file program.glsl (app/scene/scene.c writes it: the csg program's generated map(),
+// or an #include of the program's file from PROGRAM_LIST in app/scene/program.h).
 //
 // A program MUST define
 //   vec2 map(vec3 p)      x: a signed distance bound (|x| ≤ the distance to the surface, negative
@@ -32,9 +32,9 @@
 //                      colours its surface (fractals: orbit traps; terrains: layers); textures then
 //                      do not apply.
 // A program reads its parameters from uniforms it declares itself, one named uniform per parameter
-// (uBulbPower, uMengerSize, uTerrainSpacing…); app/scene_programs.c uploads them by those names. It
-// reads the #defines of the preamble (app/scene.c scene_preamble): PROGRAM_<name>, FX_<EFFECT>,
-// the quality knobs (MAX_STEPS, HIT_K, … from QUALITY_KNOBS in app/quality.h), NUM_LIGHTS,
+// (uBulbPower, uMengerSize, uTerrainSpacing…); app/scene/scene_programs.c uploads them by those names. It
+// reads the #defines of the preamble (app/scene/scene.c scene_preamble): PROGRAM_<name>, FX_<EFFECT>,
+// the quality knobs (MAX_STEPS, HIT_K, … from QUALITY_KNOBS in app/scene/quality.h), NUM_LIGHTS,
 // NUM_MATERIALS, and its own (FRACTAL_ITERATIONS, TERRAIN_MAXMIP).
 #include "common/sdf.glsl"
 #include "common/hit.glsl"

@@ -1,4 +1,4 @@
-// Materials: metal/roughness PBR parameters, one uniform array per parameter (app/scene.c names them).
+// Materials: metal/roughness PBR parameters, one uniform array per parameter (app/scene/scene.c names them).
 uniform vec3 uMatBaseColor[NUM_MATERIALS];
 uniform float uMatMetallic[NUM_MATERIALS];
 uniform float uMatRoughness[NUM_MATERIALS];

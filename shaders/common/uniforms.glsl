@@ -1,12 +1,12 @@
-// Per-frame inputs shared by every scene program. Set by app/render.c.
-// World: right-handed, Y up, metres. Rays: see app/camera.h for the pixel → direction convention.
+// Per-frame inputs shared by every scene program. Set by app/gpu/render.c.
+// World: right-handed, Y up, metres. Rays: see app/view/camera.h for the pixel → direction convention.
 uniform vec2 uResolution;   // pixels of the whole image
 uniform vec2 uTileOffset;   // where this render target's pixel (0,0) sits in it (bands of big shots)
 uniform vec3 uCamPos;
 uniform vec3 uCamForward, uCamRight, uCamUp; // orthonormal basis
 uniform float uTanHalfFov;  // tan(vertical fov / 2)
 uniform float uPixelAngle;  // 2 tan(fov/2) / height: the angle one pixel spans
-uniform int uAdaptive;          // 1: only pixels the edge mask keeps take this sample (app/render.c)
+uniform int uAdaptive;          // 1: only pixels the edge mask keeps take this sample (app/gpu/render.c)
 uniform sampler2D uEdgeMask;
 uniform vec2 uJitter;       // sub-pixel offset of this sample, pixels; (0,0) for the first
 

@@ -1,0 +1,225 @@
+#include "data/dem.h"
+
+#include <cpl_conv.h>
+#include <cpl_error.h>
+#include <gdal.h>
+#include <gdal_alg.h>
+#include <math.h>
+#include <ogr_srs_api.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+#include <unistd.h>
+
+#define EARTH_RADIUS 6371000.0 /* m: the IUGG mean radius */
+
+bool dem_is_image(const char *path)
+{
+    static const char *const images[] = {".png", ".jpg", ".jpeg", ".exr", ".hdr", ".pfm"};
+    const char *dot = strrchr(path, '.');
+    for (size_t i = 0; dot && i < sizeof images / sizeof *images; i++)
+        if (!strcasecmp(dot, images[i]))
+            return true;
+    return false;
+}
+
+static void gdal_init(void)
+{
+    static bool done;
+    if (!done) {
+        GDALAllRegister();
+        GDALSetCacheMax64((GIntBig)64 << 20); /* rows are read once: a small block cache, not 5 % of RAM */
+        done = true;
+    }
+    CPLSetErrorHandler(CPLQuietErrorHandler); /* errors come back as one message, not GDAL's lines */
+    CPLErrorReset();
+}
+
+/* GDAL's last message, or a fallback. */
+static const char *gdal_msg(const char *fallback)
+{
+    const char *m = CPLGetLastErrorMsg();
+    return m && *m ? m : fallback;
+}
+
+/* Spacing in metres from the geotransform and CRS; false (with a message) when it cannot be had. */
+static bool georeference(GDALDatasetH ds, const char *path, int h, dem_info *info, err_t *err)
+{
+    double gt[6];
+    if (GDALGetGeoTransform(ds, gt) != CE_None)
+        return true; /* no georeferencing: the scene must give the spacing */
+    if (gt[2] != 0 || gt[4] != 0)
+        return err_set(err, "DEM '%s' has a rotated geotransform (%g, %g): fathom's grid is north-up; warp it first "
+                            "(gdalwarp)", path, gt[2], gt[4]);
+    OGRSpatialReferenceH srs = GDALGetSpatialRef(ds);
+    if (!srs) { /* a pixel size in an unknown unit (degrees? feet?): the scene must give the spacing */
+        info->pixel[0] = fabs(gt[1]);
+        info->pixel[1] = fabs(gt[5]);
+        return true;
+    }
+    const char *name = OSRGetName(srs);
+    snprintf(info->crs, sizeof info->crs, "%s", name ? name : "unnamed CRS");
+    if (OSRIsGeographic(srs)) {
+        double rad = OSRGetAngularUnits(srs, NULL); /* radians per unit (a degree's for EPSG:4326) */
+        double lat = (gt[3] + gt[5] * 0.5 * h) * rad;
+        if (!(fabs(lat) < 1.55)) /* 88.8°: the x spacing collapses toward the poles */
+            return err_set(err, "DEM '%s' is centred at latitude %.2f°: too near a pole for a flat grid; reproject "
+                                "it to a polar CRS (gdalwarp -t_srs EPSG:3413)", path, lat * 180 / M_PI);
+        info->geographic = true;
+        info->latitude = lat * 180 / M_PI;
+        info->spacing[0] = fabs(gt[1]) * rad * EARTH_RADIUS * cos(lat);
+        info->spacing[1] = fabs(gt[5]) * rad * EARTH_RADIUS;
+    } else {
+        double unit = OSRGetLinearUnits(srs, NULL); /* metres per unit */
+        info->spacing[0] = fabs(gt[1]) * unit;
+        info->spacing[1] = fabs(gt[5]) * unit;
+    }
+    info->georeferenced = true;
+    return true;
+}
+
+bool dem_read(const char *path, int max_side, int *w, int *h, float **heights, dem_info *info, err_t *err)
+{
+    *info = (dem_info){0};
+    *heights = NULL;
+    gdal_init();
+    GDALDatasetH ds = GDALOpen(path, GA_ReadOnly);
+    if (!ds)
+        return err_set(err, "cannot read DEM '%s': %s", path, gdal_msg("not a raster GDAL knows"));
+    bool ok = false;
+    int W = GDALGetRasterXSize(ds), H = GDALGetRasterYSize(ds);
+    GDALRasterBandH band = GDALGetRasterCount(ds) > 0 ? GDALGetRasterBand(ds, 1) : NULL;
+    GDALDataType type = band ? GDALGetRasterDataType(band) : GDT_Unknown;
+    if (!band) {
+        err_set(err, "DEM '%s' has no raster band (a vector file, or a netCDF with several variables: name one as "
+                     "NETCDF:\"%s\":VARIABLE)", path, path);
+        goto done;
+    }
+    if (GDALDataTypeIsComplex(type) || type == GDT_Unknown) {
+        err_set(err, "DEM '%s' holds %s values: heights must be real numbers", path, GDALGetDataTypeName(type));
+        goto done;
+    }
+    if (W > max_side || H > max_side) {
+        err_set(err, "DEM '%s' is %dx%d: the largest side fathom reads is %d texels; cut or resample it "
+                     "(gdal_translate -outsize)", path, W, H, max_side);
+        goto done;
+    }
+    /* what drawing it takes (app/data/terrain.h: heights on the CPU and the GPU, the pyramid): refused up
+     * front when it is more than this machine's memory, rather than after minutes of reading */
+    double need = (double)W * (double)H * DEM_BYTES_PER_TEXEL;
+    long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
+    double have = pages > 0 && page > 0 ? (double)pages * (double)page : INFINITY;
+    if (need > have) {
+        err_set(err, "DEM '%s' is %dx%d: drawing it takes about %.0f GB and this machine has %.0f GB; cut or resample it "
+                     "(gdal_translate -outsize)", path, W, H, need / 1e9, have / 1e9);
+        goto done;
+    }
+    snprintf(info->type, sizeof info->type, "%s", GDALGetDataTypeName(type));
+    info->is_float = GDALDataTypeIsFloating(type);
+    if (!georeference(ds, path, H, info, err))
+        goto done;
+    int has_nodata = 0, has_scale = 0, has_offset = 0;
+    double nodata = GDALGetRasterNoDataValue(band, &has_nodata);
+    double scale = GDALGetRasterScale(band, &has_scale), offset = GDALGetRasterOffset(band, &has_offset);
+    if (!has_scale || !isfinite(scale) || scale == 0)
+        scale = 1;
+    if (!has_offset || !isfinite(offset))
+        offset = 0;
+    size_t n = (size_t)W * (size_t)H;
+    float *v = malloc(sizeof(float) * n);
+    if (!v) {
+        err_set(err, "DEM '%s' (%dx%d): out of memory (%zu MB for the heights)", path, W, H, sizeof(float) * n >> 20);
+        goto done;
+    }
+    /* row blocks, with progress on a terminal for big files */
+    bool show = isatty(2) && n > ((size_t)1 << 24);
+    const int ROWS = 256;
+    for (int y = 0; y < H; y += ROWS) {
+        int rows = y + ROWS < H ? ROWS : H - y;
+        if (GDALRasterIO(band, GF_Read, 0, y, W, rows, v + (size_t)y * (size_t)W, W, rows, GDT_Float32, 0, 0) != CE_None) {
+            err_set(err, "DEM '%s': reading rows %d-%d failed: %s", path, y, y + rows - 1, gdal_msg("I/O error"));
+            free(v);
+            goto done;
+        }
+        if (show)
+            fprintf(stderr, "\rfathom: reading %s: %3d %%", path, (int)(100.0 * (y + rows) / H));
+    }
+    if (show)
+        fprintf(stderr, "\n");
+    float nd = (float)nodata;
+    for (size_t i = 0; i < n; i++) {
+        float x = v[i];
+        if ((has_nodata && (x == nd || (isnan(nodata) && isnan(x)))) || !isfinite(x)) {
+            v[i] = NAN;
+            info->holes++;
+        } else {
+            v[i] = (float)(x * scale + offset);
+        }
+    }
+    /* row 0 north: a south-up raster (positive y pixel size) is flipped */
+    double gt[6];
+    if (GDALGetGeoTransform(ds, gt) == CE_None && gt[5] > 0)
+        for (size_t y = 0, rows = (size_t)H, cols = (size_t)W; y < rows / 2; y++)
+            for (size_t x = 0; x < cols; x++) {
+                float t = v[y * cols + x];
+                v[y * cols + x] = v[(rows - 1 - y) * cols + x];
+                v[(rows - 1 - y) * cols + x] = t;
+            }
+    *w = W;
+    *h = H;
+    *heights = v;
+    ok = true;
+done:
+    GDALClose(ds);
+    return ok;
+}
+
+bool dem_probe(const char *path, int *w, int *h, double range[2], dem_info *info, err_t *err)
+{
+    *info = (dem_info){0};
+    gdal_init();
+    GDALDatasetH ds = GDALOpen(path, GA_ReadOnly);
+    if (!ds)
+        return err_set(err, "cannot read DEM '%s': %s", path, gdal_msg("not a raster GDAL knows"));
+    *w = GDALGetRasterXSize(ds);
+    *h = GDALGetRasterYSize(ds);
+    GDALRasterBandH band = GDALGetRasterCount(ds) > 0 ? GDALGetRasterBand(ds, 1) : NULL;
+    bool ok = band && georeference(ds, path, *h, info, err);
+    if (!band)
+        err_set(err, "DEM '%s' has no raster band", path);
+    double mm[2] = {0, 0};
+    if (ok && GDALComputeRasterMinMax(band, TRUE, mm) != CE_None) /* approximate: overviews or a sample */
+        ok = err_set(err, "DEM '%s': no heights to frame (%s)", path, gdal_msg("every texel is nodata"));
+    if (ok) {
+        int has = 0;
+        double scale = GDALGetRasterScale(band, &has), offset = GDALGetRasterOffset(band, NULL);
+        if (!has || !isfinite(scale) || scale == 0)
+            scale = 1;
+        if (!isfinite(offset))
+            offset = 0;
+        range[0] = fmin(mm[0] * scale, mm[1] * scale) + offset;
+        range[1] = fmax(mm[0] * scale, mm[1] * scale) + offset;
+    }
+    GDALClose(ds);
+    return ok;
+}
+
+bool dem_fill_holes(float *heights, int w, int h, err_t *err)
+{
+    gdal_init();
+    GDALDriverH mem = GDALGetDriverByName("MEM");
+    GDALDatasetH ds = mem ? GDALCreate(mem, "", w, h, 1, GDT_Float32, NULL) : NULL;
+    if (!ds)
+        return err_set(err, "filling nodata: cannot make a GDAL memory raster: %s", gdal_msg("no MEM driver"));
+    GDALRasterBandH band = GDALGetRasterBand(ds, 1);
+    bool ok = GDALRasterIO(band, GF_Write, 0, 0, w, h, heights, w, h, GDT_Float32, 0, 0) == CE_None &&
+              GDALSetRasterNoDataValue(band, NAN) == CE_None &&
+              /* search as far as the grid reaches: every hole gets a value */
+              GDALFillNodata(band, NULL, (double)(w > h ? w : h), 0, 0, NULL, NULL, NULL) == CE_None &&
+              GDALRasterIO(band, GF_Read, 0, 0, w, h, heights, w, h, GDT_Float32, 0, 0) == CE_None;
+    if (!ok)
+        err_set(err, "filling nodata failed: %s", gdal_msg("GDALFillNodata"));
+    GDALClose(ds);
+    return ok;
+}

@@ -1,0 +1,474 @@
+/* render — targets, one sample, display and readback; see render_parts.h for the other files. */
+#include "gpu/render.h"
+
+#include <assert.h>
+#include <epoxy/gl.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "gpu/aov.h"
+#include "gpu/render_parts.h"
+#include "gpu/shader.h"
+
+enum { NUM_TARGETS = 3 };
+
+static struct {
+    GLuint vao, display_prog;
+    GLuint fbo, targets[NUM_TARGETS];
+    GLuint out_fbo, out_tex; /* RGBA8 for sRGB readback */
+    GLuint ref_fbo, ref_tex; /* a grabbed image for the difference view */
+    int ref_samples;
+    int width, height, samples;   /* the active image: all of the targets or, while flying, a corner */
+    int alloc_width, alloc_height; /* the targets' size */
+    int full_width, full_height, tile_x, tile_y; /* the image the target is a band of; its GL offset */
+    GLuint prog; /* the current scene's program */
+    /* adaptive sampling (render_set_adaptive): after the first sample, further samples only where the
+     * edge mask (shaders/edgemask.frag) is set; each pixel's alpha counts its own samples */
+    bool adaptive;
+    bool edge_aware; /* stretched images: depth-aware upsampling (display.frag) */
+    GLuint mask_prog, mask_fbo, mask_tex;
+    int masked; /* pixels the mask kept, of the last mask */
+    int band_done; /* rows of the current sample done by render_sample_band, from the top */
+    int first_jitter; /* the Halton point of an image's first sample (0: the pixel centre) */
+    GLuint preview_fbo, preview_tex; /* the last moving image, shown where a still one has no sample yet */
+    int preview_w, preview_h;
+    camera cam;
+    unsigned runtime_effects; /* effects switched on at run time (bits as in effect.h) */
+} state = {.runtime_effects = ~0u};
+
+
+static GLuint build_display(err_t *err)
+{
+    return shader_build(programs_shader_root(), "fullscreen.vert", "display.frag", NULL, NULL, 0, err);
+}
+
+static GLuint build_mask(err_t *err)
+{
+    return shader_build(programs_shader_root(), "fullscreen.vert", "edgemask.frag", NULL, NULL, 0, err);
+}
+
+bool render_init(err_t *err)
+{
+    programs_init();
+    glGenVertexArrays(1, &state.vao); /* core profile draws nothing without a bound VAO */
+    glBindVertexArray(state.vao);
+    state.display_prog = build_display(err);
+    state.mask_prog = state.display_prog ? build_mask(err) : 0;
+    return state.display_prog != 0 && state.mask_prog != 0;
+}
+
+static void free_targets(void)
+{
+    if (state.fbo) {
+        glDeleteFramebuffers(1, &state.fbo);
+        glDeleteTextures(NUM_TARGETS, state.targets);
+        glDeleteFramebuffers(1, &state.out_fbo);
+        glDeleteTextures(1, &state.out_tex);
+        glDeleteFramebuffers(1, &state.ref_fbo);
+        glDeleteTextures(1, &state.ref_tex);
+        glDeleteFramebuffers(1, &state.mask_fbo);
+        glDeleteTextures(1, &state.mask_tex);
+        glDeleteFramebuffers(1, &state.preview_fbo);
+        glDeleteTextures(1, &state.preview_tex);
+        state.preview_fbo = state.preview_tex = 0;
+        state.preview_w = state.preview_h = 0;
+        state.fbo = state.out_fbo = state.ref_fbo = state.ref_tex = state.mask_fbo = state.mask_tex = 0;
+        state.ref_samples = 0;
+    }
+}
+
+GLuint render_vao(void) { return state.vao; }
+
+void render_set_runtime_effects(unsigned mask) { state.runtime_effects = mask; }
+
+void render_shutdown(void)
+{
+    free_targets();
+    scene_gpu_shutdown();
+    programs_shutdown();
+    glDeleteProgram(state.display_prog);
+    glDeleteProgram(state.mask_prog);
+    glDeleteVertexArrays(1, &state.vao);
+    memset(&state, 0, sizeof state);
+    state.runtime_effects = ~0u;
+}
+
+void render_preamble(const scene *s, const char *extra_defines, strbuf *out)
+{
+    scene_preamble(s, out);
+    if (extra_defines)
+        sb_append(out, extra_defines);
+}
+
+bool render_set_scene(const scene *s, const char *extra_defines, err_t *err)
+{
+    GLuint prog = programs_get(s, "sdf.frag", extra_defines, err);
+    if (!prog || !scene_gpu_set(s, err))
+        return false;
+    state.prog = prog;
+    scene_gpu_uniforms(prog, s);
+    return true;
+}
+
+/* A framebuffer with one NEAREST-filtered colour texture. */
+static void single_target(GLenum internal, GLenum format, GLenum type, int w, int h, GLuint *fbo, GLuint *tex)
+{
+    glGenFramebuffers(1, fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, *fbo);
+    glGenTextures(1, tex);
+    glBindTexture(GL_TEXTURE_2D, *tex);
+    glTexImage2D(GL_TEXTURE_2D, 0, (GLint)internal, w, h, 0, format, type, NULL);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, *tex, 0);
+    assert(glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE);
+}
+
+void render_resize(int width, int height)
+{
+    assert(width > 0 && height > 0);
+    if (state.fbo && width == state.alloc_width && height == state.alloc_height) {
+        render_set_active(width, height);
+        return;
+    }
+    free_targets();
+    state.width = state.alloc_width = width;
+    state.height = state.alloc_height = height;
+    render_set_window(width, height, 0, 0);
+    glGenFramebuffers(1, &state.fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, state.fbo);
+    glGenTextures(NUM_TARGETS, state.targets);
+    for (int i = 0; i < NUM_TARGETS; i++) {
+        glBindTexture(GL_TEXTURE_2D, state.targets[i]);
+        glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, width, height, 0, GL_RGBA, GL_FLOAT, NULL);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + (GLenum)i, GL_TEXTURE_2D, state.targets[i], 0);
+    }
+    assert(glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE);
+    single_target(GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE, width, height, &state.out_fbo, &state.out_tex);
+    single_target(GL_R8, GL_RED, GL_UNSIGNED_BYTE, width, height, &state.mask_fbo, &state.mask_tex);
+    single_target(GL_RGBA32F, GL_RGBA, GL_FLOAT, width, height, &state.preview_fbo, &state.preview_tex);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    state.samples = 0;
+    state.band_done = 0;
+}
+
+void render_set_active(int width, int height)
+{
+    assert(width > 0 && height > 0 && width <= state.alloc_width && height <= state.alloc_height);
+    if (width != state.width || height != state.height) {
+        state.samples = 0;
+        state.band_done = 0;
+    }
+    state.width = width;
+    state.height = height;
+    render_set_window(width, height, 0, 0);
+}
+
+void render_active_size(int *width, int *height)
+{
+    *width = state.width;
+    *height = state.height;
+}
+
+void render_set_window(int full_width, int full_height, int left, int top)
+{
+    state.full_width = full_width;
+    state.full_height = full_height;
+    state.tile_x = left;
+    state.tile_y = full_height - top - state.height; /* GL counts rows from the bottom */
+}
+
+void render_begin(const camera *c)
+{
+    state.cam = *c;
+    state.samples = 0;
+    state.band_done = 0;
+}
+
+int render_samples(void) { return state.samples; }
+
+void render_set_adaptive(bool on) { state.adaptive = on; }
+
+void render_set_first_jitter(int k) { state.first_jitter = k; }
+
+void render_set_edge_aware(bool on) { state.edge_aware = on; }
+
+int render_adaptive_pixels(void) { return state.masked; }
+
+/* The edge mask from the first sample (shaders/edgemask.frag), into mask_tex. */
+static void build_edge_mask(void)
+{
+    glBindFramebuffer(GL_FRAMEBUFFER, state.mask_fbo);
+    glViewport(0, 0, state.width, state.height);
+    glUseProgram(state.mask_prog);
+    glActiveTexture(GL_TEXTURE1);
+    glBindTexture(GL_TEXTURE_2D, state.targets[1]);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, state.targets[0]);
+    glUniform1i(glGetUniformLocation(state.mask_prog, "uAccum"), 0);
+    glUniform1i(glGetUniformLocation(state.mask_prog, "uNormalDepth"), 1);
+    glUniform1f(glGetUniformLocation(state.mask_prog, "uExposure"), 1.0f);
+    glUniform2i(glGetUniformLocation(state.mask_prog, "uSize"), state.width, state.height);
+    glBindVertexArray(state.vao);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    /* how many pixels it kept: for the HUD and the bench (a small readback, once per still image) */
+    size_t n = (size_t)state.width * (size_t)state.height;
+    uint8_t *m = malloc(n);
+    state.masked = 0;
+    if (m) {
+        glPixelStorei(GL_PACK_ALIGNMENT, 1);
+        glReadPixels(0, 0, state.width, state.height, GL_RED, GL_UNSIGNED_BYTE, m);
+        for (size_t i = 0; i < n; i++)
+            state.masked += m[i] > 127;
+        free(m);
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+/* Halton (2, 3) points, centred: low-discrepancy sub-pixel offsets. Sample 0 is the pixel centre. */
+static float halton(int i, int base)
+{
+    float f = 1.0f, r = 0.0f;
+    for (; i > 0; i /= base) {
+        f /= (float)base;
+        r += f * (float)(i % base);
+    }
+    return r;
+}
+
+static GLint loc(const char *name) { return glGetUniformLocation(state.prog, name); }
+
+/* Rows [y0, y1) of the current sample (GL rows, bottom up). */
+static void sample_rows(int y0, int y1)
+{
+    assert(state.fbo && state.prog);
+    bool adaptive = state.adaptive && state.samples > 0;
+    if (adaptive && state.samples == 1 && state.band_done == 0)
+        build_edge_mask();
+    glBindFramebuffer(GL_FRAMEBUFFER, state.fbo);
+    glViewport(0, 0, state.width, state.height);
+    static const GLenum all[NUM_TARGETS] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
+    static const GLenum colour_only[NUM_TARGETS] = {GL_COLOR_ATTACHMENT0, GL_NONE, GL_NONE};
+    bool first = state.samples == 0;
+    glDrawBuffers(NUM_TARGETS, first ? all : colour_only);
+    if (first && state.band_done == 0) {
+        glClearColor(0, 0, 0, 0);
+        glClear(GL_COLOR_BUFFER_BIT);
+    }
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(0, y0, state.width, y1 - y0);
+    glEnablei(GL_BLEND, 0);
+    glBlendFunc(GL_ONE, GL_ONE);
+    glDisablei(GL_BLEND, 1);
+    glDisablei(GL_BLEND, 2);
+
+    glUseProgram(state.prog);
+    camera_basis b = camera_get_basis(&state.cam);
+    glUniform2f(loc("uResolution"), (float)state.full_width, (float)state.full_height);
+    glUniform2f(loc("uTileOffset"), (float)state.tile_x, (float)state.tile_y);
+    glUniform3fv(loc("uCamPos"), 1, state.cam.position);
+    glUniform3fv(loc("uCamForward"), 1, b.forward);
+    glUniform3fv(loc("uCamRight"), 1, b.right);
+    glUniform3fv(loc("uCamUp"), 1, b.up);
+    glUniform1f(loc("uTanHalfFov"), tanf(0.5f * state.cam.fov_y));
+    glUniform1f(loc("uPixelAngle"), camera_pixel_angle(&state.cam, state.full_height));
+    glUniform1ui(loc("uFxRuntime"), state.runtime_effects);
+    glUniform1i(loc("uAdaptive"), adaptive ? 1 : 0);
+    glUniform1i(loc("uEdgeMask"), UNIT_EDGE_MASK);
+    int k = first ? state.first_jitter : state.samples; /* Halton point k; 0 is the pixel centre */
+    bool jitter = (scene_gpu_current()->effects & state.runtime_effects & (1u << EFFECT_AA)) && k > 0;
+    glUniform2f(loc("uJitter"), jitter ? halton(k, 2) - 0.5f : 0.0f, jitter ? halton(k, 3) - 0.5f : 0.0f);
+    scene_gpu_bind_textures();
+    glActiveTexture(GL_TEXTURE0 + UNIT_EDGE_MASK);
+    glBindTexture(GL_TEXTURE_2D, state.mask_tex);
+    glActiveTexture(GL_TEXTURE0);
+
+    glBindVertexArray(state.vao);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glDisablei(GL_BLEND, 0);
+    glDisable(GL_SCISSOR_TEST);
+}
+
+void render_sample(void)
+{
+    sample_rows(0, state.height - state.band_done);
+    state.samples++;
+    state.band_done = 0;
+}
+
+int render_band_rows(void) { return state.band_done; }
+
+bool render_sample_band(int rows)
+{
+    rows = rows < 1 ? 1 : rows;
+    int top = state.height - state.band_done, bottom = top - rows > 0 ? top - rows : 0;
+    sample_rows(bottom, top);
+    state.band_done += top - bottom;
+    if (state.band_done < state.height)
+        return false;
+    state.samples++;
+    state.band_done = 0;
+    return true;
+}
+
+void render_keep_preview(void)
+{
+    if (!state.samples)
+        return;
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, state.fbo);
+    glReadBuffer(GL_COLOR_ATTACHMENT0);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, state.preview_fbo);
+    glBlitFramebuffer(0, 0, state.width, state.height, 0, 0, state.width, state.height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    state.preview_w = state.width;
+    state.preview_h = state.height;
+}
+
+void render_grab_reference(void)
+{
+    if (!state.ref_tex) {
+        glGenTextures(1, &state.ref_tex);
+        glBindTexture(GL_TEXTURE_2D, state.ref_tex);
+        glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, state.alloc_width, state.alloc_height, 0, GL_RGBA, GL_FLOAT, NULL);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        glGenFramebuffers(1, &state.ref_fbo);
+        glBindFramebuffer(GL_FRAMEBUFFER, state.ref_fbo);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, state.ref_tex, 0);
+    }
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, state.fbo);
+    glReadBuffer(GL_COLOR_ATTACHMENT0);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, state.ref_fbo);
+    glDrawBuffers(1, (const GLenum[]){GL_COLOR_ATTACHMENT0});
+    glBlitFramebuffer(0, 0, state.width, state.height, 0, 0, state.width, state.height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    state.ref_samples = state.samples;
+}
+
+void render_display(GLuint fbo, int width, int height, float exposure, render_view view)
+{
+    GLuint p = state.display_prog;
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glViewport(0, 0, width, height);
+    glUseProgram(p);
+    glActiveTexture(GL_TEXTURE1);
+    glBindTexture(GL_TEXTURE_2D, state.targets[2]);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, state.targets[0]);
+    glUniform1i(glGetUniformLocation(p, "uAccum"), 0);
+    glUniform1i(glGetUniformLocation(p, "uAux"), 1);
+    if (view == VIEW_DIFFERENCE && !state.ref_samples)
+        view = VIEW_COLOR; /* nothing grabbed yet */
+    glActiveTexture(GL_TEXTURE2);
+    glBindTexture(GL_TEXTURE_2D, state.ref_tex);
+    glActiveTexture(GL_TEXTURE3);
+    glBindTexture(GL_TEXTURE_2D, state.targets[1]);
+    glActiveTexture(GL_TEXTURE4);
+    glBindTexture(GL_TEXTURE_2D, state.preview_tex);
+    glActiveTexture(GL_TEXTURE0);
+    glUniform1i(glGetUniformLocation(p, "uPreview"), 4);
+    glUniform2f(glGetUniformLocation(p, "uPreviewSize"), (float)state.preview_w, (float)state.preview_h);
+    glUniform1i(glGetUniformLocation(p, "uReference"), 2);
+    glUniform1i(glGetUniformLocation(p, "uNormalDepth"), 3);
+    glUniform1i(glGetUniformLocation(p, "uEdgeAware"), state.edge_aware ? 1 : 0);
+    glUniform1f(glGetUniformLocation(p, "uInvRefSamples"), state.ref_samples ? 1.0f / (float)state.ref_samples : 0.0f);
+    glUniform1i(glGetUniformLocation(p, "uView"), (GLint)view);
+    glUniform1f(glGetUniformLocation(p, "uMaxSteps"), scene_gpu_current() ? (float)scene_gpu_current()->quality.max_steps : 1.0f);
+    glUniform1f(glGetUniformLocation(state.display_prog, "uExposure"), exposure);
+    glUniform2f(glGetUniformLocation(p, "uSrcSize"), (float)state.width, (float)state.height);
+    glUniform2f(glGetUniformLocation(p, "uDstSize"), (float)width, (float)height);
+    glBindVertexArray(state.vao);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+}
+
+/* GL rows run bottom to top; files run top to bottom. */
+static void flip_rows(void *data, int height, size_t row_bytes)
+{
+    uint8_t *p = data, *tmp = util_alloc(row_bytes, "a row of the image");
+    for (int y = 0; y < height / 2; y++) {
+        uint8_t *a = p + (size_t)y * row_bytes, *b = p + (size_t)(height - 1 - y) * row_bytes;
+        memcpy(tmp, a, row_bytes);
+        memcpy(a, b, row_bytes);
+        memcpy(b, tmp, row_bytes);
+    }
+    free(tmp);
+}
+
+static void read_rect(GLuint fbo, GLenum attachment, GLenum type, int w, int h, void *out)
+{
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
+    glReadBuffer(attachment);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, w, h, GL_RGBA, type, out);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+}
+
+static void read_target(GLuint fbo, GLenum attachment, GLenum type, void *out)
+{
+    read_rect(fbo, attachment, type, state.width, state.height, out);
+}
+
+void render_read_stretched_srgb8(uint8_t *rgba, int width, int height, float exposure)
+{
+    assert(width <= state.alloc_width && height <= state.alloc_height);
+    render_display(state.out_fbo, width, height, exposure, VIEW_COLOR);
+    read_rect(state.out_fbo, GL_COLOR_ATTACHMENT0, GL_UNSIGNED_BYTE, width, height, rgba);
+    flip_rows(rgba, height, (size_t)width * 4);
+}
+
+void render_read_srgb8(uint8_t *rgba, float exposure)
+{
+    render_read_stretched_srgb8(rgba, state.width, state.height, exposure);
+}
+
+void render_read_linear(float *rgba)
+{
+    read_target(state.fbo, GL_COLOR_ATTACHMENT0, GL_FLOAT, rgba);
+    size_t n = (size_t)state.width * (size_t)state.height;
+    for (size_t i = 0; i < n; i++) { /* alpha counts the pixel's own samples (adaptive sampling) */
+        float inv = rgba[i * 4 + 3] > 0.0f ? 1.0f / rgba[i * 4 + 3] : 0.0f;
+        for (int c = 0; c < 4; c++)
+            rgba[i * 4 + (size_t)c] *= inv;
+    }
+    flip_rows(rgba, state.height, (size_t)state.width * 4 * sizeof(float));
+}
+
+void render_read_aovs(float *aov8)
+{
+    size_t n = (size_t)state.width * (size_t)state.height;
+    float *a = util_alloc(sizeof(float) * 4 * n, "the AOV readback"), *b = util_alloc(sizeof(float) * 4 * n, "the AOV readback");
+    read_target(state.fbo, GL_COLOR_ATTACHMENT1, GL_FLOAT, a);
+    read_target(state.fbo, GL_COLOR_ATTACHMENT2, GL_FLOAT, b);
+    for (size_t i = 0; i < n; i++) {
+        memcpy(aov8 + i * AOV_FLOATS, a + i * 4, sizeof(float) * 4);
+        memcpy(aov8 + i * AOV_FLOATS + 4, b + i * 4, sizeof(float) * 4);
+        if (aov8[i * AOV_FLOATS + AOV_SLOT_DEPTH] < 0.0f) /* the shader marks a miss with depth −1 */
+            aov8[i * AOV_FLOATS + AOV_SLOT_DEPTH] = INFINITY;
+    }
+    free(a);
+    free(b);
+    flip_rows(aov8, state.height, (size_t)state.width * AOV_FLOATS * sizeof(float));
+}
+
+bool render_reload(err_t *err)
+{
+    /* Build everything first: one failure keeps every old program. */
+    GLuint display = build_display(err), mask = display ? build_mask(err) : 0;
+    if (!display || !mask || !programs_reload(&state.prog, err)) {
+        glDeleteProgram(display);
+        glDeleteProgram(mask);
+        return false;
+    }
+    glDeleteProgram(state.display_prog);
+    glDeleteProgram(state.mask_prog);
+    state.display_prog = display;
+    state.mask_prog = mask;
+    if (scene_gpu_current())
+        scene_gpu_uniforms(state.prog, scene_gpu_current());
+    state.samples = 0;
+    state.band_done = 0;
+    return true;
+}

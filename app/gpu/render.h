@@ -1,0 +1,113 @@
+/* render — draws a scene into a floating-point accumulation target, one jittered sample at a time,
+ * and turns it into display colour. Needs a current GL 3.3 core context; does not care whose.
+ *
+ * Targets (all width × height, RGBA32F): 0 accumulated linear radiance (additive blending),
+ * 1 normal.xyz + depth, 2 steps + exit direction. The first sample after render_begin() is
+ * unjittered (pixel centres) and is the only one that writes targets 1 and 2, so AOVs are exact
+ * per-pixel probes; later samples add colour only. Programs are compiled once per variant
+ * (preamble + generated map) and cached.
+ */
+#ifndef FATHOM_RENDER_H
+#define FATHOM_RENDER_H
+
+#include <epoxy/gl.h>
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "view/camera.h"
+#include "scene/scene.h"
+#include "util.h"
+
+bool render_init(err_t *err);
+void render_shutdown(void);
+
+/* Makes s the scene to draw (s must outlive its use). extra_defines (may be NULL) is appended to the
+ * variant preamble: tests use it to switch a guard off. Loads textures, compiles or reuses the program. */
+bool render_set_scene(const scene *s, const char *extra_defines, err_t *err);
+
+/* Switches compiled-in effects off at run time (bit 1 << effect; default all on): the bench measures
+ * what an effect costs compiled in but unused. */
+void render_set_runtime_effects(unsigned mask);
+
+void render_resize(int width, int height);
+/* Renders into the bottom-left width × height of the targets (at most render_resize's size), which
+ * render_display stretches to its output (bilinear): the window flies at a lower internal resolution.
+ * Readback reads the active size. A change restarts accumulation. */
+void render_set_active(int width, int height);
+void render_active_size(int *width, int *height);
+
+/* The target (render_resize's size) holds the part of a full_width × full_height image whose top-left
+ * pixel is (left, top): offline shots of any size render in bands. render_resize resets it to the
+ * whole image. Call before render_begin. */
+void render_set_window(int full_width, int full_height, int left, int top);
+void render_begin(const camera *c); /* new view: restart accumulation */
+void render_sample(void);           /* add one sample */
+int render_samples(void);
+/* The next `rows` rows (from the top) of the current sample: the window spreads a full-size sample
+ * over display frames so it keeps reading input. True when the sample is complete. */
+bool render_sample_band(int rows);
+/* Keeps the current (moving, smaller) image: until a still image's first sample reaches a row, the
+ * display shows this one stretched there. */
+void render_keep_preview(void);
+/* Rows of the current sample render_sample_band has done (0: none, or the sample is complete). */
+int render_band_rows(void);
+/* Adaptive sampling: after the first sample of an image, further samples only where the edge mask
+ * (shaders/edgemask.frag: colour, depth, hit or normal differs in the 3x3 block) is set. Off by
+ * default (offline images sample every pixel); the window turns it on. */
+void render_set_adaptive(bool on);
+/* The sub-pixel point of an image's first sample: Halton point k (0, the default: the pixel centre).
+ * Moving frames that change it frame to frame let a reprojected history gather detail. */
+void render_set_first_jitter(int k);
+/* A stretched (moving) image: depth-aware upsampling, no blending across silhouettes, or plain
+ * bilinear (the default: bench --interactive measures both, and bilinear is nearer the full frame). */
+void render_set_edge_aware(bool on);
+/* Pixels the last edge mask kept. */
+int render_adaptive_pixels(void);
+
+typedef enum render_view { VIEW_COLOR, VIEW_STEPS, VIEW_DIFFERENCE } render_view;
+
+/* Keeps the current image as the reference that VIEW_DIFFERENCE compares against. */
+void render_grab_reference(void);
+
+/* Tone-mapped sRGB colour (or the steps heat map) into framebuffer `fbo` (0 = window), the active image
+ * stretched to width × height (bilinear; texel for texel when the sizes are equal). */
+void render_display(GLuint fbo, int width, int height, float exposure, render_view view);
+
+/* Readback, rows top first. srgb8: RGBA 8-bit after render_display's mapping. linear: averaged RGBA.
+ * aovs: AOV_FLOATS a pixel, laid out as aov.h says (depth +inf on a miss). */
+void render_read_srgb8(uint8_t *rgba, float exposure);
+void render_read_linear(float *rgba);
+/* srgb8 of the active image stretched to width × height (at most the targets' size), as the window shows it. */
+void render_read_stretched_srgb8(uint8_t *rgba, int width, int height, float exposure);
+void render_read_aovs(float *aov8);
+
+/* Terrain scenes: the ground height under world (x, z); false for other scenes. */
+bool render_ground_height(float x, float z, float *height);
+/* Frees what the current scene put on the GPU (textures, heightfield, droplets). */
+void render_release_scene(void);
+/* The loaded terrain's texture tiles (1 x 1 when it fits one texture); false without a terrain. */
+bool render_terrain_tiles(int *tiles_x, int *tiles_y);
+
+/* The current scene's droplets and their grid (NULL when it has none), and the seconds reading the
+ * file and building the grid took (either pointer may be NULL). */
+struct droplets;
+const struct droplets *render_droplets(double *read_s, double *grid_s);
+
+/* Recompiles every cached program from the files on disk; on error keeps the old programs. */
+bool render_reload(err_t *err);
+
+/* Evaluates the scene's map() on the GPU at n points (xyz each) into out (distance, material each):
+ * the shader's own distance estimate, for tests and the window's flying speed. */
+bool render_probe(const scene *s, const char *extra_defines, const float *points, int n, float *out, err_t *err);
+/* The same with another probe shader: fogprobe.frag gives the fog's optical depth for (y, dir y, length). */
+bool render_probe_with(const scene *s, const char *frag, const char *extra_defines, const float *points, int n,
+                       float *out, err_t *err);
+/* A probe shader over n rays (origin xyz, direction xyz each, in uPoints and uDirs) into out (4 floats
+ * each): dropletprobe.frag gives the droplets' grid walk for tests. */
+bool render_probe_rays(const scene *s, const char *frag, const char *extra_defines, const float *rays, int n,
+                       float *out, err_t *err);
+
+/* The #define preamble of the current scene's variant (for --print-variant). */
+void render_preamble(const scene *s, const char *extra_defines, strbuf *out);
+
+#endif

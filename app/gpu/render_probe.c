@@ -1,0 +1,79 @@
+/* render_probe — a probe shader (probe.frag: map() at points; fogprobe.frag: fog optical depth) run
+ * over a texture of points: the shader's own numbers, for tests and the window's flying speed. */
+#include <assert.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "gpu/render.h"
+#include "gpu/render_parts.h"
+
+bool render_probe(const scene *s, const char *extra_defines, const float *points, int n, float *out, err_t *err)
+{
+    return render_probe_with(s, "probe.frag", extra_defines, points, n, out, err);
+}
+
+/* in: n points of 3 floats (and with in2, n more of 3); out: n results of out_comps floats. */
+static bool probe_run(const scene *s, const char *frag, const char *extra_defines, const float *in, int in_stride,
+                      int n, float *out, int out_comps, err_t *err)
+{
+    assert(n > 0);
+    GLuint prog = programs_get(s, frag, extra_defines, err);
+    if (!prog)
+        return false;
+    scene_gpu_uniforms(prog, s);
+    scene_gpu_bind_textures();
+    GLint max_side = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_side);
+    int w = n < max_side ? n : max_side, h = (n + w - 1) / w;
+    int inputs = in_stride / 3;
+    float *px = util_calloc((size_t)w * (size_t)h * 4, sizeof(float), "probe points");
+    GLuint tex[3], fbo;
+    glGenTextures(3, tex);
+    for (int i = 0; i < 3; i++) { /* inputs, then the result; without mipmaps, the default filter leaves a texture incomplete */
+        bool input = i < inputs;
+        if (input)
+            for (int k = 0; k < n; k++)
+                memcpy(px + (size_t)k * 4, in + (size_t)k * (size_t)in_stride + 3 * (size_t)i, sizeof(float) * 3);
+        glBindTexture(GL_TEXTURE_2D, tex[i]);
+        glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, w, h, 0, GL_RGBA, GL_FLOAT, input ? px : NULL);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    }
+    glGenFramebuffers(1, &fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, tex[2], 0);
+    glDrawBuffers(1, (const GLenum[]){GL_COLOR_ATTACHMENT0});
+    glViewport(0, 0, w, h);
+    glUseProgram(prog);
+    static const char *const names[2] = {"uPoints", "uDirs"};
+    for (int i = 0; i < inputs; i++) {
+        glActiveTexture(GL_TEXTURE0 + (GLenum)i);
+        glBindTexture(GL_TEXTURE_2D, tex[i]);
+        glUniform1i(glGetUniformLocation(prog, names[i]), i);
+    }
+    glBindVertexArray(render_vao());
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glReadBuffer(GL_COLOR_ATTACHMENT0);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, px);
+    for (int i = 0; i < n; i++)
+        memcpy(out + (size_t)i * (size_t)out_comps, px + (size_t)i * 4, sizeof(float) * (size_t)out_comps);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glDeleteFramebuffers(1, &fbo);
+    glDeleteTextures(3, tex);
+    glActiveTexture(GL_TEXTURE0);
+    free(px);
+    return true;
+}
+
+bool render_probe_with(const scene *s, const char *frag, const char *extra_defines, const float *points, int n,
+                       float *out, err_t *err)
+{
+    return probe_run(s, frag, extra_defines, points, 3, n, out, 2, err);
+}
+
+bool render_probe_rays(const scene *s, const char *frag, const char *extra_defines, const float *rays, int n,
+                       float *out, err_t *err)
+{
+    return probe_run(s, frag, extra_defines, rays, 6, n, out, 4, err);
+}

@@ -1,0 +1,96 @@
+/* render_programs — the program cache. A program is keyed by its fragment shader, the full preamble
+ * and the map() text, so two scenes share a program exactly when they would compile the same one. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "gpu/render_parts.h"
+#include "gpu/shader.h"
+
+enum { MAX_PROGRAMS = 64 };
+
+typedef struct cached_program {
+    const char *frag;     /* sdf.frag (the image), probe.frag (map() at points), fogprobe.frag */
+    char *preamble, *map; /* the key */
+    GLuint prog;
+} cached_program;
+
+static struct {
+    char shader_root[PATH_MAX_LEN];
+    cached_program programs[MAX_PROGRAMS];
+    int count;
+} cache;
+
+void programs_init(void) { snprintf(cache.shader_root, sizeof cache.shader_root, "%s/shaders", util_data_dir()); }
+
+const char *programs_shader_root(void) { return cache.shader_root; }
+
+static void drop(cached_program *c)
+{
+    glDeleteProgram(c->prog);
+    free(c->preamble);
+    free(c->map);
+}
+
+void programs_shutdown(void)
+{
+    for (int i = 0; i < cache.count; i++)
+        drop(&cache.programs[i]);
+    memset(&cache, 0, sizeof cache);
+}
+
+static GLuint build(const char *frag, const char *preamble, const char *map, err_t *err)
+{
+    shader_virtual virt[] = {{"program.glsl", map}};
+    return shader_build(cache.shader_root, "fullscreen.vert", frag, preamble, virt, 1, err);
+}
+
+GLuint programs_get(const scene *s, const char *frag, const char *extra_defines, err_t *err)
+{
+    strbuf pre = {0};
+    scene_preamble(s, &pre);
+    if (extra_defines)
+        sb_append(&pre, extra_defines);
+    for (int i = 0; i < cache.count; i++) {
+        cached_program *c = &cache.programs[i];
+        if (!strcmp(c->frag, frag) && !strcmp(c->preamble, pre.data) && !strcmp(c->map, s->map_glsl)) {
+            sb_free(&pre);
+            return c->prog;
+        }
+    }
+    GLuint prog = build(frag, pre.data, s->map_glsl, err);
+    if (!prog) {
+        sb_free(&pre);
+        return 0;
+    }
+    if (cache.count == MAX_PROGRAMS) { /* evict the oldest */
+        drop(&cache.programs[0]);
+        memmove(cache.programs, cache.programs + 1, sizeof cache.programs[0] * (MAX_PROGRAMS - 1));
+        cache.count--;
+    }
+    cache.programs[cache.count++] =
+        (cached_program){.frag = frag, .preamble = pre.data, .map = util_strdup(s->map_glsl), .prog = prog};
+    return prog;
+}
+
+bool programs_reload(GLuint *current, err_t *err)
+{
+    /* Build everything first: one failure keeps every old program. */
+    GLuint fresh[MAX_PROGRAMS];
+    for (int i = 0; i < cache.count; i++) {
+        cached_program *c = &cache.programs[i];
+        fresh[i] = build(c->frag, c->preamble, c->map, err);
+        if (!fresh[i]) {
+            for (int k = 0; k < i; k++)
+                glDeleteProgram(fresh[k]);
+            return false;
+        }
+    }
+    for (int i = 0; i < cache.count; i++) {
+        if (cache.programs[i].prog == *current)
+            *current = fresh[i];
+        glDeleteProgram(cache.programs[i].prog);
+        cache.programs[i].prog = fresh[i];
+    }
+    return true;
+}

@@ -1,0 +1,102 @@
+#include "gpu/texture.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+#include "data/image_io.h"
+
+/* A mipmapped, trilinear, repeating 2D texture from one level of pixels. */
+static GLuint tiled_texture(GLint internal, int w, int h, GLenum format, GLenum type, const void *px, GLint align)
+{
+    GLuint tex;
+    glGenTextures(1, &tex);
+    glBindTexture(GL_TEXTURE_2D, tex);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, align);
+    glTexImage2D(GL_TEXTURE_2D, 0, internal, w, h, 0, format, type, px);
+    glGenerateMipmap(GL_TEXTURE_2D);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+    return tex;
+}
+
+/* The GL's limit (16384 on llvmpipe), and never more than image_io reads. */
+static int max_side(void)
+{
+    GLint n = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &n);
+    return n > 0 && n < IMAGE_MAX_SIDE ? n : IMAGE_MAX_SIDE;
+}
+
+GLuint texture_load_2d(const char *path, err_t *err)
+{
+    int w, h;
+    uint8_t *px;
+    if (!image_read_u8(path, 4, max_side(), &w, &h, &px, err))
+        return 0;
+    /* Row order does not matter for a tiling texture; keep the file's. */
+    GLuint tex = tiled_texture(GL_SRGB8_ALPHA8, w, h, GL_RGBA, GL_UNSIGNED_BYTE, px, 1);
+    free(px);
+    return tex;
+}
+
+GLuint texture_load_height(const char *path, int *width, err_t *err)
+{
+    int w, h, c;
+    float *px;
+    if (!image_read_f32(path, 1, max_side(), &w, &h, &c, &px, err))
+        return 0;
+    float *one = util_alloc(sizeof(float) * (size_t)w * (size_t)h, "a relief heightmap");
+    float lo = INFINITY, hi = -INFINITY;
+    for (int i = 0; i < w * h; i++) {
+        one[i] = px[(size_t)i * (size_t)c];
+        lo = one[i] < lo ? one[i] : lo;
+        hi = one[i] > hi ? one[i] : hi;
+    }
+    for (int i = 0; i < w * h; i++) /* 0 deepest, 1 the surface */
+        one[i] = hi > lo ? (one[i] - lo) / (hi - lo) : 1.0f;
+    free(px);
+    GLuint tex = tiled_texture(GL_R32F, w, h, GL_RED, GL_FLOAT, one, 4);
+    free(one);
+    *width = w;
+    return tex;
+}
+
+GLuint texture_load_cube(const char (*faces)[PATH_MAX_LEN], int *size, err_t *err)
+{
+    GLuint tex;
+    glGenTextures(1, &tex);
+    glBindTexture(GL_TEXTURE_CUBE_MAP, tex);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    int first = 0;
+    for (int i = 0; i < 6; i++) {
+        int w, h;
+        uint8_t *px;
+        if (!image_read_u8(faces[i], 4, max_side(), &w, &h, &px, err)) {
+            glDeleteTextures(1, &tex);
+            return 0;
+        }
+        if (w != h || (i > 0 && w != first)) {
+            free(px);
+            glDeleteTextures(1, &tex);
+            err_set(err, "cube-map face '%s' is %dx%d: faces must be square and all the same size", faces[i], w, h);
+            return 0;
+        }
+        first = w;
+        /* GL reads the first row as t = 0, which the cube-map convention puts at the top of each side
+         * face: image files (top row first) load as they are. */
+        glTexImage2D(GL_TEXTURE_CUBE_MAP_POSITIVE_X + (GLenum)i, 0, GL_SRGB8_ALPHA8, w, h, 0, GL_RGBA,
+                     GL_UNSIGNED_BYTE, px);
+        free(px);
+    }
+    glGenerateMipmap(GL_TEXTURE_CUBE_MAP);
+    glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
+    glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
+    *size = first;
+    return tex;
+}

@@ -1,0 +1,488 @@
+#include "jobs/bench.h"
+#include "data/droplets.h"
+
+#include <assert.h>
+#include <epoxy/gl.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "gpu/aov.h"
+#include "jobs/bench_report.h"
+#include "gpu/gpu.h"
+#include "data/image_io.h"
+#include "jobs/metrics.h"
+#include "gpu/render.h"
+#include "scene/scene.h"
+
+enum { DEFAULT_WIDTH = 320, DEFAULT_HEIGHT = 180, VIEWS = 2, REF_SPP = 64, STRICT_SPP = 128, LONG_SPP = 64,
+       MAX_ROWS = 512 };
+static const float VIEW_TURN_DEG = 40.0f;
+#define REF_REFINE "quality.refine=64" /* the knob's maximum: regula falsi to float resolution */
+
+/* A sweep: a knob's --set key (NULL: the bench's own resolution_scale) and its values. Built at run
+ * time from QUALITY_KNOBS, the program's row of PROGRAM_LIST, and resolution_scale. */
+typedef struct sweep {
+    char name[32], key[64], values[256];
+    bool own; /* resolution_scale: rendered smaller and upscaled, no --set */
+} sweep;
+enum { MAX_SWEEPS = KNOB_COUNT + 8 };
+
+static bool scope_applies(knob_scope scope, const scene *s)
+{
+    switch (scope) {
+    case SCOPE_ANY: return true;
+    case SCOPE_SHADOWS: return s->effects & (1u << EFFECT_SHADOWS);
+    case SCOPE_AO: return s->effects & (1u << EFFECT_AO);
+    case SCOPE_BOUNCES: return s->effects & ((1u << EFFECT_REFLECTIONS) | (1u << EFFECT_REFRACTION));
+    case SCOPE_TEXTURES: return s->effects & (1u << EFFECT_TEXTURES);
+    case SCOPE_REFINES: /* common/march.glsl refines; fractals define their surface by the footprint */
+        return !program_is_fractal(s->program) && !s->terrain.heightmap[0];
+    case SCOPE_SEARCH: /* the lab's search runs: linear terrain, or relief materials */
+        return (s->terrain.heightmap[0] && !s->terrain.maxmip) || (s->effects & (1u << EFFECT_RELIEF));
+    case SCOPE_DROPLETS: return s->effects & (1u << EFFECT_DROPLETS);
+    }
+    return false;
+}
+
+/* Every sweep the bench knows for scene s; `applies` says which run by default. */
+static int list_sweeps(const scene *s, sweep *out, bool *applies)
+{
+    int n = 0;
+    for (int k = 0; k < KNOB_COUNT; k++) {
+        const knob_def *d = knob_get_def((knob_id)k);
+        if (!d->sweep)
+            continue;
+        out[n] = (sweep){0};
+        snprintf(out[n].name, sizeof out[n].name, "%s", d->name);
+        snprintf(out[n].key, sizeof out[n].key, "quality.%s", d->name);
+        snprintf(out[n].values, sizeof out[n].values, "%s", d->sweep);
+        applies[n++] = scope_applies(d->scope, s);
+    }
+    /* the program's own: "key=v1,v2;key2=…", named by the key's last part */
+    const char *own = program_get(s->program)->bench;
+    for (const char *p = own; p && *p && n < MAX_SWEEPS - 1;) {
+        size_t len = strcspn(p, ";"), eq = strcspn(p, "=");
+        assert(eq < len);
+        out[n] = (sweep){0};
+        snprintf(out[n].key, sizeof out[n].key, "%.*s", (int)eq, p);
+        const char *dot = strrchr(out[n].key, '.');
+        snprintf(out[n].name, sizeof out[n].name, "%s", dot ? dot + 1 : out[n].key);
+        snprintf(out[n].values, sizeof out[n].values, "%.*s", (int)(len - eq - 1), p + eq + 1);
+        applies[n++] = true;
+        p += len + (p[len] == ';');
+    }
+    out[n] = (sweep){.name = "resolution_scale", .values = "0.25,0.5,0.75,1", .own = true};
+    applies[n++] = true;
+    return n;
+}
+
+typedef struct ref_view {
+    camera cam;
+    uint8_t *srgb;
+    float *aov;
+} ref_view;
+
+static struct {
+    const cli_options *opt;
+    int w, h;
+    ref_view views[VIEWS];
+    bench_row rows[MAX_ROWS];
+    int nrows;
+    int total, done;
+    double t0;
+} B;
+
+static void progress(const char *what)
+{
+    if (B.opt->quiet)
+        return;
+    int bar = 30, fill = B.total ? B.done * bar / B.total : 0;
+    fprintf(stderr, "\rbench %s [", B.opt->scene);
+    for (int i = 0; i < bar; i++)
+        fputc(i < fill ? '#' : '-', stderr);
+    fprintf(stderr, "] %d/%d  %.0f s  %-28.28s", B.done, B.total, util_now() - B.t0, what);
+    fflush(stderr);
+}
+
+/* The scene with the command line's --set, then `extra` more. */
+static bool load(const char *const *extra, int n_extra, scene *s, err_t *err)
+{
+    const char *sets[2 * CLI_MAX_SETS];
+    int n = 0;
+    for (int i = 0; i < B.opt->set_count; i++)
+        sets[n++] = B.opt->sets[i];
+    for (int i = 0; i < n_extra && n < 2 * CLI_MAX_SETS; i++)
+        sets[n++] = extra[i];
+    return scene_load(B.opt->scene, sets, n, s, err);
+}
+
+/* Renders all of s's samples from cam at w × h; returns the image time (ms). */
+static double image(const scene *s, const camera *cam, int w, int h)
+{
+    render_resize(w, h);
+    render_begin(cam);
+    glFinish();
+    double t0 = util_now();
+    for (int i = 0; i < s->quality.spp; i++)
+        render_sample();
+    glFinish();
+    return (util_now() - t0) * 1000.0;
+}
+
+static void read_back(int w, int h, uint8_t **srgb, float **aov)
+{
+    *srgb = util_alloc((size_t)w * (size_t)h * 4, "a bench image");
+    *aov = util_alloc(sizeof(float) * (size_t)w * (size_t)h * AOV_FLOATS, "a bench image");
+    render_read_srgb8(*srgb, 1.0f);
+    render_read_aovs(*aov);
+}
+
+/* Times and measures one setting over every view. scale < 1 renders smaller and upscales. */
+static bool measure(const char *knob_name, const char *value, const char *const *sets, int nsets, double scale,
+                    bench_row *out, err_t *err)
+{
+    scene s;
+    if (!load(sets, nsets, &s, err))
+        return false;
+    if (!render_set_scene(&s, NULL, err)) {
+        scene_free(&s);
+        return false;
+    }
+    int w = (int)lround(B.w * scale), h = (int)lround(B.h * scale);
+    w = w < 1 ? 1 : w;
+    h = h < 1 ? 1 : h;
+    *out = (bench_row){0};
+    snprintf(out->knob, sizeof out->knob, "%s", knob_name);
+    snprintf(out->value, sizeof out->value, "%s", value);
+    /* an image of LONG_SPP samples or more is long enough to time once, and needs no warm-up */
+    int runs = s.quality.spp >= LONG_SPP ? 1 : B.opt->runs;
+    double *ms = util_alloc(sizeof *ms * (size_t)B.opt->runs, "bench timings");
+    for (int v = 0; v < VIEWS; v++) {
+        if (runs > 1)
+            image(&s, &B.views[v].cam, w, h); /* warm-up: compiles and caches */
+        for (int r = 0; r < runs; r++)
+            ms[r] = image(&s, &B.views[v].cam, w, h);
+        out->ms += util_median(ms, runs) / VIEWS;
+        uint8_t *srgb;
+        float *aov;
+        read_back(w, h, &srgb, &aov);
+        image_view test = {w, h, srgb, aov}, ref = {B.w, B.h, B.views[v].srgb, B.views[v].aov};
+        if (w != B.w || h != B.h) {
+            uint8_t *up;
+            float *up_aov;
+            metrics_upscale(&test, B.w, B.h, &up, &up_aov);
+            free(srgb);
+            free(aov);
+            srgb = up;
+            aov = up_aov;
+            test = (image_view){B.w, B.h, srgb, aov};
+        }
+        metrics m = metrics_compare(&test, &ref, camera_pixel_angle(&B.views[v].cam, B.h));
+        if (scale != 1.0) /* steps were counted at the smaller size: per output pixel they are fewer */
+            m.mean_steps *= scale * scale;
+        out->m.rmse += m.rmse * m.rmse / VIEWS; /* mean square, rooted below */
+        out->m.depth_mean_fp += m.depth_mean_fp / VIEWS;
+        out->m.depth_max_fp = fmax(out->m.depth_max_fp, m.depth_max_fp);
+        out->m.flip_share += m.flip_share / VIEWS;
+        out->m.mean_steps += m.mean_steps / VIEWS;
+        out->m.iou = v == 0 ? m.iou : fmin(out->m.iou, m.iou); /* silhouettes: the worst view */
+        out->m.edge_max_px = fmax(out->m.edge_max_px, m.edge_max_px);
+        out->m.exhausted_share += m.exhausted_share / VIEWS;
+        free(srgb);
+        free(aov);
+    }
+    out->m.rmse = sqrt(out->m.rmse);
+    out->m.psnr_db = out->m.rmse > 0 ? 20 * log10(1 / out->m.rmse) : INFINITY;
+    free(ms);
+    scene_free(&s);
+    B.done++;
+    progress(knob_name);
+    return true;
+}
+
+static bool make_references(const scene *base, metrics *convergence, double *ref_ms, err_t *err)
+{
+    char spp[32];
+    snprintf(spp, sizeof spp, "quality.spp=%d", REF_SPP);
+    /* The reference must not share the bias of what it judges: hits located at float resolution
+     * (refine at its maximum, where the program refines), a long step budget, many samples. */
+    const char *ref_sets[] = {"quality.preset=reference", spp, "quality.max_steps=4096", REF_REFINE};
+    scene ref;
+    if (!load(ref_sets, 4, &ref, err) || !render_set_scene(&ref, NULL, err))
+        return false;
+    camera start = camera_look_at_deg(base->cam_position, base->cam_look_at, base->cam_fov_deg);
+    for (int v = 0; v < VIEWS; v++) {
+        /* turn the camera about the vertical through the look-at point */
+        float a = glm_rad((float)v * VIEW_TURN_DEG), ca = cosf(a), sa = sinf(a);
+        float d[3], pos[3];
+        for (int k = 0; k < 3; k++)
+            d[k] = base->cam_position[k] - base->cam_look_at[k];
+        pos[0] = base->cam_look_at[0] + ca * d[0] + sa * d[2];
+        pos[1] = base->cam_position[1];
+        pos[2] = base->cam_look_at[2] - sa * d[0] + ca * d[2];
+        B.views[v].cam = v == 0 ? start : camera_look_at(pos, base->cam_look_at, start.fov_y);
+        double ms = image(&ref, &B.views[v].cam, B.w, B.h);
+        if (v == 0)
+            *ref_ms = ms;
+        read_back(B.w, B.h, &B.views[v].srgb, &B.views[v].aov);
+        B.done++;
+        progress("reference");
+    }
+    scene_free(&ref);
+    /* Has the reference converged? Compare it with a render four times stricter in threshold and
+     * twice in samples, steps and bounces: its error must be far below what the knobs show. */
+    char strict_spp[32];
+    snprintf(strict_spp, sizeof strict_spp, "quality.spp=%d", STRICT_SPP);
+    /* (AO samples stay: the AO estimate is a different function of its sample count, not a converging sum) */
+    const char *strict_sets[] = {"quality.preset=reference", strict_spp, REF_REFINE, "quality.hit_k=0.0625",
+                                 "quality.max_steps=8192", "quality.shadow_steps=512", "quality.bounces=16"};
+    scene strict;
+    if (!load(strict_sets, 7, &strict, err) || !render_set_scene(&strict, NULL, err))
+        return false;
+    image(&strict, &B.views[0].cam, B.w, B.h);
+    uint8_t *srgb;
+    float *aov;
+    read_back(B.w, B.h, &srgb, &aov);
+    image_view a = {B.w, B.h, B.views[0].srgb, B.views[0].aov}, b = {B.w, B.h, srgb, aov};
+    *convergence = metrics_compare(&a, &b, camera_pixel_angle(&B.views[0].cam, B.h));
+    free(srgb);
+    free(aov);
+    scene_free(&strict);
+    B.done++;
+    progress("convergence check");
+    return true;
+}
+
+/* ---- effects ------------------------------------------------------------------------------------ */
+
+static double effect_time(const char *set, unsigned runtime, err_t *err, bool *ok)
+{
+    const char *sets[] = {set, "quality.spp=1"};
+    scene s;
+    *ok = load(sets, 2, &s, err) && render_set_scene(&s, NULL, err);
+    if (!*ok)
+        return 0;
+    render_set_runtime_effects(runtime);
+    double *ms = util_alloc(sizeof *ms * (size_t)B.opt->runs, "bench timings");
+    image(&s, &B.views[0].cam, B.w, B.h);
+    for (int r = 0; r < B.opt->runs; r++)
+        ms[r] = image(&s, &B.views[0].cam, B.w, B.h);
+    double m = util_median(ms, B.opt->runs);
+    free(ms);
+    render_set_runtime_effects(~0u);
+    scene_free(&s);
+    return m;
+}
+
+static bool measure_effects(const scene *base, effect_row *rows, err_t *err)
+{
+    for (int e = 0; e < EFFECT_COUNT; e++) {
+        char off[64], on[64];
+        snprintf(off, sizeof off, "effects.%s=off", effect_name((effect)e));
+        snprintf(on, sizeof on, "effects.%s=on", effect_name((effect)e));
+        bool ok;
+        rows[e] = (effect_row){.e = (effect)e, .in_scene = base->effects & (1u << e)};
+        rows[e].out_ms = effect_time(off, ~0u, err, &ok);
+        if (ok)
+            rows[e].in_ms = effect_time(on, ~0u, err, &ok);
+        if (ok)
+            rows[e].in_off_ms = effect_time(on, ~(1u << e), err, &ok);
+        if (!ok)
+            return false;
+        B.done++;
+        progress(effect_name((effect)e));
+    }
+    return true;
+}
+
+/* ---- the run ------------------------------------------------------------------------------------ */
+
+static bool add_sweep_rows(const sweep *k, const char *values, err_t *err)
+{
+    char list[512];
+    snprintf(list, sizeof list, "%s", values);
+    char *save = NULL;
+    for (char *v = strtok_r(list, ",", &save); v; v = strtok_r(NULL, ",", &save)) {
+        if (B.nrows == MAX_ROWS)
+            return err_set(err, "too many bench settings (at most %d)", MAX_ROWS);
+        char set[128];
+        const char *sets[1];
+        int n = 0;
+        double scale = 1.0;
+        if (!k->own) {
+            snprintf(set, sizeof set, "%s=%s", k->key, v);
+            sets[n++] = set;
+        } else {
+            char *end;
+            scale = strtod(v, &end);
+            if (*end || scale <= 0 || scale > 1)
+                return err_set(err, "bad --knob resolution_scale value '%s': expected a number in (0, 1]", v);
+        }
+        if (!measure(k->name, v, sets, n, scale, &B.rows[B.nrows], err))
+            return false;
+        B.nrows++;
+    }
+    return true;
+}
+
+static int count_values(const char *v)
+{
+    int n = 1;
+    for (; *v; v++)
+        n += *v == ',';
+    return n;
+}
+
+/* Each preset's frame time (one sample per pixel) at the start view: what the window costs. */
+static bool frame_times(const cli_options *opt, err_t *err)
+{
+    if (!gpu_open(&(gpu_desc){.headless = true}, err))
+        return false;
+    bool ok = render_init(err);
+    printf("%s, %dx%d, %s: ms per frame (1 sample per pixel), median of %d after a warm-up\n", opt->scene, B.w, B.h,
+           gpu_describe(), opt->runs);
+    for (int p = 0; ok && p < PRESET_COUNT; p++) {
+        char set[64];
+        snprintf(set, sizeof set, "quality.preset=%s", preset_name((quality_preset)p));
+        const char *sets[] = {set, "quality.spp=1"};
+        scene s;
+        ok = load(sets, 2, &s, err) && render_set_scene(&s, NULL, err);
+        if (!ok)
+            break;
+        double read_s, grid_s;
+        const droplets *d = render_droplets(&read_s, &grid_s);
+        if (d && p == 0 && d->nodes)
+            printf("  droplets     %d: read %.3f s, bvh %.3f s (%d nodes, %zu listings, %.1f MB)\n", d->count, read_s,
+                   grid_s, d->node_count, d->refs, (double)droplets_bytes(d) / 1e6);
+        else if (d && p == 0)
+            printf("  droplets     %d: read %.3f s, grid %.3f s (%dx%dx%d cells, %zu listings, %.1f MB)\n", d->count,
+                   read_s, grid_s, d->dims[0], d->dims[1], d->dims[2], d->refs, (double)droplets_bytes(d) / 1e6);
+        camera cam = camera_look_at_deg(s.cam_position, s.cam_look_at, s.cam_fov_deg);
+        double *ms = util_alloc(sizeof *ms * (size_t)opt->runs, "bench timings");
+        image(&s, &cam, B.w, B.h);
+        for (int r = 0; r < opt->runs; r++)
+            ms[r] = image(&s, &cam, B.w, B.h);
+        float *aov = util_alloc(sizeof(float) * (size_t)B.w * (size_t)B.h * AOV_FLOATS, "a bench image");
+        render_read_aovs(aov);
+        double steps = 0;
+        for (int i = 0; i < B.w * B.h; i++)
+            steps += fabsf(aov[(size_t)i * AOV_FLOATS + AOV_SLOT_STEPS]); /* negative: ran out of steps */
+        printf("  %-12s %8.1f ms   %6.1f steps (height samples) per pixel\n", preset_name((quality_preset)p),
+               util_median(ms, opt->runs), steps / (B.w * B.h));
+        free(aov);
+        free(ms);
+        scene_free(&s);
+    }
+    render_shutdown();
+    gpu_close();
+    return ok;
+}
+
+/* Which sweeps run, with which values: --knob NAME=… picks (only those), else every one that applies. */
+static bool pick_sweeps(const scene *base, sweep *sweeps, const char **values, int *n, err_t *err)
+{
+    bool applies[MAX_SWEEPS];
+    *n = list_sweeps(base, sweeps, applies);
+    for (int k = 0; k < *n && !B.opt->knob_count; k++)
+        values[k] = applies[k] ? sweeps[k].values : NULL;
+    for (int i = 0; i < B.opt->knob_count; i++) {
+        const char *arg = B.opt->knobs[i], *eq = strchr(arg, '=');
+        bool found = false;
+        for (int k = 0; k < *n; k++)
+            if ((size_t)(eq - arg) == strlen(sweeps[k].name) && !strncmp(arg, sweeps[k].name, (size_t)(eq - arg))) {
+                values[k] = eq + 1;
+                found = true;
+            }
+        if (!found) {
+            strbuf known = {0};
+            for (int k = 0; k < *n; k++)
+                sb_printf(&known, "%s%s", k ? ", " : "", sweeps[k].name);
+            err_set(err, "unknown --knob '%.*s' for scene %s (known here: %s)", (int)(eq - arg), arg, base->name,
+                    known.data);
+            sb_free(&known);
+            return false;
+        }
+    }
+    return true;
+}
+
+bool bench_run(const cli_options *opt, err_t *err)
+{
+    memset(&B, 0, sizeof B);
+    B.opt = opt;
+    B.w = opt->width ? opt->width : DEFAULT_WIDTH;
+    B.h = opt->height ? opt->height : DEFAULT_HEIGHT;
+    if (opt->frame_times)
+        return frame_times(opt, err);
+    if (opt->terrain_scale)
+        return bench_terrain_scale(opt, opt->width ? opt->width : 640, opt->height ? opt->height : 360, err);
+    if (opt->interactive)
+        return bench_interactive(opt, opt->width ? opt->width : 1280, opt->height ? opt->height : 720, err);
+    if (opt->out) {
+        struct stat st;
+        if (stat(opt->out, &st) != 0 || !S_ISDIR(st.st_mode))
+            return err_set(err, "--out '%s' is not a folder: create it first", opt->out);
+    }
+    scene base;
+    if (!load(NULL, 0, &base, err))
+        return false;
+    sweep sweeps[MAX_SWEEPS];
+    const char *values[MAX_SWEEPS] = {0};
+    int nsweeps;
+    if (!pick_sweeps(&base, sweeps, values, &nsweeps, err)) {
+        scene_free(&base);
+        return false;
+    }
+    B.total = VIEWS + 1 + PRESET_COUNT + EFFECT_COUNT;
+    for (int k = 0; k < nsweeps; k++)
+        if (values[k])
+            B.total += count_values(values[k]);
+    if (!gpu_open(&(gpu_desc){.headless = true}, err)) {
+        scene_free(&base);
+        return false;
+    }
+    B.t0 = util_now();
+    metrics conv;
+    double ref_ms = 0;
+    effect_row fx[EFFECT_COUNT];
+    bool ok = render_init(err) && make_references(&base, &conv, &ref_ms, err);
+    for (int k = 0; ok && k < nsweeps; k++)
+        if (values[k])
+            ok = add_sweep_rows(&sweeps[k], values[k], err);
+    for (int p = 0; ok && p < PRESET_COUNT; p++) {
+        char set[64];
+        snprintf(set, sizeof set, "quality.preset=%s", preset_name((quality_preset)p));
+        const char *sets[] = {set};
+        ok = measure("preset", preset_name((quality_preset)p), sets, 1, 1.0, &B.rows[B.nrows], err);
+        B.nrows += ok;
+    }
+    ok = ok && measure_effects(&base, fx, err);
+    if (!opt->quiet)
+        fputc('\n', stderr);
+    if (ok) {
+        double t[MAX_ROWS], e[MAX_ROWS];
+        bool front[MAX_ROWS];
+        for (int i = 0; i < B.nrows; i++)
+            t[i] = B.rows[i].ms, e[i] = B.rows[i].m.rmse;
+        metrics_pareto(t, e, B.nrows, front);
+        for (int i = 0; i < B.nrows; i++)
+            B.rows[i].front = front[i];
+        bench_results res = {.opt = opt, .base = &base, .w = B.w, .h = B.h, .views = VIEWS, .ref_spp = REF_SPP,
+                             .view_turn_deg = VIEW_TURN_DEG, .rows = B.rows, .nrows = B.nrows, .fx = fx,
+                             .conv = &conv, .ref_ms = ref_ms};
+        bench_print(&res);
+        if (opt->out)
+            ok = bench_write(&res, err);
+    }
+    for (int v = 0; v < VIEWS; v++) {
+        free(B.views[v].srgb);
+        free(B.views[v].aov);
+    }
+    scene_free(&base);
+    render_shutdown();
+    gpu_close();
+    return ok;
+}

@@ -1,0 +1,40 @@
+/* bench_report — the bench's results: the console table, and with --out the CSV files, the gnuplot
+ * plot of error against time with the Pareto front, and the markdown summary. Internal to bench. */
+#ifndef FATHOM_BENCH_REPORT_H
+#define FATHOM_BENCH_REPORT_H
+
+#include <stdbool.h>
+
+#include "cli.h"
+#include "jobs/metrics.h"
+#include "scene/scene.h"
+
+typedef struct bench_row {
+    char knob[32], value[32];
+    double ms;  /* median time of one image (all its samples), mean over views */
+    metrics m;  /* mean over views (max depth: max) */
+    bool front;
+} bench_row;
+
+typedef struct effect_row {
+    effect e;
+    bool in_scene;
+    double out_ms, in_ms, in_off_ms;
+} effect_row;
+
+typedef struct bench_results {
+    const cli_options *opt;
+    const scene *base; /* the scene as loaded, before any sweep */
+    int w, h, views, ref_spp;
+    float view_turn_deg;
+    const bench_row *rows;
+    int nrows;
+    const effect_row *fx; /* EFFECT_COUNT rows */
+    const metrics *conv;  /* the reference against a stricter render */
+    double ref_ms;
+} bench_results;
+
+void bench_print(const bench_results *r);
+bool bench_write(const bench_results *r, err_t *err);
+
+#endif

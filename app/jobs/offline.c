@@ -1,0 +1,314 @@
+#include "jobs/offline.h"
+
+#include <epoxy/gl.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "gpu/aov.h"
+#include "cli.h"
+#include "gpu/gpu.h"
+#include "data/image_io.h"
+#include "gpu/render.h"
+#include "view/shot.h"
+
+/* A band: about 2 Mpixel by default; at most 16 Mpixel whatever --strip-rows asks (GPU targets 52 bytes
+ * a pixel, the readback about 140), so 16384 columns always render. */
+enum { BAR_WIDTH = 30, MAX_CHANNELS = 12, STRIP_PIXELS = 1 << 21, BAND_MAX_PIXELS = 1 << 24 };
+static const float EXPOSURE = 1.0f;
+
+static void progress(int done, int total, double elapsed)
+{
+    int fill = total > 0 ? done * BAR_WIDTH / total : BAR_WIDTH;
+    char bar[BAR_WIDTH + 1];
+    for (int i = 0; i < BAR_WIDTH; i++)
+        bar[i] = i < fill ? '#' : '-';
+    bar[BAR_WIDTH] = '\0';
+    double eta = done > 0 ? elapsed / done * (total - done) : 0.0;
+    fprintf(stderr, "\rrendering [%s] %d/%d samples  %.1f s  (eta %.1f s) ", bar, done, total, elapsed, eta);
+    if (done == total)
+        fputc('\n', stderr);
+    fflush(stderr);
+}
+
+/* EXR channels: RGBA, then the requested AOVs; src[c] is the AOV slot of channel c >= 4. */
+static int exr_channels(unsigned aovs, const char *names[MAX_CHANNELS], int src[MAX_CHANNELS])
+{
+    static const char *const RGBA[] = {"R", "G", "B", "A"};
+    int nc = 0;
+    for (; nc < 4; nc++)
+        names[nc] = RGBA[nc];
+    if (aovs & AOV_DEPTH) names[nc] = "Z", src[nc++] = AOV_SLOT_DEPTH;
+    if (aovs & AOV_NORMAL) {
+        names[nc] = "N.X", src[nc++] = AOV_SLOT_NORMAL;
+        names[nc] = "N.Y", src[nc++] = AOV_SLOT_NORMAL + 1;
+        names[nc] = "N.Z", src[nc++] = AOV_SLOT_NORMAL + 2;
+    }
+    if (aovs & AOV_STEPS) names[nc] = "steps", src[nc++] = AOV_SLOT_STEPS;
+    if (aovs & AOV_EXIT) {
+        names[nc] = "exit.X", src[nc++] = AOV_SLOT_EXIT;
+        names[nc] = "exit.Y", src[nc++] = AOV_SLOT_EXIT + 1;
+        names[nc] = "exit.Z", src[nc++] = AOV_SLOT_EXIT + 2;
+    }
+    return nc;
+}
+
+static bool is_png(const char *path)
+{
+    const char *dot = strrchr(path, '.');
+    return dot && !strcmp(dot, ".png");
+}
+
+static image_writer *open_writer(const char *path, int width, int height, unsigned aovs, const char *description,
+                                 const char *tile, err_t *err)
+{
+    const char *names[MAX_CHANNELS];
+    int src[MAX_CHANNELS];
+    const char *texts[] = {SHOT_KEY, description, TILE_KEY, tile, NULL};
+    if (is_png(path))
+        return image_writer_open_text(path, width, height, 3, false, NULL, texts, err);
+    return image_writer_open_text(path, width, height, exr_channels(aovs, names, src), true, names, texts, err);
+}
+
+/* Appends the current render target (width × rows, a band of the image or all of it) to w. */
+static bool write_band(image_writer *w, const char *path, int width, int rows, unsigned aovs, err_t *err)
+{
+    size_t n = (size_t)width * (size_t)rows;
+    bool ok;
+    if (is_png(path)) {
+        uint8_t *px = malloc(n * 4);
+        if (!px)
+            return err_set(err, "cannot write '%s': out of memory for a %dx%d band", path, width, rows);
+        render_read_srgb8(px, EXPOSURE);
+        for (size_t i = 0; i < n; i++) /* drop alpha: the image is opaque */
+            memmove(px + i * 3, px + i * 4, 3);
+        ok = image_writer_rows(w, rows, px, err);
+        free(px);
+        return ok;
+    }
+    const char *names[MAX_CHANNELS];
+    int src[MAX_CHANNELS];
+    int nc = exr_channels(aovs, names, src);
+    float *rgba = malloc(sizeof(float) * 4 * n), *aov = malloc(sizeof(float) * AOV_FLOATS * n);
+    float *out = malloc(sizeof(float) * (size_t)nc * n);
+    ok = rgba && aov && out;
+    if (!ok) {
+        err_set(err, "cannot write '%s': out of memory for a %dx%d band", path, width, rows);
+    } else {
+        render_read_linear(rgba);
+        render_read_aovs(aov);
+        for (size_t i = 0; i < n; i++) {
+            memcpy(out + i * (size_t)nc, rgba + i * 4, sizeof(float) * 4);
+            for (int c = 4; c < nc; c++)
+                out[i * (size_t)nc + (size_t)c] = aov[i * AOV_FLOATS + (size_t)src[c]];
+        }
+        ok = image_writer_rows(w, rows, out, err);
+    }
+    free(out);
+    free(rgba);
+    free(aov);
+    return ok;
+}
+
+bool offline_write(const char *path, int width, int height, unsigned aovs, const char *description, err_t *err)
+{
+    image_writer *w = open_writer(path, width, height, aovs, description, NULL, err);
+    if (!w)
+        return false;
+    if (!write_band(w, path, width, height, aovs, err)) {
+        image_writer_abort(w);
+        return false;
+    }
+    return image_writer_finish(w, err);
+}
+
+/* Rows a band of an image `height` rows tall: all of them up to STRIP_PIXELS (or --strip-rows, at most
+ * BAND_MAX_PIXELS), else an even count. Bands are cut from the bottom (GL's row 0), so each band's
+ * offset is even and pixel quads keep their parity: screen-space derivatives, and so every pixel,
+ * match an unbanded render. The top band takes the remainder. */
+static int band_rows(const offline_desc *d, int height)
+{
+    int rows = d->strip_rows ? d->strip_rows : STRIP_PIXELS / d->width;
+    if (rows > BAND_MAX_PIXELS / d->width)
+        rows = BAND_MAX_PIXELS / d->width;
+    if (rows >= height)
+        return height;
+    return rows > 2 ? rows & ~1 : 2;
+}
+
+void offline_tile_rows(int height, int index, int count, int *top, int *rows)
+{
+    int r = (height / count) & ~1;
+    if (r < 2)
+        r = 2;
+    int bottom = (count - index) * r; /* tile `count` is at the bottom */
+    *rows = index == 1 ? height - bottom : r;
+    *top = height - bottom - *rows;
+}
+
+bool offline_tile_name(const char *output, int index, int count, char *out, size_t n, err_t *err)
+{
+    const char *dot = strrchr(output, '.');
+    int digits = snprintf(NULL, 0, "%d", count);
+    int len = snprintf(out, n, "%.*s.tile-%0*d-of-%d%s", (int)(dot - output), output, digits, index, count, dot);
+    if (len < 0 || (size_t)len >= n)
+        return err_set(err, "bad --output '%s': the tile's file name is too long", output);
+    return true;
+}
+
+/* Renders rows [top, top + height) of the d->width × d->height image (all of it, or one tile) into w. */
+static bool render_bands(const offline_desc *d, int top, int height, image_writer *w, err_t *err)
+{
+    int rows = band_rows(d, height), bands = (height + rows - 1) / rows;
+    double t0 = util_now();
+    for (int k = 0; k < bands; k++) {
+        int bottom = (bands - 1 - k) * rows, h = height - bottom < rows ? height - bottom : rows;
+        render_resize(d->width, h);
+        render_set_window(d->width, d->height, 0, top + height - bottom - h);
+        render_begin(&d->cam);
+        for (int i = 0; i < d->spp; i++) {
+            render_sample();
+            glFinish();
+            if (!d->quiet)
+                progress(k * d->spp + i + 1, bands * d->spp, util_now() - t0);
+        }
+        GLenum e = glGetError();
+        if (e != GL_NO_ERROR)
+            return err_set(err, "cannot render '%s': the GL failed on a %dx%d band (%s); try a smaller --strip-rows",
+                           d->output, d->width, h, e == GL_OUT_OF_MEMORY ? "out of GPU memory" : "GL error");
+        if (!write_band(w, d->output, d->width, h, d->aovs, err))
+            return false;
+    }
+    return true;
+}
+
+bool offline_render_current(const offline_desc *d, err_t *err)
+{
+    if (!render_set_scene(d->scene, NULL, err)) /* the output was checked by the caller, before the GPU */
+        return false;
+    double t0 = util_now();
+    int top = 0, rows = d->height;
+    char tile[128] = "";
+    if (d->tile_count) {
+        offline_tile_rows(d->height, d->tile_index, d->tile_count, &top, &rows);
+        snprintf(tile, sizeof tile, "%d %d %d %d %d %u", d->tile_index, d->tile_count, d->width, d->height, top, d->aovs);
+    }
+    image_writer *w = open_writer(d->output, d->width, rows, d->aovs, d->description, tile[0] ? tile : NULL, err);
+    if (!w)
+        return false;
+    if (!render_bands(d, top, rows, w, err)) {
+        image_writer_abort(w);
+        return false;
+    }
+    if (!image_writer_finish(w, err))
+        return false;
+    if (!d->quiet && d->tile_count)
+        fprintf(stderr, "wrote %s (tile %d of %d: rows %d-%d of %dx%d, %d spp, %.2f s, %s)\n", d->output, d->tile_index,
+                d->tile_count, top, top + rows - 1, d->width, d->height, d->spp, util_now() - t0, gpu_describe());
+    else if (!d->quiet)
+        fprintf(stderr, "wrote %s (%dx%d, %d spp, %.2f s, %s)\n", d->output, d->width, d->height, d->spp,
+                util_now() - t0, gpu_describe());
+    return true;
+}
+
+bool offline_render(const offline_desc *d, err_t *err)
+{
+    if (!image_can_write(d->output, err))
+        return false;
+    if (!gpu_open(&(gpu_desc){.headless = true}, err))
+        return false;
+    bool ok = render_init(err) && offline_render_current(d, err);
+    render_shutdown();
+    gpu_close();
+    return ok;
+}
+
+/* ---- stitching tiles ---- */
+
+typedef struct tile_info {
+    const char *file;
+    int index, count, width, height, top;
+    unsigned aovs;
+} tile_info;
+
+static int by_index(const void *a, const void *b)
+{
+    return ((const tile_info *)a)->index - ((const tile_info *)b)->index;
+}
+
+bool offline_stitch(const char *output, const char *const *tiles, int n, bool quiet, err_t *err)
+{
+    if (n < 1)
+        return err_set(err, "fathom stitch: no tile files given (e.g. fathom stitch --output poster.png poster.tile-*.png)");
+    if (!image_can_write(output, err))
+        return false;
+    tile_info *t = util_calloc((size_t)n, sizeof *t, "tiles");
+    bool ok = true;
+    for (int i = 0; i < n && ok; i++) {
+        char *text = NULL;
+        t[i].file = tiles[i];
+        if (is_png(tiles[i]) != is_png(output))
+            ok = err_set(err, "tile '%s': its format differs from '%s' (tiles and poster are all .png or all .exr)",
+                         tiles[i], output);
+        else if (!image_read_text(tiles[i], TILE_KEY, &text, err))
+            ok = err_set(err, "'%s' is not a fathom tile (render tiles with --tile I/N)", tiles[i]);
+        else if (sscanf(text, "%d %d %d %d %d %u", &t[i].index, &t[i].count, &t[i].width, &t[i].height, &t[i].top,
+                        &t[i].aovs) != 6 || t[i].count < 1 || t[i].index < 1 || t[i].index > t[i].count)
+            ok = err_set(err, "tile '%s': its record '%s' is damaged", tiles[i], text);
+        else if (i > 0 && (t[i].count != t[0].count || t[i].width != t[0].width || t[i].height != t[0].height ||
+                           t[i].aovs != t[0].aovs))
+            ok = err_set(err, "tile '%s' belongs to another poster than '%s' (%d tiles of %dx%d against %d of %dx%d)",
+                         tiles[i], tiles[0], t[i].count, t[i].width, t[i].height, t[0].count, t[0].width, t[0].height);
+        free(text);
+    }
+    if (ok) {
+        qsort(t, (size_t)n, sizeof *t, by_index);
+        for (int i = 0; i < n && ok; i++)
+            if (i > 0 && t[i].index == t[i - 1].index)
+                ok = err_set(err, "tiles '%s' and '%s' are both tile %d", t[i - 1].file, t[i].file, t[i].index);
+        if (ok && n != t[0].count) {
+            strbuf missing = {0};
+            for (int k = 1, j = 0; k <= t[0].count; k++) {
+                while (j < n && t[j].index < k)
+                    j++;
+                if (j >= n || t[j].index != k)
+                    sb_printf(&missing, "%s%d", missing.len ? ", " : "", k);
+            }
+            ok = err_set(err, "%d of %d tiles given: missing %s", n, t[0].count, missing.data);
+            sb_free(&missing);
+        }
+    }
+    char *shot = NULL;
+    err_t ignore;
+    if (ok)
+        image_read_text(t[0].file, SHOT_KEY, &shot, &ignore); /* the poster remembers the shot, as the tiles do */
+    image_writer *w = ok ? open_writer(output, t[0].width, t[0].height, t[0].aovs, shot, NULL, err) : NULL;
+    ok = ok && w;
+    const char *names[MAX_CHANNELS];
+    int src[MAX_CHANNELS];
+    int nc = exr_channels(t[0].aovs, names, src);
+    for (int i = 0; i < n && ok; i++) {
+        int top, rows, width, height, got;
+        offline_tile_rows(t[0].height, t[i].index, t[0].count, &top, &rows);
+        void *px = NULL;
+        if (is_png(output))
+            ok = image_read_u8(t[i].file, 3, TILE_MAX * 4, &width, &height, (uint8_t **)&px, err);
+        else
+            ok = image_read_f32(t[i].file, nc, TILE_MAX * 4, &width, &height, &got, (float **)&px, err);
+        if (ok && (width != t[0].width || height != rows || t[i].top != top))
+            ok = err_set(err, "tile '%s' is %dx%d at row %d; tile %d of %d of a %dx%d poster is %dx%d at row %d",
+                         t[i].file, width, height, t[i].top, t[i].index, t[0].count, t[0].width, t[0].height,
+                         t[0].width, rows, top);
+        ok = ok && image_writer_rows(w, rows, px, err);
+        free(px);
+    }
+    free(shot);
+    if (w && !ok)
+        image_writer_abort(w);
+    else if (w)
+        ok = image_writer_finish(w, err);
+    if (ok && !quiet)
+        fprintf(stderr, "wrote %s (%dx%d from %d tiles)\n", output, t[0].width, t[0].height, n);
+    free(t);
+    return ok;
+}

@@ -1,0 +1,401 @@
+#include "scene/scene.h"
+
+#include <assert.h>
+#include <dirent.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "data/droplets.h"
+#include "scene/scene_parse.h"
+
+/* A block that holds another family's shape is a mistake, not something to ignore. */
+static bool check_family_blocks(scene_ctx *c, const cJSON *root, const program_def *p)
+{
+    for (int f = FAMILY_CSG; f <= FAMILY_TERRAIN; f++) {
+        const char *block = program_family_block((program_family)f);
+        if ((program_family)f == p->family || !cJSON_GetObjectItemCaseSensitive(root, block))
+            continue;
+        strbuf readers = {0};
+        for (int k = 0; k < PROGRAM_COUNT; k++)
+            if (program_get((program_kind)k)->family == (program_family)f)
+                sb_printf(&readers, "%s%s", readers.len ? ", " : "", program_name((program_kind)k));
+        bool r = fail(c, block, "a %s scene has no \"%s\" block (its shape is the \"%s\" block; only %s read \"%s\")",
+                      p->name, block, program_family_block(p->family), readers.data, block);
+        sb_free(&readers);
+        return r;
+    }
+    return true;
+}
+
+/* An effect is compiled in when the scene's content calls for it ("auto"), then "on"/"off" force it. */
+static unsigned derive_effects(const scene *s)
+{
+    bool shadows = false, soft = false, mirror = false, glass = false, relief = false;
+    for (int i = 0; i < s->light_count; i++) {
+        shadows |= s->lights[i].shadow != SHADOW_NONE;
+        soft |= s->lights[i].shadow == SHADOW_SOFT;
+    }
+    for (int i = 0; i < s->material_count; i++) {
+        const scene_material *m = &s->materials[i];
+        glass |= m->transmission > 0;
+        relief |= m->relief >= 0;
+        mirror |= m->transmission == 0 && m->roughness <= MIRROR_ROUGHNESS;
+    }
+    bool want[EFFECT_COUNT] = {
+        [EFFECT_SHADOWS] = shadows,
+        [EFFECT_SOFT_SHADOWS] = soft,
+        [EFFECT_AO] = s->env_intensity > 0 && s->quality.ao_samples > 0,
+        [EFFECT_REFLECTIONS] = mirror && s->quality.bounces > 0,
+        [EFFECT_REFRACTION] = glass && s->quality.bounces > 0,
+        [EFFECT_FOG] = s->has_fog,
+        [EFFECT_ENVMAP] = s->has_cubemap,
+        [EFFECT_TEXTURES] = s->texture_count > 0 && !(s->texture_count == 1 && s->texture_linear[0]),
+        [EFFECT_AA] = s->quality.spp > 1,
+        [EFFECT_GLOW] = s->fractal.glow > 0,
+        [EFFECT_RELIEF] = relief,
+        [EFFECT_DROPLETS] = s->has_droplets,
+    };
+    unsigned fx = 0;
+    for (int e = 0; e < EFFECT_COUNT; e++) {
+        bool on = s->effect_modes[e] == EFFECT_ON || (s->effect_modes[e] == EFFECT_AUTO && want[e]);
+        fx |= (unsigned)on << e;
+    }
+    /* penumbrae are a kind of shadow: without shadow rays there is nothing to soften */
+    if (!(fx & (1u << EFFECT_SHADOWS)))
+        fx &= ~(1u << EFFECT_SOFT_SHADOWS);
+    /* droplets come from a file: a scene without one has none to draw */
+    if (!s->has_droplets)
+        fx &= ~(1u << EFFECT_DROPLETS);
+    /* terrain programs run the lab's search themselves, over their own surface: no relief there */
+    if (program_get(s->program)->family == FAMILY_TERRAIN)
+        fx &= ~(1u << EFFECT_RELIEF);
+    return fx;
+}
+
+
+/* The top level: which program, then the blocks every program reads, then the program's own. */
+static bool parse_root(scene_ctx *c, cJSON *root)
+{
+    scene *s = c->s;
+    static const char *const keys[] = {"title", "program", "camera", "environment", "lights", "fog",
+                                       "materials", "objects", "fractal", "terrain", "quality", "effects",
+                                       "droplets", NULL};
+    if (!check_keys(c, root, "", keys))
+        return false;
+    const char *title = NULL, *prog = NULL;
+    if (!get_str(c, root, "", "title", "", &title) || !get_str(c, root, "", "program", NULL, &prog))
+        return false;
+    snprintf(s->title, sizeof s->title, "%s", title);
+    if (!prog)
+        return fail(c, "program", "missing: say which program draws the scene, e.g. \"program\": \"csg\"");
+    if (!program_from_name(prog, &s->program)) {
+        strbuf known = {0};
+        program_names(&known);
+        bool r = fail(c, "program", "unknown program '%s' (known: %s)", prog, known.data);
+        sb_free(&known);
+        return r;
+    }
+    const program_def *p = program_get(s->program);
+    if (!check_family_blocks(c, root, p))
+        return false;
+    if (!parse_camera(c, root) || !parse_fog(c, root) || !parse_environment(c, root) || !parse_lights(c, root) ||
+        !parse_quality(c, root) || !parse_effects(c, root) || !parse_droplets(c, root))
+        return false;
+    /* fractals colour their own surface: their "materials" are optional */
+    bool materials = p->family != FAMILY_FRACTAL || cJSON_GetObjectItemCaseSensitive(root, "materials");
+    if ((materials && !parse_materials(c, root)) || !p->parse(c, root))
+        return false;
+    if (p->map_file)
+        sb_printf(&c->code, "#include \"%s\"\n", p->map_file);
+    s->effects = derive_effects(s);
+    return true;
+}
+
+/* ---- entry points ------------------------------------------------------------------------------ */
+
+static void line_col(const char *text, const char *at, int *line, int *col)
+{
+    *line = 1;
+    *col = 1;
+    for (const char *p = text; p < at && *p; p++) {
+        if (*p == '\n') {
+            (*line)++;
+            *col = 1;
+        } else {
+            (*col)++;
+        }
+    }
+}
+
+/* JSON allows a key twice in an object and cJSON keeps both, reading the first: a second value would
+ * go unchecked and unused. Refused, with the key's path. */
+static bool check_duplicates(scene_ctx *c, const cJSON *node, const char *path)
+{
+    int index = 0;
+    for (const cJSON *it = node->child; it; it = it->next, index++) {
+        char p[KEY_PATH_MAX];
+        if (cJSON_IsObject(node)) {
+            child_path(p, sizeof p, path, it->string);
+            for (const cJSON *before = node->child; before != it; before = before->next)
+                if (!strcmp(before->string, it->string))
+                    return fail(c, p, "the key '%s' appears twice in the same object; keep one", it->string);
+        } else {
+            char idx[16];
+            snprintf(idx, sizeof idx, "%d", index);
+            child_path(p, sizeof p, path, idx);
+        }
+        if ((cJSON_IsObject(it) || cJSON_IsArray(it)) && !check_duplicates(c, it, p))
+            return false;
+    }
+    return true;
+}
+
+/* Deepest nesting of [ and { outside strings, and where it first passes `limit`. */
+static int nesting(const char *text, int limit, const char **at)
+{
+    int depth = 0, deepest = 0;
+    bool in_string = false;
+    for (const char *p = text; *p; p++) {
+        if (in_string) {
+            if (*p == '\\' && p[1])
+                p++;
+            else if (*p == '"')
+                in_string = false;
+        } else if (*p == '"') {
+            in_string = true;
+        } else if (*p == '[' || *p == '{') {
+            if (++depth > deepest && (deepest = depth) == limit + 1)
+                *at = p;
+        } else if (*p == ']' || *p == '}') {
+            depth--;
+        }
+    }
+    return deepest;
+}
+
+bool scene_load_text(const char *text, const char *path, const char *const *sets, int set_count, scene *s,
+                     err_t *err)
+{
+    *s = (scene){0};
+    snprintf(s->path, sizeof s->path, "%s", path);
+    util_dirname(path, s->dir, sizeof s->dir);
+    const char *base = strrchr(path, '/');
+    base = base ? base + 1 : path;
+    snprintf(s->name, sizeof s->name, "%.*s", (int)strcspn(base, "."), base);
+
+    const char *end = NULL;
+    if (nesting(text, CJSON_NESTING_LIMIT, &end) > CJSON_NESTING_LIMIT) {
+        int line, col;
+        line_col(text, end, &line, &col);
+        return err_set(err, "%s:%d:%d: brackets nested deeper than %d levels; no scene needs that many", path, line,
+                       col, CJSON_NESTING_LIMIT);
+    }
+    cJSON *root = cJSON_ParseWithOpts(text, &end, true);
+    if (!root) {
+        int line, col;
+        line_col(text, end ? end : text, &line, &col);
+        return err_set(err, "%s:%d:%d: malformed JSON near here (check commas, quotes and brackets)", path, line, col);
+    }
+    scene_ctx c = {.file = path, .err = err, .s = s};
+    bool ok = check_duplicates(&c, root, "");
+    /* Check the file as written first, so a mistake there is reported as the file's, not an override's. */
+    if (ok && set_count > 0) {
+        scene probe;
+        ok = scene_load_text(text, path, NULL, 0, &probe, err);
+        scene_free(&probe);
+        *s = (scene){0};
+        snprintf(s->path, sizeof s->path, "%s", path);
+        util_dirname(path, s->dir, sizeof s->dir);
+        snprintf(s->name, sizeof s->name, "%.*s", (int)strcspn(base, "."), base);
+    }
+    for (int i = 0; ok && i < set_count; i++)
+        ok = scene_apply_set(root, sets[i], err);
+    if (ok) {
+        ok = parse_root(&c, root) && (!s->cam_auto || terrain_frame(s, err));
+        if (!ok && set_count > 0) { /* the file alone was fine, so an override broke it */
+            static const char SUFFIX[] = " (from --set)";
+            size_t len = strlen(err->msg);
+            if (len + sizeof SUFFIX <= sizeof err->msg)
+                memcpy(err->msg + len, SUFFIX, sizeof SUFFIX);
+        }
+    }
+    cJSON_Delete(root);
+    if (ok) {
+        s->map_glsl = c.code.data;
+    } else {
+        sb_free(&c.code);
+        scene_free(s);
+    }
+    return ok;
+}
+
+bool scene_locate(const char *name_or_path, char *out, size_t n, err_t *err)
+{
+    if (strchr(name_or_path, '/') || strstr(name_or_path, ".json")) {
+        if (!util_file_exists(name_or_path))
+            return err_set(err, "scene file '%s' not found: check the path, or pass a name from --list-scenes",
+                           name_or_path);
+        snprintf(out, n, "%s", name_or_path);
+        return true;
+    }
+    snprintf(out, n, "%s/scenes/%s.json", util_data_dir(), name_or_path);
+    if (!util_file_exists(out)) {
+        strbuf names = {0};
+        scene_list(&names);
+        for (char *p = names.data; p && *p; p++)
+            if (*p == '\n')
+                *p = p[1] ? ' ' : '\0';
+        err_set(err, "unknown scene '%s' (known: %s); pass a name or a path to a .json scene file", name_or_path,
+                names.data ? names.data : "none");
+        sb_free(&names);
+        return false;
+    }
+    return true;
+}
+
+bool scene_load(const char *name_or_path, const char *const *sets, int set_count, scene *s, err_t *err)
+{
+    char path[PATH_MAX_LEN];
+    char *text;
+    if (!scene_locate(name_or_path, path, sizeof path, err) || !util_read_file(path, &text, NULL, err))
+        return false;
+    bool ok = scene_load_text(text, path, sets, set_count, s, err);
+    free(text);
+    return ok;
+}
+
+void scene_free(scene *s)
+{
+    free(s->map_glsl);
+    free(s->csg_list);
+    free(s->csg_nodes);
+    s->map_glsl = NULL;
+    s->csg_list = s->csg_nodes = NULL;
+}
+
+void scene_preamble(const scene *s, strbuf *out)
+{
+    const program_def *p = program_get(s->program);
+    sb_printf(out, "#define PROGRAM_%s 1\n", p->name);
+    effect_preamble(s->effects, out);
+    quality_preamble(&s->quality, out);
+    sb_printf(out, "#define NUM_LIGHTS %d\n#define NUM_MATERIALS %d\n#define MIRROR_ROUGHNESS %.9g\n"
+                   "#define PRECISION_REL %.9g\n",
+              s->light_count, s->material_count, (double)MIRROR_ROUGHNESS, (double)PRECISION_REL);
+    if (s->has_droplets)
+        sb_printf(out, "#define DROPLET_BVH %d\n", s->droplets.bvh);
+    if (p->defines)
+        p->defines(s, out);
+}
+
+/* Materials (shaders/common/material.glsl, relief.glsl). */
+static void material_uniforms(const scene *s, const uniform_sink *u)
+{
+    enum { N = SCENE_MAX_MATERIALS };
+    float base[N][3], metallic[N], rough[N], trans[N], ior[N], absorb[N][3], uv[N], emit[N][3], depth[N];
+    int tex[N], relief[N];
+    for (int i = 0; i < s->material_count; i++) {
+        const scene_material *m = &s->materials[i];
+        memcpy(base[i], m->base_color, sizeof base[i]);
+        memcpy(absorb[i], m->absorption, sizeof absorb[i]);
+        memcpy(emit[i], m->emission, sizeof emit[i]);
+        metallic[i] = m->metallic;
+        rough[i] = m->roughness;
+        trans[i] = m->transmission;
+        ior[i] = m->ior;
+        uv[i] = m->uv_scale;
+        tex[i] = m->texture;
+        relief[i] = m->relief;
+        depth[i] = m->relief_depth;
+    }
+    int n = s->material_count;
+    uniform_fv(u, "uMatBaseColor", 3, n, &base[0][0]);
+    uniform_fv(u, "uMatMetallic", 1, n, metallic);
+    uniform_fv(u, "uMatRoughness", 1, n, rough);
+    uniform_fv(u, "uMatTransmission", 1, n, trans);
+    uniform_fv(u, "uMatIor", 1, n, ior);
+    uniform_fv(u, "uMatAbsorption", 3, n, &absorb[0][0]);
+    uniform_fv(u, "uMatEmission", 3, n, &emit[0][0]);
+    uniform_fv(u, "uMatUvScale", 1, n, uv);
+    uniform_iv(u, "uMatTexture", 1, n, tex);
+    uniform_iv(u, "uMatRelief", 1, n, relief);
+    uniform_fv(u, "uMatReliefDepth", 1, n, depth);
+}
+
+/* Lights (shaders/common/lights.glsl). */
+static void light_uniforms(const scene *s, const uniform_sink *u)
+{
+    enum { N = SCENE_MAX_LIGHTS };
+    float vec[N][3], col[N][3], soft[N];
+    int directional[N], shadow[N];
+    for (int i = 0; i < s->light_count; i++) {
+        const scene_light *l = &s->lights[i];
+        memcpy(vec[i], l->vec, sizeof vec[i]);
+        for (int k = 0; k < 3; k++)
+            col[i][k] = l->color[k] * l->intensity;
+        directional[i] = l->type == LIGHT_DIRECTIONAL;
+        shadow[i] = (int)l->shadow;
+        soft[i] = l->softness;
+    }
+    if (s->light_count == 0) /* GLSL has no arrays of size 0: the program declares none */
+        return;
+    uniform_fv(u, "uLightVec", 3, s->light_count, &vec[0][0]);
+    uniform_fv(u, "uLightColor", 3, s->light_count, &col[0][0]);
+    uniform_iv(u, "uLightDirectional", 1, s->light_count, directional);
+    uniform_iv(u, "uLightShadow", 1, s->light_count, shadow);
+    uniform_fv(u, "uLightSoftness", 1, s->light_count, soft);
+}
+
+void scene_uniforms(const scene *s, const uniform_sink *u)
+{
+    material_uniforms(s, u);
+    light_uniforms(s, u);
+    float env[3];
+    for (int k = 0; k < 3; k++)
+        env[k] = s->env_color[k] * s->env_intensity;
+    uniform_fv(u, "uEnvColor", 3, 1, env);
+    uniform_fv(u, "uFogColor", 3, 1, s->fog_color);
+    uniform_f(u, "uFogDensity", s->fog_density);
+    uniform_f(u, "uFogFalloff", s->fog_falloff);
+    uniform_f(u, "uFogHeight", s->fog_height);
+    if (s->has_droplets) { /* shaders/common/droplets.glsl; the grid's uniforms come with its buffers */
+        uniform_f(u, "uDropletIor", s->droplets.ior);
+        uniform_fv(u, "uDropletAbsorption", 3, 1, s->droplets.absorption);
+        uniform_f(u, "uDropletRoughness", s->droplets.roughness);
+        droplet_lod_table lod;
+        droplets_lod_table(s->droplets.ior, &lod);
+        uniform_fv(u, "uDropletLodWeight", 1, DROPLET_LOD_NODES, lod.weight);
+        uniform_fv(u, "uDropletLodCosT", 1, DROPLET_LOD_NODES, lod.cos_t);
+        uniform_f(u, "uDropletReflect", lod.reflect);
+    }
+    const program_def *p = program_get(s->program);
+    if (p->uniforms)
+        p->uniforms(s, u);
+}
+
+static int cmp_str(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }
+
+void scene_list(strbuf *out)
+{
+    char dir[PATH_MAX_LEN];
+    snprintf(dir, sizeof dir, "%s/scenes", util_data_dir());
+    DIR *d = opendir(dir);
+    if (!d)
+        return;
+    char *names[256];
+    int n = 0;
+    for (struct dirent *e; (e = readdir(d)) && n < 256;) {
+        size_t len = strlen(e->d_name);
+        if (len > 5 && !strcmp(e->d_name + len - 5, ".json"))
+            names[n++] = strndup(e->d_name, len - 5);
+    }
+    closedir(d);
+    qsort(names, (size_t)n, sizeof names[0], cmp_str);
+    for (int i = 0; i < n; i++) {
+        sb_printf(out, "%s\n", names[i]);
+        free(names[i]);
+    }
+}
+

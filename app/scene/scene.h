@@ -1,0 +1,174 @@
+/* scene — a scene file (JSON, see scenes/README.md) turned into a scene struct. Pure: files in, data out.
+ *
+ * Files: scene.c (entry points, the top level, the preamble and uniforms), scene_json.c (reading
+ * with error context), scene_blocks.c (materials, lights, environment, camera, fog, quality,
+ * effects), scene_csg.c (the CSG tree → map()), scene_programs.c (each program's block),
+ * scene_set.c (--set overrides).
+ *
+ * Conventions: right-handed world, Y up, metres. Angles in degrees in the file, radians in code.
+ * Colours are linear RGB. Point lights fall off as 1/d² (intensity is radiant intensity, W/sr-like);
+ * directional lights give irradiance `intensity` on a surface facing them.
+ *
+ * CSG: the file's "objects" tree becomes a GLSL `vec2 map(vec3 p)` (distance, material index).
+ * Every primitive is an exact signed distance; rotations and translations keep it exact; union,
+ * intersection and difference give a bound (the smooth variants a bound within k/4 of it).
+ * Material of a surface point = the material of the primitive whose surface it is.
+ * Many primitives: bounded primitives at the top level (or in plain unions, without position or
+ * rotation) go to a primitive list behind a bounding volume hierarchy (app/data/bvh.h) once there are
+ * CSG_LIST_MIN of them, so 10,000 compile like 10; at most CSG_CODE_MAX primitives are compiled as
+ * code (inside other operations), a limit stated in the error before anything compiles.
+ */
+#ifndef FATHOM_SCENE_H
+#define FATHOM_SCENE_H
+
+#include <stdbool.h>
+
+#include "util.h"
+#include "scene/effect.h"
+#include "scene/program.h"
+#include "scene/quality.h"
+#include "scene/uniforms.h"
+
+enum { CSG_LIST_MIN = 32, CSG_CODE_MAX = 256, CSG_LIST_MAX = 1 << 20 };
+/* The primitive list as the csg program reads it (shaders/csg/list.glsl): CSG_LIST_TEXELS RGBA texels a
+ * primitive, CSG_NODE_TEXELS a BVH node, in textures CSG_TEXTURE_WIDTH texels wide. */
+enum { CSG_LIST_TEXELS = 5, CSG_NODE_TEXELS = 2, CSG_TEXTURE_WIDTH = 4096 };
+
+enum { SCENE_MAX_MATERIALS = 16, SCENE_MAX_LIGHTS = 8, SCENE_MAX_TEXTURES = 4, SCENE_NAME_MAX = 64 };
+
+typedef struct scene_material {
+    char name[SCENE_NAME_MAX];
+    float base_color[3];
+    float metallic, roughness;
+    float transmission; /* 0 opaque, 1 glass */
+    float ior;
+    float absorption[3]; /* Beer–Lambert coefficient inside, per metre */
+    float emission[3];
+    int texture;    /* index into scene.textures, -1 none; multiplies base_color */
+    float uv_scale; /* texture repeats per metre */
+    int relief;          /* index into scene.textures of a heightmap (parallax occlusion), -1 none */
+    float relief_depth;  /* metres below the surface that the heightmap's black lies */
+} scene_material;
+
+typedef enum light_type { LIGHT_POINT, LIGHT_DIRECTIONAL } light_type;
+typedef enum shadow_mode { SHADOW_NONE, SHADOW_HARD, SHADOW_SOFT } shadow_mode;
+
+typedef struct scene_light {
+    light_type type;
+    float vec[3]; /* point: position; directional: unit direction toward the light */
+    float color[3];
+    float intensity;
+    shadow_mode shadow;
+    float softness; /* soft shadows: penumbra sharpness k (larger = harder) */
+} scene_light;
+
+typedef enum effect_mode { EFFECT_AUTO, EFFECT_ON, EFFECT_OFF } effect_mode;
+
+/* Fractal programs' parameters (the "fractal" block). Each program reads the ones it names. */
+typedef struct scene_fractal {
+    int iterations;     /* all: iterations of the formula (Menger: levels of the sponge) */
+    float power;        /* mandelbulb: 2..16 */
+    float bailout;      /* mandelbulb: escape radius */
+    float scale;        /* mandelbox: scale factor */
+    float min_radius;   /* mandelbox: sphere fold inner radius */
+    float fixed_radius; /* mandelbox: sphere fold outer radius */
+    float fold_limit;   /* mandelbox: box fold limit */
+    float size;         /* menger: half-extent of the sponge (metres) */
+    float bound_radius; /* all: a sphere that holds the whole set (marching starts at it) */
+    float palette[3][3]; /* orbit-trap colours: near, middle, far */
+    float glow;          /* glow strength; 0 = off */
+    float glow_color[3];
+} scene_fractal;
+
+typedef struct scene {
+    char path[PATH_MAX_LEN], dir[PATH_MAX_LEN];
+    char name[SCENE_NAME_MAX];
+    char title[256];
+    program_kind program;
+
+    float cam_position[3], cam_look_at[3], cam_fov_deg;
+    bool cam_auto; /* "camera": "auto" (terrain): camera, distances, fog and layers framed from the DEM */
+
+    float env_color[3];
+    float env_intensity;
+    bool has_cubemap;
+    char cubemap[6][PATH_MAX_LEN]; /* +X -X +Y -Y +Z -Z */
+
+    bool has_fog;
+    float fog_color[3], fog_density; /* density σ0 at fog_height, per metre */
+    float fog_falloff, fog_height;   /* σ(y) = σ0 · exp(−falloff · (y − height)) */
+
+    scene_material materials[SCENE_MAX_MATERIALS];
+    int material_count;
+    scene_light lights[SCENE_MAX_LIGHTS];
+    int light_count;
+    char textures[SCENE_MAX_TEXTURES][PATH_MAX_LEN];
+    bool texture_linear[SCENE_MAX_TEXTURES]; /* heights: linear float, not sRGB colour */
+    int texture_count;
+
+    quality_preset preset;
+    quality quality;
+    effect_mode effect_modes[EFFECT_COUNT];
+    unsigned effects; /* derived from content, then effect_modes applied */
+
+    scene_fractal fractal;
+
+    struct scene_terrain {
+        char heightmap[PATH_MAX_LEN];
+        float spacing[2], height_min, height_max, exaggeration;
+        bool maxmip;      /* method: "maxmip" (exact, hierarchical) or "linear" (the lab's search) */
+        bool fill_nodata; /* nodata: "hole" (rays pass) or "fill" (GDALFillNodata) */
+        bool patch_normals; /* normals: "smooth" (vertex normals blended across the cell) or "patch" (exact) */
+        float sand_line, snow_line; /* metres: sand below, snow above (after exaggeration) */
+        float grass_slope;          /* grass where the normal's y is above this, else rock */
+        /* program noise: f(p) = y − base − amplitude · fbm(p · frequency), `octaves` octaves */
+        float base, amplitude, frequency;
+        int octaves;
+    } terrain;
+    bool adaptive_speed; /* window: flying speed follows the distance to the surface */
+
+    /* "droplets": liquid spheres from a file (app/data/droplets.h), a layer any program can hold; the file
+     * is read when the scene goes to the GPU (render_scene.c), like a terrain's heightmap */
+    bool has_droplets;
+    struct scene_droplets {
+        char file[PATH_MAX_LEN];
+        float scale;         /* multiplies the file's positions and radii */
+        float ior;           /* of the liquid (water 1.33) */
+        float absorption[3]; /* Bouguer–Beer–Lambert coefficient inside, per metre */
+        float roughness;     /* of the liquid's surface, for the lights' highlights */
+        bool bvh;            /* "structure": "bvh" instead of the uniform grid (to compare) */
+    } droplets;
+
+    char *map_glsl; /* the program's virtual "program.glsl": the CSG map, or an #include of the fractal */
+    int primitive_count;
+    /* csg: the primitive list and its BVH, packed as texels (4 floats each); NULL when none */
+    float *csg_list, *csg_nodes;
+    int csg_list_count, csg_node_count;
+} scene;
+
+/* Finds the file for a scene name ("csg" -> <data>/scenes/csg.json) or checks a path. */
+bool scene_locate(const char *name_or_path, char *out, size_t n, err_t *err);
+
+/* Parses the scene file, applies the "key=value" overrides in order, validates every key and value,
+ * derives the effect set and generates map(). Syntax errors name line and column. */
+bool scene_load(const char *name_or_path, const char *const *sets, int set_count, scene *s, err_t *err);
+
+/* The same from text already in memory (path is used for messages and relative paths). */
+bool scene_load_text(const char *text, const char *path, const char *const *sets, int set_count, scene *s,
+                     err_t *err);
+
+void scene_free(scene *s);
+
+/* The `#define` block (no #version) the scene compiles: program, effects, quality knobs, counts and
+ * the program's own defines. Two scenes compile to the same program exactly when these (and their
+ * map()) are equal. */
+void scene_preamble(const scene *s, strbuf *out);
+
+/* The scene's named uniforms: materials, lights, environment, fog, then the program's own. Texture
+ * units and sizes are the renderer's (render_scene.c). */
+void scene_uniforms(const scene *s, const uniform_sink *u);
+
+/* Lists scene names under <data>/scenes into out (one per line). */
+void scene_list(strbuf *out);
+
+#endif

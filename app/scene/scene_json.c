@@ -1,0 +1,154 @@
+/* scene_json — JSON reading with error context for the scene parsers (see scene_parse.h). */
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "scene/scene_parse.h"
+
+bool fail(scene_ctx *c, const char *path, const char *fmt, ...)
+{
+    char what[1024];
+    va_list ap;
+    va_start(ap, fmt);
+    if (vsnprintf(what, sizeof what, fmt, ap) >= (int)sizeof what)
+        what[sizeof what - 1] = '\0';
+    va_end(ap);
+    return err_set(c->err, "%s: %s: %s", c->file, path[0] ? path : "(top level)", what);
+}
+
+/* Key paths only appear in messages: a long one is cut, which is fine there. */
+void child_path(char *out, size_t n, const char *parent, const char *key)
+{
+    if (snprintf(out, n, "%s%s%s", parent, parent[0] ? "." : "", key) >= (int)n)
+        out[n - 1] = '\0';
+}
+
+/* Every object is checked against the keys it may hold, so a typo is an error, not a silent default. */
+bool check_keys(scene_ctx *c, const cJSON *obj, const char *path, const char *const *allowed)
+{
+    if (!cJSON_IsObject(obj))
+        return fail(c, path, "expected an object {...}");
+    for (const cJSON *it = obj->child; it; it = it->next) {
+        bool ok = false;
+        for (const char *const *k = allowed; *k; k++)
+            ok |= !strcmp(it->string, *k);
+        if (!ok) {
+            char p[512];
+            child_path(p, sizeof p, path, it->string);
+            strbuf list = {0};
+            for (const char *const *k = allowed; *k; k++)
+                sb_printf(&list, "%s%s", k == allowed ? "" : ", ", *k);
+            bool r = fail(c, p, "unknown key '%s' (allowed here: %s)", it->string, list.data);
+            sb_free(&list);
+            return r;
+        }
+    }
+    return true;
+}
+
+bool get_num(scene_ctx *c, const cJSON *obj, const char *path, const char *key, float def, float lo,
+                    float hi, float *out)
+{
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
+    char p[512];
+    child_path(p, sizeof p, path, key);
+    if (!v) {
+        *out = def;
+        return true;
+    }
+    if (!cJSON_IsNumber(v) || !isfinite(v->valuedouble) || v->valuedouble < lo || v->valuedouble > hi) {
+        char range[128];
+        snprintf(range, sizeof range, "%g to %g", (double)lo, (double)hi);
+        return fail(c, p, "expected a number from %s", range);
+    }
+    *out = (float)v->valuedouble;
+    return true;
+}
+
+bool get_int(scene_ctx *c, const cJSON *obj, const char *path, const char *key, int def, int lo, int hi,
+                    int *out)
+{
+    float f;
+    if (!get_num(c, obj, path, key, (float)def, (float)lo, (float)hi, &f))
+        return false;
+    if (f != floorf(f)) {
+        char p[512];
+        child_path(p, sizeof p, path, key);
+        return fail(c, p, "expected a whole number");
+    }
+    *out = (int)f;
+    return true;
+}
+
+bool get_vec3(scene_ctx *c, const cJSON *obj, const char *path, const char *key, const float def[3],
+                     float lo, float hi, float out[3])
+{
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
+    char p[512];
+    child_path(p, sizeof p, path, key);
+    if (!v) {
+        memcpy(out, def, sizeof(float) * 3);
+        return true;
+    }
+    if (!cJSON_IsArray(v) || cJSON_GetArraySize(v) != 3)
+        return fail(c, p, "expected three numbers [x, y, z]");
+    for (int i = 0; i < 3; i++) {
+        const cJSON *e = cJSON_GetArrayItem(v, i);
+        if (!cJSON_IsNumber(e) || !isfinite(e->valuedouble) || e->valuedouble < lo || e->valuedouble > hi) {
+            char range[128];
+            snprintf(range, sizeof range, "%g to %g", (double)lo, (double)hi);
+            return fail(c, p, "expected three numbers, each from %s", range);
+        }
+        out[i] = (float)e->valuedouble;
+    }
+    return true;
+}
+
+bool get_str(scene_ctx *c, const cJSON *obj, const char *path, const char *key, const char *def,
+                    const char **out)
+{
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
+    if (!v) {
+        *out = def;
+        return true;
+    }
+    if (!cJSON_IsString(v)) {
+        char p[512];
+        child_path(p, sizeof p, path, key);
+        return fail(c, p, "expected a string in quotes");
+    }
+    *out = v->valuestring;
+    return true;
+}
+
+bool get_enum(scene_ctx *c, const cJSON *obj, const char *path, const char *key, const char *what,
+              const char *const *names, int def, int *out)
+{
+    const char *v = NULL;
+    if (!get_str(c, obj, path, key, names[def], &v))
+        return false;
+    for (int i = 0; names[i]; i++)
+        if (!strcmp(v, names[i])) {
+            *out = i;
+            return true;
+        }
+    char p[KEY_PATH_MAX];
+    child_path(p, sizeof p, path, key);
+    strbuf known = {0};
+    for (int i = 0; names[i]; i++)
+        sb_printf(&known, "%s%s", i ? ", " : "", names[i]);
+    bool r = fail(c, p, "unknown %s '%s' (known: %s)", what, v, known.data);
+    sb_free(&known);
+    return r;
+}
+
+bool resolve_file(scene_ctx *c, const char *path, const char *rel, char *out)
+{
+    if (!util_join(c->s->dir, rel, out, PATH_MAX_LEN))
+        return fail(c, path, "path '%s' is too long", rel);
+    if (!util_file_exists(out))
+        return fail(c, path, "file '%s' not found (paths are relative to the scene file's folder)", out);
+    return true;
+}
+

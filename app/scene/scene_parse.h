@@ -1,0 +1,66 @@
+/* scene_parse — internal to the scene module: JSON reading with error context, shared by the block
+ * parsers (scene_blocks.c, scene_csg.c, scene_programs.c). Every error names the file and the key
+ * path, and the "allowed here" / "known" lists come from the tables they check against.
+ */
+#ifndef FATHOM_SCENE_PARSE_H
+#define FATHOM_SCENE_PARSE_H
+
+#include <cjson/cJSON.h>
+#include <stdbool.h>
+
+#include "scene/scene.h"
+#include "scene/uniforms.h"
+
+enum { KEY_PATH_MAX = 512 };
+
+/* Context for messages: every error names the file and the key path. */
+typedef struct scene_ctx {
+    const char *file;
+    err_t *err;
+    scene *s;
+    strbuf code; /* generated GLSL: program.glsl */
+    int next_var;
+} scene_ctx;
+
+bool fail(scene_ctx *c, const char *path, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+
+/* "parent.key" (cut when long: key paths only appear in messages). */
+void child_path(char *out, size_t n, const char *parent, const char *key);
+
+/* Every object is checked against the keys it may hold, so a typo is an error, not a silent default. */
+bool check_keys(scene_ctx *c, const cJSON *obj, const char *path, const char *const *allowed);
+
+/* Optional values: a missing key gives def; a present one must be of the type and in [lo, hi]. */
+bool get_num(scene_ctx *c, const cJSON *obj, const char *path, const char *key, float def, float lo, float hi,
+             float *out);
+bool get_int(scene_ctx *c, const cJSON *obj, const char *path, const char *key, int def, int lo, int hi, int *out);
+bool get_vec3(scene_ctx *c, const cJSON *obj, const char *path, const char *key, const float def[3], float lo,
+              float hi, float out[3]);
+bool get_str(scene_ctx *c, const cJSON *obj, const char *path, const char *key, const char *def, const char **out);
+
+/* A string from a NULL-terminated list of names: *out = its index (def when the key is missing).
+ * An unknown name is refused with the list ("unknown light type 'x' (known: point, directional)"). */
+bool get_enum(scene_ctx *c, const cJSON *obj, const char *path, const char *key, const char *what,
+              const char *const *names, int def, int *out);
+
+/* A file named in the scene: resolved against the scene file's folder and checked to exist. */
+bool resolve_file(scene_ctx *c, const char *path, const char *rel, char *out);
+
+/* Blocks every program has (scene_blocks.c). */
+bool parse_materials(scene_ctx *c, const cJSON *root);
+int find_material(const scene *s, const char *name);
+bool parse_camera(scene_ctx *c, const cJSON *root);
+bool parse_fog(scene_ctx *c, const cJSON *root);
+bool parse_environment(scene_ctx *c, const cJSON *root);
+bool parse_lights(scene_ctx *c, const cJSON *root);
+bool parse_quality(scene_ctx *c, const cJSON *root);
+bool parse_effects(scene_ctx *c, const cJSON *root);
+bool parse_droplets(scene_ctx *c, const cJSON *root);
+
+/* "camera": "auto": frames the camera, distances, haze and layers from the DEM (heightfield_probe). */
+bool terrain_frame(scene *s, err_t *err);
+
+/* --set overrides (scene_set.c): "a.b.0.c=value" applied to the parsed JSON tree. */
+bool scene_apply_set(cJSON *root, const char *kv, err_t *err);
+
+#endif

@@ -1,0 +1,313 @@
+/* scene_programs — the program rows of PROGRAM_LIST (app/scene/program.h): each program's block parser,
+ * what it adds to the #define preamble, and its named uniforms (the fractal and terrain shaders read
+ * them under the names written here). */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "scene/scene_parse.h"
+#include "data/terrain.h"
+
+/* ---- fractals: the "fractal" block ------------------------------------------------------------ */
+
+static bool get_palette(scene_ctx *c, const cJSON *f, float out[3][3])
+{
+    static const float def[3][3] = {{0.95f, 0.55f, 0.25f}, {0.25f, 0.45f, 0.75f}, {0.92f, 0.9f, 0.85f}};
+    memcpy(out, def, sizeof def);
+    const cJSON *pal = cJSON_GetObjectItemCaseSensitive(f, "palette");
+    if (!pal)
+        return true;
+    if (!cJSON_IsArray(pal) || cJSON_GetArraySize(pal) != 3)
+        return fail(c, "fractal.palette", "expected three colours [[r,g,b], [r,g,b], [r,g,b]] (near, middle, far)");
+    int i = 0;
+    for (const cJSON *col = pal->child; col; col = col->next, i++) {
+        if (!cJSON_IsArray(col) || cJSON_GetArraySize(col) != 3)
+            return fail(c, "fractal.palette", "colour %d: expected [r, g, b]", i);
+        for (int k = 0; k < 3; k++) {
+            const cJSON *v = cJSON_GetArrayItem(col, k);
+            if (!cJSON_IsNumber(v) || v->valuedouble < 0 || v->valuedouble > 1)
+                return fail(c, "fractal.palette", "colour %d: expected numbers from 0 to 1", i);
+            out[i][k] = (float)v->valuedouble;
+        }
+    }
+    return true;
+}
+
+static const float WARM[3] = {1.0f, 0.6f, 0.3f};
+static const float SQRT3 = 1.7320508f;
+
+/* Keys every fractal reads: the palette and the glow. */
+static bool fractal_common(scene_ctx *c, const cJSON *use, scene_fractal *fr)
+{
+    return get_palette(c, use, fr->palette) && get_num(c, use, "fractal", "glow", 0, 0, 100, &fr->glow) &&
+           get_vec3(c, use, "fractal", "glow_color", WARM, 0, 100, fr->glow_color);
+}
+
+/* The block, its keys checked against `keys` (a missing block reads as an empty one). */
+static const cJSON *fractal_block(scene_ctx *c, const cJSON *root, const char *const *keys, cJSON **empty)
+{
+    const cJSON *f = cJSON_GetObjectItemCaseSensitive(root, "fractal");
+    *empty = cJSON_CreateObject();
+    if (f && !check_keys(c, f, "fractal", keys))
+        return NULL;
+    return f ? f : *empty;
+}
+
+/* Fractals are drawn with material 0; a scene may omit "materials". */
+static bool fractal_done(scene_ctx *c, cJSON *empty, bool ok)
+{
+    cJSON_Delete(empty);
+    if (ok && c->s->material_count == 0) {
+        c->s->material_count = 1;
+        c->s->materials[0] = (scene_material){.name = "surface", .base_color = {1, 1, 1}, .roughness = 0.5f,
+                                              .ior = 1.5f, .texture = -1, .uv_scale = 1, .relief = -1};
+    }
+    return ok;
+}
+
+bool mandelbulb_parse(scene_ctx *c, const cJSON *root)
+{
+    static const char *const keys[] = {"iterations", "power", "bailout", "bound_radius", "palette", "glow",
+                                       "glow_color", NULL};
+    scene_fractal *fr = &c->s->fractal;
+    cJSON *empty;
+    const cJSON *use = fractal_block(c, root, keys, &empty);
+    return fractal_done(c, empty,
+                        use && fractal_common(c, use, fr) &&
+                            get_int(c, use, "fractal", "iterations", 12, 1, 64, &fr->iterations) &&
+                            get_num(c, use, "fractal", "power", 8, 2, 16, &fr->power) &&
+                            get_num(c, use, "fractal", "bailout", 2, 1.5f, 64, &fr->bailout) &&
+                            get_num(c, use, "fractal", "bound_radius", 1.6f, 0.5f, 100, &fr->bound_radius));
+}
+
+bool menger_parse(scene_ctx *c, const cJSON *root)
+{
+    static const char *const keys[] = {"iterations", "size", "palette", "glow", "glow_color", NULL};
+    scene_fractal *fr = &c->s->fractal;
+    cJSON *empty;
+    const cJSON *use = fractal_block(c, root, keys, &empty);
+    bool ok = use && fractal_common(c, use, fr) && get_int(c, use, "fractal", "iterations", 4, 1, 7, &fr->iterations) &&
+              get_num(c, use, "fractal", "size", 1, 1e-3f, 1e4f, &fr->size);
+    fr->bound_radius = fr->size * SQRT3;
+    return fractal_done(c, empty, ok);
+}
+
+bool mandelbox_parse(scene_ctx *c, const cJSON *root)
+{
+    static const char *const keys[] = {"iterations", "scale", "min_radius", "fixed_radius", "fold_limit",
+                                       "bound_radius", "palette", "glow", "glow_color", NULL};
+    scene_fractal *fr = &c->s->fractal;
+    cJSON *empty;
+    const cJSON *use = fractal_block(c, root, keys, &empty);
+    bool ok = use && fractal_common(c, use, fr) &&
+              get_int(c, use, "fractal", "iterations", 12, 1, 64, &fr->iterations) &&
+              get_num(c, use, "fractal", "scale", 2, -4, 4, &fr->scale) &&
+              get_num(c, use, "fractal", "min_radius", 0.5f, 0.01f, 10, &fr->min_radius) &&
+              get_num(c, use, "fractal", "fixed_radius", 1, 0.01f, 10, &fr->fixed_radius) &&
+              get_num(c, use, "fractal", "fold_limit", 1, 0.01f, 10, &fr->fold_limit);
+    if (ok && fabsf(fr->scale) <= 1.05f)
+        ok = fail(c, "fractal.scale", "|scale| must be above 1.05 (at or below 1 the set is unbounded or empty)");
+    if (ok && fr->min_radius >= fr->fixed_radius)
+        ok = fail(c, "fractal.min_radius", "must be below fixed_radius");
+    /* With |s| > 1 the set lies in the cube of half-side 2(|s|+1)/(|s|-1) (Lowe's Mandelbox). */
+    float half = 2.0f * (fabsf(fr->scale) + 1.0f) / (fabsf(fr->scale) - 1.0f);
+    ok = ok && get_num(c, use, "fractal", "bound_radius", half * SQRT3, 0.5f, 1000, &fr->bound_radius);
+    return fractal_done(c, empty, ok);
+}
+
+void fractal_defines(const scene *s, strbuf *out)
+{
+    sb_printf(out, "#define FRACTAL_ITERATIONS %d\n", s->fractal.iterations);
+}
+
+/* Shared by every fractal (shaders/fractal/common.glsl and the glow in sdf_main.glsl). */
+static void fractal_uniforms(const scene *s, const uniform_sink *u)
+{
+    const scene_fractal *f = &s->fractal;
+    uniform_f(u, "uBoundRadius", f->bound_radius);
+    uniform_fv(u, "uPalette", 3, 3, &f->palette[0][0]);
+    uniform_fv(u, "uGlowColor", 3, 1, f->glow_color);
+    uniform_f(u, "uGlowStrength", f->glow);
+}
+
+void mandelbulb_uniforms(const scene *s, const uniform_sink *u)
+{
+    fractal_uniforms(s, u);
+    uniform_f(u, "uBulbPower", s->fractal.power);
+    uniform_f(u, "uBulbBailout", s->fractal.bailout);
+}
+
+void menger_uniforms(const scene *s, const uniform_sink *u)
+{
+    fractal_uniforms(s, u);
+    uniform_f(u, "uMengerSize", s->fractal.size);
+}
+
+void mandelbox_uniforms(const scene *s, const uniform_sink *u)
+{
+    fractal_uniforms(s, u);
+    uniform_f(u, "uBoxScale", s->fractal.scale);
+    uniform_f(u, "uBoxMinRadius", s->fractal.min_radius);
+    uniform_f(u, "uBoxFixedRadius", s->fractal.fixed_radius);
+    uniform_f(u, "uBoxFoldLimit", s->fractal.fold_limit);
+}
+
+/* ---- terrains: the "terrain" block ------------------------------------------------------------ */
+
+bool noise_parse(scene_ctx *c, const cJSON *root)
+{
+    struct scene_terrain *t = &c->s->terrain;
+    const cJSON *tb = cJSON_GetObjectItemCaseSensitive(root, "terrain");
+    static const char *const keys[] = {"base", "amplitude", "frequency", "octaves", "sand_line", "snow_line",
+                                       "grass_slope", NULL};
+    const cJSON *empty = cJSON_CreateObject(), *use = tb ? tb : empty;
+    bool ok = (!tb || check_keys(c, tb, "terrain", keys)) &&
+              get_num(c, use, "terrain", "base", 0, -1e6f, 1e6f, &t->base) &&
+              get_num(c, use, "terrain", "amplitude", 40, 0, 1e6f, &t->amplitude) &&
+              get_num(c, use, "terrain", "frequency", 0.01f, 1e-7f, 1e3f, &t->frequency) &&
+              get_int(c, use, "terrain", "octaves", 6, 1, 12, &t->octaves) &&
+              get_num(c, use, "terrain", "sand_line", -1e9f, -1e9f, 1e9f, &t->sand_line) &&
+              get_num(c, use, "terrain", "snow_line", 1e9f, -1e9f, 1e9f, &t->snow_line) &&
+              get_num(c, use, "terrain", "grass_slope", 0.8f, 0, 1, &t->grass_slope);
+    cJSON_Delete((cJSON *)empty);
+    return ok;
+}
+
+static bool spacing_ok(const cJSON *v) { return cJSON_IsNumber(v) && terrain_spacing_ok(v->valuedouble); }
+
+bool heightmap_parse(scene_ctx *c, const cJSON *root)
+{
+    struct scene_terrain *t = &c->s->terrain;
+    const cJSON *tb = cJSON_GetObjectItemCaseSensitive(root, "terrain");
+    static const char *const keys[] = {"heightmap", "spacing", "height_min", "height_max", "exaggeration", "method",
+                                       "sand_line", "snow_line", "grass_slope", "nodata", "normals", NULL};
+    if (!tb)
+        return fail(c, "terrain", "a terrain scene needs a \"terrain\" block with a \"heightmap\"");
+    if (!check_keys(c, tb, "terrain", keys))
+        return false;
+    const char *hm = NULL;
+    static const float zero2[3] = {0, 0, 0};
+    float sp[3];
+    if (!get_str(c, tb, "terrain", "heightmap", NULL, &hm))
+        return false;
+    if (!hm)
+        return fail(c, "terrain.heightmap", "missing: a heightmap image (16-bit PNG, EXR, TIFF…)");
+    if (!resolve_file(c, "terrain.heightmap", hm, t->heightmap))
+        return false;
+    const cJSON *spacing = cJSON_GetObjectItemCaseSensitive(tb, "spacing");
+    if (spacing) {
+        if (!cJSON_IsArray(spacing) || cJSON_GetArraySize(spacing) != 2 || !spacing_ok(spacing->child) ||
+            !spacing_ok(spacing->child->next))
+            return fail(c, "terrain.spacing", "expected [dx, dz]: metres per texel, both above 0 and at most %g",
+                        (double)TERRAIN_SPACING_MAX);
+        sp[0] = (float)spacing->child->valuedouble;
+        sp[1] = (float)spacing->child->next->valuedouble;
+    } else {
+        memcpy(sp, zero2, sizeof sp);
+    }
+    t->spacing[0] = sp[0];
+    t->spacing[1] = sp[1];
+    if (!get_num(c, tb, "terrain", "height_min", 0, -1e5f, 1e5f, &t->height_min) ||
+        !get_num(c, tb, "terrain", "height_max", 0, -1e5f, 1e5f, &t->height_max) ||
+        !get_num(c, tb, "terrain", "exaggeration", 1, 0.01f, 100, &t->exaggeration) ||
+        !get_num(c, tb, "terrain", "sand_line", -1e9f, -1e9f, 1e9f, &t->sand_line) ||
+        !get_num(c, tb, "terrain", "snow_line", 1e9f, -1e9f, 1e9f, &t->snow_line) ||
+        !get_num(c, tb, "terrain", "grass_slope", 0.8f, 0, 1, &t->grass_slope))
+        return false;
+    if (t->height_min > t->height_max)
+        return fail(c, "terrain.height_max", "%g is below height_min %g: height_min is the height of black, "
+                    "height_max of white", (double)t->height_max, (double)t->height_min);
+    static const char *const METHODS[] = {"linear", "maxmip", NULL};
+    int m;
+    if (!get_enum(c, tb, "terrain", "method", "method", METHODS, 1, &m))
+        return false;
+    t->maxmip = m == 1;
+    static const char *const NODATA[] = {"hole", "fill", NULL}, *const NORMALS[] = {"smooth", "patch", NULL};
+    if (!get_enum(c, tb, "terrain", "nodata", "nodata handling", NODATA, 0, &m))
+        return false;
+    t->fill_nodata = m == 1;
+    if (!get_enum(c, tb, "terrain", "normals", "normals", NORMALS, 0, &m))
+        return false;
+    t->patch_normals = m == 1;
+    return true;
+}
+
+
+/* "camera": "auto": a view across the DEM from above its southern edge, and what follows from its
+ * size: the far distance, haze over its width, sand and snow by the height range, textures that
+ * repeat every 24 texels. A DEM whose relief is under 2 % of its width (a continent, at true scale a
+ * flat plate) is exaggerated up to that, at most ×20, unless the scene sets terrain.exaggeration. */
+bool terrain_frame(scene *s, err_t *err)
+{
+    struct scene_terrain *t = &s->terrain;
+    heightfield_desc d = {.path = t->heightmap, .spacing = {t->spacing[0], t->spacing[1]}, .height_min = t->height_min,
+                          .height_max = t->height_max, .exaggeration = t->exaggeration};
+    double size[2], range[2], spacing[2];
+    if (!heightfield_probe(&d, size, range, spacing, err))
+        return false;
+    double R = fmax(size[0], size[1]), relief = fmax(range[1] - range[0], 1e-3 * R);
+    if (t->exaggeration == 1 && relief < 0.02 * R) { /* continental DEMs look flat at true scale */
+        double ex = fmin(0.02 * R / relief, 20);
+        t->exaggeration = (float)ex;
+        range[0] *= ex, range[1] *= ex, relief *= ex;
+    }
+    /* over the southern edge, looking north across the middle: the near half fills the view */
+    float at[3] = {0, (float)(range[0] + 0.3 * relief), (float)(-0.1 * size[1])};
+    float eye[3] = {(float)(-0.1 * size[0]), (float)(range[1] + 0.12 * R), (float)(0.5 * size[1] + 0.05 * R)};
+    memcpy(s->cam_position, eye, sizeof eye);
+    memcpy(s->cam_look_at, at, sizeof at);
+    s->cam_fov_deg = 50;
+    s->quality.max_dist = (float)fmin(4 * R + range[1], 1e7);
+    s->fog_density = (float)(0.35 / R); /* about a third of the light lost across the DEM, low down */
+    s->fog_falloff = (float)(2.0 / relief);
+    s->fog_height = (float)range[0];
+    t->sand_line = (float)(range[0] + 0.03 * relief);
+    t->snow_line = (float)(range[0] + 0.85 * relief);
+    for (int i = 0; i < s->material_count; i++)
+        if (s->materials[i].texture >= 0)
+            s->materials[i].uv_scale = (float)(1.0 / (24.0 * fmin(spacing[0], spacing[1])));
+    return true;
+}
+
+void heightmap_defines(const scene *s, strbuf *out)
+{
+    sb_printf(out, "#define TERRAIN_MAXMIP %d\n", s->terrain.maxmip);
+    if (s->terrain.patch_normals)
+        sb_printf(out, "#define TERRAIN_PATCH_NORMALS 1\n");
+}
+
+/* The layered albedo (shaders/terrain/layers.glsl): which material each layer uses, and where. */
+void layer_uniforms(const scene *s, const uniform_sink *u)
+{
+    uniform_f(u, "uSandLine", s->terrain.sand_line);
+    uniform_f(u, "uSnowLine", s->terrain.snow_line);
+    uniform_f(u, "uGrassSlope", s->terrain.grass_slope);
+    static const char *const layers[4] = {"sand", "grass", "rock", "snow"};
+    static const char *const names[4] = {"uLayerSand", "uLayerGrass", "uLayerRock", "uLayerSnow"};
+    enum { ROCK = 2 };
+    int idx[4];
+    for (int l = 0; l < 4; l++)
+        idx[l] = find_material(s, layers[l]);
+    if (idx[ROCK] < 0) /* rock is the fallback layer: the first material */
+        idx[ROCK] = 0;
+    for (int l = 0; l < 4; l++)
+        uniform_i(u, names[l], idx[l] < 0 ? idx[ROCK] : idx[l]);
+}
+
+/* The noise terrain's parameters and its distance bound (shaders/terrain/noise.glsl). */
+void noise_uniforms(const scene *s, const uniform_sink *u)
+{
+    const struct scene_terrain *t = &s->terrain;
+    const float QUINTIC_SLOPE = 30.0f / 16.0f;
+    float grad = 0, amp = 0.5f, freq = t->frequency;
+    for (int o = 0; o < t->octaves; o++, amp *= 0.5f, freq *= 2.0f)
+        grad += amp * freq * QUINTIC_SLOPE * SQRT3;
+    uniform_f(u, "uNoiseBase", t->base);
+    uniform_f(u, "uNoiseAmplitude", t->amplitude);
+    uniform_f(u, "uNoiseFrequency", t->frequency);
+    uniform_i(u, "uNoiseOctaves", t->octaves);
+    uniform_f(u, "uNoiseBound", 1.0f / (1.0f + t->amplitude * grad));
+    uniform_f(u, "uTerrainHeightMin", t->base);
+    uniform_f(u, "uTerrainHeightMax", t->base + t->amplitude);
+    layer_uniforms(s, u);
+}

@@ -1,0 +1,90 @@
+/* realpath() is XSI */
+#define _XOPEN_SOURCE 700
+#include "view/shot.h"
+
+#include <cjson/cJSON.h>
+#include <limits.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "data/image_io.h"
+
+void shot_describe(const char *scene_path, const char *const *sets, int set_count, const camera *cam, int width,
+                   int height, strbuf *out)
+{
+    char abs[PATH_MAX];
+    cJSON *j = cJSON_CreateObject();
+    cJSON_AddStringToObject(j, "scene", realpath(scene_path, abs) ? abs : scene_path);
+    cJSON *arr = cJSON_AddArrayToObject(j, "sets");
+    for (int i = 0; i < set_count; i++)
+        cJSON_AddItemToArray(arr, cJSON_CreateString(sets[i]));
+    cJSON *c = cJSON_AddObjectToObject(j, "camera");
+    /* %.9g keeps every float exactly */
+    char num[64];
+    cJSON *pos = cJSON_AddArrayToObject(c, "position");
+    for (int i = 0; i < 3; i++) {
+        snprintf(num, sizeof num, "%.9g", (double)cam->position[i]);
+        cJSON_AddItemToArray(pos, cJSON_CreateRaw(num));
+    }
+    snprintf(num, sizeof num, "%.9g", (double)cam->yaw);
+    cJSON_AddRawToObject(c, "yaw", num);
+    snprintf(num, sizeof num, "%.9g", (double)cam->pitch);
+    cJSON_AddRawToObject(c, "pitch", num);
+    snprintf(num, sizeof num, "%.9g", (double)cam->fov_y);
+    cJSON_AddRawToObject(c, "fov_y", num);
+    cJSON *size = cJSON_AddArrayToObject(j, "size");
+    cJSON_AddItemToArray(size, cJSON_CreateNumber(width));
+    cJSON_AddItemToArray(size, cJSON_CreateNumber(height));
+    char *text = cJSON_PrintUnformatted(j);
+    sb_append(out, text);
+    free(text);
+    cJSON_Delete(j);
+}
+
+static bool number(const cJSON *v, double lo, double hi, float *out)
+{
+    if (!cJSON_IsNumber(v) || !isfinite(v->valuedouble) || v->valuedouble < lo || v->valuedouble > hi)
+        return false;
+    *out = (float)v->valuedouble;
+    return true;
+}
+
+bool shot_parse(const char *text, const char *source, shot_desc *d, err_t *err)
+{
+    *d = (shot_desc){0};
+    cJSON *j = cJSON_Parse(text);
+    const cJSON *scene = cJSON_GetObjectItemCaseSensitive(j, "scene"), *sets = cJSON_GetObjectItemCaseSensitive(j, "sets");
+    const cJSON *cam = cJSON_GetObjectItemCaseSensitive(j, "camera"), *size = cJSON_GetObjectItemCaseSensitive(j, "size");
+    const cJSON *pos = cJSON_GetObjectItemCaseSensitive(cam, "position");
+    float w = 0, h = 0;
+    bool ok = cJSON_IsString(scene) && strlen(scene->valuestring) < sizeof d->scene && cJSON_IsArray(sets) &&
+              cJSON_GetArraySize(sets) <= SHOT_SET_MAX && cJSON_IsArray(pos) && cJSON_GetArraySize(pos) == 3 &&
+              number(cJSON_GetObjectItemCaseSensitive(cam, "yaw"), -10, 10, &d->cam.yaw) &&
+              number(cJSON_GetObjectItemCaseSensitive(cam, "pitch"), -CAMERA_MAX_PITCH, CAMERA_MAX_PITCH, &d->cam.pitch) &&
+              number(cJSON_GetObjectItemCaseSensitive(cam, "fov_y"), 1e-3, 3.1, &d->cam.fov_y) &&
+              cJSON_IsArray(size) && number(cJSON_GetArrayItem(size, 0), 1, 16384, &w) &&
+              number(cJSON_GetArrayItem(size, 1), 1, 16384, &h);
+    for (int i = 0; ok && i < 3; i++)
+        ok = number(cJSON_GetArrayItem(pos, i), -1e7, 1e7, &d->cam.position[i]);
+    if (ok) {
+        snprintf(d->scene, sizeof d->scene, "%s", scene->valuestring);
+        for (const cJSON *s = sets->child; ok && s; s = s->next) {
+            ok = cJSON_IsString(s) && strchr(s->valuestring, '=') && strlen(s->valuestring) < sizeof d->sets[0];
+            if (ok)
+                snprintf(d->sets[d->set_count++], sizeof d->sets[0], "%s", s->valuestring);
+        }
+        d->width = (int)w, d->height = (int)h;
+    }
+    cJSON_Delete(j);
+    if (!ok)
+        return err_set(err, "%s: its fathom shot description is damaged; render the scene again", source);
+    return true;
+}
+
+bool shot_is_image(const char *name)
+{
+    const char *dot = strrchr(name, '.');
+    return dot && (!strcmp(dot, ".png") || !strcmp(dot, ".exr"));
+}

@@ -1,0 +1,82 @@
+#!/bin/sh
+# layers.sh SOURCE_DIR: the tree shows the architecture, and the words about it cannot go stale.
+#  1. Every #include "..." in app/ names a header by its path under app/ and goes down the layers
+#     (a file may include its own folder's headers): main.c > window/ > jobs/ > cli > gpu/ > scene/ >
+#     view/ > data/ > util.
+#  2. No include cycle between modules (X.c and X.h are module X): tsort finds none.
+#  3. No function in app/ or shaders/ is longer than 80 lines (style.md, rule 16).
+#  4. Every source file that a comment, README.md or docs/ cites (app/..., shaders/..., tests/...,
+#     a bare NAME.c/.h/.glsl/.frag/.vert) exists.
+set -u
+cd "$1" || exit 2
+fail=0
+say() { echo "layers: $*"; fail=1; }
+
+floor() { # the layer of a path under app/ (lower numbers are higher up)
+    case $1 in
+    main.c) echo 0 ;; window/*) echo 1 ;; jobs/*) echo 2 ;; cli.c | cli.h) echo 3 ;; gpu/*) echo 4 ;;
+    scene/*) echo 5 ;; view/*) echo 6 ;; data/*) echo 7 ;; util.c | util.h) echo 8 ;; *) echo x ;;
+    esac
+}
+
+edges=$(mktemp)
+trap 'rm -f "$edges"' EXIT INT TERM
+for f in $(cd app && find . -name '*.c' -o -name '*.h' -o -name '*.cpp' | sed 's#^\./##' | sort); do
+    from=$(floor "$f")
+    [ "$from" = x ] && say "app/$f is in no layer: put it in a layer's folder (tests/layers.sh lists them)"
+    for inc in $(sed -n 's/^[[:space:]]*#[[:space:]]*include[[:space:]]*"\([^"]*\)".*/\1/p' "app/$f"); do
+        [ -f "app/$inc" ] || { say "app/$f includes \"$inc\", which is no app/ path"; continue; }
+        to=$(floor "$inc")
+        if [ "${f%.*}" != "${inc%.*}" ] && [ "${f%/*}" != "${inc%/*}" ] && [ "$to" != x ] && [ "$to" -le "$from" ]; then
+            say "app/$f (layer $from) includes $inc (layer $to): includes go down the layers only"
+        fi
+        echo "$f $inc" >>"$edges"
+    done
+done
+# Module X is X.c (or .cpp) with X.h. A header without a .c of its own (types, inline helpers, a
+# module's internal declarations) is no module: what it includes counts for the files that include it.
+sources=$(cd app && find . -name '*.c' -o -name '*.cpp' | sed 's#^\./##' | tr '\n' ' ')
+awk -v sources="$sources" '
+    BEGIN { n = split(sources, a, " "); for (i = 1; i <= n; i++) { f = a[i]; sub(/\.[a-z]+$/, "", f); src[f] = 1 } }
+    { inc[$1] = inc[$1] " " $2 }
+    function stem(f) { sub(/\.[a-z]+$/, "", f); return f }
+    function walk(from, f,   n, a, i) {
+        if (seen[from, f]++) return
+        n = split(inc[f], a, " ")
+        for (i = 1; i <= n; i++)
+            if (stem(a[i]) in src) { if (stem(a[i]) != stem(from)) print stem(from), stem(a[i]) }
+            else walk(from, a[i])
+    }
+    END { for (f in inc) if (stem(f) in src) walk(f, f) }
+' "$edges" >"$edges.mod"
+tsort "$edges.mod" >/dev/null 2>"$edges.err" || true
+if [ -s "$edges.err" ]; then
+    say "include cycle between modules (X.c and X.h are module X):"; cat "$edges.err"
+fi
+rm -f "$edges.err" "$edges.mod"
+
+long=$(find app shaders -name '*.c' -o -name '*.cpp' -o -name '*.h' -o -name '*.glsl' -o -name '*.frag' \
+           -o -name '*.vert' | sort | xargs awk -v MAX=80 -f tests/funclen.awk)
+[ -n "$long" ] && say "functions over 80 lines (split them into named steps):
+$long"
+
+# 4. cited files exist
+cited=$(grep -rhoE '(app|shaders|tests|docs)/[A-Za-z0-9_./-]*[A-Za-z0-9_]\.(c|h|cpp|glsl|frag|vert|sh|md|json)\b' \
+            app shaders tests CMakeLists.txt README.md docs --include='*.c' --include='*.h' --include='*.cpp' \
+            --include='*.glsl' --include='*.frag' --include='*.vert' --include='*.sh' --include='*.md' \
+            --include='CMakeLists.txt' | sort -u)
+for p in $cited; do
+    case $p in tests/probe.json) continue ;; esac # written by the GL tests (gltest.c)
+    [ -e "$p" ] || say "'$p' is cited but does not exist (grep -rn '$p' to find where)"
+done
+names=$(grep -rhE '[A-Za-z0-9_]+\.(c|h|cpp|glsl|frag|vert)\b' app shaders --include='*.c' --include='*.h' \
+            --include='*.cpp' --include='*.glsl' --include='*.frag' --include='*.vert' | grep -v '^[[:space:]]*#[[:space:]]*include' |
+        grep -oE '(^|[^A-Za-z0-9_/.<])[A-Za-z][A-Za-z0-9_]{2,}\.(c|h|cpp|glsl|frag|vert)\b' | sed 's/^[^A-Za-z]//' | sort -u)
+for n in $names; do
+    case $n in program.glsl) continue ;; esac # the generated virtual file (gpu/shader.h)
+    case $n in stb_*.h | cJSON.h | csv.h | gl.h | egl.h | glfw3.h | cmocka.h | gdal*.h | cpl_*.h | ogr_*.h) continue ;; esac
+    [ -n "$(find app shaders tests -name "$n" -print -quit)" ] || say "'$n' is cited in app/ or shaders/ but no such file exists"
+done
+
+[ $fail = 0 ] && echo "layers: ok ($(wc -l <"$edges") includes, every layer downwards, no cycle, no long function, every cited file exists)"
+exit $fail
