@@ -1,4 +1,7 @@
-/* render — targets, one sample, display and readback; see render_parts.h for the other files. */
+/* render — targets, one sample, display and readback. The rest of the module:
+ *   render_programs.c  the program cache and the full-screen VAO
+ *   render_scene.c     the current scene and its GPU resources, one file a kind (render_resource.h)
+ *   render_probe.c     map() (or another probe shader) evaluated at points on the GPU */
 #include "gpu/render.h"
 
 #include <assert.h>
@@ -8,13 +11,17 @@
 #include <string.h>
 
 #include "gpu/aov.h"
-#include "gpu/render_parts.h"
+#include "gpu/render_programs.h"
+#include "gpu/render_resource.h"
+#include "gpu/render_scene.h"
+#include "gpu/res_droplets.h"
+#include "gpu/res_heightfield.h"
 #include "gpu/shader.h"
 
 enum { NUM_TARGETS = 3 };
 
 static struct {
-    GLuint vao, display_prog;
+    GLuint display_prog;
     GLuint fbo, targets[NUM_TARGETS];
     GLuint out_fbo, out_tex; /* RGBA8 for sRGB readback */
     GLuint ref_fbo, ref_tex; /* a grabbed image for the difference view */
@@ -40,19 +47,17 @@ static struct {
 
 static GLuint build_display(err_t *err)
 {
-    return shader_build(programs_shader_root(), "fullscreen.vert", "display.frag", NULL, NULL, 0, err);
+    return shader_build(render_programs_shader_root(), "fullscreen.vert", "display.frag", NULL, NULL, 0, err);
 }
 
 static GLuint build_mask(err_t *err)
 {
-    return shader_build(programs_shader_root(), "fullscreen.vert", "edgemask.frag", NULL, NULL, 0, err);
+    return shader_build(render_programs_shader_root(), "fullscreen.vert", "edgemask.frag", NULL, NULL, 0, err);
 }
 
 bool render_init(err_t *err)
 {
-    programs_init();
-    glGenVertexArrays(1, &state.vao); /* core profile draws nothing without a bound VAO */
-    glBindVertexArray(state.vao);
+    render_programs_init();
     state.display_prog = build_display(err);
     state.mask_prog = state.display_prog ? build_mask(err) : 0;
     return state.display_prog != 0 && state.mask_prog != 0;
@@ -78,18 +83,15 @@ static void free_targets(void)
     }
 }
 
-GLuint render_vao(void) { return state.vao; }
-
 void render_set_runtime_effects(unsigned mask) { state.runtime_effects = mask; }
 
 void render_shutdown(void)
 {
     free_targets();
-    scene_gpu_shutdown();
-    programs_shutdown();
+    render_scene_shutdown();
     glDeleteProgram(state.display_prog);
     glDeleteProgram(state.mask_prog);
-    glDeleteVertexArrays(1, &state.vao);
+    render_programs_shutdown();
     memset(&state, 0, sizeof state);
     state.runtime_effects = ~0u;
 }
@@ -103,11 +105,11 @@ void render_preamble(const scene *s, const char *extra_defines, strbuf *out)
 
 bool render_set_scene(const scene *s, const char *extra_defines, err_t *err)
 {
-    GLuint prog = programs_get(s, "sdf.frag", extra_defines, err);
-    if (!prog || !scene_gpu_set(s, err))
+    GLuint prog = render_programs_get(s, "sdf.frag", extra_defines, err);
+    if (!prog || !render_scene_set(s, err))
         return false;
     state.prog = prog;
-    scene_gpu_uniforms(prog, s);
+    render_scene_uniforms(prog, s);
     return true;
 }
 
@@ -212,7 +214,7 @@ static void build_edge_mask(void)
     glUniform1i(glGetUniformLocation(state.mask_prog, "uNormalDepth"), 1);
     glUniform1f(glGetUniformLocation(state.mask_prog, "uExposure"), 1.0f);
     glUniform2i(glGetUniformLocation(state.mask_prog, "uSize"), state.width, state.height);
-    glBindVertexArray(state.vao);
+    glBindVertexArray(render_programs_vao());
     glDrawArrays(GL_TRIANGLES, 0, 3);
     /* how many pixels it kept: for the HUD and the bench (a small readback, once per still image) */
     size_t n = (size_t)state.width * (size_t)state.height;
@@ -277,16 +279,16 @@ static void sample_rows(int y0, int y1)
     glUniform1f(loc("uPixelAngle"), camera_pixel_angle(&state.cam, state.full_height));
     glUniform1ui(loc("uFxRuntime"), state.runtime_effects);
     glUniform1i(loc("uAdaptive"), adaptive ? 1 : 0);
-    glUniform1i(loc("uEdgeMask"), UNIT_EDGE_MASK);
+    glUniform1i(loc("uEdgeMask"), RENDER_UNIT_EDGE_MASK);
     int k = first ? state.first_jitter : state.samples; /* Halton point k; 0 is the pixel centre */
-    bool jitter = (scene_gpu_current()->effects & state.runtime_effects & (1u << EFFECT_AA)) && k > 0;
+    bool jitter = (render_scene_current()->effects & state.runtime_effects & (1u << EFFECT_AA)) && k > 0;
     glUniform2f(loc("uJitter"), jitter ? halton(k, 2) - 0.5f : 0.0f, jitter ? halton(k, 3) - 0.5f : 0.0f);
-    scene_gpu_bind_textures();
-    glActiveTexture(GL_TEXTURE0 + UNIT_EDGE_MASK);
+    render_scene_bind();
+    glActiveTexture(GL_TEXTURE0 + RENDER_UNIT_EDGE_MASK);
     glBindTexture(GL_TEXTURE_2D, state.mask_tex);
     glActiveTexture(GL_TEXTURE0);
 
-    glBindVertexArray(state.vao);
+    glBindVertexArray(render_programs_vao());
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glDisablei(GL_BLEND, 0);
     glDisable(GL_SCISSOR_TEST);
@@ -376,11 +378,11 @@ void render_display(GLuint fbo, int width, int height, float exposure, render_vi
     glUniform1i(glGetUniformLocation(p, "uEdgeAware"), state.edge_aware ? 1 : 0);
     glUniform1f(glGetUniformLocation(p, "uInvRefSamples"), state.ref_samples ? 1.0f / (float)state.ref_samples : 0.0f);
     glUniform1i(glGetUniformLocation(p, "uView"), (GLint)view);
-    glUniform1f(glGetUniformLocation(p, "uMaxSteps"), scene_gpu_current() ? (float)scene_gpu_current()->quality.max_steps : 1.0f);
+    glUniform1f(glGetUniformLocation(p, "uMaxSteps"), render_scene_current() ? (float)render_scene_current()->quality.max_steps : 1.0f);
     glUniform1f(glGetUniformLocation(state.display_prog, "uExposure"), exposure);
     glUniform2f(glGetUniformLocation(p, "uSrcSize"), (float)state.width, (float)state.height);
     glUniform2f(glGetUniformLocation(p, "uDstSize"), (float)width, (float)height);
-    glBindVertexArray(state.vao);
+    glBindVertexArray(render_programs_vao());
     glDrawArrays(GL_TRIANGLES, 0, 3);
 }
 
@@ -457,7 +459,7 @@ bool render_reload(err_t *err)
 {
     /* Build everything first: one failure keeps every old program. */
     GLuint display = build_display(err), mask = display ? build_mask(err) : 0;
-    if (!display || !mask || !programs_reload(&state.prog, err)) {
+    if (!display || !mask || !render_programs_reload(&state.prog, err)) {
         glDeleteProgram(display);
         glDeleteProgram(mask);
         return false;
@@ -466,9 +468,15 @@ bool render_reload(err_t *err)
     glDeleteProgram(state.mask_prog);
     state.display_prog = display;
     state.mask_prog = mask;
-    if (scene_gpu_current())
-        scene_gpu_uniforms(state.prog, scene_gpu_current());
+    if (render_scene_current())
+        render_scene_uniforms(state.prog, render_scene_current());
     state.samples = 0;
     state.band_done = 0;
     return true;
 }
+
+void render_release_scene(void) { render_scene_release(); }
+
+bool render_terrain_tiles(int *tiles_x, int *tiles_y) { return res_heightfield_loaded(tiles_x, tiles_y) != NULL; }
+
+const struct droplets *render_droplets(double *read_s, double *grid_s) { return res_droplets_loaded(read_s, grid_s); }

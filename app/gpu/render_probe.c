@@ -1,11 +1,15 @@
 /* render_probe — a probe shader (probe.frag: map() at points; fogprobe.frag: fog optical depth) run
  * over a texture of points: the shader's own numbers, for tests and the window's flying speed. */
+#include "gpu/render.h"
+
 #include <assert.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "gpu/render.h"
-#include "gpu/render_parts.h"
+#include "gpu/render_programs.h"
+#include "gpu/render_scene.h"
+#include "gpu/res_heightfield.h"
 
 bool render_probe(const scene *s, const char *extra_defines, const float *points, int n, float *out, err_t *err)
 {
@@ -17,11 +21,11 @@ static bool probe_run(const scene *s, const char *frag, const char *extra_define
                       int n, float *out, int out_comps, err_t *err)
 {
     assert(n > 0);
-    GLuint prog = programs_get(s, frag, extra_defines, err);
+    GLuint prog = render_programs_get(s, frag, extra_defines, err);
     if (!prog)
         return false;
-    scene_gpu_uniforms(prog, s);
-    scene_gpu_bind_textures();
+    render_scene_uniforms(prog, s);
+    render_scene_bind();
     GLint max_side = 0;
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_side);
     int w = n < max_side ? n : max_side, h = (n + w - 1) / w;
@@ -51,7 +55,7 @@ static bool probe_run(const scene *s, const char *frag, const char *extra_define
         glBindTexture(GL_TEXTURE_2D, tex[i]);
         glUniform1i(glGetUniformLocation(prog, names[i]), i);
     }
-    glBindVertexArray(render_vao());
+    glBindVertexArray(render_programs_vao());
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glReadBuffer(GL_COLOR_ATTACHMENT0);
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
@@ -76,4 +80,22 @@ bool render_probe_rays(const scene *s, const char *frag, const char *extra_defin
                        float *out, err_t *err)
 {
     return probe_run(s, frag, extra_defines, rays, 6, n, out, 4, err);
+}
+
+bool render_ground_height(float x, float z, float *height)
+{
+    const heightfield *hf = res_heightfield_loaded(NULL, NULL);
+    const scene *s = render_scene_current();
+    if (!hf || !s)
+        return false;
+    /* the terrain's map() at height 0 is −h · (its slope bound): probed on the GPU, the heights' home */
+    float p[3] = {x, 0.0f, z}, out[2];
+    err_t e;
+    if (!render_probe(s, NULL, p, 1, out, &e))
+        return false;
+    float h = -out[0] * sqrtf(1.0f + hf->lipschitz * hf->lipschitz);
+    if (!isfinite(h) || TERRAIN_IS_HOLE(h)) /* over a nodata hole: no ground */
+        return false;
+    *height = h;
+    return true;
 }

@@ -1,10 +1,10 @@
-/* render_programs — the program cache. A program is keyed by its fragment shader, the full preamble
- * and the map() text, so two scenes share a program exactly when they would compile the same one. */
+/* render_programs — the program cache and the full-screen VAO (render_programs.h). */
+#include "gpu/render_programs.h"
+
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "gpu/render_parts.h"
 #include "gpu/shader.h"
 
 enum { MAX_PROGRAMS = 64 };
@@ -17,13 +17,21 @@ typedef struct cached_program {
 
 static struct {
     char shader_root[PATH_MAX_LEN];
+    GLuint vao;
     cached_program programs[MAX_PROGRAMS];
     int count;
 } cache;
 
-void programs_init(void) { snprintf(cache.shader_root, sizeof cache.shader_root, "%s/shaders", util_data_dir()); }
+void render_programs_init(void)
+{
+    snprintf(cache.shader_root, sizeof cache.shader_root, "%s/shaders", util_data_dir());
+    glGenVertexArrays(1, &cache.vao);
+    glBindVertexArray(cache.vao);
+}
 
-const char *programs_shader_root(void) { return cache.shader_root; }
+GLuint render_programs_vao(void) { return cache.vao; }
+
+const char *render_programs_shader_root(void) { return cache.shader_root; }
 
 static void drop(cached_program *c)
 {
@@ -32,10 +40,11 @@ static void drop(cached_program *c)
     free(c->map);
 }
 
-void programs_shutdown(void)
+void render_programs_shutdown(void)
 {
     for (int i = 0; i < cache.count; i++)
         drop(&cache.programs[i]);
+    glDeleteVertexArrays(1, &cache.vao);
     memset(&cache, 0, sizeof cache);
 }
 
@@ -45,7 +54,7 @@ static GLuint build(const char *frag, const char *preamble, const char *map, err
     return shader_build(cache.shader_root, "fullscreen.vert", frag, preamble, virt, 1, err);
 }
 
-GLuint programs_get(const scene *s, const char *frag, const char *extra_defines, err_t *err)
+GLuint render_programs_get(const scene *s, const char *frag, const char *extra_defines, err_t *err)
 {
     strbuf pre = {0};
     scene_preamble(s, &pre);
@@ -73,7 +82,7 @@ GLuint programs_get(const scene *s, const char *frag, const char *extra_defines,
     return prog;
 }
 
-bool programs_reload(GLuint *current, err_t *err)
+bool render_programs_reload(GLuint *current, err_t *err)
 {
     /* Build everything first: one failure keeps every old program. */
     GLuint fresh[MAX_PROGRAMS];

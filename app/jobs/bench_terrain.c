@@ -20,7 +20,6 @@
 #include "jobs/bench.h"
 #include "gpu/gpu.h"
 #include "gpu/render.h"
-#include "gpu/render_parts.h"
 #include "data/terrain.h"
 
 /* kB of the process's current (VmRSS) or peak (VmHWM) resident memory */
