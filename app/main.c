@@ -16,7 +16,7 @@
 #include "view/shot.h"
 #include "view/views.h"
 
-enum { EXIT_USAGE = 2, DEFAULT_WIDTH = 1280, DEFAULT_HEIGHT = 720 };
+enum { EXIT_USAGE = 2 };
 
 static void print_variant(const scene *s)
 {
@@ -54,6 +54,68 @@ static bool apply_view(cli_options *o, shot_desc *shot, err_t *err)
     return ok;
 }
 
+/* Prints err as fathom's one line; the exit code for ok. */
+static int finish(bool ok, const err_t *err)
+{
+    if (!ok)
+        fprintf(stderr, "fathom: %s\n", err->msg);
+    return ok ? 0 : 1;
+}
+
+/* --help, --version, --list-scenes: true when one of them was asked (and answered). */
+static bool answer_query(const cli_options *opt)
+{
+    if (opt->help) {
+        strbuf knobs = {0};
+        quality_describe(&knobs);
+        printf("%s\nQuality knobs (--set quality.NAME=VALUE) [draft/interactive/final/reference]:\n%s", cli_usage(),
+               knobs.data);
+        sb_free(&knobs);
+    } else if (opt->version) {
+        printf("fathom %s\n", FATHOM_VERSION);
+    } else if (opt->list_scenes) {
+        strbuf names = {0};
+        scene_list(&names);
+        fputs(names.data ? names.data : "", stdout);
+        sb_free(&names);
+    }
+    return opt->help || opt->version || opt->list_scenes;
+}
+
+/* One offline shot (or one tile of it) of s as the command line asks. */
+static bool render_shot(const cli_options *opt, const scene *s, err_t *err)
+{
+    float fov = opt->has_fov ? opt->fov_deg : s->cam_fov_deg;
+    const float *eye = opt->has_camera ? opt->camera : s->cam_position;
+    const float *at = opt->has_look_at ? opt->look_at : s->cam_look_at;
+    if (!opt->has_view && camera_degenerate(eye, at))
+        return err_set(err, "the camera (%g, %g, %g) is at its look-at point: pass --look-at (or --camera) elsewhere",
+                       (double)eye[0], (double)eye[1], (double)eye[2]);
+    /* the shot remembers the overrides, --spp as the one it stands for */
+    const char *sets[CLI_MAX_SETS + 1];
+    char spp[48];
+    memcpy(sets, opt->sets, sizeof(sets[0]) * (size_t)opt->set_count);
+    int nsets = opt->set_count;
+    if (opt->spp) {
+        snprintf(spp, sizeof spp, "quality.spp=%d", opt->spp);
+        sets[nsets++] = spp;
+    }
+    strbuf description = {0};
+    camera cam = opt->has_view ? opt->view : camera_look_at_deg(eye, at, fov);
+    offline_desc d = offline_shot(opt, s, cam, opt->output, sets, nsets, &description);
+    char tile[PATH_MAX_LEN];
+    bool ok = true;
+    if (opt->tile_count) { /* tile I of N goes to OUTPUT.tile-I-of-N.EXT */
+        d.tile_index = opt->tile_index;
+        d.tile_count = opt->tile_count;
+        ok = offline_tile_name(opt->output, opt->tile_index, opt->tile_count, tile, sizeof tile, err);
+        d.output = tile;
+    }
+    ok = ok && offline_render(&d, err);
+    sb_free(&description);
+    return ok;
+}
+
 int main(int argc, char **argv)
 {
     image_io_install_signal_cleanup();
@@ -63,122 +125,34 @@ int main(int argc, char **argv)
         fprintf(stderr, "fathom: %s\n", err.msg);
         return EXIT_USAGE;
     }
-    if (opt.dem && !util_file_exists(opt.dem)) {
-        fprintf(stderr, "fathom: --dem: file '%s' not found (a path from the folder you are in)\n", opt.dem);
-        return 1;
-    }
+    if (opt.dem && !util_file_exists(opt.dem))
+        return finish(err_set(&err, "--dem: file '%s' not found (a path from the folder you are in)", opt.dem), &err);
     static shot_desc shot; /* --scene SHOT.png: opt points into it */
-    if (opt.scene && shot_is_image(opt.scene) && !cli_apply_shot(&opt, &shot, &err)) {
-        fprintf(stderr, "fathom: %s\n", err.msg);
-        return 1;
-    }
+    if (opt.scene && shot_is_image(opt.scene) && !cli_apply_shot(&opt, &shot, &err))
+        return finish(false, &err);
     static shot_desc view; /* --view NAME: likewise */
-    if (opt.view_name && !apply_view(&opt, &view, &err)) {
-        fprintf(stderr, "fathom: %s\n", err.msg);
-        return 1;
-    }
-    if (opt.help) {
-        strbuf knobs = {0};
-        quality_describe(&knobs);
-        printf("%s\nQuality knobs (--set quality.NAME=VALUE) [draft/interactive/final/reference]:\n%s", cli_usage(),
-               knobs.data);
-        sb_free(&knobs);
+    if (opt.view_name && !apply_view(&opt, &view, &err))
+        return finish(false, &err);
+    if (answer_query(&opt))
         return 0;
-    }
-    if (opt.version) {
-        printf("fathom 0.1\n");
-        return 0;
-    }
-    if (opt.list_scenes) {
-        strbuf names = {0};
-        scene_list(&names);
-        fputs(names.data ? names.data : "", stdout);
-        sb_free(&names);
-        return 0;
-    }
-    if (opt.stitch) {
-        bool ok = offline_stitch(opt.output, opt.inputs, opt.input_count, opt.quiet, &err);
-        if (!ok)
-            fprintf(stderr, "fathom: %s\n", err.msg);
-        return ok ? 0 : 1;
-    }
-    if (opt.path) {
-        bool ok = flight_render(&opt, &err);
-        if (!ok)
-            fprintf(stderr, "fathom: %s\n", err.msg);
-        return ok ? 0 : 1;
-    }
-    if (opt.bench) {
-        bool ok = bench_run(&opt, &err);
-        if (!ok)
-            fprintf(stderr, "fathom: %s\n", err.msg);
-        return ok ? 0 : 1;
-    }
-    if (!opt.output && !opt.print_variant) {
-        bool ok = explore_run(&opt, &err);
-        if (!ok)
-            fprintf(stderr, "fathom: %s\n", err.msg);
-        return ok ? 0 : 1;
-    }
-
+    if (opt.stitch)
+        return finish(offline_stitch(opt.output, opt.inputs, opt.input_count, opt.quiet, &err), &err);
+    if (opt.path)
+        return finish(flight_render(&opt, &err), &err);
+    if (opt.bench)
+        return finish(bench_run(&opt, &err), &err);
+    if (!opt.output && !opt.print_variant)
+        return finish(explore_run(&opt, &err), &err);
     scene s;
-    if (!scene_load(opt.scene, opt.sets, opt.set_count, &s, &err)) {
-        fprintf(stderr, "fathom: %s\n", err.msg);
-        return 1;
-    }
+    if (!scene_load(opt.scene, opt.sets, opt.set_count, &s, &err))
+        return finish(false, &err);
     if (opt.spp)
         s.quality.spp = opt.spp;
-    int rc = 0;
-    if (opt.print_variant) {
+    bool ok = true;
+    if (opt.print_variant)
         print_variant(&s);
-    } else {
-        float fov = opt.has_fov ? opt.fov_deg : s.cam_fov_deg;
-        const float *eye = opt.has_camera ? opt.camera : s.cam_position;
-        const float *at = opt.has_look_at ? opt.look_at : s.cam_look_at;
-        if (!opt.has_view && camera_degenerate(eye, at)) {
-            fprintf(stderr, "fathom: the camera (%g, %g, %g) is at its look-at point: pass --look-at (or "
-                            "--camera) elsewhere\n", (double)eye[0], (double)eye[1], (double)eye[2]);
-            scene_free(&s);
-            return 1;
-        }
-        offline_desc d = {
-            .scene = &s,
-            .cam = opt.has_view ? opt.view : camera_look_at_deg(eye, at, fov),
-            .width = opt.width ? opt.width : DEFAULT_WIDTH,
-            .height = opt.height ? opt.height : DEFAULT_HEIGHT,
-            .spp = s.quality.spp,
-            .output = opt.output,
-            .aovs = opt.aovs,
-            .strip_rows = opt.strip_rows,
-            .quiet = opt.quiet,
-        };
-        /* the shot remembers the overrides, --spp as the one it stands for */
-        const char *sets[CLI_MAX_SETS + 1];
-        char spp[48];
-        memcpy(sets, opt.sets, sizeof(sets[0]) * (size_t)opt.set_count);
-        int nsets = opt.set_count;
-        if (opt.spp) {
-            snprintf(spp, sizeof spp, "quality.spp=%d", opt.spp);
-            sets[nsets++] = spp;
-        }
-        strbuf description = {0};
-        shot_describe(s.path, sets, nsets, &d.cam, d.width, d.height, &description);
-        d.description = description.data;
-        char tile[PATH_MAX_LEN];
-        bool ok = true;
-        if (opt.tile_count) { /* tile I of N goes to OUTPUT.tile-I-of-N.EXT */
-            d.tile_index = opt.tile_index;
-            d.tile_count = opt.tile_count;
-            ok = offline_tile_name(opt.output, opt.tile_index, opt.tile_count, tile, sizeof tile, &err);
-            d.output = tile;
-        }
-        ok = ok && offline_render(&d, &err);
-        sb_free(&description);
-        if (!ok) {
-            fprintf(stderr, "fathom: %s\n", err.msg);
-            rc = 1;
-        }
-    }
+    else
+        ok = render_shot(&opt, &s, &err);
     scene_free(&s);
-    return rc;
+    return finish(ok, &err);
 }

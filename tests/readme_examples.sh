@@ -39,5 +39,22 @@ if diff "$tmp/usage.help" "$tmp/usage.readme" >"$tmp/usage.diff"; then
 else
     failed=$((failed + 1)); echo "FAIL the README's usage block differs from fathom --help:"; head -20 "$tmp/usage.diff"
 fi
+# words about the program that are checked, not trusted: the key table's scene list is --list-scenes
+listed=$("$fathom" --list-scenes | tr '\n' ',' | sed 's/,$//; s/,/, /g')
+if grep -qF "(in \`--list-scenes\` order: $listed)" "$src/README.md"; then
+    passed=$((passed + 1)); echo "ok   the key table's scenes are --list-scenes ($listed)"
+else
+    failed=$((failed + 1)); echo "FAIL the key table's scene list is not --list-scenes: $listed"
+fi
+# the --print-variant sample is the start of what it prints (the scene's folder left out)
+awk '/^\$ build\/fathom --scene csg --print-variant$/ {f = 1; next} f && /^(\.\.\.|```)$/ {exit} f' "$src/README.md" \
+    >"$tmp/variant.readme"
+n=$(wc -l <"$tmp/variant.readme")
+"$fathom" --scene csg --print-variant | sed 's#(/.*/scenes/#(scenes/#' | head -n "$n" >"$tmp/variant.out"
+if [ "$n" -gt 2 ] && diff "$tmp/variant.out" "$tmp/variant.readme" >"$tmp/variant.diff"; then
+    passed=$((passed + 1)); echo "ok   the README's --print-variant sample is what it prints"
+else
+    failed=$((failed + 1)); echo "FAIL the README's --print-variant sample differs:"; head -10 "$tmp/variant.diff"
+fi
 echo "readme_examples: $passed passed, $failed failed"
 [ "$failed" -eq 0 ] && [ "$passed" -gt 0 ]

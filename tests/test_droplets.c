@@ -214,7 +214,7 @@ static void grid_lists_every_meeting_cell(void **st)
         }
         check_grid(&d);
         if (kind == 0) /* about DROPLET_GRID_DENSITY cells a droplet */
-            assert_true(droplets_cell_count(&d) >= N && droplets_cell_count(&d) <= 3 * DROPLET_GRID_DENSITY * N);
+            assert_true(droplets_cell_count(&d) >= N && (double)droplets_cell_count(&d) <= 3 * DROPLET_GRID_DENSITY * N);
         droplets_free(&d);
     }
 }

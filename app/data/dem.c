@@ -79,46 +79,50 @@ static bool georeference(GDALDatasetH ds, const char *path, int h, dem_info *inf
     return true;
 }
 
-bool dem_read(const char *path, int max_side, int *w, int *h, float **heights, dem_info *info, err_t *err)
+/* What dem_read refuses before reading: no band, complex values, a side over max_side, more memory
+ * than the machine has (app/data/terrain.h: heights on the CPU and the GPU, the pyramid), so that a
+ * file is refused up front rather than after minutes of reading. */
+static bool check_readable(const char *path, GDALRasterBandH band, int W, int H, int max_side, err_t *err)
 {
-    *info = (dem_info){0};
-    *heights = NULL;
-    gdal_init();
-    GDALDatasetH ds = GDALOpen(path, GA_ReadOnly);
-    if (!ds)
-        return err_set(err, "cannot read DEM '%s': %s", path, gdal_msg("not a raster GDAL knows"));
-    bool ok = false;
-    int W = GDALGetRasterXSize(ds), H = GDALGetRasterYSize(ds);
-    GDALRasterBandH band = GDALGetRasterCount(ds) > 0 ? GDALGetRasterBand(ds, 1) : NULL;
     GDALDataType type = band ? GDALGetRasterDataType(band) : GDT_Unknown;
-    if (!band) {
-        err_set(err, "DEM '%s' has no raster band (a vector file, or a netCDF with several variables: name one as "
-                     "NETCDF:\"%s\":VARIABLE)", path, path);
-        goto done;
-    }
-    if (GDALDataTypeIsComplex(type) || type == GDT_Unknown) {
-        err_set(err, "DEM '%s' holds %s values: heights must be real numbers", path, GDALGetDataTypeName(type));
-        goto done;
-    }
-    if (W > max_side || H > max_side) {
-        err_set(err, "DEM '%s' is %dx%d: the largest side fathom reads is %d texels; cut or resample it "
-                     "(gdal_translate -outsize)", path, W, H, max_side);
-        goto done;
-    }
-    /* what drawing it takes (app/data/terrain.h: heights on the CPU and the GPU, the pyramid): refused up
-     * front when it is more than this machine's memory, rather than after minutes of reading */
+    if (!band)
+        return err_set(err, "DEM '%s' has no raster band (a vector file, or a netCDF with several variables: name one "
+                            "as NETCDF:\"%s\":VARIABLE)", path, path);
+    if (GDALDataTypeIsComplex(type) || type == GDT_Unknown)
+        return err_set(err, "DEM '%s' holds %s values: heights must be real numbers", path, GDALGetDataTypeName(type));
+    if (W > max_side || H > max_side)
+        return err_set(err, "DEM '%s' is %dx%d: the largest side fathom reads is %d texels; cut or resample it "
+                            "(gdal_translate -outsize)", path, W, H, max_side);
     double need = (double)W * (double)H * DEM_BYTES_PER_TEXEL;
     long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
     double have = pages > 0 && page > 0 ? (double)pages * (double)page : INFINITY;
-    if (need > have) {
-        err_set(err, "DEM '%s' is %dx%d: drawing it takes about %.0f GB and this machine has %.0f GB; cut or resample it "
-                     "(gdal_translate -outsize)", path, W, H, need / 1e9, have / 1e9);
-        goto done;
+    if (need > have)
+        return err_set(err, "DEM '%s' is %dx%d: drawing it takes about %.0f GB and this machine has %.0f GB; cut or "
+                            "resample it (gdal_translate -outsize)", path, W, H, need / 1e9, have / 1e9);
+    return true;
+}
+
+/* Band 1 as floats, in row blocks, with progress on a terminal for big files. */
+static bool read_rows(const char *path, GDALRasterBandH band, int W, int H, float *v, err_t *err)
+{
+    bool show = isatty(2) && (size_t)W * (size_t)H > ((size_t)1 << 24);
+    const int ROWS = 256;
+    for (int y = 0; y < H; y += ROWS) {
+        int rows = y + ROWS < H ? ROWS : H - y;
+        if (GDALRasterIO(band, GF_Read, 0, y, W, rows, v + (size_t)y * (size_t)W, W, rows, GDT_Float32, 0, 0) != CE_None)
+            return err_set(err, "DEM '%s': reading rows %d-%d failed: %s", path, y, y + rows - 1, gdal_msg("I/O error"));
+        if (show)
+            fprintf(stderr, "\rfathom: reading %s: %3d %%", path, (int)(100.0 * (y + rows) / H));
     }
-    snprintf(info->type, sizeof info->type, "%s", GDALGetDataTypeName(type));
-    info->is_float = GDALDataTypeIsFloating(type);
-    if (!georeference(ds, path, H, info, err))
-        goto done;
+    if (show)
+        fprintf(stderr, "\n");
+    return true;
+}
+
+/* Raw values to heights: nodata and non-finite values become holes (NaN), the rest take the band's
+ * scale and offset. */
+static void to_heights(GDALRasterBandH band, float *v, size_t n, dem_info *info)
+{
     int has_nodata = 0, has_scale = 0, has_offset = 0;
     double nodata = GDALGetRasterNoDataValue(band, &has_nodata);
     double scale = GDALGetRasterScale(band, &has_scale), offset = GDALGetRasterOffset(band, &has_offset);
@@ -126,27 +130,6 @@ bool dem_read(const char *path, int max_side, int *w, int *h, float **heights, d
         scale = 1;
     if (!has_offset || !isfinite(offset))
         offset = 0;
-    size_t n = (size_t)W * (size_t)H;
-    float *v = malloc(sizeof(float) * n);
-    if (!v) {
-        err_set(err, "DEM '%s' (%dx%d): out of memory (%zu MB for the heights)", path, W, H, sizeof(float) * n >> 20);
-        goto done;
-    }
-    /* row blocks, with progress on a terminal for big files */
-    bool show = isatty(2) && n > ((size_t)1 << 24);
-    const int ROWS = 256;
-    for (int y = 0; y < H; y += ROWS) {
-        int rows = y + ROWS < H ? ROWS : H - y;
-        if (GDALRasterIO(band, GF_Read, 0, y, W, rows, v + (size_t)y * (size_t)W, W, rows, GDT_Float32, 0, 0) != CE_None) {
-            err_set(err, "DEM '%s': reading rows %d-%d failed: %s", path, y, y + rows - 1, gdal_msg("I/O error"));
-            free(v);
-            goto done;
-        }
-        if (show)
-            fprintf(stderr, "\rfathom: reading %s: %3d %%", path, (int)(100.0 * (y + rows) / H));
-    }
-    if (show)
-        fprintf(stderr, "\n");
     float nd = (float)nodata;
     for (size_t i = 0; i < n; i++) {
         float x = v[i];
@@ -157,7 +140,11 @@ bool dem_read(const char *path, int max_side, int *w, int *h, float **heights, d
             v[i] = (float)(x * scale + offset);
         }
     }
-    /* row 0 north: a south-up raster (positive y pixel size) is flipped */
+}
+
+/* Row 0 north: a south-up raster (positive y pixel size) is flipped. */
+static void flip_south_up(GDALDatasetH ds, float *v, int W, int H)
+{
     double gt[6];
     if (GDALGetGeoTransform(ds, gt) == CE_None && gt[5] > 0)
         for (size_t y = 0, rows = (size_t)H, cols = (size_t)W; y < rows / 2; y++)
@@ -166,11 +153,37 @@ bool dem_read(const char *path, int max_side, int *w, int *h, float **heights, d
                 v[y * cols + x] = v[(rows - 1 - y) * cols + x];
                 v[(rows - 1 - y) * cols + x] = t;
             }
-    *w = W;
-    *h = H;
-    *heights = v;
-    ok = true;
-done:
+}
+
+bool dem_read(const char *path, int max_side, int *w, int *h, float **heights, dem_info *info, err_t *err)
+{
+    *info = (dem_info){0};
+    *heights = NULL;
+    gdal_init();
+    GDALDatasetH ds = GDALOpen(path, GA_ReadOnly);
+    if (!ds)
+        return err_set(err, "cannot read DEM '%s': %s", path, gdal_msg("not a raster GDAL knows"));
+    int W = GDALGetRasterXSize(ds), H = GDALGetRasterYSize(ds);
+    GDALRasterBandH band = GDALGetRasterCount(ds) > 0 ? GDALGetRasterBand(ds, 1) : NULL;
+    bool ok = check_readable(path, band, W, H, max_side, err);
+    if (ok) {
+        GDALDataType type = GDALGetRasterDataType(band);
+        snprintf(info->type, sizeof info->type, "%s", GDALGetDataTypeName(type));
+        info->is_float = GDALDataTypeIsFloating(type);
+        ok = georeference(ds, path, H, info, err);
+    }
+    size_t n = (size_t)W * (size_t)H;
+    float *v = ok ? malloc(sizeof(float) * n) : NULL;
+    if (ok && !v)
+        ok = err_set(err, "DEM '%s' (%dx%d): out of memory (%zu MB for the heights)", path, W, H, sizeof(float) * n >> 20);
+    ok = ok && read_rows(path, band, W, H, v, err);
+    if (ok) {
+        to_heights(band, v, n, info);
+        flip_south_up(ds, v, W, H);
+        *w = W, *h = H, *heights = v;
+    } else {
+        free(v);
+    }
     GDALClose(ds);
     return ok;
 }

@@ -8,7 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-enum { DEFAULT_WIDTH = 1280, DEFAULT_HEIGHT = 720, MAX_EGL_DEVICES = 16 };
+enum { MAX_EGL_DEVICES = 16 };
 
 static struct {
     GLFWwindow *window;
@@ -37,7 +37,7 @@ static bool open_window(const gpu_desc *d, err_t *err)
     glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
     glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
     glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
-    state.window = glfwCreateWindow(d->width ? d->width : DEFAULT_WIDTH, d->height ? d->height : DEFAULT_HEIGHT,
+    state.window = glfwCreateWindow(d->width ? d->width : GPU_DEFAULT_WIDTH, d->height ? d->height : GPU_DEFAULT_HEIGHT,
                                     d->title ? d->title : "fathom", NULL, NULL);
     if (!state.window) {
         glfwTerminate();

@@ -14,9 +14,12 @@
 
 typedef struct GLFWwindow GLFWwindow;
 
+/* The size of a window and of an image when none is given (--size): every default size is this one. */
+enum { GPU_DEFAULT_WIDTH = 1280, GPU_DEFAULT_HEIGHT = 720 };
+
 typedef struct gpu_desc {
     bool headless;
-    int width, height; /* window size; 0 = 1280x720 */
+    int width, height; /* window size; 0: GPU_DEFAULT_WIDTH x GPU_DEFAULT_HEIGHT */
     const char *title;
 } gpu_desc;
 

@@ -420,7 +420,8 @@ bool bench_run(const cli_options *opt, err_t *err)
     if (opt->terrain_scale)
         return bench_terrain_scale(opt, opt->width ? opt->width : 640, opt->height ? opt->height : 360, err);
     if (opt->interactive)
-        return bench_interactive(opt, opt->width ? opt->width : 1280, opt->height ? opt->height : 720, err);
+        return bench_interactive(opt, opt->width ? opt->width : GPU_DEFAULT_WIDTH,
+                                 opt->height ? opt->height : GPU_DEFAULT_HEIGHT, err);
     if (opt->out) {
         struct stat st;
         if (stat(opt->out, &st) != 0 || !S_ISDIR(st.st_mode))

@@ -147,6 +147,141 @@ static double rmse(const uint8_t *a, const uint8_t *b, size_t pixels)
     return sqrt(sum / (3.0 * (double)pixels));
 }
 
+/* One run of the bench: the flight's buffers and what it measured. */
+typedef struct interactive_run {
+    const cli_options *opt;
+    const scene *s;
+    int w, h, fps;
+    size_t n; /* pixels of the window */
+    bool jittered;
+    res_controller res;
+    double ms[FLIGHT_FRAMES], side[FLIGHT_FRAMES];
+    double err_sum, err_max, edge_sum, edge_max, reproj_sum, reproj_max, reproj_ms;
+    int err_n;
+    uint8_t *moving, *full, *edge, *shown, *reproj, *one, *adapt; /* RGBA8 images of the window's size */
+    history hs;
+    float *depth_now, *aov;
+    double first_ms, spp_ms, adaptive_ms, adaptive_rmse, one_rmse, kept;
+} interactive_run;
+
+/* What the window shows after frame `cam` (moving, bilinear and depth-aware, and reprojected) against
+ * the full-size frame of the same camera. */
+static void compare_moving(interactive_run *R, const camera *cam)
+{
+    render_set_edge_aware(false);
+    render_read_stretched_srgb8(R->moving, R->w, R->h, 1.0f);
+    render_set_edge_aware(true);
+    render_read_stretched_srgb8(R->edge, R->w, R->h, 1.0f);
+    render_set_active(R->w, R->h);
+    render_begin(cam);
+    render_sample();
+    render_read_stretched_srgb8(R->full, R->w, R->h, 1.0f);
+    double e = rmse(R->moving, R->full, R->n), ee = rmse(R->edge, R->full, R->n), er = rmse(R->reproj, R->full, R->n);
+    R->err_sum += e, R->err_max = fmax(R->err_max, e), R->err_n++;
+    R->edge_sum += ee, R->edge_max = fmax(R->edge_max, ee);
+    R->reproj_sum += er, R->reproj_max = fmax(R->reproj_max, er);
+}
+
+/* The scripted flight: each frame one sample at the controller's internal size. */
+static void fly(interactive_run *R)
+{
+    for (int f = 0; f < FLIGHT_FRAMES; f++) {
+        camera cam = flight_camera(R->s, f);
+        int iw = res_side(R->w, R->res.scale), ih = res_side(R->h, R->res.scale);
+        render_set_active(iw, ih);
+        render_begin(&cam);
+        if (R->jittered)
+            render_set_first_jitter(1 + f % 16); /* a new sub-pixel point each frame, for the history */
+        R->ms[f] = one_sample();
+        render_set_first_jitter(0);
+        R->side[f] = (double)ih / R->h;
+        res_update(&R->res, R->ms[f], (double)iw * ih, (double)R->n);
+        /* reprojection of what was shown, as a measurement: its CPU time is not a GPU's */
+        render_read_stretched_srgb8(R->shown, R->w, R->h, 1.0f);
+        render_read_aovs(R->aov);
+        double t0 = util_now();
+        reproject(&R->hs, &cam, R->shown, R->aov, iw, ih, R->w, R->h, R->reproj, R->depth_now);
+        R->reproj_ms += (util_now() - t0) * 1000.0;
+        if (f % ERROR_EVERY == ERROR_EVERY - 1)
+            compare_moving(R, &cam);
+        if (!R->opt->quiet)
+            fprintf(stderr, "\rbench --interactive %s: frame %d/%d", R->s->name, f + 1, FLIGHT_FRAMES);
+    }
+}
+
+/* The camera stops: the window's still path, every pixel sampled to the preset's spp, then with
+ * adaptive sampling as the window does it (further samples only on the edge mask). */
+static bool stop(interactive_run *R, err_t *err)
+{
+    bool ok = true;
+    for (int pass = 0; ok && pass < 2; pass++) {
+        render_set_active(R->w, R->h);
+        render_set_adaptive(pass == 1);
+        camera cam = flight_camera(R->s, FLIGHT_FRAMES - 1);
+        render_begin(&cam);
+        double t0 = util_now();
+        for (int i = 0; i < R->s->quality.spp; i++) {
+            one_sample();
+            if (i == 0 && pass == 0) {
+                R->first_ms = (util_now() - t0) * 1000.0;
+                double t1 = util_now();
+                render_read_stretched_srgb8(R->one, R->w, R->h, 1.0f);
+                t0 += util_now() - t1; /* the readback is the bench's, not the window's */
+            }
+        }
+        *(pass ? &R->adaptive_ms : &R->spp_ms) = (util_now() - t0) * 1000.0;
+        render_read_stretched_srgb8(pass ? R->adapt : R->full, R->w, R->h, 1.0f);
+        if (pass) {
+            R->kept = (double)render_adaptive_pixels() / (double)R->n;
+            R->adaptive_rmse = rmse(R->adapt, R->full, R->n);
+            R->one_rmse = rmse(R->one, R->full, R->n);
+        }
+        render_set_adaptive(false);
+        ok = glGetError() == GL_NO_ERROR || err_set(err, "GL error during the flight");
+    }
+    return ok;
+}
+
+static void report(const interactive_run *R)
+{
+    const scene *s = R->s;
+    int w = R->w, h = R->h;
+    double sorted[FLIGHT_FRAMES], sides[FLIGHT_FRAMES];
+    memcpy(sorted, R->ms, sizeof sorted);
+    memcpy(sides, R->side, sizeof sides);
+    qsort(sorted, FLIGHT_FRAMES, sizeof *sorted, cmp_double);
+    qsort(sides, FLIGHT_FRAMES, sizeof *sides, cmp_double);
+    double med = sorted[FLIGHT_FRAMES / 2], p95 = sorted[FLIGHT_FRAMES * 95 / 100];
+    int mw = res_side(w, (float)sides[FLIGHT_FRAMES / 2]), mh = res_side(h, (float)sides[FLIGHT_FRAMES / 2]);
+    double err_mean = R->err_n ? R->err_sum / R->err_n : 0.0, edge_mean = R->err_n ? R->edge_sum / R->err_n : 0.0;
+    double reproj_mean = R->err_n ? R->reproj_sum / R->err_n : 0.0;
+    if (!R->opt->quiet)
+        fputc('\n', stderr);
+    printf("%s, window %dx%d, target %d fps, %s\n", s->name, w, h, R->fps, gpu_describe());
+    printf("  moving (%d frames): median %.1f ms (%.1f fps), p95 %.1f ms; median inside %dx%d; "
+           "error vs full size RMSE %.4f mean, %.4f worst bilinear; %.4f, %.4f depth-aware\n",
+           FLIGHT_FRAMES, med, 1000.0 / med, p95, mw, mh, err_mean, R->err_max, edge_mean, R->edge_max);
+    printf("  reprojection (measured here, not in the window): %d %% history carried by depth, RMSE %.4f mean, "
+           "%.4f worst (%.0f ms a frame on the CPU)\n", HISTORY_WEIGHT_PERCENT, reproj_mean, R->reproj_max,
+           R->reproj_ms / FLIGHT_FRAMES);
+    printf("  stopped: first full-size frame after %.0f ms, the preset's %d spp after %.0f ms; adaptive (%.1f %% of "
+           "pixels on edges) after %.0f ms, RMSE %.4f to every pixel's %d spp (1 spp: %.4f)\n", R->first_ms,
+           s->quality.spp, R->spp_ms, 100 * R->kept, R->adaptive_ms, R->adaptive_rmse, s->quality.spp, R->one_rmse);
+    printf("csv,%s,%d,%d,%d,%.2f,%.2f,%d,%d,%.5f,%.5f,%.0f,%d,%.0f,%.4f,%.0f,%.5f,%.5f,%.5f,%.5f,%.5f,%.5f\n", s->name,
+           w, h, R->fps, med, p95, mw, mh, err_mean, R->err_max, R->first_ms, s->quality.spp, R->spp_ms, R->kept,
+           R->adaptive_ms, R->adaptive_rmse, R->one_rmse, edge_mean, R->edge_max, reproj_mean, R->reproj_max);
+}
+
+static void run_free(interactive_run *R)
+{
+    uint8_t *images[] = {R->moving, R->full, R->edge, R->shown, R->reproj, R->one, R->adapt, R->hs.rgba};
+    for (size_t i = 0; i < sizeof images / sizeof images[0]; i++)
+        free(images[i]);
+    free(R->hs.depth);
+    free(R->depth_now);
+    free(R->aov);
+}
+
 bool bench_interactive(const cli_options *opt, int w, int h, err_t *err)
 {
     scene s;
@@ -156,126 +291,29 @@ bool bench_interactive(const cli_options *opt, int w, int h, err_t *err)
         scene_free(&s);
         return false;
     }
-    bool ok = render_init(err) && render_set_scene(&s, NULL, err);
-    int fps = opt->fps ? opt->fps : DEFAULT_FPS;
-    bool jittered = getenv("FATHOM_BENCH_JITTER") != NULL;
-    res_controller res = res_init((float)fps, RES_MIN_SCALE);
-    double ms[FLIGHT_FRAMES], side[FLIGHT_FRAMES], err_sum = 0, err_max = 0;
-    int err_n = 0;
+    static interactive_run R; /* big: the frame times */
     size_t n = (size_t)w * (size_t)h;
-    uint8_t *moving = util_alloc(n * 4, "a bench image"), *full = util_alloc(n * 4, "a bench image");
-    uint8_t *edge = util_alloc(n * 4, "a bench image"), *shown = util_alloc(n * 4, "a bench image");
-    uint8_t *reproj = util_alloc(n * 4, "a bench image");
-    double edge_sum = 0, edge_max = 0, reproj_sum = 0, reproj_max = 0, reproj_ms = 0;
-    history hs = {.rgba = util_alloc(n * 4, "the history"), .depth = util_alloc(sizeof(float) * n, "the history")};
-    float *depth_now = util_alloc(sizeof(float) * n, "a depth image");
-    float *aov = util_alloc(sizeof(float) * n * AOV_FLOATS, "the AOVs");
-    if (ok)
+    R = (interactive_run){.opt = opt, .s = &s, .w = w, .h = h, .n = n, .fps = opt->fps ? opt->fps : DEFAULT_FPS,
+                          .jittered = getenv("FATHOM_BENCH_JITTER") != NULL};
+    R.res = res_init((float)R.fps, RES_MIN_SCALE);
+    uint8_t **images[] = {&R.moving, &R.full, &R.edge, &R.shown, &R.reproj, &R.one, &R.adapt, &R.hs.rgba};
+    for (size_t i = 0; i < sizeof images / sizeof images[0]; i++)
+        *images[i] = util_alloc(n * 4, "a bench image");
+    R.hs.depth = util_alloc(sizeof(float) * n, "the history");
+    R.depth_now = util_alloc(sizeof(float) * n, "a depth image");
+    R.aov = util_alloc(sizeof(float) * n * AOV_FLOATS, "the AOVs");
+    bool ok = render_init(err) && render_set_scene(&s, NULL, err);
+    if (ok) {
         render_resize(w, h);
-    for (int f = 0; ok && f < FLIGHT_FRAMES; f++) {
-        camera cam = flight_camera(&s, f);
-        int iw = res_side(w, res.scale), ih = res_side(h, res.scale);
-        render_set_active(iw, ih);
-        render_begin(&cam);
-        if (jittered)
-            render_set_first_jitter(1 + f % 16); /* a new sub-pixel point each frame, for the history */
-        ms[f] = one_sample();
-        render_set_first_jitter(0);
-        side[f] = (double)ih / h;
-        res_update(&res, ms[f], (double)iw * ih, (double)n);
-        { /* reprojection of what was shown, as a measurement: its CPU time is not a GPU's */
-            render_read_stretched_srgb8(shown, w, h, 1.0f);
-            render_read_aovs(aov);
-            double t0 = util_now();
-            reproject(&hs, &cam, shown, aov, iw, ih, w, h, reproj, depth_now);
-            reproj_ms += (util_now() - t0) * 1000.0;
-        }
-        if (f % ERROR_EVERY == ERROR_EVERY - 1) { /* what the window shows against the full-size frame */
-            render_set_edge_aware(false);
-            render_read_stretched_srgb8(moving, w, h, 1.0f);
-            render_set_edge_aware(true);
-            render_read_stretched_srgb8(edge, w, h, 1.0f);
-            render_set_active(w, h);
-            render_begin(&cam);
-            render_sample();
-            render_read_stretched_srgb8(full, w, h, 1.0f);
-            double e = rmse(moving, full, n), ee = rmse(edge, full, n), er = rmse(reproj, full, n);
-            err_sum += e, err_max = fmax(err_max, e), err_n++;
-            edge_sum += ee, edge_max = fmax(edge_max, ee);
-            reproj_sum += er, reproj_max = fmax(reproj_max, er);
-        }
-        if (!opt->quiet)
-            fprintf(stderr, "\rbench --interactive %s: frame %d/%d", s.name, f + 1, FLIGHT_FRAMES);
-    }
-    /* the camera stops: the window's still path, every pixel sampled to the preset's spp, then with
-     * adaptive sampling as the window does it (further samples only on the edge mask) */
-    double first_ms = 0, spp_ms = 0, adaptive_ms = 0, adaptive_rmse = 0, one_rmse = 0, kept = 0;
-    uint8_t *one = util_alloc(n * 4, "a bench image"), *adapt = util_alloc(n * 4, "a bench image");
-    for (int pass = 0; ok && pass < 2; pass++) {
-        render_set_active(w, h);
-        render_set_adaptive(pass == 1);
-        camera cam = flight_camera(&s, FLIGHT_FRAMES - 1);
-        render_begin(&cam);
-        double t0 = util_now();
-        for (int i = 0; i < s.quality.spp; i++) {
-            one_sample();
-            if (i == 0 && pass == 0) {
-                first_ms = (util_now() - t0) * 1000.0;
-                double t1 = util_now();
-                render_read_stretched_srgb8(one, w, h, 1.0f);
-                t0 += util_now() - t1; /* the readback is the bench's, not the window's */
-            }
-        }
-        *(pass ? &adaptive_ms : &spp_ms) = (util_now() - t0) * 1000.0;
-        render_read_stretched_srgb8(pass ? adapt : full, w, h, 1.0f);
-        if (pass) {
-            kept = (double)render_adaptive_pixels() / (double)n;
-            adaptive_rmse = rmse(adapt, full, n);
-            one_rmse = rmse(one, full, n);
-        }
-        render_set_adaptive(false);
-        ok = glGetError() == GL_NO_ERROR || err_set(err, "GL error during the flight");
+        fly(&R);
+        ok = stop(&R, err);
     }
     /* the last moving frame as the window showed it, and the converged one */
     if (ok && opt->out)
-        ok = save(opt, &s, "still", adapt, w, h, err) && save(opt, &s, "moving", moving, w, h, err);
-    free(one);
-    free(adapt);
-    if (ok) {
-        double sorted[FLIGHT_FRAMES], sides[FLIGHT_FRAMES];
-        memcpy(sorted, ms, sizeof sorted);
-        memcpy(sides, side, sizeof sides);
-        qsort(sorted, FLIGHT_FRAMES, sizeof *sorted, cmp_double);
-        qsort(sides, FLIGHT_FRAMES, sizeof *sides, cmp_double);
-        double med = sorted[FLIGHT_FRAMES / 2], p95 = sorted[FLIGHT_FRAMES * 95 / 100];
-        if (!opt->quiet)
-            fputc('\n', stderr);
-        printf("%s, window %dx%d, target %d fps, %s\n", s.name, w, h, fps, gpu_describe());
-        printf("  moving (%d frames): median %.1f ms (%.1f fps), p95 %.1f ms; median inside %dx%d; "
-               "error vs full size RMSE %.4f mean, %.4f worst bilinear; %.4f, %.4f depth-aware\n",
-               FLIGHT_FRAMES, med, 1000.0 / med, p95, res_side(w, (float)sides[FLIGHT_FRAMES / 2]),
-               res_side(h, (float)sides[FLIGHT_FRAMES / 2]), err_n ? err_sum / err_n : 0.0, err_max,
-               err_n ? edge_sum / err_n : 0.0, edge_max);
-        printf("  reprojection (measured here, not in the window): %d %% history carried by depth, RMSE %.4f mean, "
-               "%.4f worst (%.0f ms a frame on the CPU)\n", HISTORY_WEIGHT_PERCENT, err_n ? reproj_sum / err_n : 0.0,
-               reproj_max, reproj_ms / FLIGHT_FRAMES);
-        printf("  stopped: first full-size frame after %.0f ms, the preset's %d spp after %.0f ms; adaptive (%.1f %% of "
-               "pixels on edges) after %.0f ms, RMSE %.4f to every pixel's %d spp (1 spp: %.4f)\n", first_ms,
-               s.quality.spp, spp_ms, 100 * kept, adaptive_ms, adaptive_rmse, s.quality.spp, one_rmse);
-        printf("csv,%s,%d,%d,%d,%.2f,%.2f,%d,%d,%.5f,%.5f,%.0f,%d,%.0f,%.4f,%.0f,%.5f,%.5f,%.5f,%.5f,%.5f,%.5f\n", s.name, w, h, fps, med,
-               p95, res_side(w, (float)sides[FLIGHT_FRAMES / 2]), res_side(h, (float)sides[FLIGHT_FRAMES / 2]),
-               err_n ? err_sum / err_n : 0.0, err_max, first_ms, s.quality.spp, spp_ms, kept, adaptive_ms, adaptive_rmse,
-               one_rmse, err_n ? edge_sum / err_n : 0.0, edge_max, err_n ? reproj_sum / err_n : 0.0, reproj_max);
-    }
-    free(moving);
-    free(full);
-    free(edge);
-    free(shown);
-    free(reproj);
-    free(hs.rgba);
-    free(hs.depth);
-    free(depth_now);
-    free(aov);
+        ok = save(opt, &s, "still", R.adapt, w, h, err) && save(opt, &s, "moving", R.moving, w, h, err);
+    if (ok)
+        report(&R);
+    run_free(&R);
     render_shutdown();
     gpu_close();
     scene_free(&s);

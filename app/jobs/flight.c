@@ -15,7 +15,7 @@
 #include "scene/scene.h"
 #include "view/shot.h"
 
-enum { DEFAULT_FPS = 30, DEFAULT_WIDTH = 1280, DEFAULT_HEIGHT = 720 };
+enum { DEFAULT_FPS = 30 };
 
 static bool exists(const char *file)
 {
@@ -86,91 +86,106 @@ static bool check_clearance(const cli_options *opt, const path *p, int first, in
     return ok;
 }
 
+/* The frames to render, [*first, *last]: --frames or the whole path; a range reaching past the end is
+ * cut there (a farm's last chunk), one starting past it is refused. */
+static bool frame_range(const cli_options *opt, const path *p, int fps, int *first, int *last, err_t *err)
+{
+    int last_frame = (int)floor(path_duration(p) * fps + 1e-9);
+    *first = opt->has_frames ? opt->frame_first : 0;
+    *last = opt->has_frames ? opt->frame_last : last_frame;
+    if (*first > last_frame)
+        return err_set(err, "--frames %d-%d: the path '%s' ends at frame %d (%.3f s at %d frames a second)", *first,
+                       *last, opt->path, last_frame, path_duration(p), fps);
+    if (*last > last_frame) { /* a farm's last chunk may reach past the end: render what there is */
+        if (!opt->quiet)
+            fprintf(stderr, "frames %d-%d: the path ends at frame %d; rendering %d-%d\n", *first, *last, last_frame,
+                    *first, last_frame);
+        *last = last_frame;
+    }
+    return true;
+}
+
+typedef struct flight_state {
+    const cli_options *opt;
+    const path *p;
+    int fps, rendered, skipped;
+    bool loaded; /* s holds the scene for every frame (a path without parameter tracks) */
+    scene s;
+    const char *sets[CLI_MAX_SETS + PATH_MAX_PARAMS + 1];
+    char track[PATH_MAX_PARAMS][PATH_PARAM_NAME + 32];
+    int nsets;
+} flight_state;
+
+/* Frame f to its file, unless a file is there already (resume). */
+static bool render_frame(flight_state *F, int f, err_t *err)
+{
+    const cli_options *opt = F->opt;
+    char name[PATH_MAX_LEN];
+    if (!path_frame_name(opt->output, f, name, sizeof name, err))
+        return false;
+    if (exists(name)) {
+        F->skipped++;
+        if (!opt->quiet)
+            fprintf(stderr, "frame %d: %s is there, skipped\n", f, name);
+        return true;
+    }
+    double t = F->p->keys[0].time + (double)f / F->fps;
+    path_sample smp;
+    path_eval(F->p, t, &smp);
+    /* a path without parameter tracks keeps one scene (and its textures on the GPU) */
+    if (!F->loaded && !frame_scene(opt, F->p, &smp, &F->s, F->sets, &F->nsets, F->track, err))
+        return false;
+    F->loaded = F->p->param_count == 0;
+    camera cam = {.position = {(float)smp.position[0], (float)smp.position[1], (float)smp.position[2]},
+                  .yaw = (float)smp.yaw,
+                  .pitch = (float)smp.pitch,
+                  .fov_y = (float)(smp.fov_deg * 3.14159265358979323846 / 180.0)};
+    strbuf description = {0};
+    offline_desc d = offline_shot(opt, &F->s, cam, name, F->sets, F->nsets, &description);
+    d.quiet = true;
+    double tf = util_now();
+    bool ok = image_can_write(name, err) && offline_render_current(&d, err);
+    sb_free(&description);
+    if (!F->loaded)
+        scene_free(&F->s);
+    if (ok) {
+        F->rendered++;
+        if (!opt->quiet)
+            fprintf(stderr, "frame %d (t = %.3f s): %s, %.2f s\n", f, t, name, util_now() - tf);
+    }
+    return ok;
+}
+
 bool flight_render(const cli_options *opt, err_t *err)
 {
     path p;
     if (!path_load(opt->path, &p, err))
         return false;
-    int fps = opt->fps ? opt->fps : DEFAULT_FPS;
-    int last_frame = (int)floor(path_duration(&p) * fps + 1e-9);
-    int first = opt->has_frames ? opt->frame_first : 0, last = opt->has_frames ? opt->frame_last : last_frame;
-    bool ok = true;
-    if (first > last_frame)
-        ok = err_set(err, "--frames %d-%d: the path '%s' ends at frame %d (%.3f s at %d frames a second)", first, last,
-                     opt->path, last_frame, path_duration(&p), fps);
-    if (ok && last > last_frame) { /* a farm's last chunk may reach past the end: render what there is */
-        if (!opt->quiet)
-            fprintf(stderr, "frames %d-%d: the path ends at frame %d; rendering %d-%d\n", first, last, last_frame, first,
-                    last_frame);
-        last = last_frame;
-    }
+    static flight_state F; /* big: the overrides' text */
+    F = (flight_state){.opt = opt, .p = &p, .fps = opt->fps ? opt->fps : DEFAULT_FPS};
+    int first, last;
+    bool ok = frame_range(opt, &p, F.fps, &first, &last, err);
     /* the scene and the output folder are checked before the GPU opens */
-    scene s;
-    const char *sets[CLI_MAX_SETS + PATH_MAX_PARAMS + 1];
-    char track[PATH_MAX_PARAMS][PATH_PARAM_NAME + 32];
     char name[PATH_MAX_LEN];
-    int nsets;
     path_sample smp;
     path_eval(&p, p.keys[0].time, &smp);
-    if (ok && (ok = frame_scene(opt, &p, &smp, &s, sets, &nsets, track, err)))
-        scene_free(&s);
+    if (ok && (ok = frame_scene(opt, &p, &smp, &F.s, F.sets, &F.nsets, F.track, err)))
+        scene_free(&F.s);
     ok = ok && path_frame_name(opt->output, first, name, sizeof name, err) && image_can_write(name, err);
     if (!ok || !gpu_open(&(gpu_desc){.headless = true}, err)) {
         path_free(&p);
         return false;
     }
-    ok = render_init(err) && check_clearance(opt, &p, first, last, fps, err);
-    int rendered = 0, skipped = 0;
-    bool loaded = false; /* s holds the scene for every frame */
+    ok = render_init(err) && check_clearance(opt, &p, first, last, F.fps, err);
     double t0 = util_now();
-    for (int f = first; ok && f <= last; f++) {
-        if (!(ok = path_frame_name(opt->output, f, name, sizeof name, err)))
-            break;
-        if (exists(name)) {
-            skipped++;
-            if (!opt->quiet)
-                fprintf(stderr, "frame %d: %s is there, skipped\n", f, name);
-            continue;
-        }
-        double t = p.keys[0].time + (double)f / fps;
-        path_eval(&p, t, &smp);
-        /* a path without parameter tracks keeps one scene (and its textures on the GPU) */
-        if (!loaded && !(ok = frame_scene(opt, &p, &smp, &s, sets, &nsets, track, err)))
-            break;
-        loaded = p.param_count == 0;
-        camera cam = {.position = {(float)smp.position[0], (float)smp.position[1], (float)smp.position[2]},
-                      .yaw = (float)smp.yaw,
-                      .pitch = (float)smp.pitch,
-                      .fov_y = (float)(smp.fov_deg * 3.14159265358979323846 / 180.0)};
-        offline_desc d = {.scene = &s,
-                          .cam = cam,
-                          .width = opt->width ? opt->width : DEFAULT_WIDTH,
-                          .height = opt->height ? opt->height : DEFAULT_HEIGHT,
-                          .spp = s.quality.spp,
-                          .output = name,
-                          .aovs = opt->aovs,
-                          .strip_rows = opt->strip_rows,
-                          .quiet = true};
-        strbuf description = {0};
-        shot_describe(s.path, sets, nsets, &d.cam, d.width, d.height, &description);
-        d.description = description.data;
-        double tf = util_now();
-        ok = image_can_write(name, err) && offline_render_current(&d, err);
-        sb_free(&description);
-        if (!loaded)
-            scene_free(&s);
-        if (ok) {
-            rendered++;
-            if (!opt->quiet)
-                fprintf(stderr, "frame %d (t = %.3f s): %s, %.2f s\n", f, t, name, util_now() - tf);
-        }
-    }
-    if (loaded)
-        scene_free(&s);
+    for (int f = first; ok && f <= last; f++)
+        ok = render_frame(&F, f, err);
+    if (F.loaded)
+        scene_free(&F.s);
     double secs = util_now() - t0;
     if (ok && !opt->quiet)
         fprintf(stderr, "flight %s: %d frames rendered, %d skipped (already there), %.1f s: %.1f frames a minute (%s)\n",
-                opt->path, rendered, skipped, secs, rendered ? 60.0 * rendered / secs : 0.0, gpu_describe());
+                opt->path, F.rendered, F.skipped, secs, F.rendered ? 60.0 * F.rendered / secs : 0.0, gpu_describe());
     render_shutdown();
     gpu_close();
     path_free(&p);

@@ -182,8 +182,35 @@ static bool render_bands(const offline_desc *d, int top, int height, image_write
     return true;
 }
 
-bool offline_render_current(const offline_desc *d, err_t *err)
+offline_desc offline_desc_defaults(const offline_desc *d)
 {
+    offline_desc o = *d;
+    o.width = o.width ? o.width : GPU_DEFAULT_WIDTH;
+    o.height = o.height ? o.height : GPU_DEFAULT_HEIGHT;
+    o.spp = o.spp ? o.spp : o.scene->quality.spp;
+    return o;
+}
+
+offline_desc offline_shot(const cli_options *opt, const scene *s, camera cam, const char *output,
+                          const char *const *sets, int nsets, strbuf *description)
+{
+    offline_desc d = offline_desc_defaults(&(offline_desc){.scene = s,
+                                                           .cam = cam,
+                                                           .width = opt->width,
+                                                           .height = opt->height,
+                                                           .output = output,
+                                                           .aovs = opt->aovs,
+                                                           .strip_rows = opt->strip_rows,
+                                                           .quiet = opt->quiet});
+    shot_describe(s->path, sets, nsets, &d.cam, d.width, d.height, description);
+    d.description = description->data;
+    return d;
+}
+
+bool offline_render_current(const offline_desc *desc, err_t *err)
+{
+    offline_desc dd = offline_desc_defaults(desc);
+    const offline_desc *d = &dd;
     if (!render_set_scene(d->scene, NULL, err)) /* the output was checked by the caller, before the GPU */
         return false;
     double t0 = util_now();

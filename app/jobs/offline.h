@@ -7,10 +7,13 @@
 
 #include <stdbool.h>
 
+#include "cli.h"
 #include "view/camera.h"
 #include "scene/scene.h"
 #include "util.h"
 
+/* Zero means default (offline_desc_defaults): size GPU_DEFAULT_WIDTH x GPU_DEFAULT_HEIGHT, the
+ * scene's spp, bands of at most 2 Mpixel, the whole image. */
 typedef struct offline_desc {
     const scene *scene;
     camera cam;
@@ -34,6 +37,15 @@ void offline_tile_rows(int height, int index, int count, int *top, int *rows);
 bool offline_tile_name(const char *output, int index, int count, char *out, size_t n, err_t *err);
 /* Writes output from the n tile files (any order), checking they are one complete set. */
 bool offline_stitch(const char *output, const char *const *tiles, int n, bool quiet, err_t *err);
+
+/* d with its zero fields given their defaults. */
+offline_desc offline_desc_defaults(const offline_desc *d);
+
+/* One shot as the command line asks it (size, AOVs, bands, quiet; spp from s) of s from cam into
+ * output, with the description the file keeps (scene, the overrides `sets` it was loaded with, camera,
+ * size): the single shot and every frame of a flight are set up here. Free *description after use. */
+offline_desc offline_shot(const cli_options *opt, const scene *s, camera cam, const char *output,
+                          const char *const *sets, int nsets, strbuf *description);
 
 /* Renders and writes d->output. Opens and closes its own headless context. */
 bool offline_render(const offline_desc *d, err_t *err);

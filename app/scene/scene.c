@@ -175,6 +175,23 @@ static int nesting(const char *text, int limit, const char **at)
     return deepest;
 }
 
+/* The scene with overrides failed (err says why): the file is parsed alone, only now, to tell whose
+ * mistake it is. The file's own error is reported as the file's; else " (from --set)" is added. */
+static void blame_override(const char *text, const char *path, err_t *err)
+{
+    scene alone;
+    err_t file_err;
+    if (!scene_load_text(text, path, NULL, 0, &alone, &file_err)) {
+        *err = file_err;
+        return;
+    }
+    scene_free(&alone);
+    static const char SUFFIX[] = " (from --set)";
+    size_t len = strlen(err->msg);
+    if (len + sizeof SUFFIX <= sizeof err->msg)
+        memcpy(err->msg + len, SUFFIX, sizeof SUFFIX);
+}
+
 bool scene_load_text(const char *text, const char *path, const char *const *sets, int set_count, scene *s,
                      err_t *err)
 {
@@ -200,26 +217,12 @@ bool scene_load_text(const char *text, const char *path, const char *const *sets
     }
     scene_ctx c = {.file = path, .err = err, .s = s};
     bool ok = check_duplicates(&c, root, "");
-    /* Check the file as written first, so a mistake there is reported as the file's, not an override's. */
-    if (ok && set_count > 0) {
-        scene probe;
-        ok = scene_load_text(text, path, NULL, 0, &probe, err);
-        scene_free(&probe);
-        *s = (scene){0};
-        snprintf(s->path, sizeof s->path, "%s", path);
-        util_dirname(path, s->dir, sizeof s->dir);
-        snprintf(s->name, sizeof s->name, "%.*s", (int)strcspn(base, "."), base);
-    }
     for (int i = 0; ok && i < set_count; i++)
-        ok = scene_apply_set(root, sets[i], err);
+        ok = scene_apply_set(root, sets[i], err); /* its errors name the override already */
     if (ok) {
         ok = parse_root(&c, root) && (!s->cam_auto || terrain_frame(s, err));
-        if (!ok && set_count > 0) { /* the file alone was fine, so an override broke it */
-            static const char SUFFIX[] = " (from --set)";
-            size_t len = strlen(err->msg);
-            if (len + sizeof SUFFIX <= sizeof err->msg)
-                memcpy(err->msg + len, SUFFIX, sizeof SUFFIX);
-        }
+        if (!ok && set_count > 0)
+            blame_override(text, path, err);
     }
     cJSON_Delete(root);
     if (ok) {

@@ -69,7 +69,7 @@ bool get_num(scene_ctx *c, const cJSON *obj, const char *path, const char *key, 
 bool get_int(scene_ctx *c, const cJSON *obj, const char *path, const char *key, int def, int lo, int hi,
                     int *out)
 {
-    float f;
+    float f = 0; /* set by get_num on success; GCC -O3 cannot see it */
     if (!get_num(c, obj, path, key, (float)def, (float)lo, (float)hi, &f))
         return false;
     if (f != floorf(f)) {

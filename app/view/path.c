@@ -372,7 +372,7 @@ static bool parse_key(path *p, const cJSON *k, int i, const char *name, err_t *e
     if (i > 0 && !(K->time > K[-1].time))
         return err_set(err, "%s: keys.%d.time: %g is not after the previous key's %g; times must increase", name, i,
                        K->time, K[-1].time);
-    double yaw, pitch;
+    double yaw = 0, pitch = 0; /* set on every path below; GCC -O3 cannot see it */
     bool has_angles = cJSON_GetObjectItemCaseSensitive(k, "yaw") || cJSON_GetObjectItemCaseSensitive(k, "pitch");
     if (cJSON_GetObjectItemCaseSensitive(k, "look_at")) {
         double at[3];

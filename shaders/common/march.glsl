@@ -94,6 +94,37 @@ float refineCrossing(vec3 ro, vec3 rd, float side, float a, float fa, float b, f
 }
 
 #ifndef PROGRAM_CAST_RAY // a program may march its own way (terrain)
+// A ray out of steps near a surface (never on a bound) takes its closest approach as a candidate hit
+// (h.exhausted), or the crossing that its last two samples predict when a probe confirms it.
+void acceptExhausted(inout Hit h, inout float t, float tBest, float matBest, vec3 ro, vec3 rd, float tmax,
+                     float side, float pathT, float tPrev, float fPrev, float tPrev2, float fPrev2)
+{
+    h.hit = true;
+    h.exhausted = true;
+    t = tBest;
+    h.mat = matBest;
+#if MARCH_REFINES
+    // A ray grazing a face creeps toward it by plain steps that shrink geometrically (by 1 − sin of
+    // the angle: ~40 steps an e-fold at 1.5°) and runs out of steps short of it, a few % of the
+    // depth: the band along a ground plane's horizon. The last two samples predict the crossing
+    // (secant); one probe a little past it, and if that is inside, the bracket is refined as any
+    // crossing. Only out-of-steps rays take this guess, and only a confirmed crossing replaces
+    // the best candidate (a secant step in the main loop stepped across corner slivers).
+    if (fPrev > 0.0 && fPrev2 > fPrev) {
+        float tStar = tPrev + 1.5 * fPrev * (tPrev - tPrev2) / (fPrev2 - fPrev);
+        if (tStar < tmax) {
+            float fStar = side * map(ro + rd * tStar).x;
+            h.steps++;
+            if (fStar < 0.0) {
+                t = refineCrossing(ro, rd, side, tPrev, fPrev, tStar, fStar, pathT, h.steps);
+                h.mat = map(ro + rd * t).y;
+                h.exhausted = false;
+            }
+        }
+    }
+#endif
+}
+
 Hit castRay(vec3 ro, vec3 rd, float tmax, float side, float pathT)
 {
     Hit h = Hit(false, 0.0, -1.0, 0, false, 0);
@@ -153,32 +184,8 @@ Hit castRay(vec3 ro, vec3 rd, float tmax, float side, float pathT)
         if (t > tmax)
             break;
     }
-    if (!h.hit && t <= tmax && h.steps >= MAX_STEPS && bestRatio < 1e30 && !lastBound) { // out of steps near a surface
-        h.hit = true;
-        h.exhausted = true;
-        t = tBest;
-        h.mat = matBest;
-#if MARCH_REFINES
-        // A ray grazing a face creeps toward it by plain steps that shrink geometrically (by 1 − sin of
-        // the angle: ~40 steps an e-fold at 1.5°) and runs out of steps short of it, a few % of the
-        // depth: the band along a ground plane's horizon. The last two samples predict the crossing
-        // (secant); one probe a little past it, and if that is inside, the bracket is refined as any
-        // crossing. Only out-of-steps rays take this guess, and only a confirmed crossing replaces
-        // the best candidate (a secant step in the main loop stepped across corner slivers).
-        if (fPrev > 0.0 && fPrev2 > fPrev) {
-            float tStar = tPrev + 1.5 * fPrev * (tPrev - tPrev2) / (fPrev2 - fPrev);
-            if (tStar < tmax) {
-                float fStar = side * map(ro + rd * tStar).x;
-                h.steps++;
-                if (fStar < 0.0) {
-                    t = refineCrossing(ro, rd, side, tPrev, fPrev, tStar, fStar, pathT, h.steps);
-                    h.mat = map(ro + rd * t).y;
-                    h.exhausted = false;
-                }
-            }
-        }
-#endif
-    }
+    if (!h.hit && t <= tmax && h.steps >= MAX_STEPS && bestRatio < 1e30 && !lastBound) // out of steps near a surface
+        acceptExhausted(h, t, tBest, matBest, ro, rd, tmax, side, pathT, tPrev, fPrev, tPrev2, fPrev2);
     h.t = t;
     return h;
 }

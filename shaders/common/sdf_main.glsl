@@ -58,237 +58,333 @@ vec3 shadeSurface(vec3 p, vec3 n, vec3 v, Material m, vec3 F0, float pathT, bool
     return col;
 }
 
-void main()
-{
-    if (uAdaptive != 0 && texelFetch(uEdgeMask, ivec2(gl_FragCoord.xy), 0).r < 0.5)
-        discard; // adaptive sampling: the centre sample is this pixel's mean already
-    Ray ray = primaryRay(gl_FragCoord.xy);
-    vec3 ro = ray.o, rd = ray.d;
-    vec3 radiance = vec3(0.0), throughput = vec3(1.0);
-    float pathT = 0.0;     // path length so far: sets thresholds and texture footprints
-    float side = 1.0;      // +1 outside solids, −1 inside glass
-    float firstT = -1.0, primaryT = float(MAX_DIST);
-    vec3 firstN = vec3(0.0);
-    int firstSteps = 0, firstBoundSteps = 0;
-    bool firstExhausted = false; // the primary ray ran out of steps (its hit is a best candidate)
-    bool escaped = false;
-    bool primary = true; // nothing met yet: the next hit is the first (its normal and depth are the AOVs)
+// The state of one sample's path: where it is, what it carries, and what its first hit gives the AOVs.
+struct Path {
+    vec3 ro, rd;            // the current segment's origin and direction
+    vec3 radiance, throughput;
+    float pathT;            // path length so far: sets thresholds and texture footprints
+    float side;             // +1 outside solids, −1 inside glass
+    float firstT, primaryT; // the first hit's depth (−1: none) and the primary ray's (fog)
+    vec3 firstN;
+    int firstSteps, firstBoundSteps;
+    bool firstExhausted;    // the primary ray ran out of steps (its hit is a best candidate)
+    bool escaped;           // the path left the scene
+    bool primary;           // nothing met yet: the next hit is the first (its normal and depth are the AOVs)
 #if FX_DROPLETS
     // Droplets (common/droplets.glsl): the path is in air or inside droplet dropIn. A droplet's
     // surfaces are found analytically, so they do not count against BOUNCES but against their own
     // budget, DROPLET_EVENTS; once it is spent the path goes on straight, ignoring droplets.
-    bool drops = fxOn(FX_DROPLETS_BIT);
-    int dropIn = drops ? dropletAt(ro, -1) : -1;
-    int dropSkip = -1; // the droplet the path just left: the ray starts on its surface
-    int dropEvents = 0;
+    bool drops;
+    int dropIn;
+    int dropSkip;           // the droplet the path just left: the ray starts on its surface
+    int dropEvents;
+#endif
+};
+
+// What a path segment leaves for the loop: the next segment (a bounce), the next segment without
+// spending a bounce (a droplet event), or the end.
+const int SEGMENT_BOUNCE = 0, SEGMENT_FREE = 1, SEGMENT_END = 2;
+
+Path startPath(Ray ray)
+{
+    Path P;
+    P.ro = ray.o;
+    P.rd = ray.d;
+    P.radiance = vec3(0.0);
+    P.throughput = vec3(1.0);
+    P.pathT = 0.0;
+    P.side = 1.0;
+    P.firstT = -1.0;
+    P.primaryT = float(MAX_DIST);
+    P.firstN = vec3(0.0);
+    P.firstSteps = 0;
+    P.firstBoundSteps = 0;
+    P.firstExhausted = false;
+    P.escaped = false;
+    P.primary = true;
+#if FX_DROPLETS
+    P.drops = fxOn(FX_DROPLETS_BIT);
+    P.dropIn = P.drops ? dropletAt(P.ro, -1) : -1;
+    P.dropSkip = -1;
+    P.dropEvents = 0;
 #endif
 #if FX_REFRACTION
     // A camera inside glass starts on the inside: march to where the path leaves.
-    vec2 start = map(ro);
+    vec2 start = map(P.ro);
     if (start.x < 0.0 && uMatTransmission[clamp(int(start.y + 0.5), 0, NUM_MATERIALS - 1)] > 0.0 && fxOn(FX_REFRACTION_BIT))
-        side = -1.0;
+        P.side = -1.0;
+#endif
+    return P;
+}
+
+void recordFirst(inout Path P, float t, vec3 n)
+{
+    if (P.primary) {
+        P.firstT = t;
+        P.primaryT = t;
+        P.firstN = n;
+        P.primary = false;
+    }
+}
+
+#if FX_DROPLETS
+// Inside liquid: the path runs to the droplet's surface, unless the scene cuts the droplet (map() at
+// its centre closer than its radius) and its surface comes first. True with h when the scene's
+// surface is met in the liquid; false when the path crossed (or reflected at) the droplet's surface.
+bool insideDroplet(inout Path P, inout Hit h)
+{
+    vec4 s = droplet(P.dropIn);
+    float t0, tOut;
+    sphereRoots(P.ro, P.rd, s, t0, tOut);
+    tOut = max(tOut, 0.0);
+    h.hit = false;
+    if (map(s.xyz).x < s.w)
+        h = castRay(P.ro, P.rd, tOut, P.side, P.pathT);
+    if (h.hit) {
+        P.throughput *= exp(-uDropletAbsorption * h.t); // a surface in the liquid, seen through it
+        return true;
+    }
+    vec3 p = P.ro + P.rd * tOut;
+    P.throughput *= exp(-uDropletAbsorption * tOut);
+    P.pathT += tOut;
+    P.ro = p;
+    P.dropEvents++;
+    int next = dropletAt(p, P.dropIn);
+    if (next >= 0) { // overlapping droplets are one body of liquid: no surface here
+        P.dropIn = next;
+        return false;
+    }
+    float F = dropletCross(P.rd, normalize(p - s.xyz), false);
+    if (F < 1.0) { // out into the air (else totally reflected: still inside)
+        P.throughput *= 1.0 - F;
+        P.dropSkip = P.dropIn;
+        P.dropIn = -1;
+    }
+    return false;
+}
+
+// The path meets droplet id at tDrop: the surface mirrors the environment and shows the lights'
+// highlights (Cook–Torrance, as the droplets paper's §3.2.2); the transmitted part goes on inside.
+void enterDroplet(inout Path P, int id, float tDrop)
+{
+    vec4 s = droplet(id);
+    vec3 p = P.ro + P.rd * tDrop;
+    vec3 nOut = normalize(p - s.xyz);
+    float T = P.pathT + tDrop;
+    recordFirst(P, tDrop, nOut);
+    vec3 v = -P.rd;
+    vec3 dirIn = P.rd;
+    float F = dropletCross(P.rd, nOut, true);
+    P.radiance += P.throughput * F * environment(reflect(dirIn, nOut));
+    Material liquid = Material(vec3(0.0), 0.0, uDropletRoughness, 1.0, uDropletIor, uDropletAbsorption, vec3(0.0));
+    vec3 F0 = vec3(pow((uDropletIor - 1.0) / (uDropletIor + 1.0), 2.0));
+    P.radiance += P.throughput * directLight(p, nOut, v, liquid, F0, T);
+    P.throughput *= 1.0 - F;
+    P.ro = p;
+    P.pathT = T;
+    P.dropIn = id;
+    P.dropSkip = -1;
+    P.dropEvents++;
+}
+
+// The nearest droplet before the scene's hit: with DROPLET_CULL the grid walk stops at the surface,
+// so droplets behind it are never visited; without, it walks on through the grid and the surface wins
+// afterwards (the same image, to measure what culling saves). Sub-pixel droplets on the way dim the
+// ray. True when the path entered a droplet.
+bool meetDroplet(inout Path P, Hit h, float tmax)
+{
+    float tDrop, tSurface = h.hit ? h.t : tmax;
+    int cells;
+    vec3 reflected = vec3(0.0);
+    int id = dropletsWalk(P.ro, P.rd, 0.0, DROPLET_CULL != 0 ? tSurface : tmax, tSurface, P.dropSkip, P.pathT,
+                          P.throughput, reflected, tDrop, cells);
+    if (tDrop >= tSurface)
+        id = -1;
+    P.radiance += reflected * environmentBlurred(P.rd, 1.0);
+    if (id < 0)
+        return false;
+    enterDroplet(P, id, tDrop);
+    return true;
+}
 #endif
 
-    for (int bounce = 0; bounce <= BOUNCES; bounce++) {
-        float tmax = float(MAX_DIST) - pathT;
-        Hit h;
-#if FX_DROPLETS
-        if (dropIn >= 0 && dropEvents >= DROPLET_EVENTS)
-            dropIn = -1; // out of droplet events: the path leaves the liquid unbent
-        if (dropIn >= 0) {
-            // Inside liquid: the path runs to the droplet's surface, unless the scene cuts the droplet
-            // (map() at its centre closer than its radius) and its surface comes first.
-            vec4 s = droplet(dropIn);
-            float t0, tOut;
-            sphereRoots(ro, rd, s, t0, tOut);
-            tOut = max(tOut, 0.0);
-            h.hit = false;
-            if (map(s.xyz).x < s.w)
-                h = castRay(ro, rd, tOut, side, pathT);
-            if (!h.hit) {
-                vec3 p = ro + rd * tOut;
-                throughput *= exp(-uDropletAbsorption * tOut);
-                pathT += tOut;
-                ro = p;
-                dropEvents++;
-                bounce--;
-                int next = dropletAt(p, dropIn);
-                if (next >= 0) { // overlapping droplets are one body of liquid: no surface here
-                    dropIn = next;
-                    continue;
-                }
-                float F = dropletCross(rd, normalize(p - s.xyz), false);
-                if (F < 1.0) { // out into the air (else totally reflected: still inside)
-                    throughput *= 1.0 - F;
-                    dropSkip = dropIn;
-                    dropIn = -1;
-                }
-                continue;
-            }
-            throughput *= exp(-uDropletAbsorption * h.t); // a surface in the liquid, seen through it
-        } else
-#endif
-        h = castRay(ro, rd, tmax, side, pathT);
-        if (primary) {
-            firstSteps = h.steps;
-            firstBoundSteps = h.boundSteps;
-            firstExhausted = h.exhausted;
-        }
-#if FX_DROPLETS
-        if (drops && dropIn < 0 && dropEvents < DROPLET_EVENTS) {
-            // The nearest droplet before the scene's hit: with DROPLET_CULL the grid walk stops at the
-            // surface, so droplets behind it are never visited; without, it walks on through the grid
-            // and the surface wins afterwards (the same image, to measure what culling saves).
-            // Sub-pixel droplets on the way dim the ray.
-            float tDrop, tSurface = h.hit ? h.t : tmax;
-            int cells;
-            vec3 reflected = vec3(0.0);
-            int id = dropletsWalk(ro, rd, 0.0, DROPLET_CULL != 0 ? tSurface : tmax, tSurface, dropSkip, pathT,
-                                  throughput, reflected, tDrop, cells);
-            if (tDrop >= tSurface)
-                id = -1;
-            radiance += reflected * environmentBlurred(rd, 1.0);
-            if (id >= 0) {
-                vec4 s = droplet(id);
-                vec3 p = ro + rd * tDrop;
-                vec3 nOut = normalize(p - s.xyz);
-                float T = pathT + tDrop;
-                if (primary) {
-                    firstT = primaryT = tDrop;
-                    firstN = nOut;
-                    primary = false;
-                }
-                // the surface: the environment mirrored, and the lights' highlights (Cook–Torrance, as
-                // the droplets paper's §3.2.2); then the transmitted part goes on inside
-                vec3 v = -rd;
-                vec3 dirIn = rd;
-                float F = dropletCross(rd, nOut, true);
-                radiance += throughput * F * environment(reflect(dirIn, nOut));
-                Material liquid = Material(vec3(0.0), 0.0, uDropletRoughness, 1.0, uDropletIor, uDropletAbsorption, vec3(0.0));
-                vec3 F0 = vec3(pow((uDropletIor - 1.0) / (uDropletIor + 1.0), 2.0));
-                radiance += throughput * directLight(p, nOut, v, liquid, F0, T);
-                throughput *= 1.0 - F;
-                ro = p;
-                pathT = T;
-                dropIn = id;
-                dropSkip = -1;
-                dropEvents++;
-                bounce--;
-                continue;
-            }
-        }
-        dropSkip = -1;
-#endif
-        if (!h.hit) {
-            radiance += throughput * environment(rd);
-            escaped = true;
-            break;
-        }
-        vec3 p = ro + rd * h.t;
-        float T = pathT + h.t;
-        float eps = hitEps(T);
-        vec3 nOut = calcNormal(p, normalEps(eps, T), -rd); // outward normal of the solid
-        bool firstHit = primary;
-        if (primary) {
-            firstT = h.t;
-            primaryT = h.t;
-            firstN = nOut;
-            primary = false;
-        }
-        // Where the neighbouring pixels' rays meet the tangent plane (texture filtering).
-        float dn = dot(rd, nOut);
-        dn = sign(dn) * max(abs(dn), 1e-3) + (dn == 0.0 ? 1e-3 : 0.0);
-        vec3 dpdx = T * (ray.dDdx - rd * dot(ray.dDdx, nOut) / dn);
-        vec3 dpdy = T * (ray.dDdy - rd * dot(ray.dDdy, nOut) / dn);
-        vec3 pSurface = p; // shadows and AO start on the real surface, not inside a relief
 #if FX_RELIEF
-        int reliefSteps = 0;
-        vec3 nFace = nOut;
-        nOut = applyRelief(clamp(int(h.mat + 0.5), 0, NUM_MATERIALS - 1), p, nOut, rd, reliefSteps);
-        if (side * map(p).x > 0.0) {
-            // The relief the search found lies outside the solid (past the face's edge: the carved layer
-            // has no side walls in tangent space). Shading there drew dark blotches along the far edge;
-            // the flat face is shown instead.
-            p = pSurface;
-            nOut = nFace;
-        }
-        if (firstHit) {
-            firstN = nOut;
-            firstSteps += reliefSteps;
-        }
+// Parallax-occlusion relief moves the hit into the carved layer and bends its normal.
+void reliefSurface(inout Path P, Hit h, bool firstHit, vec3 pSurface, inout vec3 p, inout vec3 nOut)
+{
+    int reliefSteps = 0;
+    vec3 nFace = nOut;
+    nOut = applyRelief(clamp(int(h.mat + 0.5), 0, NUM_MATERIALS - 1), p, nOut, P.rd, reliefSteps);
+    if (P.side * map(p).x > 0.0) {
+        // The relief the search found lies outside the solid (past the face's edge: the carved layer
+        // has no side walls in tangent space). Shading there drew dark blotches along the far edge;
+        // the flat face is shown instead.
+        p = pSurface;
+        nOut = nFace;
+    }
+    if (firstHit) {
+        P.firstN = nOut;
+        P.firstSteps += reliefSteps;
+    }
+}
 #endif
-        Material m = getMaterial(h.mat, p, nOut, dpdx, dpdy);
-
-        if (side < 0.0) // the segment just travelled was inside glass
-            throughput *= exp(-m.absorption * h.t);
 
 #if FX_REFRACTION
-        if (m.transmission > 0.0 && fxOn(FX_REFRACTION_BIT)) {
-            bool entering = dot(rd, nOut) < 0.0;
-            vec3 n = entering ? nOut : -nOut;        // faces the incoming ray
-            float eta = entering ? 1.0 / m.ior : m.ior;
-            float cosI = -dot(rd, n);
-            float F = fresnelDielectric(cosI, eta);
-            vec3 refl = reflect(rd, n);
-            pathT = T;
-            if (F >= 1.0) { // total internal reflection: stay on this side
-                rd = refl;
-                ro = p + n * (SURFACE_OFFSET_K * eps);
-                continue;
-            }
-            if (entering) // reflected part: the environment (one level; the path follows the light inside)
-                radiance += throughput * F * m.transmission * environment(refl);
-            vec3 F0 = vec3(pow((m.ior - 1.0) / (m.ior + 1.0), 2.0));
-            if (entering && m.transmission < 1.0)
-                radiance += throughput * (1.0 - m.transmission) * shadeSurface(p, n, -rd, m, F0, T, false);
-            throughput *= (1.0 - F) * m.transmission;
-            rd = refract(rd, n, eta);
-            ro = p - n * (SURFACE_OFFSET_K * eps);
-            side = -side;
-            continue;
-        }
-#endif
-        vec3 v = -rd;
-        vec3 n = nOut;
-#ifdef PROGRAM_NORMAL_OUTWARD
-        // a heightfield is always hit from outside: a shading normal that faces away (a ridge's smoothed
-        // normal seen from its back slope) is bent just enough to face the viewer, never flipped into
-        // the ground (which drew black dashes along ridges)
-        if (dot(n, v) < 0.02)
-            n = normalize(n + (0.02 - dot(n, v)) * v);
-#else
-        if (dot(n, v) < 0.0) // camera inside a solid or a ray along the surface: light the side we see
-            n = -n;
-#endif
-        float ior = max(m.ior, 1.0);
-        vec3 F0 = mix(vec3(pow((ior - 1.0) / (ior + 1.0), 2.0)), m.albedo, m.metallic);
-        bool mirror = false;
-#if FX_REFLECTIONS
-        mirror = m.transmission == 0.0 && m.roughness <= MIRROR_ROUGHNESS && bounce < BOUNCES && fxOn(FX_REFLECTIONS_BIT);
-#endif
-        radiance += throughput * shadeSurface(pSurface, n, v, m, F0, T, mirror);
-        if (!mirror)
-            break;
-        throughput *= fresnelSchlick(max(dot(n, v), MIN_COSINE), F0);
-        rd = reflect(rd, n);
-        ro = p + n * (SURFACE_OFFSET_K * eps);
-        pathT = T;
+// Glass splits the path: the reflected part (Fresnel F) takes the environment, the transmitted part
+// (1 − F) goes on, refracted; total internal reflection turns it back inside.
+void refractThrough(inout Path P, Material m, vec3 p, vec3 nOut, float T, float eps)
+{
+    bool entering = dot(P.rd, nOut) < 0.0;
+    vec3 n = entering ? nOut : -nOut;        // faces the incoming ray
+    float eta = entering ? 1.0 / m.ior : m.ior;
+    float cosI = -dot(P.rd, n);
+    float F = fresnelDielectric(cosI, eta);
+    vec3 refl = reflect(P.rd, n);
+    P.pathT = T;
+    if (F >= 1.0) { // total internal reflection: stay on this side
+        P.rd = refl;
+        P.ro = p + n * (SURFACE_OFFSET_K * eps);
+        return;
     }
-    if (!escaped && side < 0.0) // the path ran out of bounces inside glass: let it leave unbent
-        radiance += throughput * environment(rd);
+    if (entering) // reflected part: the environment (one level; the path follows the light inside)
+        P.radiance += P.throughput * F * m.transmission * environment(refl);
+    vec3 F0 = vec3(pow((m.ior - 1.0) / (m.ior + 1.0), 2.0));
+    if (entering && m.transmission < 1.0)
+        P.radiance += P.throughput * (1.0 - m.transmission) * shadeSurface(p, n, -P.rd, m, F0, T, false);
+    P.throughput *= (1.0 - F) * m.transmission;
+    P.rd = refract(P.rd, n, eta);
+    P.ro = p - n * (SURFACE_OFFSET_K * eps);
+    P.side = -P.side;
+}
+#endif
 
+// An opaque surface: its light, and for a smooth one the traced mirror image (true: the path goes on).
+bool opaqueSurface(inout Path P, Material m, vec3 p, vec3 pSurface, vec3 nOut, float T, float eps, int bounce)
+{
+    vec3 v = -P.rd;
+    vec3 n = nOut;
+#ifdef PROGRAM_NORMAL_OUTWARD
+    // a heightfield is always hit from outside: a shading normal that faces away (a ridge's smoothed
+    // normal seen from its back slope) is bent just enough to face the viewer, never flipped into
+    // the ground (which drew black dashes along ridges)
+    if (dot(n, v) < 0.02)
+        n = normalize(n + (0.02 - dot(n, v)) * v);
+#else
+    if (dot(n, v) < 0.0) // camera inside a solid or a ray along the surface: light the side we see
+        n = -n;
+#endif
+    float ior = max(m.ior, 1.0);
+    vec3 F0 = mix(vec3(pow((ior - 1.0) / (ior + 1.0), 2.0)), m.albedo, m.metallic);
+    bool mirror = false;
+#if FX_REFLECTIONS
+    mirror = m.transmission == 0.0 && m.roughness <= MIRROR_ROUGHNESS && bounce < BOUNCES && fxOn(FX_REFLECTIONS_BIT);
+#endif
+    P.radiance += P.throughput * shadeSurface(pSurface, n, v, m, F0, T, mirror);
+    if (!mirror)
+        return false;
+    P.throughput *= fresnelSchlick(max(dot(n, v), MIN_COSINE), F0);
+    P.rd = reflect(P.rd, n);
+    P.ro = p + n * (SURFACE_OFFSET_K * eps);
+    P.pathT = T;
+    return true;
+}
+
+// The scene's surface at h: normal, texture footprint, material, then glass or an opaque surface.
+int shadeHit(inout Path P, Ray ray, Hit h, int bounce)
+{
+    vec3 p = P.ro + P.rd * h.t;
+    float T = P.pathT + h.t;
+    float eps = hitEps(T);
+    vec3 nOut = calcNormal(p, normalEps(eps, T), -P.rd); // outward normal of the solid
+    bool firstHit = P.primary;
+    recordFirst(P, h.t, nOut);
+    // Where the neighbouring pixels' rays meet the tangent plane (texture filtering).
+    float dn = dot(P.rd, nOut);
+    dn = sign(dn) * max(abs(dn), 1e-3) + (dn == 0.0 ? 1e-3 : 0.0);
+    vec3 dpdx = T * (ray.dDdx - P.rd * dot(ray.dDdx, nOut) / dn);
+    vec3 dpdy = T * (ray.dDdy - P.rd * dot(ray.dDdy, nOut) / dn);
+    vec3 pSurface = p; // shadows and AO start on the real surface, not inside a relief
+#if FX_RELIEF
+    reliefSurface(P, h, firstHit, pSurface, p, nOut);
+#endif
+    Material m = getMaterial(h.mat, p, nOut, dpdx, dpdy);
+    if (P.side < 0.0) // the segment just travelled was inside glass
+        P.throughput *= exp(-m.absorption * h.t);
+#if FX_REFRACTION
+    if (m.transmission > 0.0 && fxOn(FX_REFRACTION_BIT)) {
+        refractThrough(P, m, p, nOut, T, eps);
+        return SEGMENT_BOUNCE;
+    }
+#endif
+    return opaqueSurface(P, m, p, pSurface, nOut, T, eps, bounce) ? SEGMENT_BOUNCE : SEGMENT_END;
+}
+
+// One segment of the path: march to the next surface (through liquid, past droplets), then shade it.
+int traceSegment(inout Path P, Ray ray, int bounce)
+{
+    float tmax = float(MAX_DIST) - P.pathT;
+    Hit h;
+#if FX_DROPLETS
+    if (P.dropIn >= 0 && P.dropEvents >= DROPLET_EVENTS)
+        P.dropIn = -1; // out of droplet events: the path leaves the liquid unbent
+    if (P.dropIn >= 0) {
+        if (!insideDroplet(P, h))
+            return SEGMENT_FREE;
+    } else
+#endif
+    h = castRay(P.ro, P.rd, tmax, P.side, P.pathT);
+    if (P.primary) {
+        P.firstSteps = h.steps;
+        P.firstBoundSteps = h.boundSteps;
+        P.firstExhausted = h.exhausted;
+    }
+#if FX_DROPLETS
+    if (P.drops && P.dropIn < 0 && P.dropEvents < DROPLET_EVENTS && meetDroplet(P, h, tmax))
+        return SEGMENT_FREE;
+    P.dropSkip = -1;
+#endif
+    if (!h.hit) {
+        P.radiance += P.throughput * environment(P.rd);
+        P.escaped = true;
+        return SEGMENT_END;
+    }
+    return shadeHit(P, ray, h, bounce);
+}
+
+// Glow and fog over the whole path, then the colour and the AOVs.
+void writeOutputs(Path P, Ray ray)
+{
+    vec3 radiance = P.radiance;
 #if FX_GLOW // light gathered where the primary ray crept along the surface (many steps)
     // Only steps near the shape count: steps on a bound (approaching the bounding sphere at a grazing
     // angle) drew a faint ring around the bounding sphere's silhouette.
-    float crept = float(firstSteps - firstBoundSteps) / float(MAX_STEPS);
+    float crept = float(P.firstSteps - P.firstBoundSteps) / float(MAX_STEPS);
     if (fxOn(FX_GLOW_BIT))
         radiance += uGlowColor * uGlowStrength * crept * crept;
 #endif
 #if FX_FOG
     if (fxOn(FX_FOG_BIT))
-        radiance = applyFog(radiance, ray.o, ray.d, primaryT);
+        radiance = applyFog(radiance, ray.o, ray.d, P.primaryT);
 #endif
     oColor = vec4(radiance, 1.0);
-    oNormalDepth = vec4(firstN, firstT);
-    oAux = vec4(firstExhausted ? -float(firstSteps) : float(firstSteps), rd); // negative: out of steps
+    oNormalDepth = vec4(P.firstN, P.firstT);
+    oAux = vec4(P.firstExhausted ? -float(P.firstSteps) : float(P.firstSteps), P.rd); // negative: out of steps
+}
+
+void main()
+{
+    if (uAdaptive != 0 && texelFetch(uEdgeMask, ivec2(gl_FragCoord.xy), 0).r < 0.5)
+        discard; // adaptive sampling: the centre sample is this pixel's mean already
+    Ray ray = primaryRay(gl_FragCoord.xy);
+    Path P = startPath(ray);
+    for (int bounce = 0; bounce <= BOUNCES; bounce++) {
+        int next = traceSegment(P, ray, bounce);
+        if (next == SEGMENT_FREE)
+            bounce--; // a droplet event spends no bounce
+        else if (next == SEGMENT_END)
+            break;
+    }
+    if (!P.escaped && P.side < 0.0) // the path ran out of bounces inside glass: let it leave unbent
+        P.radiance += P.throughput * environment(P.rd);
+    writeOutputs(P, ray);
 }
