@@ -120,7 +120,7 @@ bool cli_parse_vec3(const char *s, float v[3])
         }
     }
     for (int i = 0; i < 3; i++)
-        if (!parse_float(parts[i], &v[i]))
+        if (!parse_float(parts[i], &v[i]) || fabsf(v[i]) > CAMERA_MAX_COORD)
             return false;
     return true;
 }
@@ -250,11 +250,11 @@ static bool set_view_option(const char *name, const char *val, cli_options *o, e
         o->has_fov = true;
     } else if (!strcmp(name, "--camera")) {
         if (!cli_parse_vec3(val, o->camera))
-            return err_set(err, "bad --camera '%s': expected X,Y,Z, e.g. 0,1.5,6", val);
+            return err_set(err, "bad --camera '%s': expected X,Y,Z within ±%g m, e.g. 0,1.5,6", val, CAMERA_MAX_COORD);
         o->has_camera = true;
     } else if (!strcmp(name, "--look-at")) {
         if (!cli_parse_vec3(val, o->look_at))
-            return err_set(err, "bad --look-at '%s': expected X,Y,Z, e.g. 0,0.5,0", val);
+            return err_set(err, "bad --look-at '%s': expected X,Y,Z within ±%g m, e.g. 0,0.5,0", val, CAMERA_MAX_COORD);
         o->has_look_at = true;
     } else if (!strcmp(name, "--quality")) {
         return add_quality(val, o, err);

@@ -24,6 +24,7 @@ typedef enum aov_flag {
     AOV_NORMAL = 1u << 1, /* world-space unit normal at the first hit, 0 on a miss */
     AOV_STEPS = 1u << 2,  /* march steps of the primary ray */
     AOV_EXIT = 1u << 3,   /* direction in which the main path left the scene (debug for refraction) */
+    AOV_ALL = AOV_DEPTH | AOV_NORMAL | AOV_STEPS | AOV_EXIT,
 } aov_flag;
 
 typedef struct cli_options {

@@ -4,7 +4,9 @@
 fathom=$1
 src=$2
 tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
+# on any exit (a failure, a ctest timeout's TERM, Ctrl+C): the small tmpfs below is unmounted first
+trap 'umount "$tmp/small" 2>/dev/null; rm -rf "$tmp"' EXIT
+trap 'exit 130' INT TERM
 passed=0
 failed=0
 
@@ -48,7 +50,7 @@ expect bad-fov 2 "bad --fov '400'" 1 -- "$fathom" --fov 400 --output "$tmp/out.p
 expect bad-extension 2 "must end in .png or .exr" 1 -- "$fathom" --output "$tmp/out.jpg"
 expect unknown-option 2 "unknown option '--colour'" 1 -- "$fathom" --colour red
 expect unknown-set-key 1 "materials.glass.iro: unknown key 'iro'" 1 -- "$fathom" --set materials.glass.iro=1.3 $out
-expect bad-set-value 1 "materials.glass.ior: expected a number from 1 to 4 (from --set)" 1 -- "$fathom" --set materials.glass.ior=9 $out
+expect bad-set-value 1 "materials.glass.ior: expected a number from 1 to 4 (from the override materials.glass.ior=9)" 1 -- "$fathom" --set materials.glass.ior=9 $out
 expect unwritable-output 1 "folder '$tmp/no/such/dir' does not exist" 1 -- "$fathom" --output "$tmp/no/such/dir/out.png" --size 33x21 --quiet
 
 # ---- hostile files ------------------------------------------------------------------------------
@@ -148,7 +150,40 @@ expect path-bad-frames 2 "bad --frames '5-2': the range ends before it starts" 1
 expect path-bad-file 1 "keys.1.time: 1 is not after the previous key's 1" 1 -- "$fathom" render --path "$tmp/badpath.json" --output "$tmp/out%d.png" $flight
 expect path-missing-file 1 "$tmp/nopath.json" 1 -- "$fathom" render --path "$tmp/nopath.json" --output "$tmp/out%d.png" $flight
 expect path-past-end 1 "ends at frame 30" 1 -- "$fathom" render --path "$tmp/path.json" --frames 40-50 --output "$tmp/out%d.png" $flight
+# a FIFO as the path file waited forever for a writer; times of 6e7 s overflowed the frame count
+mkfifo "$tmp/fifo.json"
+expect path-fifo 1 "'$tmp/fifo.json' is not a regular file" 1 -- timeout 20 "$fathom" render --path "$tmp/fifo.json" --output "$tmp/out%d.png" $flight
+printf '{"keys": [{"time": 0, "position": [0, 1, 5], "yaw": 0, "pitch": 0}, {"time": 6e7, "position": [1, 1, 5], "yaw": 0, "pitch": 0}]}' >"$tmp/longpath.json"
+expect path-huge-time 1 "keys.1.time: expected a number from -86400 to 86400" 1 -- "$fathom" render --path "$tmp/longpath.json" --output "$tmp/out%d.png" $flight
 ls "$tmp"/out*.png >/dev/null 2>&1 && { failed=$((failed + 1)); echo "FAIL flights: a frame was written by a refused flight"; }
+
+# refute NAME TEXT: the last case's message must not contain TEXT
+refute() {
+    if grep -qF -- "$2" "$tmp/stderr"; then
+        failed=$((failed + 1)); echo "FAIL $1: the message contains '$2'"; sed 's/^/     | /' "$tmp/stderr"
+    else
+        passed=$((passed + 1)); echo "ok   $1: no '$2' in it"
+    fi
+}
+# the hostile campaign's other classes: a camera a float cannot place, a private file named as droplets
+# (its first line is not echoed), a DEM's error blamed on --set, a 16-bit PNG whose header claims
+# 20000x20000 over 9 bytes of data (refused after reading one block of rows, not 1.8 GB)
+expect camera-far 2 "bad --camera '1e30,1e30,1e30': expected X,Y,Z within" 1 -- "$fathom" --camera 1e30,1e30,1e30 $out
+printf 'user,password,token\nalice,hunter2,42\n' >"$tmp/secret.csv"
+expect droplets-private-file 1 "no x column in the first row's 3 fields" 1 -- "$fathom" --set droplets.file="$tmp/secret.csv" $out
+refute droplets-private-file-not-echoed hunter2
+refute droplets-private-header-not-echoed password
+expect dem-error-names-dem 1 "but no CRS" 1 -- "$fathom" --dem "$tmp/dem.asc" $out
+refute dem-error-not-from-set "(from --set)"
+printf '\211\120\116\107\015\012\032\012\000\000\000\015\111\110\104\122\000\000\116\040\000\000\116\040\020\000\000\000\000\226\213\305\246\000\000\000\013\111\104\101\124\170\234\143\140\200\002\000\000\011\000\001\373\122\270\251\000\000\000\000\111\105\116\104\256\102\140\202' >"$tmp/h20k.png"
+printf '{"program": "terrain", "materials": {"rock": {}}, "terrain": {"heightmap": "h20k.png", "spacing": [1, 1], "height_min": 0, "height_max": 1}}' >"$tmp/h20k.json"
+expect png-header-20000 1 "Not enough image data" 1 -- "$fathom" --scene "$tmp/h20k.json" $out
+# stitch: the poster named as one of its tiles (the tile is kept), a tile that is not there
+"$fathom" --output "$tmp/p.png" --size 33x20 --spp 1 --quiet --tile 1/2 && "$fathom" --output "$tmp/p.png" --size 33x20 --spp 1 --quiet --tile 2/2
+cp "$tmp/p.tile-1-of-2.png" "$tmp/keep-tile.png"
+expect stitch-over-a-tile 1 "is one of the tiles" 1 -- "$fathom" stitch --output "$tmp/p.tile-1-of-2.png" "$tmp/p.tile-1-of-2.png" "$tmp/p.tile-2-of-2.png"
+cmp -s "$tmp/keep-tile.png" "$tmp/p.tile-1-of-2.png" || { failed=$((failed + 1)); echo "FAIL stitch-over-a-tile: the tile was changed"; }
+expect stitch-missing-tile 1 "tile '$tmp/p.tile-3-of-2.png' not found" 1 -- "$fathom" stitch --output "$tmp/out.png" "$tmp/p.tile-1-of-2.png" "$tmp/p.tile-3-of-2.png"
 
 # ---- outputs that cannot be written -------------------------------------------------------------
 : >"$tmp/readonly.png"

@@ -33,6 +33,16 @@ grep -q "2 frames rendered, 7 skipped" "$tmp/log2" || fail "rerun summary: $(tai
 [ "$(date -r "$tmp/out/f_000.png" +%Y)" = 2001 ] || fail "frame 0 was rewritten"
 cmp -s "$tmp/keep.png" "$tmp/out/f_000.png" || fail "frame 0 changed"
 
+# what a killed run leaves: an empty frame (not fathom's, does not decode) is rendered again, and a
+# temporary file whose writer is gone (no process 999999 here) is removed
+: >"$tmp/out/f_004.png"
+cp "$tmp/out/f_001.png" "$tmp/out/.f_002.png.tmp999999.png"
+run 2>"$tmp/log5" || { cat "$tmp/log5"; fail "the run after a kill failed"; }
+grep -q "1 frames rendered, 8 skipped" "$tmp/log5" || fail "after a kill: $(tail -1 "$tmp/log5")"
+[ -s "$tmp/out/f_004.png" ] || fail "the empty frame 4 was not rendered again"
+[ ! -e "$tmp/out/.f_002.png.tmp999999.png" ] || fail "the dead writer's temporary file was left"
+grep -q "removed 1 temporary file" "$tmp/log5" || fail "no word of the removed temporary file: $(cat "$tmp/log5")"
+
 # a range starting past the path's end is refused; one reaching past it renders what there is
 run --frames 10-12 2>"$tmp/log3" && fail "frames past the path's end were accepted"
 grep -q "ends at frame 8" "$tmp/log3" || fail "past the end: $(cat "$tmp/log3")"
@@ -65,4 +75,4 @@ mkdir "$tmp/through"
     2>"$tmp/log5" && fail "a path through the glass sphere was rendered"
 grep -q "the camera is inside the scene's surface" "$tmp/log5" || fail "inside: $(cat "$tmp/log5")"
 [ -z "$(ls "$tmp/through")" ] || fail "a refused path left frames"
-echo "flight: 9 frames once each, resume renders only the 2 lost ones, frames reopen as shots, tracks change the scene"
+echo "flight: 9 frames once each, resume renders only the 2 lost ones (and an empty one, and removes a dead run's temporary file), frames reopen as shots, tracks change the scene"

@@ -100,6 +100,8 @@ static void size_and_vec_parsers(void **st)
     assert_near(v[0], -1e-3f, 0);
     assert_near(v[2], 3.25f, 0);
     assert_false(cli_parse_vec3("1,,3", v));
+    assert_false(cli_parse_vec3("1e30,1e30,1e30", v)); /* said "same point" as its look-at before */
+    assert_true(cli_parse_vec3("1e7,-1e7,0", v));
 }
 
 int main(void)

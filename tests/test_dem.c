@@ -10,9 +10,13 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
 #include <unistd.h>
 
 #include <cmocka.h>
+#include <cpl_conv.h>
 #include <gdal.h>
 #include <ogr_srs_api.h>
 
@@ -282,6 +286,85 @@ static void refused(void **st)
     assert_true(strstr(e.msg, "cannot read DEM '/nonexistent/dem.tif'") != NULL);
 }
 
+/* Hostile numbers in a valid file: a scale or offset that sends heights beyond a float (1e36, 1e39),
+ * a pixel size of 1e-30: refused with the reason, by the loader and by the probe that frames the
+ * camera (which said "camera ... is at its look-at" before). */
+static void hostile_numbers(void **st)
+{
+    (void)st;
+    double v[4 * 4];
+    for (int k = 0; k < 16; k++)
+        v[k] = 100 + k;
+    const double gt[6] = {0, 10, 0, 0, 0, -10}, tiny[6] = {0, 1e-30, 0, 0, 0, -1e-30};
+    struct { const char *name; const double *gt; double scale, offset; const char *needle; } cases[] = {
+        {"scale.tif", gt, 1e36, 0, "check the band's scale and offset"},
+        {"offset.tif", gt, 1, 1e39, "check the band's scale and offset"},
+        {"tinyscale.tif", gt, 1e5, 0, "beyond"}, /* 1.15e7 m: finite, but no terrain */
+        {"tiny.tif", tiny, 0, 0, "outside 0.001 to"},
+    };
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        const char *p = write_tif(&(tif){cases[c].name, GDT_Float32, 4, 4, cases[c].gt, 32633, false, 0,
+                                         cases[c].scale, cases[c].offset}, v);
+        heightfield hf;
+        heightfield_desc d = {.path = p, .exaggeration = 1};
+        err_t e = {0};
+        double size[2], range[2], spacing[2];
+        assert_false(heightfield_load(&d, &hf, &e));
+        if (!strstr(e.msg, cases[c].needle))
+            fail_msg("%s: load: '%s' lacks '%s'", cases[c].name, e.msg, cases[c].needle);
+        assert_false(heightfield_probe(&d, size, range, spacing, &e));
+        if (!strstr(e.msg, cases[c].needle))
+            fail_msg("%s: probe: '%s' lacks '%s'", cases[c].name, e.msg, cases[c].needle);
+    }
+    /* an exaggeration that takes sane heights past the bound is refused the same way */
+    const char *p = write_tif(&(tif){"sane.tif", GDT_Float32, 4, 4, gt, 32633, false, 0, 0, 0}, v);
+    heightfield hf;
+    heightfield_desc d = {.path = p, .exaggeration = 1e6f};
+    err_t e;
+    assert_false(heightfield_load(&d, &hf, &e));
+    assert_non_null(strstr(e.msg, "beyond"));
+}
+
+/* A VRT whose source is on a web server (here a socket listening on loopback): GDAL is asked for it,
+ * but no connection reaches the server (GDAL's network file systems are off), and the error says so
+ * or names the failed read. Before, GDAL connected. */
+static void no_network(void **st)
+{
+    (void)st;
+    int srv = socket(AF_INET, SOCK_STREAM | SOCK_NONBLOCK, 0);
+    assert_true(srv >= 0);
+    struct sockaddr_in a = {.sin_family = AF_INET, .sin_addr.s_addr = htonl(INADDR_LOOPBACK)};
+    socklen_t len = sizeof a;
+    assert_int_equal(bind(srv, (struct sockaddr *)&a, sizeof a), 0);
+    assert_int_equal(listen(srv, 4), 0);
+    assert_int_equal(getsockname(srv, (struct sockaddr *)&a, &len), 0);
+    char vrt[256], text[1024];
+    snprintf(vrt, sizeof vrt, "%s/net.vrt", dir);
+    snprintf(text, sizeof text,
+             "<VRTDataset rasterXSize=\"4\" rasterYSize=\"4\"><VRTRasterBand dataType=\"Float32\" band=\"1\">"
+             "<SimpleSource><SourceFilename relativeToVRT=\"0\">/vsicurl/http://127.0.0.1:%d/dem.tif</SourceFilename>"
+             "<SourceBand>1</SourceBand></SimpleSource></VRTRasterBand></VRTDataset>", ntohs(a.sin_port));
+    FILE *f = fopen(vrt, "w");
+    assert_non_null(f);
+    fputs(text, f);
+    fclose(f);
+    CPLSetConfigOption("GDAL_HTTP_TIMEOUT", "2"); /* without the guard, GDAL would wait on our silent server */
+    int w, h;
+    float *hts = NULL;
+    dem_info info;
+    err_t e;
+    bool read = dem_read(vrt, 256, &w, &h, &hts, &info, &e);
+    free(hts);
+    snprintf(text, sizeof text, "/vsicurl/http://127.0.0.1:%d/dem.tif", ntohs(a.sin_port));
+    assert_false(dem_read(text, 256, &w, &h, &hts, &info, &e));
+    int conn = accept(srv, NULL, NULL); /* non-blocking: -1 unless GDAL connected */
+    if (conn >= 0)
+        close(conn);
+    close(srv);
+    assert_true(conn < 0);
+    assert_false(read);
+}
+
 /* An ESRI ASCII grid (text, no CRS) with the scene's spacing: the same heights. */
 static void ascii_grid(void **st)
 {
@@ -371,6 +454,7 @@ int main(void)
         cmocka_unit_test(projected_float),  cmocka_unit_test(projected_feet),   cmocka_unit_test(geographic_int16_nodata),
         cmocka_unit_test(south_up_is_flipped), cmocka_unit_test(holes_and_fill), cmocka_unit_test(refused),
         cmocka_unit_test(ascii_grid),          cmocka_unit_test(dem_scene_frames_any_dem),
+        cmocka_unit_test(hostile_numbers),     cmocka_unit_test(no_network),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

@@ -70,7 +70,7 @@ static void bad_files(void **st)
     } cases[] = {
         {"", "holds no droplets"},
         {"x,y,z,r\n", "holds no droplets"},
-        {"a,b,c\n1,2,3\n", ":1: no x column (the header has 'a', 'b', 'c')"},
+        {"a,b,c\n1,2,3\n", ":1: no x column in the first row's 3 fields"},
         {"Points:0,Points:1,Points:2\n1,2,3\n", ":1: no radius or diameter column"},
         {"x,y,z,r\n1,2,3,0.1\n1,2,abc,0.1\n", ":3: column 3 (z): 'abc' is not a number"},
         {"x,y,z,r\n1,2,3,nan\n", ":2: column 4 (r): nan is not a finite number"},
@@ -90,6 +90,24 @@ static void bad_files(void **st)
         if (ok || !strstr(e.msg, cases[i].want) || strncmp(e.msg, "droplets file 't.csv'", 21) != 0)
             fail_msg("case %zu: %s; got '%s', expected '%s'", i, ok ? "accepted" : "refused", e.msg, cases[i].want);
         assert_null(d.spheres);
+    }
+    /* a file that is not droplets (someone's private file named in a shared scene): its first line is
+     * not repeated in the message */
+    {
+        static const char secret[] = "user,password,token\nalice,hunter2,42\n";
+        droplets d;
+        err_t e = {{0}};
+        assert_false(droplets_read_text(secret, strlen(secret), "t.csv", 1, &d, &e));
+        assert_null(strstr(e.msg, "password"));
+        assert_null(strstr(e.msg, "user"));
+    }
+    /* a NUL inside a number is no number ("1\0junk" read as 1 before) */
+    {
+        static const char nul[] = "x,y,z,r\n1,2,3\0junk,0.1\n";
+        droplets d;
+        err_t e = {{0}};
+        assert_false(droplets_read_text(nul, sizeof nul - 1, "t.csv", 1, &d, &e));
+        assert_non_null(strstr(e.msg, ":2: field 3 holds a NUL byte"));
     }
     droplets d;
     err_t e;

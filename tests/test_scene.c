@@ -292,7 +292,13 @@ static void overrides(void **st)
     scene_free(&s);
 
     const char *typo[] = {"materials.a.rouhgness=0.1"};
-    expect_error(MINIMAL, typo, 1, "(from --set)");
+    expect_error(MINIMAL, typo, 1, "(from the override materials.a.rouhgness=0.1)");
+    /* the override that breaks the scene is named, not the good one beside it */
+    const char *two[] = {"materials.a.roughness=0.5", "materials.a.rouhgness=0.1"};
+    expect_error(MINIMAL, two, 2, "(from the override materials.a.rouhgness=0.1)");
+    /* a newline in a key stays out of the one-line message */
+    const char *nl[] = {"materials.a.rough\nness=0.1"};
+    expect_error(MINIMAL, nl, 1, "rough?ness");
     const char *bad_index[] = {"objects.5.radius=2"};
     expect_error(MINIMAL, bad_index, 1, "not an index");
     const char *bad_preset[] = {"quality.preset=ultra"};

@@ -109,16 +109,10 @@ static bool understand_first_row(reader *r)
     if (r->col[COL_R] < 0 && (r->col[COL_R] = column_of(r, D)) >= 0)
         r->diameter = true;
     for (int k = 0; k < COLS; k++)
-        if (r->col[k] < 0) {
-            strbuf found = {0};
-            for (int c = 0; c < r->ncols && c < 12; c++)
-                sb_printf(&found, "%s'%s'", c ? ", " : "", r->first[c]);
-            if (r->ncols > 12)
-                sb_append(&found, ", …");
-            fail(r, "no %s column (the header has %s); expected ParaView's Points:0, Points:1, Points:2 with radius or "
-                    "diameter, or x, y, z, r",
-                 k == COL_R ? "radius or diameter" : COL_NAME[k], found.data ? found.data : "no columns");
-            sb_free(&found);
+        if (r->col[k] < 0) { /* the header's names are not repeated: the file may be anyone's */
+            fail(r, "no %s column in the first row's %d fields; expected a header with ParaView's Points:0, Points:1, "
+                    "Points:2 and radius or diameter, or x, y, z, r",
+                 k == COL_R ? "radius or diameter" : COL_NAME[k], r->ncols);
             return false;
         }
     for (int k = 0; k < COLS; k++)
@@ -175,6 +169,10 @@ static void on_field(void *s, size_t len, void *data)
     if (r->failed)
         return;
     int f = r->field++;
+    if (s && memchr(s, '\0', len)) { /* a NUL would end the text early: "1\0junk" is no number */
+        fail(r, "field %d holds a NUL byte: this is not a text CSV file", f + 1);
+        return;
+    }
     if (!r->header_done) {
         if (f >= HEADER_MAX_COLUMNS) {
             fail(r, "more than %d columns in the first row", HEADER_MAX_COLUMNS);

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <dirent.h>
 #include <fcntl.h>
 #include <memory>
 #include <string>
@@ -140,6 +141,34 @@ static std::string temp_path_for(const std::string &path)
     size_t dot = base.find_last_of('.');
     std::string ext = dot == std::string::npos ? "" : base.substr(dot);
     return dir + "." + base + ".tmp" + std::to_string(getpid()) + ext;
+}
+
+extern "C" int image_remove_stale_temps(const char *path)
+{
+    const char *slash = std::strrchr(path, '/');
+    std::string dir = slash ? std::string(path, (size_t)(slash - path) + 1) : std::string("./");
+    DIR *d = opendir(dir.c_str());
+    if (!d)
+        return 0;
+    int removed = 0;
+    while (struct dirent *e = readdir(d)) {
+        /* ".NAME.tmpPID.EXT", as temp_path_for makes it, whose writer is gone */
+        const char *n = e->d_name, *t = n[0] == '.' ? std::strstr(n, ".tmp") : nullptr;
+        while (t && std::strstr(t + 1, ".tmp"))
+            t = std::strstr(t + 1, ".tmp");
+        if (!t || t == n)
+            continue;
+        char *end;
+        long pid = std::strtol(t + 4, &end, 10);
+        if (end == t + 4 || *end != '.' || pid <= 0 || std::strchr(end + 1, '.') || pid == (long)getpid())
+            continue;
+        if (kill((pid_t)pid, 0) == 0 || errno != ESRCH)
+            continue; /* its writer is alive (or not ours to ask): leave it */
+        if (std::remove((dir + n).c_str()) == 0)
+            removed++;
+    }
+    closedir(d);
+    return removed;
 }
 
 static void discard(image_writer *w)
@@ -410,15 +439,33 @@ static bool read_image(const char *path, int want_channels, int max_side, int *w
     if (spec.nchannels == 2 && nc >= 3)
         nread = 2; /* grey + alpha: both are needed to fill colour and alpha */
     size_t n = (size_t)spec.width * (size_t)spec.height;
-    std::vector<T> file(n * (size_t)nread);
-    if (!in->read_image(0, 0, 0, nread, type, file.data()))
-        return err_set(err, "cannot read image '%s': %s", path, with_noise(in->geterror(), noise).c_str());
+    /* what reading takes, against the machine's memory, before anything is allocated: a small file's
+     * header may claim any size */
+    double need = (double)sizeof(T) * (double)n * (double)(nread + nc);
+    long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
+    if (pages > 0 && page > 0 && need > (double)pages * (double)page)
+        return err_set(err, "image '%s' is %dx%d: reading it takes %.1f GB and this machine has %.1f GB; scale it down",
+                       path, spec.width, spec.height, need / 1e9, (double)pages * (double)page / 1e9);
+    /* rows in blocks into memory the kernel commits as it is written: a file whose data stops short
+     * (a forged header) fails at its first missing block, not after touching the whole image */
+    std::unique_ptr<T, decltype(&std::free)> file((T *)std::malloc(sizeof(T) * n * (size_t)nread), &std::free);
     T *out = (T *)std::malloc(sizeof(T) * n * (size_t)nc);
-    if (!out)
+    if (!file || !out) {
+        std::free(out);
         return err_set(err, "cannot read image '%s' (%dx%d): out of memory", path, spec.width, spec.height);
+    }
+    const int ROWS = 64;
+    for (int y = 0; y < spec.height; y += ROWS) {
+        int y1 = std::min(spec.height, y + ROWS);
+        if (!in->read_scanlines(0, 0, spec.y + y, spec.y + y1, 0, 0, nread, type,
+                                file.get() + (size_t)y * (size_t)spec.width * (size_t)nread)) {
+            std::free(out);
+            return err_set(err, "cannot read image '%s': %s", path, with_noise(in->geterror(), noise).c_str());
+        }
+    }
     const T one = type == TypeDesc::UINT8 ? (T)255 : (T)1;
     for (size_t i = 0; i < n; i++) {
-        const T *src = &file[i * (size_t)nread];
+        const T *src = file.get() + i * (size_t)nread;
         for (int c = 0; c < nc; c++) {
             T v;
             if (spec.nchannels <= 2) /* grey or grey+alpha */

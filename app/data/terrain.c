@@ -108,7 +108,10 @@ void heightfield_from(const float *heights, int w, int h, float dx, float dz, he
     heightfield_adopt(copy, w, h, dx, dz, hf);
 }
 
-bool terrain_spacing_ok(double metres) { return isfinite(metres) && metres > 0 && metres <= TERRAIN_SPACING_MAX; }
+bool terrain_spacing_ok(double metres)
+{
+    return isfinite(metres) && metres >= TERRAIN_SPACING_MIN && metres <= TERRAIN_SPACING_MAX;
+}
 
 /* NAME.json beside NAME.png: spacing and the height range of an integer image. Only the values the
  * scene left unset are taken, and each is checked like the scene's own. */
@@ -196,6 +199,22 @@ static bool no_crs(const char *path, const dem_info *info, err_t *err)
                    path, info->pixel[0], info->pixel[1]);
 }
 
+static bool bad_spacing(const char *path, const double spacing[2], err_t *err)
+{
+    return err_set(err, "DEM '%s': its georeferencing gives %g x %g m per texel, outside %g to %g: fix its "
+                        "geotransform or set terrain.spacing=[dx,dz]", path, spacing[0], spacing[1],
+                   TERRAIN_SPACING_MIN, TERRAIN_SPACING_MAX);
+}
+
+/* Heights beyond ±TERRAIN_HEIGHT_MAX (a band's scale or offset gone wrong) are refused, not drawn. */
+static bool heights_in_range(const char *path, double lo, double hi, err_t *err)
+{
+    if (fabs(lo) <= TERRAIN_HEIGHT_MAX && fabs(hi) <= TERRAIN_HEIGHT_MAX)
+        return true;
+    return err_set(err, "heightmap '%s' has heights from %g to %g m, beyond ±%g m: check the band's scale and offset "
+                        "(gdalinfo) or the height range", path, lo, hi, TERRAIN_HEIGHT_MAX);
+}
+
 /* A DEM through GDAL: metres, and the spacing from its georeferencing when the scene gives none. */
 static bool read_dem(const heightfield_desc *d, float spacing[2], float lo, float hi, int *w, int *h, float **heights,
                      strbuf *about, err_t *err)
@@ -218,8 +237,7 @@ static bool read_dem(const heightfield_desc *d, float spacing[2], float lo, floa
     if (spacing[0] == 0 && info.georeferenced) {
         if (!terrain_spacing_ok(info.spacing[0]) || !terrain_spacing_ok(info.spacing[1])) {
             free(*heights);
-            return err_set(err, "DEM '%s': its georeferencing gives %g x %g m per texel, outside 0 to %g: set "
-                                "terrain.spacing=[dx,dz]", d->path, info.spacing[0], info.spacing[1], TERRAIN_SPACING_MAX);
+            return bad_spacing(d->path, info.spacing, err);
         }
         spacing[0] = (float)info.spacing[0];
         spacing[1] = (float)info.spacing[1];
@@ -248,9 +266,16 @@ bool heightfield_load(const heightfield_desc *d, heightfield *hf, err_t *err)
     }
     bool ok = false;
     size_t n = (size_t)w * (size_t)h, holes = 0;
-    for (size_t i = 0; i < n; i++)
+    float ex = d->exaggeration > 0 ? d->exaggeration : 1.0f;
+    double lo_h = INFINITY, hi_h = -INFINITY; /* in double: a height times the exaggeration may pass a float */
+    for (size_t i = 0; i < n; i++) {
         holes += isnan(heights[i]) ? 1 : 0;
-    if (!(spacing[0] > 0 && spacing[1] > 0))
+        if (!isnan(heights[i]))
+            lo_h = fmin(lo_h, (double)heights[i] * ex), hi_h = fmax(hi_h, (double)heights[i] * ex);
+    }
+    if (holes < n && !heights_in_range(d->path, lo_h, hi_h, err))
+        ;
+    else if (!(spacing[0] > 0 && spacing[1] > 0))
         err_set(err, "heightmap '%s': no spacing (set terrain.spacing=[dx,dz] in metres per texel%s)", d->path,
                 image ? "" : ", or give the DEM a CRS");
     else if (w < 2 || h < 2)
@@ -262,7 +287,6 @@ bool heightfield_load(const heightfield_desc *d, heightfield *hf, err_t *err)
     else
         ok = true;
     if (ok) {
-        float ex = d->exaggeration > 0 ? d->exaggeration : 1.0f;
         for (size_t i = 0; i < n; i++)
             heights[i] *= ex;
         heightfield_adopt(heights, w, h, spacing[0], spacing[1], hf);
@@ -300,9 +324,13 @@ bool heightfield_probe(const heightfield_desc *d, double size[2], double range[2
         if (spacing[0] == 0 && !info.georeferenced)
             return err_set(err, "heightmap '%s': no spacing (set terrain.spacing=[dx,dz] in metres per texel, or "
                                 "give the DEM a CRS)", d->path);
+        if (spacing[0] == 0 && (!terrain_spacing_ok(info.spacing[0]) || !terrain_spacing_ok(info.spacing[1])))
+            return bad_spacing(d->path, info.spacing, err);
         if (spacing[0] == 0)
             spacing[0] = (float)info.spacing[0], spacing[1] = (float)info.spacing[1];
         range[0] *= ex, range[1] *= ex;
+        if (!heights_in_range(d->path, range[0], range[1], err))
+            return false;
     }
     spacing_out[0] = spacing[0], spacing_out[1] = spacing[1];
     size[0] = (double)w * spacing[0];

@@ -57,6 +57,8 @@ typedef struct heightfield_desc {
 
 /* Spacing in metres per texel: above 0, finite, at most this (a light year of texels is a typo). */
 #define TERRAIN_SPACING_MAX 1e6
+#define TERRAIN_SPACING_MIN 1e-3 /* a millimetre: below it a DEM's georeferencing is wrong */
+#define TERRAIN_HEIGHT_MAX 1e7   /* metres either way; beyond, a band's scale or offset is wrong (and floats overflow) */
 bool terrain_spacing_ok(double metres);
 
 /* Plain images (PNG, JPEG: 0…max → height_min…height_max; EXR, HDR, PFM: metres) through image_io;

@@ -21,8 +21,9 @@
 bool render_init(err_t *err);
 void render_shutdown(void);
 
-/* Makes s the scene to draw (s must outlive its use). extra_defines (may be NULL) is appended to the
- * variant preamble: tests use it to switch a guard off. Loads textures, compiles or reuses the program. */
+/* Makes s the scene to draw; the renderer keeps its own copy (the caller may free or change s at once).
+ * extra_defines (may be NULL) is appended to the variant preamble: tests use it to switch a guard off.
+ * Loads textures, compiles or reuses the program. */
 bool render_set_scene(const scene *s, const char *extra_defines, err_t *err);
 
 /* Switches compiled-in effects off at run time (bit 1 << effect; default all on): the bench measures

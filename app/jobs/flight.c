@@ -23,6 +23,21 @@ static bool exists(const char *file)
     return stat(file, &st) == 0 && S_ISREG(st.st_mode);
 }
 
+/* A frame on disk counts as done only if it decodes whole and is fathom's (it carries a shot record):
+ * an empty or cut file, or someone else's image of that name, is rendered again. */
+static bool frame_done(const char *file)
+{
+    char *text = NULL;
+    err_t e;
+    int w, h, c;
+    float *px = NULL;
+    bool ok = exists(file) && image_read_text(file, SHOT_KEY, &text, &e) &&
+              image_read_f32(file, 0, IMAGE_MAX_SIDE, &w, &h, &c, &px, &e);
+    free(text);
+    free(px);
+    return ok;
+}
+
 /* The scene for one frame: the command line's overrides, then the path's parameter tracks. */
 static bool frame_scene(const cli_options *opt, const path *p, const path_sample *smp, scene *s, const char **sets,
                         int *nsets, char (*track)[PATH_PARAM_NAME + 32], err_t *err)
@@ -48,9 +63,8 @@ static bool frame_scene(const cli_options *opt, const path *p, const path_sample
 static bool check_clearance(const cli_options *opt, const path *p, int first, int last, int fps, err_t *err)
 {
     enum { PER_FRAME = 4, MAX_POINTS = 1 << 17 };
-    int n = (last - first) * PER_FRAME + 1;
-    if (n > MAX_POINTS)
-        n = MAX_POINTS;
+    long long want = (long long)(last - first) * PER_FRAME + 1;
+    int n = want > MAX_POINTS ? MAX_POINTS : (int)want;
     double t0 = p->keys[0].time + (double)first / fps, t1 = p->keys[0].time + (double)last / fps;
     float *pts = util_alloc(sizeof(float) * 3 * (size_t)n, "path clearance"), *d = util_alloc(sizeof(float) * 2 * (size_t)n, "path clearance");
     for (int i = 0; i < n; i++) {
@@ -123,12 +137,14 @@ static bool render_frame(flight_state *F, int f, err_t *err)
     char name[PATH_MAX_LEN];
     if (!path_frame_name(opt->output, f, name, sizeof name, err))
         return false;
-    if (exists(name)) {
+    if (frame_done(name)) {
         F->skipped++;
         if (!opt->quiet)
             fprintf(stderr, "frame %d: %s is there, skipped\n", f, name);
         return true;
     }
+    if (exists(name) && !opt->quiet)
+        fprintf(stderr, "frame %d: %s does not decode or is not fathom's: rendered again\n", f, name);
     double t = F->p->keys[0].time + (double)f / F->fps;
     path_sample smp;
     path_eval(F->p, t, &smp);
@@ -177,6 +193,9 @@ bool flight_render(const cli_options *opt, err_t *err)
         return false;
     }
     ok = render_init(err) && check_clearance(opt, &p, first, last, F.fps, err);
+    int stale = image_remove_stale_temps(name); /* what a killed run left half-written */
+    if (stale && !opt->quiet)
+        fprintf(stderr, "removed %d temporary file%s a killed run left\n", stale, stale > 1 ? "s" : "");
     double t0 = util_now();
     for (int f = first; ok && f <= last; f++)
         ok = render_frame(&F, f, err);

@@ -4,6 +4,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "gpu/aov.h"
 #include "cli.h"
@@ -258,9 +259,59 @@ typedef struct tile_info {
     unsigned aovs;
 } tile_info;
 
+bool offline_tile_record(const char *text, bool png, tile_record *r)
+{
+    char end;
+    *r = (tile_record){0};
+    return sscanf(text, "%d %d %d %d %d %u%c", &r->index, &r->count, &r->width, &r->height, &r->top, &r->aovs,
+                  &end) == 6 &&
+           r->count >= 1 && r->count <= TILE_MAX && r->index >= 1 && r->index <= r->count && r->width >= 1 &&
+           r->width <= IMAGE_MAX_SIDE && r->height >= 1 && r->height <= IMAGE_MAX_SIDE && r->count <= r->height &&
+           r->top >= 0 && r->top < r->height && !(r->aovs & ~(unsigned)AOV_ALL) && !(png && r->aovs);
+}
+
 static int by_index(const void *a, const void *b)
 {
     return ((const tile_info *)a)->index - ((const tile_info *)b)->index;
+}
+
+/* True (with err) when the poster would replace one of its own tiles. */
+static bool same_file_as_a_tile(const char *output, const char *const *tiles, int n, err_t *err)
+{
+    struct stat o, t;
+    if (stat(output, &o) != 0)
+        return false; /* a new file: no tile can be it */
+    for (int i = 0; i < n; i++)
+        if (stat(tiles[i], &t) == 0 && t.st_dev == o.st_dev && t.st_ino == o.st_ino) {
+            err_set(err, "fathom stitch: --output '%s' is one of the tiles; name a new file for the poster", output);
+            return true;
+        }
+    return false;
+}
+
+/* A tile file's record (TILE_KEY), checked against what fathom writes: counts and sizes in range, AOV
+ * bits fathom knows (PNG tiles carry none). */
+static bool read_tile_record(tile_info *t, const char *output, err_t *err)
+{
+    char *text = NULL;
+    tile_record rec;
+    bool ok = false;
+    if (!util_file_exists(t->file))
+        err_set(err, "tile '%s' not found: check the path (stitch takes every tile of the poster)", t->file);
+    else if (is_png(t->file) != is_png(output))
+        err_set(err, "tile '%s': its format differs from '%s' (tiles and poster are all .png or all .exr)", t->file,
+                output);
+    else if (!image_read_text(t->file, TILE_KEY, &text, err))
+        err_set(err, "'%s' is not a fathom tile (render tiles with --tile I/N)", t->file);
+    else if (!offline_tile_record(text, is_png(t->file), &rec))
+        err_set(err, "tile '%s': its record is damaged (render the tile again)", t->file);
+    else
+        ok = true;
+    if (ok)
+        t->index = rec.index, t->count = rec.count, t->width = rec.width, t->height = rec.height, t->top = rec.top,
+        t->aovs = rec.aovs;
+    free(text);
+    return ok;
 }
 
 bool offline_stitch(const char *output, const char *const *tiles, int n, bool quiet, err_t *err)
@@ -270,23 +321,14 @@ bool offline_stitch(const char *output, const char *const *tiles, int n, bool qu
     if (!image_can_write(output, err))
         return false;
     tile_info *t = util_calloc((size_t)n, sizeof *t, "tiles");
-    bool ok = true;
+    bool ok = !same_file_as_a_tile(output, tiles, n, err);
     for (int i = 0; i < n && ok; i++) {
-        char *text = NULL;
         t[i].file = tiles[i];
-        if (is_png(tiles[i]) != is_png(output))
-            ok = err_set(err, "tile '%s': its format differs from '%s' (tiles and poster are all .png or all .exr)",
-                         tiles[i], output);
-        else if (!image_read_text(tiles[i], TILE_KEY, &text, err))
-            ok = err_set(err, "'%s' is not a fathom tile (render tiles with --tile I/N)", tiles[i]);
-        else if (sscanf(text, "%d %d %d %d %d %u", &t[i].index, &t[i].count, &t[i].width, &t[i].height, &t[i].top,
-                        &t[i].aovs) != 6 || t[i].count < 1 || t[i].index < 1 || t[i].index > t[i].count)
-            ok = err_set(err, "tile '%s': its record '%s' is damaged", tiles[i], text);
-        else if (i > 0 && (t[i].count != t[0].count || t[i].width != t[0].width || t[i].height != t[0].height ||
-                           t[i].aovs != t[0].aovs))
+        ok = read_tile_record(&t[i], output, err);
+        if (ok && i > 0 && (t[i].count != t[0].count || t[i].width != t[0].width || t[i].height != t[0].height ||
+                            t[i].aovs != t[0].aovs))
             ok = err_set(err, "tile '%s' belongs to another poster than '%s' (%d tiles of %dx%d against %d of %dx%d)",
                          tiles[i], tiles[0], t[i].count, t[i].width, t[i].height, t[0].count, t[0].width, t[0].height);
-        free(text);
     }
     if (ok) {
         qsort(t, (size_t)n, sizeof *t, by_index);
@@ -294,13 +336,17 @@ bool offline_stitch(const char *output, const char *const *tiles, int n, bool qu
             if (i > 0 && t[i].index == t[i - 1].index)
                 ok = err_set(err, "tiles '%s' and '%s' are both tile %d", t[i - 1].file, t[i].file, t[i].index);
         if (ok && n != t[0].count) {
+            enum { LISTED = 16 }; /* the missing tiles named; the rest counted */
             strbuf missing = {0};
+            int absent = 0;
             for (int k = 1, j = 0; k <= t[0].count; k++) {
                 while (j < n && t[j].index < k)
                     j++;
-                if (j >= n || t[j].index != k)
+                if ((j >= n || t[j].index != k) && absent++ < LISTED)
                     sb_printf(&missing, "%s%d", missing.len ? ", " : "", k);
             }
+            if (absent > LISTED)
+                sb_printf(&missing, " and %d more", absent - LISTED);
             ok = err_set(err, "%d of %d tiles given: missing %s", n, t[0].count, missing.data);
             sb_free(&missing);
         }
@@ -321,7 +367,9 @@ bool offline_stitch(const char *output, const char *const *tiles, int n, bool qu
         if (is_png(output))
             ok = image_read_u8(t[i].file, 3, TILE_MAX * 4, &width, &height, (uint8_t **)&px, err);
         else
-            ok = image_read_f32(t[i].file, nc, TILE_MAX * 4, &width, &height, &got, (float **)&px, err);
+            ok = image_read_f32(t[i].file, 0, TILE_MAX * 4, &width, &height, &got, (float **)&px, err) &&
+                 (got == nc || err_set(err, "tile '%s' has %d channels; its record's AOVs make %d: it is damaged",
+                                       t[i].file, got, nc));
         if (ok && (width != t[0].width || height != rows || t[i].top != top))
             ok = err_set(err, "tile '%s' is %dx%d at row %d; tile %d of %d of a %dx%d poster is %dx%d at row %d",
                          t[i].file, width, height, t[i].top, t[i].index, t[0].count, t[0].width, t[0].height,

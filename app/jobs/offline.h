@@ -35,6 +35,13 @@ enum { TILE_MAX = 4096 };
 void offline_tile_rows(int height, int index, int count, int *top, int *rows);
 /* "poster.png", 3, 16 -> "poster.tile-03-of-16.png" */
 bool offline_tile_name(const char *output, int index, int count, char *out, size_t n, err_t *err);
+/* A tile file's record (TILE_KEY text), parsed and checked against what fathom writes: counts and sizes
+ * in range, AOV bits fathom knows (a PNG tile carries none), nothing after them. False: damaged. */
+typedef struct tile_record {
+    int index, count, width, height, top;
+    unsigned aovs;
+} tile_record;
+bool offline_tile_record(const char *text, bool png, tile_record *r);
 /* Writes output from the n tile files (any order), checking they are one complete set. */
 bool offline_stitch(const char *output, const char *const *tiles, int n, bool quiet, err_t *err);
 

@@ -176,24 +176,45 @@ static int nesting(const char *text, int limit, const char **at)
 }
 
 /* The scene with overrides failed (err says why): the file is parsed alone, only now, to tell whose
- * mistake it is. The file's own error is reported as the file's; else " (from --set)" is added. */
-static void blame_override(const char *text, const char *path, err_t *err)
+ * mistake it is. The file's own error is reported as the file's; else the override that breaks it
+ * alone is named (a --set or --dem), or "the overrides" when only together they do. */
+static bool load_text(const char *text, const char *path, const char *const *sets, int set_count, scene *s,
+                      bool blame, err_t *err);
+
+static void blame_override(const char *text, const char *path, const char *const *sets, int set_count, err_t *err)
 {
     scene alone;
-    err_t file_err;
-    if (!scene_load_text(text, path, NULL, 0, &alone, &file_err)) {
-        *err = file_err;
+    err_t other;
+    if (!load_text(text, path, NULL, 0, &alone, false, &other)) {
+        *err = other;
         return;
     }
     scene_free(&alone);
-    static const char SUFFIX[] = " (from --set)";
-    size_t len = strlen(err->msg);
-    if (len + sizeof SUFFIX <= sizeof err->msg)
-        memcpy(err->msg + len, SUFFIX, sizeof SUFFIX);
+    const char *culprit = NULL;
+    for (int i = 0; i < set_count && !culprit; i++) {
+        if (load_text(text, path, &sets[i], 1, &alone, false, &other))
+            scene_free(&alone);
+        else
+            culprit = sets[i];
+    }
+    char suffix[160];
+    if (culprit)
+        snprintf(suffix, sizeof suffix, " (from the override %.120s)", culprit);
+    else
+        snprintf(suffix, sizeof suffix, " (from the overrides together)");
+    size_t len = strlen(err->msg), add = strlen(suffix);
+    if (len + add < sizeof err->msg)
+        memcpy(err->msg + len, suffix, add + 1);
 }
 
 bool scene_load_text(const char *text, const char *path, const char *const *sets, int set_count, scene *s,
                      err_t *err)
+{
+    return load_text(text, path, sets, set_count, s, true, err);
+}
+
+static bool load_text(const char *text, const char *path, const char *const *sets, int set_count, scene *s,
+                      bool blame, err_t *err)
 {
     *s = (scene){0};
     snprintf(s->path, sizeof s->path, "%s", path);
@@ -221,8 +242,8 @@ bool scene_load_text(const char *text, const char *path, const char *const *sets
         ok = scene_apply_set(root, sets[i], err); /* its errors name the override already */
     if (ok) {
         ok = parse_root(&c, root) && (!s->cam_auto || terrain_frame(s, err));
-        if (!ok && set_count > 0)
-            blame_override(text, path, err);
+        if (!ok && set_count > 0 && blame)
+            blame_override(text, path, sets, set_count, err);
     }
     cJSON_Delete(root);
     if (ok) {

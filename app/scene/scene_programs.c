@@ -198,8 +198,8 @@ bool heightmap_parse(scene_ctx *c, const cJSON *root)
     if (spacing) {
         if (!cJSON_IsArray(spacing) || cJSON_GetArraySize(spacing) != 2 || !spacing_ok(spacing->child) ||
             !spacing_ok(spacing->child->next))
-            return fail(c, "terrain.spacing", "expected [dx, dz]: metres per texel, both above 0 and at most %g",
-                        (double)TERRAIN_SPACING_MAX);
+            return fail(c, "terrain.spacing", "expected [dx, dz]: metres per texel, both from %g to %g",
+                        (double)TERRAIN_SPACING_MIN, (double)TERRAIN_SPACING_MAX);
         sp[0] = (float)spacing->child->valuedouble;
         sp[1] = (float)spacing->child->next->valuedouble;
     } else {

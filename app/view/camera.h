@@ -31,6 +31,9 @@ typedef struct camera_input {
 } camera_input;
 
 #define CAMERA_MAX_PITCH 1.5533430f /* 89 degrees */
+/* Camera and look-at coordinates lie within ±CAMERA_MAX_COORD metres: beyond, a float cannot tell a
+ * camera from its look-at point a few metres away. */
+#define CAMERA_MAX_COORD 1e7
 
 /* True when target is (within float rounding of) eye: no direction to look in. Scene files and the
  * command line refuse it. */

@@ -346,8 +346,9 @@ static bool vec3_of(const cJSON *o, const char *key, double v[3], const char *na
         return err_set(err, "%s: keys.%d.%s: expected [x, y, z] in metres", name, i, key);
     for (int k = 0; k < 3; k++) {
         const cJSON *c = cJSON_GetArrayItem(it, k);
-        if (!cJSON_IsNumber(c) || !isfinite(c->valuedouble) || fabs(c->valuedouble) > 1e7)
-            return err_set(err, "%s: keys.%d.%s: expected [x, y, z], each a number within ±1e7 m", name, i, key);
+        if (!cJSON_IsNumber(c) || !isfinite(c->valuedouble) || fabs(c->valuedouble) > CAMERA_MAX_COORD)
+            return err_set(err, "%s: keys.%d.%s: expected [x, y, z], each a number within ±%g m", name, i, key,
+                           CAMERA_MAX_COORD);
         v[k] = c->valuedouble;
     }
     return true;
@@ -367,7 +368,7 @@ static bool parse_key(path *p, const cJSON *k, int i, const char *name, err_t *e
             return err_set(err, "%s: keys.%d: unknown key '%s' (allowed: time, position, yaw, pitch, look_at, fov, set)",
                            name, i, it->string ? it->string : "");
     }
-    if (!num(k, "time", -1e9, 1e9, &K->time, name, i, err) || !vec3_of(k, "position", K->position, name, i, err))
+    if (!num(k, "time", -PATH_MAX_TIME, PATH_MAX_TIME, &K->time, name, i, err) || !vec3_of(k, "position", K->position, name, i, err))
         return false;
     if (i > 0 && !(K->time > K[-1].time))
         return err_set(err, "%s: keys.%d.time: %g is not after the previous key's %g; times must increase", name, i,

@@ -33,6 +33,9 @@
 #include "util.h"
 
 enum { PATH_MAX_KEYS = 10000, PATH_MAX_PARAMS = 16, PATH_PARAM_NAME = 64, PATH_ARC_SAMPLES = 64 };
+/* Key times lie within ±PATH_MAX_TIME seconds: a day either way, so a path's frames (at most 1000 a
+ * second) and the probes along them stay far inside an int. */
+#define PATH_MAX_TIME 86400.0
 
 typedef struct path_key {
     double time;

@@ -67,7 +67,7 @@ bool shot_parse(const char *text, const char *source, shot_desc *d, err_t *err)
               cJSON_IsArray(size) && number(cJSON_GetArrayItem(size, 0), 1, 16384, &w) &&
               number(cJSON_GetArrayItem(size, 1), 1, 16384, &h);
     for (int i = 0; ok && i < 3; i++)
-        ok = number(cJSON_GetArrayItem(pos, i), -1e7, 1e7, &d->cam.position[i]);
+        ok = number(cJSON_GetArrayItem(pos, i), -CAMERA_MAX_COORD, CAMERA_MAX_COORD, &d->cam.position[i]);
     if (ok) {
         snprintf(d->scene, sizeof d->scene, "%s", scene->valuestring);
         for (const cJSON *s = sets->child; ok && s; s = s->next) {

@@ -1,11 +1,11 @@
 #!/bin/sh
-# Fuzzes the scene parser (TARGET scene, the default) or the droplet-file reader and its grid and BVH
-# (TARGET droplets) with libFuzzer (clang, ASan + UBSan) for MINUTES minutes [5].
+# Fuzzes the scene parser (TARGET scene, the default), the droplet-file reader and its grid and BVH
+# (TARGET droplets), or the camera-path, shot-record and tile-record readers (TARGET readers) with libFuzzer (clang, ASan + UBSan) for MINUTES minutes [5].
 # Seeds: every shipped scene (scenes: the keys and names of the format in scene.dict), or the head of
 # scenes/spray.csv and a ParaView-style file (droplets.dict).
 # Findings (crash-*, leak-*, timeout-*) land in build-fuzz/findings-TARGET; the corpus grows in
 # build-fuzz/corpus-TARGET.
-# Usage: tests/fuzz/run.sh [MINUTES] [scene|droplets]   (needs: apt-get install clang)
+# Usage: tests/fuzz/run.sh [MINUTES] [scene|droplets|readers]   (needs: apt-get install clang)
 set -eu
 minutes=${1:-5}
 target=${2:-scene}
@@ -16,10 +16,17 @@ cmake --build "$build" -j 2 --target "fuzz_$target" >/dev/null
 mkdir -p "$build/corpus-$target" "$build/findings-$target"
 if [ "$target" = scene ]; then
     cp "$src"/scenes/*.json "$build/corpus-$target/"
+elif [ "$target" = readers ]; then
+    # the first byte picks the reader: 0 a camera path, 1 a shot record, 2 a tile record
+    for f in "$src"/docs/flight/*.json; do { printf '\000'; cat "$f"; } >"$build/corpus-$target/path-$(basename "$f")"; done
+    printf '\001{"scene":"/x/scenes/csg.json","sets":["a.b=1"],"camera":{"position":[0,1,5],"yaw":0,"pitch":0,"fov_y":0.8},"size":[64,36]}' >"$build/corpus-$target/shot"
+    printf '\0022 4 640 360 180 7' >"$build/corpus-$target/tile"
 else
     head -n 40 "$src/scenes/spray.csv" >"$build/corpus-$target/spray.csv"
     printf '"Points:0","Points:1","Points:2","diameter"\n0.5,1.5,-2,0.002\n' >"$build/corpus-$target/paraview.csv"
 fi
 cd "$build/findings-$target"
-"$build/fuzz_$target" "$build/corpus-$target" -dict="$src/tests/fuzz/$target.dict" -max_total_time=$((minutes * 60)) \
+dict="$src/tests/fuzz/$target.dict"
+[ -f "$dict" ] || dict="$src/tests/fuzz/scene.dict"
+"$build/fuzz_$target" "$build/corpus-$target" -dict="$dict" -max_total_time=$((minutes * 60)) \
     -max_len=16384 -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 2>&1 | tail -n 25

@@ -1,0 +1,49 @@
+/* libFuzzer harness for the small text readers a shared file reaches: a camera path (path_parse), a
+ * shot's record in an image (shot_parse) and a tile's record (offline_tile_record). The first input
+ * byte picks the reader; the rest is its text. Each must return true or false, never crash, hang,
+ * leak or trip a sanitizer. Build and run: tests/fuzz/run.sh MINUTES readers. */
+#include <stddef.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "jobs/offline.h"
+#include "view/path.h"
+#include "view/shot.h"
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+    if (size < 1)
+        return 0;
+    char *text = malloc(size);
+    if (!text)
+        return 0;
+    memcpy(text, data + 1, size - 1);
+    text[size - 1] = '\0';
+    err_t err;
+    switch (data[0] % 3) {
+    case 0: {
+        path p;
+        if (path_parse(text, "fuzz.json", &p, &err)) {
+            path_sample smp;
+            path_eval(&p, p.keys[0].time + 0.5 * path_duration(&p), &smp);
+            path_free(&p);
+        }
+        break;
+    }
+    case 1: {
+        static shot_desc d;
+        shot_parse(text, "fuzz.png", &d, &err);
+        break;
+    }
+    default: {
+        tile_record r;
+        offline_tile_record(text, data[0] & 4, &r);
+        break;
+    }
+    }
+    free(text);
+    return 0;
+}
