@@ -1,6 +1,9 @@
+/* realpath() is XSI */
+#define _XOPEN_SOURCE 700
 #include "cli.h"
 
 #include <errno.h>
+#include <limits.h>
 #include <math.h>
 #include <stddef.h>
 #include <stdio.h>
@@ -35,10 +38,17 @@ static const char USAGE[] =
     "  --tile I/N renders tile I of N (horizontal strips) of the --output image to OUTPUT.tile-I-of-N.EXT;\n"
     "  stitch joins the N tiles into the whole image, bit for bit as if rendered at once.\n"
     "\n"
+    ;
+/* the options (ISO C bounds one string literal at 4095 characters) */
+static const char USAGE_OPTIONS[] =
     "  --scene NAME|FILE     scene to load: a name from scenes/ (csg), a scene file path, or a PNG/EXR\n"
     "                        fathom wrote (reopens its scene, overrides and view) [csg]\n"
     "  --dem FILE            open any DEM GDAL reads (GeoTIFF, .hgt, .asc, netCDF, VRT, ...) with a\n"
     "                        camera framed from its extent (the dem scene, with terrain.heightmap=FILE)\n"
+    "  --formula NAME|FILE   a fractal formula: a shipped or user name, or your own .glsl file (the\n"
+    "                        fractal scene framed from its bound, or --scene's with fractal.formula)\n"
+    "  --help-formula NAME   the formula's parameters: type, default, range, meaning\n"
+    "  --list-formulas       list the formulas (shipped, then ~/.config/fathom/formulas/)\n"
     "  --output FILE         render headless to FILE (.png 8-bit sRGB, .exr linear float) and exit\n"
     "  --size WxH            image or window size in pixels [1280x720]\n"
     "  --spp N               samples per pixel (progressive, jittered: anti-aliasing) [preset]\n"
@@ -65,7 +75,13 @@ static const char USAGE[] =
     "Window keys: WASD move, mouse look, Space/C up/down, Shift faster, scroll speed, 1-9 scenes,\n"
     "R reload shaders, P or F12 screenshot, N keyframe (Shift+N clears, L plays the flight), Esc quit.\n";
 
-const char *cli_usage(void) { return USAGE; }
+const char *cli_usage(void)
+{
+    static char text[sizeof USAGE + sizeof USAGE_OPTIONS];
+    if (!text[0])
+        snprintf(text, sizeof text, "%s%s", USAGE, USAGE_OPTIONS);
+    return text;
+}
 
 static bool parse_int(const char *s, long lo, long hi, int *out)
 {
@@ -148,6 +164,28 @@ static bool parse_aovs(const char *s, unsigned *mask)
     return *mask != 0;
 }
 
+/* --formula NAME|FILE: the override fractal.formula=… (a file by its absolute path, so shots made with
+ * it reopen from any folder). Without --scene the fractal scene frames it ("camera": "auto"). */
+static bool set_formula(const char *val, cli_options *o, err_t *err)
+{
+    if (o->formula || o->dem)
+        return err_set(err, "--formula: give it once, and not with --dem");
+    if (!*val)
+        return err_set(err, "bad --formula '': a formula's name (fathom --list-formulas) or a .glsl file");
+    if (o->set_count == CLI_MAX_SETS)
+        return err_set(err, "too many --set options (at most %d)", CLI_MAX_SETS);
+    char abs[PATH_MAX];
+    bool file = strchr(val, '/') || strstr(val, ".glsl");
+    if (file && !realpath(val, abs))
+        return err_set(err, "--formula: file '%s' not found (a path from the folder you are in)", val);
+    if (snprintf(o->formula_set, sizeof o->formula_set, "fractal.formula=%s", file ? abs : val) >=
+        (int)sizeof o->formula_set)
+        return err_set(err, "bad --formula: the path is longer than %d characters", PATH_MAX_LEN - 1);
+    o->formula = val;
+    o->sets[o->set_count++] = o->formula_set;
+    return true;
+}
+
 /* Options that take a value, first half: what to render and where (*handled: it was one of them). */
 static bool set_output_option(const char *name, const char *val, cli_options *o, err_t *err, bool *handled)
 {
@@ -169,6 +207,10 @@ static bool set_output_option(const char *name, const char *val, cli_options *o,
         o->dem = val;
         o->scene = "dem";
         o->sets[o->set_count++] = o->dem_set;
+    } else if (!strcmp(name, "--formula")) {
+        return set_formula(val, o, err);
+    } else if (!strcmp(name, "--help-formula")) {
+        o->help_formula = val;
     } else if (!strcmp(name, "--output")) {
         o->output = val;
     } else if (!strcmp(name, "--size")) {
@@ -280,6 +322,7 @@ static bool set_flag(const char *a, cli_options *o)
         {"--help", offsetof(cli_options, help)},           {"-h", offsetof(cli_options, help)},
         {"--version", offsetof(cli_options, version)},     {"--print-variant", offsetof(cli_options, print_variant)},
         {"--list-scenes", offsetof(cli_options, list_scenes)}, {"--quiet", offsetof(cli_options, quiet)},
+        {"--list-formulas", offsetof(cli_options, list_formulas)},
         {"--frame-times", offsetof(cli_options, frame_times)},
         {"--interactive", offsetof(cli_options, interactive)},
         {"--terrain-scale", offsetof(cli_options, terrain_scale)},
@@ -382,7 +425,7 @@ bool cli_parse(int argc, char **argv, cli_options *o, err_t *err)
             strcpy(name, a);
             val = (i + 1 < argc) ? argv[++i] : NULL;
         }
-        static const char *const WITH_VALUE[] = {"--scene", "--dem", "--output", "--size", "--spp", "--quality",
+        static const char *const WITH_VALUE[] = {"--scene", "--dem", "--formula", "--help-formula", "--output", "--size", "--spp", "--quality",
                                                  "--camera", "--look-at", "--fov", "--set", "--aov", "--frames",
                                                  "--runs", "--out", "--knob", "--name", "--strip-rows", "--fps", "--view",
                                                  "--path", "--tile"};
@@ -403,6 +446,8 @@ bool cli_parse(int argc, char **argv, cli_options *o, err_t *err)
         return false;
     if (o->has_frames && !o->path && !parse_int(o->frames_arg, 1, 1 << 30, &o->frames))
         return err_set(err, "bad --frames '%s': expected a whole number >= 1 (a range A-B needs --path)", o->frames_arg);
+    if (o->formula && !o->scene_given)
+        o->scene = "fractal"; /* framed from the formula's bound */
     return check_combinations(o, err);
 }
 

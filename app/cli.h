@@ -32,6 +32,9 @@ typedef struct cli_options {
     bool scene_given;   /* --scene was on the command line */
     const char *dem;    /* --dem FILE: the dem scene with terrain.heightmap=FILE */
     char dem_set[PATH_MAX_LEN + 32];
+    const char *formula; /* --formula NAME|FILE: fractal.formula=NAME (a file made absolute), the fractal scene */
+    char formula_set[PATH_MAX_LEN + 32];
+    const char *help_formula; /* --help-formula NAME|FILE */
     const char *output; /* NULL: window; else offline shot to .png or .exr */
     int width, height;  /* 0: default */
     int spp;            /* 0: the quality preset's */
@@ -56,7 +59,7 @@ typedef struct cli_options {
     char preset_sets[CLI_MAX_SETS][48]; /* storage for the overrides --quality writes (slot = its index) */
     int set_count;
     unsigned aovs; /* aov_flag bits */
-    bool print_variant, list_scenes, help, version, quiet;
+    bool print_variant, list_scenes, list_formulas, help, version, quiet;
     bool bench;        /* `fathom bench ...` */
     int runs;          /* bench: timed images per setting (median reported) */
     const char *out;   /* bench: folder for CSV, plot and summary (NULL: print only) */

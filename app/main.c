@@ -20,8 +20,10 @@ enum { EXIT_USAGE = 2 };
 
 static void print_variant(const scene *s)
 {
-    printf("scene %s (%s): program %s, quality %s\n", s->name, s->path, program_name(s->program),
-           preset_name(s->preset));
+    printf("scene %s (%s): program %s", s->name, s->path, program_name(s->program));
+    if (program_is_fractal(s->program))
+        printf(" (formula %s)", s->fractal.formula.name);
+    printf(", quality %s\n", preset_name(s->preset));
     printf("effects compiled in:");
     for (int e = 0; e < EFFECT_COUNT; e++)
         if (s->effects & (1u << e))
@@ -73,13 +75,26 @@ static bool answer_query(const cli_options *opt)
         sb_free(&knobs);
     } else if (opt->version) {
         printf("fathom %s\n", FATHOM_VERSION);
-    } else if (opt->list_scenes) {
+    } else if (opt->list_scenes || opt->list_formulas) {
         strbuf names = {0};
-        scene_list(&names);
+        (opt->list_scenes ? scene_list : formula_list)(&names);
         fputs(names.data ? names.data : "", stdout);
         sb_free(&names);
     }
-    return opt->help || opt->version || opt->list_scenes;
+    return opt->help || opt->version || opt->list_scenes || opt->list_formulas;
+}
+
+/* --help-formula NAME|FILE */
+static bool help_formula(const char *name, err_t *err)
+{
+    formula f;
+    if (!formula_load(name, &f, err))
+        return false;
+    strbuf text = {0};
+    formula_describe(&f, &text);
+    fputs(text.data, stdout);
+    sb_free(&text);
+    return true;
 }
 
 /* One offline shot (or one tile of it) of s as the command line asks. */
@@ -135,6 +150,8 @@ int main(int argc, char **argv)
         return finish(false, &err);
     if (answer_query(&opt))
         return 0;
+    if (opt.help_formula)
+        return finish(help_formula(opt.help_formula, &err), &err);
     if (opt.stitch)
         return finish(offline_stitch(opt.output, opt.inputs, opt.input_count, opt.quiet, &err), &err);
     if (opt.path)

@@ -460,6 +460,119 @@ static void glow_draws_no_ring(void **st)
     scene_free(&s);
 }
 
+/* ---- formulas as data: every shipped formula draws; a user's file is one file and no C ----------- */
+
+/* Every formula fathom finds draws its shipped view with no NaN, and the set is in the picture (at
+ * least 2 % of the pixels hit it), at two presets. */
+static void every_formula_draws(void **st)
+{
+    (void)st;
+    strbuf names = {0};
+    formula_list(&names);
+    int count = 0;
+    static float aov[W * H * AOV], rgba[W * H * 4];
+    for (char *name = names.data, *nl; name && *name; name = nl + 1) {
+        nl = strchr(name, '\n');
+        *nl = '\0';
+        for (int preset = 0; preset < 2; preset++) {
+            scene s;
+            err_t e;
+            const char *sets[] = {preset ? "quality.preset=final" : "quality.preset=draft", "quality.spp=1"};
+            if (!scene_load(name, sets, 2, &s, &e))
+                fail_msg("formula %s: its scene: %s", name, e.msg);
+            assert_true(program_is_fractal(s.program));
+            assert_string_equal(s.fractal.formula.name, name);
+            camera cam = camera_look_at_deg(s.cam_position, s.cam_look_at, s.cam_fov_deg);
+            draw(&s, &cam, W, H, 1, NULL, aov, rgba);
+            check_finite(name, aov, rgba, W * H);
+            int hits = 0;
+            for (int i = 0; i < W * H; i++)
+                hits += isfinite(aov[i * AOV + AOV_SLOT_DEPTH]);
+            if (hits < W * H / 50)
+                fail_msg("formula %s: its view shows %d pixels of the set", name, hits);
+            scene_free(&s);
+        }
+        count++;
+    }
+    sb_free(&names);
+    fprintf(stderr, "  %d formulas draw their views\n", count);
+    assert_true(count >= 12);
+}
+
+static char user_dir[] = "/tmp/fathom-formulas-XXXXXX";
+
+static void write_text(const char *path, const char *text)
+{
+    FILE *f = fopen(path, "w");
+    assert_non_null(f);
+    fputs(text, f);
+    fclose(f);
+}
+
+/* A sphere as a user's formula (in $FATHOM_FORMULAS, found by name, no rebuild): the first hit of the
+ * centre pixel is where the sphere of the declared radius is, and --set of the radius moves it. Then
+ * the file is broken: the reload fails naming the file and line, and the last good program draws. */
+static void user_formula(void **st)
+{
+    (void)st;
+    assert_non_null(mkdtemp(user_dir));
+    setenv("FATHOM_FORMULAS", user_dir, 1);
+    char path[256];
+    snprintf(path, sizeof path, "%s/ball.glsl", user_dir);
+    static const char BALL[] =
+        "// @formula A ball (a test's own formula)\n"
+        "// @iterations 1 [1, 1]\n"
+        "// @bound radius\n"
+        "#include \"fractal/common.glsl\"\n"
+        "uniform float uRadius; // @param 0.5 [0.1, 2] the ball's radius\n"
+        "vec2 map(vec3 p) { return vec2(length(p) - uRadius, 0.0); }\n"
+        "vec3 programAlbedo(vec3 p, vec3 n, vec3 dpdx, vec3 dpdy, vec3 base) { return base; }\n";
+    write_text(path, BALL);
+    static float aov[W * H * AOV], rgba[W * H * 4];
+    camera cam = cam_at(0, 0, 3, 0, 0, 0, 40);
+    const float radii[] = {0.5f, 1.25f};
+    for (int k = 0; k < 2; k++) {
+        scene s;
+        char set[64];
+        snprintf(set, sizeof set, "fractal.radius=%g", (double)radii[k]);
+        const char *sets[] = {set};
+        load_text("{\"program\": \"ball\", \"environment\": {\"intensity\": 0.5}, \"quality\": {\"preset\": \"final\"}}",
+                  sets, 1, &s);
+        assert_near(s.fractal.bound_radius, radii[k], 0);
+        draw(&s, &cam, W, H, 1, NULL, aov, rgba);
+        float depth = aov[((H / 2) * W + W / 2) * AOV + AOV_SLOT_DEPTH];
+        assert_near(depth, 3.0 - radii[k], 1e-3);
+        scene_free(&s);
+    }
+    /* broken on disk: the reload names the user's file and line and keeps the last good program */
+    scene s;
+    load_text("{\"program\": \"ball\", \"environment\": {\"intensity\": 0.5}}", NULL, 0, &s);
+    draw(&s, &cam, W, H, 1, NULL, aov, rgba);
+    char broken[sizeof BALL + 64];
+    snprintf(broken, sizeof broken, "%s", BALL);
+    char *line6 = strstr(broken, "vec2 map");
+    memcpy(line6, "vec2 map(vec3 p) { return undeclared; }\n", 41);
+    line6[41] = '\0';
+    write_text(path, broken);
+    err_t e;
+    assert_false(render_reload(&e));
+    char want[300];
+    snprintf(want, sizeof want, "%s:6:", path);
+    if (!strstr(e.msg, want))
+        fail_msg("the reload's error '%.300s' does not point at %s", e.msg, want);
+    camera c2 = cam;
+    render_begin(&c2);
+    render_sample();
+    float again[W * H * AOV];
+    render_read_aovs(again);
+    assert_near(again[((H / 2) * W + W / 2) * AOV + AOV_SLOT_DEPTH], 2.5, 1e-3);
+    scene_free(&s);
+    char cmd[300];
+    snprintf(cmd, sizeof cmd, "rm -rf %s", user_dir);
+    assert_int_equal(system(cmd), 0);
+    unsetenv("FATHOM_FORMULAS");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -470,6 +583,8 @@ int main(void)
         cmocka_unit_test(over_relaxation),
         cmocka_unit_test(bounding_sphere_is_never_drawn),
         cmocka_unit_test(glow_draws_no_ring),
+        cmocka_unit_test(every_formula_draws),
+        cmocka_unit_test(user_formula),
     };
     return cmocka_run_group_tests(tests, gl_setup, gl_teardown);
 }

@@ -393,9 +393,143 @@ static void locate(void **st)
     assert_non_null(strstr(e.msg, "not found"));
 }
 
+/* ---- formulas: declarations read from the GLSL file, parameters by name ------------------------- */
+
+static const char DECLARED[] =
+    "// @formula A test formula (no one's)\n"
+    "// @iterations 5 [2, 9]\n"
+    "// @bound 2 * (abs(scale) + 1) / (abs(scale) - 1) * size\n"
+    "// @step 0.75\n"
+    "// @require inner < outer \"inner must be below outer\"\n"
+    "uniform float uScale;      // @param 2 [-4, 4] not (-1.05, 1.05) the scale\n"
+    "uniform int uFolds;        // @param 3 [1, 8] folds\n"
+    "uniform bool uSwapAxes;    // @param true swap them\n"
+    "uniform vec3 uJulia;       // @param 0.1,-0.2,0.3 [-2, 2] c\n"
+    "uniform vec3 uTint;        // @color 0.9,0.5,0.1 a colour\n"
+    "uniform float uInner;      // @param 0.5 [0.01, 10] inner\n"
+    "uniform float uOuter;      // @param 1 [0.01, 10] outer\n"
+    "uniform float uSize;       // @param 1.5 [0.1, 10] size\n"
+    "uniform float uNotAParam;  // no annotation: the formula's own business\n";
+
+static void formula_declarations(void **st)
+{
+    (void)st;
+    formula f;
+    err_t e;
+    if (!formula_parse(DECLARED, "t.glsl", &f, &e))
+        fail_msg("%s", e.msg);
+    assert_int_equal(f.param_count, 8);
+    assert_int_equal(f.iterations, 5);
+    assert_int_equal(f.iterations_lo, 2);
+    assert_int_equal(f.iterations_hi, 9);
+    assert_near(f.step, 0.75, 0);
+    const formula_param *q = formula_find(&f, "swap_axes"); /* uSwapAxes: snake case */
+    assert_non_null(q);
+    assert_int_equal(q->type, FORMULA_BOOL);
+    assert_near(q->def[0], 1, 0);
+    q = formula_find(&f, "scale");
+    assert_true(q->has_gap && q->gap_lo == -1.05f && q->gap_hi == 1.05f && q->lo == -4 && q->hi == 4);
+    assert_string_equal(q->uniform, "uScale");
+    assert_string_equal(q->description, "the scale");
+    q = formula_find(&f, "julia");
+    assert_int_equal(q->type, FORMULA_VEC3);
+    assert_near(q->def[1], -0.2, 1e-7);
+    assert_int_equal(formula_find(&f, "tint")->type, FORMULA_COLOR);
+    assert_null(formula_find(&f, "not_a_param"));
+    assert_int_equal(f.require_count, 1);
+    assert_string_equal(f.requires[0].lhs, "inner");
+    assert_string_equal(f.requires[0].rhs, "outer");
+    /* the bound, an expression of the parameters (in declared order) */
+    float v[8] = {-3, 3, 1, 0.1f, 0.9f, 0.5f, 1, 1.5f};
+    double b;
+    if (!formula_eval(&f, f.bound, v, 5, &b, &e))
+        fail_msg("%s", e.msg);
+    assert_near(b, 2.0 * 4.0 / 2.0 * 1.5, 1e-6);
+    assert_true(formula_eval(&f, "min(iterations, 3) + max(1, sqrt(16)) - -2", v, 5, &b, &e));
+    assert_near(b, 3 + 4 + 2, 0);
+    assert_false(formula_eval(&f, "radius * 2", v, 5, &b, &e));
+    assert_non_null(strstr(e.msg, "unknown name 'radius'"));
+    assert_false(formula_eval(&f, "2 * (scale", v, 5, &b, &e));
+    assert_false(formula_eval(&f, "1 / (scale + 3)", v, 5, &b, &e)); /* not a finite number */
+    /* malformed declarations name the file and line */
+    static const struct { const char *text, *want; } bad[] = {
+        {"uniform float uX; // @param 1 [0, 1] x\n", "t.glsl: no '// @formula' line"},
+        {"// @formula f\nuniform float uX; // @param 5 [0, 1] x\n", "t.glsl:2: the default is outside its range"},
+        {"// @formula f\nuniform float uX; // @param 1 x\n", "t.glsl:2: expected DEFAULT [LO, HI]"},
+        {"// @formula f\nuniform mat3 uX; // @param 1 [0, 2] x\n", "t.glsl:2: 'mat3': a parameter is a float, int, bool or vec3"},
+        {"// @formula f\nuniform float x; // @param 1 [0, 2] x\n", "t.glsl:2: 'x': a parameter's uniform is named uName"},
+        {"// @formula f\nuniform float uGlow; // @param 1 [0, 2] x\n", "t.glsl:2: 'glow' is a key of every fractal block"},
+        {"// @formula f\n\n// @iterations 0 [0, 3]\n", "t.glsl:3: expected @iterations"},
+        {"// @formula f\n// @frobnicate\n", "t.glsl:2: unknown directive"},
+        {"// @formula f\nuniform float uA; // @param 1 [0, 2] a\nuniform float uA; // @param 1 [0, 2] a\n",
+         "t.glsl:3: 'a' is declared twice"},
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        err_t e2 = {{0}};
+        assert_false(formula_parse(bad[i].text, "t.glsl", &f, &e2));
+        if (!strstr(e2.msg, bad[i].want))
+            fail_msg("case %zu: '%s' lacks '%s'", i, e2.msg, bad[i].want);
+    }
+}
+
+/* Shipped formulas by name: the program's name may be a formula's; parameters by their keys, with the
+ * ranges, gaps and requirements their files declare; every shipped formula parses. */
+static void formula_scenes(void **st)
+{
+    (void)st;
+    strbuf names = {0};
+    formula_list(&names);
+    int n = 0;
+    for (char *name = names.data, *nl; name && *name; name = nl + 1, n++) {
+        nl = strchr(name, '\n');
+        *nl = '\0';
+        formula f;
+        err_t e;
+        if (!formula_load(name, &f, &e))
+            fail_msg("%s", e.msg);
+        assert_true(f.summary[0] && f.iterations >= f.iterations_lo && f.iterations <= f.iterations_hi);
+    }
+    sb_free(&names);
+    assert_true(n >= 12);
+    static const char BOX[] = "{\"program\": \"mandelbox\"}";
+    scene s;
+    err_t e;
+    const char *scale[] = {"fractal.scale=-3", "fractal.fold_limit=0.5"};
+    assert_true(load(BOX, scale, 2, &s, &e));
+    assert_int_equal(s.program, PROGRAM_FRACTAL);
+    assert_string_equal(s.fractal.formula.name, "mandelbox");
+    assert_near(s.fractal.values[0][0], -3, 0);
+    assert_near(s.fractal.bound_radius, 2.0 * 4.0 / 2.0 * 1.7320508, 1e-5); /* its @bound at scale -3 */
+    scene_free(&s);
+    const char *gap[] = {"fractal.scale=1"};
+    expect_error(BOX, gap, 1, "fractal.scale: 1 is between -1.05 and 1.05");
+    const char *range[] = {"fractal.scale=9"};
+    expect_error(BOX, range, 1, "fractal.scale: expected a number from -4 to 4");
+    const char *order[] = {"fractal.min_radius=2", "fractal.fixed_radius=1"};
+    expect_error(BOX, order, 2, "fractal.min_radius must be below fixed_radius");
+    const char *unknown[] = {"fractal.power=8"};
+    expect_error(BOX, unknown, 1, "unknown key 'power' (allowed here: formula, iterations, bound_radius, palette, "
+                                  "glow, glow_color, scale, min_radius, fixed_radius, fold_limit)");
+    /* the formula switched by an override: its own keys apply */
+    const char *bulb[] = {"fractal.formula=mandelbulb", "fractal.power=6"};
+    assert_true(load(BOX, bulb, 2, &s, &e));
+    assert_string_equal(s.fractal.formula.name, "mandelbulb");
+    assert_near(s.fractal.values[0][0], 6, 0);
+    assert_non_null(strstr(s.map_glsl, "#include \"fractal/mandelbulb.glsl\""));
+    scene_free(&s);
+    expect_error("{\"program\": \"fractal\"}", NULL, 0, "fractal.formula: missing");
+    expect_error("{\"program\": \"fractal\", \"fractal\": {\"formula\": \"nosuch\"}}", NULL, 0,
+                 "unknown formula 'nosuch' (known: amazing_surf");
+    expect_error("{\"program\": \"nosuch\"}", NULL, 0, "or a formula's name: amazing_surf");
+    const char *julia[] = {"fractal.julia=[0.1, 0.2, 0.3]", "fractal.iterations=65"};
+    expect_error("{\"program\": \"julia_bulb\"}", julia, 2, "fractal.iterations: expected a number from 1 to 64");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(formula_declarations),
+        cmocka_unit_test(formula_scenes),
         cmocka_unit_test(shipped_csg_scene),
         cmocka_unit_test(minimal_defaults),
         cmocka_unit_test(syntax_error_has_line_and_column),

@@ -7,7 +7,7 @@ src=$2
 golden=$src/tests/golden/variants.txt
 tmp=$(mktemp)
 trap 'rm -f "$tmp"' EXIT
-for f in "$src"/scenes/*.json; do
+for f in "$src"/scenes/*.json "$src"/scenes/fractals/*.json; do
     s=$(basename "$f" .json)
     for p in draft interactive final reference; do
         echo "== $s $p"

@@ -20,7 +20,7 @@
 
 #include "util.h"
 
-enum { SHADER_MAX_FILES = 64, SHADER_NAME_MAX = 128, SHADER_LINE_STRIDE = 100000 };
+enum { SHADER_MAX_FILES = 64, SHADER_NAME_MAX = 512, SHADER_LINE_STRIDE = 100000 };
 
 typedef struct shader_virtual {
     const char *name;

@@ -47,6 +47,30 @@ static bool scope_applies(knob_scope scope, const scene *s)
     return false;
 }
 
+/* A fractal's iterations from a third of its default to a third past it (within the range its formula
+ * declares, formula.h), the default among them: where detail stops paying for its time. */
+static void fractal_iterations_sweep(const formula *f, sweep *out)
+{
+    enum { POINTS = 5 };
+    *out = (sweep){.name = "iterations", .key = "fractal.iterations"};
+    int lo = f->iterations / 3 > f->iterations_lo ? f->iterations / 3 : f->iterations_lo;
+    int hi = f->iterations + f->iterations / 3 < f->iterations_hi ? f->iterations + f->iterations / 3 : f->iterations_hi;
+    int last = 0;
+    bool def_done = false;
+    for (int i = 0; i < POINTS; i++) {
+        int v = lo + (int)lround((double)(hi - lo) * i / (POINTS - 1));
+        for (int pass = 0; pass < 2; pass++) { /* the default in its place */
+            int w = pass == 0 && !def_done && f->iterations <= v ? f->iterations : v;
+            def_done |= w == f->iterations;
+            if (w > last) {
+                size_t len = strlen(out->values);
+                snprintf(out->values + len, sizeof out->values - len, "%s%d", len ? "," : "", w);
+                last = w;
+            }
+        }
+    }
+}
+
 /* Every sweep the bench knows for scene s; `applies` says which run by default. */
 static int list_sweeps(const scene *s, sweep *out, bool *applies)
 {
@@ -74,6 +98,8 @@ static int list_sweeps(const scene *s, sweep *out, bool *applies)
         applies[n++] = true;
         p += len + (p[len] == ';');
     }
+    if (program_is_fractal(s->program) && n < MAX_SWEEPS - 1)
+        fractal_iterations_sweep(&s->fractal.formula, &out[n]), applies[n++] = true;
     out[n] = (sweep){.name = "resolution_scale", .values = "0.25,0.5,0.75,1", .own = true};
     applies[n++] = true;
     return n;

@@ -6,7 +6,8 @@
  * and its block parser (app/scene/scene_programs.c). Columns:
  *   ID        enum suffix (PROGRAM_ID)
  *   name      "program" in scene files, --scene names, the `PROGRAM_name` #define
- *   map       its GLSL under shaders/ (NULL: generated from the scene, as csg's CSG tree)
+ *   map       its GLSL under shaders/ (NULL: generated from the scene: csg's CSG tree, the fractal's
+ *             #include of its formula file, shaders/fractal/NAME.glsl or the user's: formula.h)
  *   family    which block holds its shape: CSG "objects", FRACTAL "fractal", TERRAIN "terrain"
  *   parse     reads that block into the scene (and writes map() for a generated program)
  *   defines   what it adds to the #define preamble (NULL: nothing)
@@ -21,9 +22,7 @@
 /* clang-format off */
 #define PROGRAM_LIST(X)                                                                                                 \
     X(CSG,        "csg",        NULL,                      FAMILY_CSG,     csg_parse,        NULL,            NULL,               NULL) \
-    X(MANDELBULB, "mandelbulb", "fractal/mandelbulb.glsl", FAMILY_FRACTAL, mandelbulb_parse, fractal_defines, mandelbulb_uniforms, "fractal.iterations=3,4,6,8,10,12") \
-    X(MENGER,     "menger",     "fractal/menger.glsl",     FAMILY_FRACTAL, menger_parse,     fractal_defines, menger_uniforms,    "fractal.iterations=1,2,3,4,5") \
-    X(MANDELBOX,  "mandelbox",  "fractal/mandelbox.glsl",  FAMILY_FRACTAL, mandelbox_parse,  fractal_defines, mandelbox_uniforms, "fractal.iterations=4,6,8,10,12,16") \
+    X(FRACTAL,    "fractal",    NULL,                      FAMILY_FRACTAL, fractal_parse,    fractal_defines, fractal_uniforms,   NULL) \
     X(TERRAIN,    "terrain",    "terrain/terrain.glsl",    FAMILY_TERRAIN, heightmap_parse,  heightmap_defines, layer_uniforms,   "terrain.method=linear,maxmip") \
     X(NOISE,      "noise",      "terrain/noise.glsl",      FAMILY_TERRAIN, noise_parse,      NULL,            noise_uniforms,     NULL)
 /* clang-format on */
@@ -48,16 +47,12 @@ struct cJSON;
 
 /* The programs' hooks named in PROGRAM_LIST: block parsers, #defines, uniforms (scene_programs.c). */
 bool csg_parse(struct scene_ctx *c, const struct cJSON *root); /* scene_csg.c: "objects" → map() */
-bool mandelbulb_parse(struct scene_ctx *c, const struct cJSON *root);
-bool menger_parse(struct scene_ctx *c, const struct cJSON *root);
-bool mandelbox_parse(struct scene_ctx *c, const struct cJSON *root);
+bool fractal_parse(struct scene_ctx *c, const struct cJSON *root);
 bool heightmap_parse(struct scene_ctx *c, const struct cJSON *root);
 bool noise_parse(struct scene_ctx *c, const struct cJSON *root);
 void fractal_defines(const struct scene *s, struct strbuf *out);
 void heightmap_defines(const struct scene *s, struct strbuf *out);
-void mandelbulb_uniforms(const struct scene *s, const struct uniform_sink *u);
-void menger_uniforms(const struct scene *s, const struct uniform_sink *u);
-void mandelbox_uniforms(const struct scene *s, const struct uniform_sink *u);
+void fractal_uniforms(const struct scene *s, const struct uniform_sink *u);
 void layer_uniforms(const struct scene *s, const struct uniform_sink *u);
 void noise_uniforms(const struct scene *s, const struct uniform_sink *u);
 

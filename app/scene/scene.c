@@ -11,6 +11,11 @@
 #include "scene/scene_parse.h"
 
 /* A block that holds another family's shape is a mistake, not something to ignore. */
+/* Shipped scenes by name: scenes/ first (the window's keys 1-9 take them in order), then each fractal
+ * formula's own view in scenes/fractals/. */
+static const char *const SCENE_FOLDER[] = {"scenes", "scenes/fractals"};
+enum { SCENE_FOLDERS = sizeof SCENE_FOLDER / sizeof SCENE_FOLDER[0] };
+
 static bool check_family_blocks(scene_ctx *c, const cJSON *root, const program_def *p)
 {
     for (int f = FAMILY_CSG; f <= FAMILY_TERRAIN; f++) {
@@ -90,11 +95,24 @@ static bool parse_root(scene_ctx *c, cJSON *root)
     snprintf(s->title, sizeof s->title, "%s", title);
     if (!prog)
         return fail(c, "program", "missing: say which program draws the scene, e.g. \"program\": \"csg\"");
-    if (!program_from_name(prog, &s->program)) {
-        strbuf known = {0};
+    formula named; /* "program": "mandelbulb": the fractal program with that formula */
+    err_t ignore;
+    if (program_from_name(prog, &s->program)) {
+        c->formula = NULL;
+    } else if (!strchr(prog, '/') && !strstr(prog, ".glsl") && formula_load(prog, &named, &ignore)) {
+        s->program = PROGRAM_FRACTAL;
+        c->formula = prog;
+    } else {
+        strbuf known = {0}, formulas = {0};
         program_names(&known);
-        bool r = fail(c, "program", "unknown program '%s' (known: %s)", prog, known.data);
+        formula_list(&formulas);
+        for (char *q = formulas.data; q && *q; q++)
+            if (*q == '\n')
+                *q = q[1] ? ' ' : '\0';
+        bool r = fail(c, "program", "unknown program '%s' (programs: %s; or a formula's name: %s)", prog, known.data,
+                      formulas.data ? formulas.data : "none");
         sb_free(&known);
+        sb_free(&formulas);
         return r;
     }
     const program_def *p = program_get(s->program);
@@ -241,7 +259,8 @@ static bool load_text(const char *text, const char *path, const char *const *set
     for (int i = 0; ok && i < set_count; i++)
         ok = scene_apply_set(root, sets[i], err); /* its errors name the override already */
     if (ok) {
-        ok = parse_root(&c, root) && (!s->cam_auto || terrain_frame(s, err));
+        ok = parse_root(&c, root) &&
+             (!s->cam_auto || (s->program == PROGRAM_FRACTAL ? fractal_frame(s, err) : terrain_frame(s, err)));
         if (!ok && set_count > 0 && blame)
             blame_override(text, path, sets, set_count, err);
     }
@@ -264,8 +283,12 @@ bool scene_locate(const char *name_or_path, char *out, size_t n, err_t *err)
         snprintf(out, n, "%s", name_or_path);
         return true;
     }
-    snprintf(out, n, "%s/scenes/%s.json", util_data_dir(), name_or_path);
-    if (!util_file_exists(out)) {
+    bool found = false;
+    for (int i = 0; i < SCENE_FOLDERS && !found; i++) {
+        snprintf(out, n, "%s/%s/%s.json", util_data_dir(), SCENE_FOLDER[i], name_or_path);
+        found = util_file_exists(out);
+    }
+    if (!found) {
         strbuf names = {0};
         scene_list(&names);
         for (char *p = names.data; p && *p; p++)
@@ -401,10 +424,9 @@ void scene_uniforms(const scene *s, const uniform_sink *u)
 
 static int cmp_str(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }
 
-void scene_list(strbuf *out)
+/* The scenes of one folder, sorted, one a line. */
+static void list_folder(const char *dir, strbuf *out)
 {
-    char dir[PATH_MAX_LEN];
-    snprintf(dir, sizeof dir, "%s/scenes", util_data_dir());
     DIR *d = opendir(dir);
     if (!d)
         return;
@@ -420,6 +442,15 @@ void scene_list(strbuf *out)
     for (int i = 0; i < n; i++) {
         sb_printf(out, "%s\n", names[i]);
         free(names[i]);
+    }
+}
+
+void scene_list(strbuf *out)
+{
+    for (int i = 0; i < SCENE_FOLDERS; i++) {
+        char dir[PATH_MAX_LEN];
+        snprintf(dir, sizeof dir, "%s/%s", util_data_dir(), SCENE_FOLDER[i]);
+        list_folder(dir, out);
     }
 }
 

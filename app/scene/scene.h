@@ -25,6 +25,7 @@
 
 #include "util.h"
 #include "scene/effect.h"
+#include "scene/formula.h"
 #include "scene/program.h"
 #include "scene/quality.h"
 #include "scene/uniforms.h"
@@ -66,15 +67,10 @@ typedef enum effect_mode { EFFECT_AUTO, EFFECT_ON, EFFECT_OFF } effect_mode;
 
 /* Fractal programs' parameters (the "fractal" block). Each program reads the ones it names. */
 typedef struct scene_fractal {
-    int iterations;     /* all: iterations of the formula (Menger: levels of the sponge) */
-    float power;        /* mandelbulb: 2..16 */
-    float bailout;      /* mandelbulb: escape radius */
-    float scale;        /* mandelbox: scale factor */
-    float min_radius;   /* mandelbox: sphere fold inner radius */
-    float fixed_radius; /* mandelbox: sphere fold outer radius */
-    float fold_limit;   /* mandelbox: box fold limit */
-    float size;         /* menger: half-extent of the sponge (metres) */
-    float bound_radius; /* all: a sphere that holds the whole set (marching starts at it) */
+    formula formula;     /* the formula's declarations, read from its GLSL file (formula.h) */
+    float values[FORMULA_MAX_PARAMS][3]; /* its parameters' values, in its declared order */
+    int iterations;      /* iterations of the formula (Menger: levels of the sponge) */
+    float bound_radius;  /* a sphere that holds the whole set (marching starts at it) */
     float palette[3][3]; /* orbit-trap colours: near, middle, far */
     float glow;          /* glow strength; 0 = off */
     float glow_color[3];

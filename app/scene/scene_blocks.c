@@ -134,9 +134,11 @@ bool parse_camera(scene_ctx *c, const cJSON *root)
     const cJSON *cam = cJSON_GetObjectItemCaseSensitive(root, "camera");
     static const float cam_pos[3] = {0, 1, 5}, cam_at[3] = {0, 0, 0};
     if (cJSON_IsString(cam)) { /* "auto": framed from the terrain's extent once it is known (scene.c) */
-        if (strcmp(cam->valuestring, "auto") || s->program != PROGRAM_TERRAIN)
+        if (strcmp(cam->valuestring, "auto") || (s->program != PROGRAM_TERRAIN && s->program != PROGRAM_FRACTAL))
             return fail(c, "camera", "expected an object with position and look_at%s",
-                        s->program == PROGRAM_TERRAIN ? ", or \"auto\" (framed from the DEM)" : "");
+                        s->program == PROGRAM_TERRAIN   ? ", or \"auto\" (framed from the DEM)"
+                        : s->program == PROGRAM_FRACTAL ? ", or \"auto\" (framed from the formula's bound)"
+                                                        : "");
         s->cam_auto = true;
         cam = NULL;
     }

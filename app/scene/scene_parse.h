@@ -20,6 +20,7 @@ typedef struct scene_ctx {
     scene *s;
     strbuf code; /* generated GLSL: program.glsl */
     int next_var;
+    const char *formula; /* "program": "NAME" naming a formula: the fractal program with that formula */
 } scene_ctx;
 
 bool fail(scene_ctx *c, const char *path, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
@@ -59,6 +60,8 @@ bool parse_droplets(scene_ctx *c, const cJSON *root);
 
 /* "camera": "auto": frames the camera, distances, haze and layers from the DEM (heightfield_probe). */
 bool terrain_frame(scene *s, err_t *err);
+/* "camera": "auto" for a fractal: a three-quarter view of its bounding sphere, whatever the formula. */
+bool fractal_frame(scene *s, err_t *err);
 
 /* --set overrides (scene_set.c): "a.b.0.c=value" applied to the parsed JSON tree. */
 bool scene_apply_set(cJSON *root, const char *kv, err_t *err);

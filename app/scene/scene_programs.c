@@ -35,6 +35,8 @@ static bool get_palette(scene_ctx *c, const cJSON *f, float out[3][3])
 
 static const float WARM[3] = {1.0f, 0.6f, 0.3f};
 static const float SQRT3 = 1.7320508f;
+enum { BLOCK_KEYS_MAX = FORMULA_MAX_PARAMS + 8 };
+static const float BOUND_MIN = 1e-3f, BOUND_MAX = 1e6f;
 
 /* Keys every fractal reads: the palette and the glow. */
 static bool fractal_common(scene_ctx *c, const cJSON *use, scene_fractal *fr)
@@ -43,76 +45,131 @@ static bool fractal_common(scene_ctx *c, const cJSON *use, scene_fractal *fr)
            get_vec3(c, use, "fractal", "glow_color", WARM, 0, 100, fr->glow_color);
 }
 
-/* The block, its keys checked against `keys` (a missing block reads as an empty one). */
-static const cJSON *fractal_block(scene_ctx *c, const cJSON *root, const char *const *keys, cJSON **empty)
+/* Fractals are drawn with material 0; a scene may omit "materials". */
+static void default_material(scene *s)
 {
-    const cJSON *f = cJSON_GetObjectItemCaseSensitive(root, "fractal");
-    *empty = cJSON_CreateObject();
-    if (f && !check_keys(c, f, "fractal", keys))
-        return NULL;
-    return f ? f : *empty;
+    if (s->material_count == 0) {
+        s->material_count = 1;
+        s->materials[0] = (scene_material){.name = "surface", .base_color = {1, 1, 1}, .roughness = 0.5f,
+                                           .ior = 1.5f, .texture = -1, .uv_scale = 1, .relief = -1};
+    }
 }
 
-/* Fractals are drawn with material 0; a scene may omit "materials". */
-static bool fractal_done(scene_ctx *c, cJSON *empty, bool ok)
+/* The message a formula call left in c->err, under the key path `path`. */
+static bool fail_formula(scene_ctx *c, const char *path)
 {
+    err_t why = *c->err;
+    return fail(c, path, "%s", why.msg);
+}
+
+/* One declared parameter from the block (its default when absent), checked against its declaration. */
+static bool get_param(scene_ctx *c, const cJSON *use, const formula_param *q, float v[3])
+{
+    char path[128];
+    snprintf(path, sizeof path, "fractal.%s", q->key);
+    switch (q->type) {
+    case FORMULA_INT: {
+        int i;
+        if (!get_int(c, use, "fractal", q->key, (int)q->def[0], (int)q->lo, (int)q->hi, &i))
+            return false;
+        v[0] = (float)i;
+        break;
+    }
+    case FORMULA_BOOL: {
+        const cJSON *b = cJSON_GetObjectItemCaseSensitive(use, q->key);
+        if (b && !cJSON_IsBool(b) && !(cJSON_IsNumber(b) && (b->valuedouble == 0 || b->valuedouble == 1)))
+            return fail(c, path, "expected true or false");
+        v[0] = !b ? q->def[0] : cJSON_IsBool(b) ? (float)cJSON_IsTrue(b) : (float)b->valuedouble;
+        break;
+    }
+    case FORMULA_VEC3:
+    case FORMULA_COLOR:
+        return get_vec3(c, use, "fractal", q->key, q->def, q->lo, q->hi, v);
+    default:
+        if (!get_num(c, use, "fractal", q->key, q->def[0], q->lo, q->hi, v))
+            return false;
+    }
+    if (q->has_gap && v[0] > q->gap_lo && v[0] < q->gap_hi)
+        return fail(c, path, "%g is between %g and %g, where the formula has no set: take a value outside",
+                    (double)v[0], (double)q->gap_lo, (double)q->gap_hi);
+    return true;
+}
+
+/* The formula's @require lines over the values read. */
+static bool check_requires(scene_ctx *c, const scene_fractal *fr)
+{
+    const formula *f = &fr->formula;
+    float first[FORMULA_MAX_PARAMS];
+    for (int i = 0; i < f->param_count; i++)
+        first[i] = fr->values[i][0];
+    for (int i = 0; i < f->require_count; i++) {
+        const formula_require *r = &f->requires[i];
+        double a, b;
+        if (!formula_eval(f, r->lhs, first, fr->iterations, &a, c->err) ||
+            !formula_eval(f, r->rhs, first, fr->iterations, &b, c->err))
+            return fail_formula(c, "fractal");
+        if (r->less ? !(a < b) : !(a > b))
+            return fail(c, "fractal", "%s (formula %s: %s %c %s)", r->message, f->name, r->lhs, r->less ? '<' : '>',
+                        r->rhs);
+    }
+    return true;
+}
+
+/* The fractal block: "formula" (or the program's name when it names one), the block's own keys and
+ * the formula's declared parameters (formula.h); map() is the formula file's. */
+bool fractal_parse(scene_ctx *c, const cJSON *root)
+{
+    scene_fractal *fr = &c->s->fractal;
+    const cJSON *block = cJSON_GetObjectItemCaseSensitive(root, "fractal");
+    cJSON *empty = cJSON_CreateObject();
+    const cJSON *use = block ? block : empty;
+    const char *name = c->formula;
+    bool ok = cJSON_IsObject(use) || fail(c, "fractal", "expected an object {...}");
+    ok = ok && get_str(c, use, "fractal", "formula", c->formula, &name);
+    if (ok && !name)
+        ok = fail(c, "fractal.formula", "missing: name a formula (fathom --list-formulas), e.g. \"formula\": \"mandelbulb\"");
+    ok = ok && (formula_load(name, &fr->formula, c->err) || fail_formula(c, "fractal.formula"));
+    const formula *f = &fr->formula;
+    if (ok) {
+        const char *keys[BLOCK_KEYS_MAX] = {FORMULA_COMMON_KEYS};
+        int n = 0;
+        while (keys[n])
+            n++;
+        for (int i = 0; i < f->param_count; i++)
+            keys[n++] = f->params[i].key;
+        keys[n] = NULL;
+        ok = check_keys(c, use, "fractal", keys) && fractal_common(c, use, fr) &&
+             get_int(c, use, "fractal", "iterations", f->iterations, f->iterations_lo, f->iterations_hi, &fr->iterations);
+    }
+    for (int i = 0; ok && i < f->param_count; i++)
+        ok = get_param(c, use, &f->params[i], fr->values[i]);
+    ok = ok && check_requires(c, fr);
+    if (ok) {
+        float first[FORMULA_MAX_PARAMS];
+        double bound;
+        for (int i = 0; i < f->param_count; i++)
+            first[i] = fr->values[i][0];
+        ok = (formula_eval(f, f->bound, first, fr->iterations, &bound, c->err) || fail_formula(c, "fractal")) &&
+             get_num(c, use, "fractal", "bound_radius", (float)fmin(fmax(bound, BOUND_MIN), BOUND_MAX), BOUND_MIN,
+                     BOUND_MAX, &fr->bound_radius);
+    }
     cJSON_Delete(empty);
-    if (ok && c->s->material_count == 0) {
-        c->s->material_count = 1;
-        c->s->materials[0] = (scene_material){.name = "surface", .base_color = {1, 1, 1}, .roughness = 0.5f,
-                                              .ior = 1.5f, .texture = -1, .uv_scale = 1, .relief = -1};
+    if (ok) {
+        default_material(c->s);
+        sb_printf(&c->code, "#include \"%s\"\n", f->file);
     }
     return ok;
 }
 
-bool mandelbulb_parse(scene_ctx *c, const cJSON *root)
+bool fractal_frame(scene *s, err_t *err)
 {
-    static const char *const keys[] = {"iterations", "power", "bailout", "bound_radius", "palette", "glow",
-                                       "glow_color", NULL};
-    scene_fractal *fr = &c->s->fractal;
-    cJSON *empty;
-    const cJSON *use = fractal_block(c, root, keys, &empty);
-    return fractal_done(c, empty,
-                        use && fractal_common(c, use, fr) &&
-                            get_int(c, use, "fractal", "iterations", 12, 1, 64, &fr->iterations) &&
-                            get_num(c, use, "fractal", "power", 8, 2, 16, &fr->power) &&
-                            get_num(c, use, "fractal", "bailout", 2, 1.5f, 64, &fr->bailout) &&
-                            get_num(c, use, "fractal", "bound_radius", 1.6f, 0.5f, 100, &fr->bound_radius));
-}
-
-bool menger_parse(scene_ctx *c, const cJSON *root)
-{
-    static const char *const keys[] = {"iterations", "size", "palette", "glow", "glow_color", NULL};
-    scene_fractal *fr = &c->s->fractal;
-    cJSON *empty;
-    const cJSON *use = fractal_block(c, root, keys, &empty);
-    bool ok = use && fractal_common(c, use, fr) && get_int(c, use, "fractal", "iterations", 4, 1, 7, &fr->iterations) &&
-              get_num(c, use, "fractal", "size", 1, 1e-3f, 1e4f, &fr->size);
-    fr->bound_radius = fr->size * SQRT3;
-    return fractal_done(c, empty, ok);
-}
-
-bool mandelbox_parse(scene_ctx *c, const cJSON *root)
-{
-    static const char *const keys[] = {"iterations", "scale", "min_radius", "fixed_radius", "fold_limit",
-                                       "bound_radius", "palette", "glow", "glow_color", NULL};
-    scene_fractal *fr = &c->s->fractal;
-    cJSON *empty;
-    const cJSON *use = fractal_block(c, root, keys, &empty);
-    bool ok = use && fractal_common(c, use, fr) &&
-              get_int(c, use, "fractal", "iterations", 12, 1, 64, &fr->iterations) &&
-              get_num(c, use, "fractal", "scale", 2, -4, 4, &fr->scale) &&
-              get_num(c, use, "fractal", "min_radius", 0.5f, 0.01f, 10, &fr->min_radius) &&
-              get_num(c, use, "fractal", "fixed_radius", 1, 0.01f, 10, &fr->fixed_radius) &&
-              get_num(c, use, "fractal", "fold_limit", 1, 0.01f, 10, &fr->fold_limit);
-    if (ok && fabsf(fr->scale) <= 1.05f)
-        ok = fail(c, "fractal.scale", "|scale| must be above 1.05 (at or below 1 the set is unbounded or empty)");
-    if (ok && fr->min_radius >= fr->fixed_radius)
-        ok = fail(c, "fractal.min_radius", "must be below fixed_radius");
-    /* With |s| > 1 the set lies in the cube of half-side 2(|s|+1)/(|s|-1) (Lowe's Mandelbox). */
-    float half = 2.0f * (fabsf(fr->scale) + 1.0f) / (fabsf(fr->scale) - 1.0f);
-    ok = ok && get_num(c, use, "fractal", "bound_radius", half * SQRT3, 0.5f, 1000, &fr->bound_radius);
-    return fractal_done(c, empty, ok);
+    (void)err;
+    const float R = s->fractal.bound_radius, DIR[3] = {0.55f, 0.42f, 0.72f}; /* a unit three-quarter view */
+    for (int i = 0; i < 3; i++)
+        s->cam_position[i] = 2.4f * R * DIR[i], s->cam_look_at[i] = 0;
+    s->cam_fov_deg = 45;
+    s->quality.max_dist = fmaxf(s->quality.max_dist, 6 * R);
+    return true;
 }
 
 void fractal_defines(const scene *s, strbuf *out)
@@ -120,36 +177,22 @@ void fractal_defines(const scene *s, strbuf *out)
     sb_printf(out, "#define FRACTAL_ITERATIONS %d\n", s->fractal.iterations);
 }
 
-/* Shared by every fractal (shaders/fractal/common.glsl and the glow in sdf_main.glsl). */
-static void fractal_uniforms(const scene *s, const uniform_sink *u)
+/* The block's own uniforms (shaders/fractal/common.glsl and the glow in sdf_main.glsl), then each
+ * declared parameter under its uniform's name. */
+void fractal_uniforms(const scene *s, const uniform_sink *u)
 {
     const scene_fractal *f = &s->fractal;
     uniform_f(u, "uBoundRadius", f->bound_radius);
     uniform_fv(u, "uPalette", 3, 3, &f->palette[0][0]);
     uniform_fv(u, "uGlowColor", 3, 1, f->glow_color);
     uniform_f(u, "uGlowStrength", f->glow);
-}
-
-void mandelbulb_uniforms(const scene *s, const uniform_sink *u)
-{
-    fractal_uniforms(s, u);
-    uniform_f(u, "uBulbPower", s->fractal.power);
-    uniform_f(u, "uBulbBailout", s->fractal.bailout);
-}
-
-void menger_uniforms(const scene *s, const uniform_sink *u)
-{
-    fractal_uniforms(s, u);
-    uniform_f(u, "uMengerSize", s->fractal.size);
-}
-
-void mandelbox_uniforms(const scene *s, const uniform_sink *u)
-{
-    fractal_uniforms(s, u);
-    uniform_f(u, "uBoxScale", s->fractal.scale);
-    uniform_f(u, "uBoxMinRadius", s->fractal.min_radius);
-    uniform_f(u, "uBoxFixedRadius", s->fractal.fixed_radius);
-    uniform_f(u, "uBoxFoldLimit", s->fractal.fold_limit);
+    for (int i = 0; i < f->formula.param_count; i++) {
+        const formula_param *q = &f->formula.params[i];
+        if (q->type == FORMULA_INT || q->type == FORMULA_BOOL)
+            uniform_i(u, q->uniform, (int)f->values[i][0]);
+        else
+            uniform_fv(u, q->uniform, q->type >= FORMULA_VEC3 ? 3 : 1, 1, f->values[i]);
+    }
 }
 
 /* ---- terrains: the "terrain" block ------------------------------------------------------------ */

@@ -1,6 +1,6 @@
 /* uniforms — named shader uniforms as plain data, so the pure side can say what a program reads and
  * the GL side (render_scene.c) can upload it. A sink receives (name, type, components, count, data);
- * helpers below keep call sites short. Names are the GLSL names ("uMengerSize"). */
+ * helpers below keep call sites short. Names are the GLSL names ("uTerrainSpacing"). */
 #ifndef FATHOM_UNIFORMS_H
 #define FATHOM_UNIFORMS_H
 

@@ -1,5 +1,5 @@
 // Shared by the fractal programs: their parameters, the bounding sphere and orbit-trap colouring.
-// Each formula declares its own parameters (app/scene/scene_programs.c names them).
+// Each formula declares its own parameters as annotated uniforms (app/scene/formula.h).
 uniform float uBoundRadius; // a sphere about the origin that holds the whole set
 uniform vec3 uPalette[3]; // orbit-trap colours: near, middle, far
 

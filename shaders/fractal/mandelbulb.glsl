@@ -1,11 +1,16 @@
+// @formula The Mandelbulb (D. White and P. Nylander, 2009): z → zⁿ + c with the triplex power in spherical coordinates
+// @iterations 12 [1, 64]
+// @bound 1.6
+// @step 0.9
+//
 // The Mandelbulb (D. White and P. Nylander, 2009): z → zⁿ + c with the "triplex" power in spherical
 // coordinates (Y up: θ from +Y, φ around Y). Distance estimate from the running derivative:
 // DE = ½ · ln r · r / dr, dr → n rⁿ⁻¹ dr + 1 (J. Hart et al. 1989; the form Quilez and others use).
 // Guards (tests/test_fractal.c fails without each): at r → 0, acos(y/r) is 0/0, atan(0, 0) is
 // undefined in GLSL and ln 0 = −∞ (times r = 0 gives NaN): each falls back to its limit.
 #include "fractal/common.glsl"
-uniform float uBulbPower;   // the exponent n of z → zⁿ + c
-uniform float uBulbBailout; // escape radius
+uniform float uPower;   // @param 8 [2, 16] the exponent n of z → zⁿ + c
+uniform float uBailout; // @param 2 [1.5, 64] escape radius
 
 #ifndef BULB_GUARDS // tests compile them out (0) to show what each prevents
 #define BULB_GUARDS 1
@@ -14,7 +19,7 @@ const float BULB_TINY = BULB_GUARDS != 0 ? 1e-30 : -1.0;
 
 float bulbDE(vec3 c, out float trap)
 {
-    float power = uBulbPower, bailout = uBulbBailout;
+    float power = uPower, bailout = uBailout;
     vec3 z = c;
     float dr = 1.0, r = length(z);
     trap = 1e10;

@@ -1,3 +1,8 @@
+// @formula The Menger sponge (K. Menger, 1926) as an exact distance, not the usual bound: iterations are its levels
+// @iterations 4 [1, 7]
+// @bound size * 1.7320508
+// @step 1
+//
 // The Menger sponge, level FRACTAL_ITERATIONS, as an exact distance (not the usual bound).
 // The sponge is symmetric under the cube's 48 reflections, so folding p into x ≥ y ≥ z ≥ 0 keeps its
 // distance. A level is 20 cubes of a third the size; in that region the nearest of them is the
@@ -6,7 +11,7 @@
 // corner/edge choices; a path is dropped as soon as its cube's box distance (a lower bound for
 // everything inside it) is no better than the best found, trying the nearer cube first.
 #include "fractal/common.glsl"
-uniform float uMengerSize; // half the cube's side (metres)
+uniform float uSize; // @param 1 [0.001, 10000] half the cube's side (metres)
 
 const vec3 MENGER_CORNER = vec3(2.0 / 3.0, 2.0 / 3.0, 2.0 / 3.0);
 const vec3 MENGER_EDGE = vec3(2.0 / 3.0, 2.0 / 3.0, 0.0);
@@ -24,7 +29,7 @@ float mengerDE(vec3 p)
 {
     const int N = FRACTAL_ITERATIONS;
     const int PATHS = 1 << N;
-    float size = uMengerSize;
+    float size = uSize;
     vec3 q0 = p / size;
     float best = 1e10;
     int m = 0;
@@ -57,7 +62,7 @@ vec2 map(vec3 p) { return vec2(mengerDE(p), 0.0); }
 // Colour by how deep the nearest hole is: follow the nearer cube down and note where the point sits.
 vec3 programAlbedo(vec3 p, vec3 n, vec3 dpdx, vec3 dpdy, vec3 base)
 {
-    vec3 q = p / uMengerSize;
+    vec3 q = p / uSize;
     float trap = 1.0;
     for (int l = 0; l < FRACTAL_ITERATIONS; l++) {
         q = foldOctahedral(q);

@@ -1,0 +1,436 @@
+/* formula — a formula's declarations, read from its GLSL file (formula.h). */
+/* realpath() is XSI */
+#define _XOPEN_SOURCE 700
+#include "scene/formula.h"
+
+#include <ctype.h>
+#include <limits.h>
+#include <dirent.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const char *const TYPE_NAMES[] = {[FORMULA_FLOAT] = "float", [FORMULA_INT] = "int", [FORMULA_BOOL] = "bool",
+                                         [FORMULA_VEC3] = "vec3", [FORMULA_COLOR] = "colour"};
+
+static const char *skip_space(const char *p)
+{
+    while (*p == ' ' || *p == '\t')
+        p++;
+    return p;
+}
+
+/* "uMinRadius" -> "min_radius" (false when it does not start with 'u' and a capital). */
+static bool key_of(const char *uniform, char *key, size_t n)
+{
+    if (uniform[0] != 'u' || !isupper((unsigned char)uniform[1]))
+        return false;
+    size_t k = 0;
+    for (const char *p = uniform + 1; *p && k + 2 < n; p++) {
+        if (isupper((unsigned char)*p) && p > uniform + 1)
+            key[k++] = '_';
+        key[k++] = (char)tolower((unsigned char)*p);
+    }
+    key[k] = '\0';
+    return k > 0;
+}
+
+/* Up to `count` numbers separated by commas; false unless exactly `count` finite ones. */
+static bool numbers(const char **p, float *v, int count)
+{
+    for (int i = 0; i < count; i++) {
+        char *end;
+        double x = strtod(skip_space(*p), &end);
+        if (end == skip_space(*p) || !isfinite(x))
+            return false;
+        v[i] = (float)x;
+        *p = skip_space(end);
+        if (i + 1 < count) {
+            if (**p != ',')
+                return false;
+            (*p)++;
+        }
+    }
+    return true;
+}
+
+/* "[LO, HI]" and an optional "not (A, B)". */
+static bool range(const char **p, formula_param *q)
+{
+    float r[2];
+    if (**p != '[')
+        return false;
+    (*p)++;
+    if (!numbers(p, r, 2) || **p != ']' || r[0] > r[1])
+        return false;
+    q->lo = r[0], q->hi = r[1];
+    *p = skip_space(*p + 1);
+    if (!strncmp(*p, "not (", 5)) {
+        *p += 5;
+        if (!numbers(p, r, 2) || **p != ')' || r[0] >= r[1])
+            return false;
+        q->has_gap = true, q->gap_lo = r[0], q->gap_hi = r[1];
+        *p = skip_space(*p + 1);
+    }
+    return true;
+}
+
+/* "uniform TYPE uName; // @param DEFAULT [LO, HI] description" (or @color). */
+static bool param_line(const char *line, const char *at, formula_param *q, char *why, size_t n)
+{
+    char type[16], name[FORMULA_KEY_MAX];
+    if (sscanf(line, " uniform %15s %47[A-Za-z0-9_] ;", type, name) != 2)
+        return snprintf(why, n, "expected 'uniform TYPE uName; // @param ...'") < 0;
+    bool color = !strncmp(at, "@color", 6);
+    *q = (formula_param){0};
+    snprintf(q->uniform, sizeof q->uniform, "%s", name);
+    if (!key_of(name, q->key, sizeof q->key))
+        return snprintf(why, n, "'%s': a parameter's uniform is named uName (uPower, uMinRadius)", name) < 0;
+    const char *p = skip_space(at + (color ? 6 : 6));
+    if (!strcmp(type, "float") || !strcmp(type, "int"))
+        q->type = type[0] == 'f' ? FORMULA_FLOAT : FORMULA_INT;
+    else if (!strcmp(type, "bool"))
+        q->type = FORMULA_BOOL;
+    else if (!strcmp(type, "vec3"))
+        q->type = color ? FORMULA_COLOR : FORMULA_VEC3;
+    else
+        return snprintf(why, n, "'%s': a parameter is a float, int, bool or vec3", type) < 0;
+    if (color && q->type != FORMULA_COLOR)
+        return snprintf(why, n, "@color is for a vec3") < 0;
+    if (q->type == FORMULA_BOOL) {
+        bool t = !strncmp(p, "true", 4), f = !strncmp(p, "false", 5);
+        if (!t && !f)
+            return snprintf(why, n, "a bool's default is true or false") < 0;
+        q->def[0] = t ? 1.0f : 0.0f, q->lo = 0, q->hi = 1;
+        p = skip_space(p + (t ? 4 : 5));
+    } else if (q->type == FORMULA_COLOR) {
+        if (!numbers(&p, q->def, 3))
+            return snprintf(why, n, "a colour's default is R,G,B") < 0;
+        q->lo = 0, q->hi = 1;
+    } else {
+        if (!numbers(&p, q->def, q->type == FORMULA_VEC3 ? 3 : 1) || !range(&p, q))
+            return snprintf(why, n, "expected DEFAULT [LO, HI] (a vec3's default is X,Y,Z)") < 0;
+    }
+    for (int i = 0; i < (q->type >= FORMULA_VEC3 ? 3 : 1); i++)
+        if (q->def[i] < q->lo || q->def[i] > q->hi || (q->type == FORMULA_INT && q->def[i] != floorf(q->def[i])))
+            return snprintf(why, n, "the default is outside its range") < 0;
+    snprintf(q->description, sizeof q->description, "%s", p);
+    return true;
+}
+
+/* One "// @..." directive on line `line` (text from the '@'). */
+static bool directive(formula *f, const char *line, const char *at, char *why, size_t n)
+{
+    const char *p;
+    if (!strncmp(at, "@param", 6) || !strncmp(at, "@color", 6)) {
+        if (f->param_count == FORMULA_MAX_PARAMS)
+            return snprintf(why, n, "more than %d parameters", FORMULA_MAX_PARAMS) < 0;
+        formula_param *q = &f->params[f->param_count];
+        if (!param_line(line, at, q, why, n))
+            return false;
+        for (int i = 0; i < f->param_count; i++)
+            if (!strcmp(f->params[i].key, q->key))
+                return snprintf(why, n, "'%s' is declared twice", q->key) < 0;
+        static const char *const reserved[] = {FORMULA_COMMON_KEYS};
+        for (size_t i = 0; i < sizeof reserved / sizeof *reserved; i++)
+            if (!strcmp(reserved[i], q->key))
+                return snprintf(why, n, "'%s' is a key of every fractal block: name the parameter otherwise", q->key) < 0;
+        f->param_count++;
+    } else if (!strncmp(at, "@formula", 8)) {
+        snprintf(f->summary, sizeof f->summary, "%s", skip_space(at + 8));
+    } else if (!strncmp(at, "@iterations", 11)) {
+        formula_param q = {0};
+        p = at + 11;
+        if (!numbers(&p, q.def, 1) || !range(&p, &q) || q.def[0] < q.lo || q.def[0] > q.hi || q.lo < 1 || q.hi > 1000)
+            return snprintf(why, n, "expected @iterations DEFAULT [LO, HI], whole numbers from 1 to 1000") < 0;
+        f->iterations = (int)q.def[0], f->iterations_lo = (int)q.lo, f->iterations_hi = (int)q.hi;
+    } else if (!strncmp(at, "@bound", 6)) {
+        snprintf(f->bound, sizeof f->bound, "%s", skip_space(at + 6));
+    } else if (!strncmp(at, "@step", 5)) {
+        p = at + 5;
+        if (!numbers(&p, &f->step, 1) || f->step <= 0 || f->step > 1)
+            return snprintf(why, n, "expected @step FACTOR, above 0 and at most 1") < 0;
+    } else if (!strncmp(at, "@require", 8)) {
+        if (f->require_count == FORMULA_MAX_REQUIRES)
+            return snprintf(why, n, "more than %d @require lines", FORMULA_MAX_REQUIRES) < 0;
+        formula_require *r = &f->requires[f->require_count];
+        const char *q = skip_space(at + 8), *op = strpbrk(q, "<>"), *msg = op ? strchr(op, '"') : NULL;
+        const char *close = msg ? strchr(msg + 1, '"') : NULL;
+        if (!op || !msg || !close || op - q >= FORMULA_EXPR_MAX || msg - op >= FORMULA_EXPR_MAX)
+            return snprintf(why, n, "expected @require EXPR < EXPR \"message\" (or >)") < 0;
+        *r = (formula_require){.less = *op == '<'};
+        const char *rhs = skip_space(op + 1), *lhs_end = op, *rhs_end = msg;
+        while (lhs_end > q && (lhs_end[-1] == ' ' || lhs_end[-1] == '\t'))
+            lhs_end--;
+        while (rhs_end > rhs && (rhs_end[-1] == ' ' || rhs_end[-1] == '\t'))
+            rhs_end--;
+        snprintf(r->lhs, sizeof r->lhs, "%.*s", (int)(lhs_end - q), q);
+        snprintf(r->rhs, sizeof r->rhs, "%.*s", (int)(rhs_end - rhs), rhs);
+        snprintf(r->message, sizeof r->message, "%.*s", (int)(close - msg - 1), msg + 1);
+        f->require_count++;
+    } else {
+        return snprintf(why, n, "unknown directive (known: @formula @iterations @bound @step @require @param @color)") < 0;
+    }
+    return true;
+}
+
+bool formula_parse(const char *text, const char *source, formula *f, err_t *err)
+{
+    *f = (formula){.iterations = 1, .iterations_lo = 1, .iterations_hi = 1};
+    snprintf(f->bound, sizeof f->bound, "2");
+    int line = 1;
+    for (const char *p = text; *p; line++) {
+        const char *eol = strchr(p, '\n');
+        size_t len = eol ? (size_t)(eol - p) : strlen(p);
+        char buf[512];
+        snprintf(buf, sizeof buf, "%.*s", (int)(len < sizeof buf ? len : sizeof buf - 1), p);
+        const char *c = strstr(buf, "//");
+        const char *at = c ? skip_space(c + 2) : NULL;
+        if (at && *at == '@' && isalpha((unsigned char)at[1])) {
+            char why[160] = "";
+            if (!directive(f, buf, at, why, sizeof why))
+                return err_set(err, "%s:%d: %s", source, line, why);
+        }
+        p = eol ? eol + 1 : p + len;
+    }
+    if (!f->summary[0])
+        return err_set(err, "%s: no '// @formula' line: a formula file says what it is there", source);
+    return true;
+}
+
+void formula_user_dir(char *out, size_t n)
+{
+    const char *dir = getenv("FATHOM_FORMULAS"), *xdg = getenv("XDG_CONFIG_HOME"), *home = getenv("HOME");
+    if (dir && *dir)
+        snprintf(out, n, "%s", dir);
+    else if (xdg && *xdg)
+        snprintf(out, n, "%s/fathom/formulas", xdg);
+    else
+        snprintf(out, n, "%s/.config/fathom/formulas", home ? home : ".");
+}
+
+bool formula_load(const char *name_or_path, formula *f, err_t *err)
+{
+    char path[PATH_MAX_LEN], file[PATH_MAX_LEN], user[PATH_MAX_LEN], name[FORMULA_NAME_MAX];
+    bool is_path = strchr(name_or_path, '/') || strstr(name_or_path, ".glsl");
+    if (is_path) {
+        char abs[PATH_MAX]; /* realpath writes up to PATH_MAX */
+        if (!realpath(name_or_path, abs))
+            return err_set(err, "formula file '%s' not found: check the path", name_or_path);
+        if (strlen(abs) >= sizeof path)
+            return err_set(err, "formula file '%s': its path is too long", name_or_path);
+        memcpy(path, abs, strlen(abs) + 1);
+        memcpy(file, path, sizeof file);
+    } else {
+        for (const char *c = name_or_path; *c; c++)
+            if (!isalnum((unsigned char)*c) && *c != '_' && *c != '-')
+                return err_set(err, "formula '%s': a name is letters, digits, '_' and '-' (or give a .glsl path)",
+                               name_or_path);
+        formula_user_dir(user, sizeof user);
+        if (strlen(name_or_path) >= FORMULA_NAME_MAX ||
+            snprintf(path, sizeof path, "%s/%s.glsl", user, name_or_path) >= (int)sizeof path)
+            return err_set(err, "formula '%.64s…': the name is too long", name_or_path);
+        if (util_file_exists(path)) {
+            memcpy(file, path, sizeof file);
+        } else {
+            int a = snprintf(file, sizeof file, "fractal/%s.glsl", name_or_path);
+            int b = snprintf(path, sizeof path, "%s/shaders/%s", util_data_dir(), file);
+            if (a >= (int)sizeof file || b >= (int)sizeof path || !util_file_exists(path)) {
+                strbuf names = {0};
+                formula_list(&names);
+                for (char *c = names.data; c && *c; c++)
+                    if (*c == '\n')
+                        *c = c[1] ? ' ' : '\0';
+                err_set(err, "unknown formula '%s' (known: %s); or give a .glsl file", name_or_path,
+                        names.data ? names.data : "none");
+                sb_free(&names);
+                return false;
+            }
+        }
+    }
+    char *text;
+    if (!util_read_file(path, &text, NULL, err))
+        return false;
+    bool ok = formula_parse(text, path, f, err);
+    free(text);
+    const char *base = strrchr(path, '/');
+    snprintf(name, sizeof name, "%.*s", (int)strcspn(base ? base + 1 : path, "."), base ? base + 1 : path);
+    if (ok) {
+        snprintf(f->name, sizeof f->name, "%s", name);
+        snprintf(f->file, sizeof f->file, "%s", file);
+    }
+    return ok;
+}
+
+/* The .glsl files of a folder that declare a formula, sorted, appended one a line. */
+static void list_dir(const char *dir, strbuf *out)
+{
+    struct dirent **list;
+    int n = scandir(dir, &list, NULL, alphasort);
+    for (int i = 0; i < n; i++) {
+        const char *d = list[i]->d_name, *dot = strrchr(d, '.');
+        char path[PATH_MAX_LEN], *text;
+        err_t e;
+        formula f;
+        if (dot && !strcmp(dot, ".glsl") && snprintf(path, sizeof path, "%s/%s", dir, d) < (int)sizeof path &&
+            util_read_file(path, &text, NULL, &e)) {
+            if (strstr(text, "@formula") && formula_parse(text, path, &f, &e))
+                sb_printf(out, "%.*s\n", (int)(dot - d), d);
+            free(text);
+        }
+        free(list[i]);
+    }
+    if (n >= 0)
+        free(list);
+}
+
+void formula_list(strbuf *out)
+{
+    char dir[PATH_MAX_LEN];
+    snprintf(dir, sizeof dir, "%s/shaders/fractal", util_data_dir());
+    list_dir(dir, out);
+    formula_user_dir(dir, sizeof dir);
+    list_dir(dir, out);
+}
+
+void formula_describe(const formula *f, strbuf *out)
+{
+    sb_printf(out, "formula %s (%s)\n  %s\n", f->name, f->file, f->summary);
+    sb_printf(out, "  %-14s int    %d [%d, %d]  iterations of the formula\n", "iterations", f->iterations,
+              f->iterations_lo, f->iterations_hi);
+    sb_printf(out, "  %-14s float  %s  a sphere about the origin that holds the set\n", "bound_radius", f->bound);
+    if (f->step > 0)
+        sb_printf(out, "  (its estimate needs quality.step_factor <= %g)\n", (double)f->step);
+    for (int i = 0; i < f->param_count; i++) {
+        const formula_param *q = &f->params[i];
+        char def[64];
+        if (q->type == FORMULA_BOOL)
+            snprintf(def, sizeof def, "%s", q->def[0] != 0 ? "true" : "false");
+        else if (q->type >= FORMULA_VEC3)
+            snprintf(def, sizeof def, "%g,%g,%g", (double)q->def[0], (double)q->def[1], (double)q->def[2]);
+        else
+            snprintf(def, sizeof def, "%g", (double)q->def[0]);
+        sb_printf(out, "  %-14s %-6s %s", q->key, TYPE_NAMES[q->type], def);
+        if (q->type != FORMULA_BOOL)
+            sb_printf(out, " [%g, %g]", (double)q->lo, (double)q->hi);
+        if (q->has_gap)
+            sb_printf(out, " not (%g, %g)", (double)q->gap_lo, (double)q->gap_hi);
+        sb_printf(out, "  %s\n", q->description);
+    }
+    for (int i = 0; i < f->require_count; i++)
+        sb_printf(out, "  requires %s %c %s\n", f->requires[i].lhs, f->requires[i].less ? '<' : '>', f->requires[i].rhs);
+}
+
+const formula_param *formula_find(const formula *f, const char *key)
+{
+    for (int i = 0; i < f->param_count; i++)
+        if (!strcmp(f->params[i].key, key))
+            return &f->params[i];
+    return NULL;
+}
+
+/* ---- expressions: recursive descent over + - * / ( ) numbers, names, abs sqrt min max ---- */
+
+typedef struct expr {
+    const char *p;
+    const formula *f;
+    const float *values;
+    int iterations;
+    bool bad;
+    char why[96];
+} expr;
+
+static double sum(expr *e);
+
+static double atom(expr *e)
+{
+    e->p = skip_space(e->p);
+    if (*e->p == '(') {
+        e->p++;
+        double v = sum(e);
+        e->p = skip_space(e->p);
+        if (*e->p++ != ')')
+            e->bad = true;
+        return v;
+    }
+    if (*e->p == '-') {
+        e->p++;
+        return -atom(e);
+    }
+    if (isdigit((unsigned char)*e->p) || *e->p == '.') {
+        char *end;
+        double v = strtod(e->p, &end);
+        e->p = end;
+        return v;
+    }
+    char name[FORMULA_KEY_MAX];
+    int n = 0;
+    while ((isalnum((unsigned char)*e->p) || *e->p == '_') && n + 1 < (int)sizeof name)
+        name[n++] = *e->p++;
+    name[n] = '\0';
+    if (n == 0) {
+        e->bad = true;
+        return 0;
+    }
+    static const char *const FUNCS[] = {"abs", "sqrt", "min", "max"};
+    for (int k = 0; k < 4; k++)
+        if (!strcmp(name, FUNCS[k])) {
+            e->p = skip_space(e->p);
+            if (*e->p++ != '(')
+                e->bad = true;
+            double a = sum(e), b = 0;
+            e->p = skip_space(e->p);
+            if (k >= 2 && *e->p++ == ',')
+                b = sum(e), e->p = skip_space(e->p);
+            if (*e->p++ != ')')
+                e->bad = true;
+            return k == 0 ? fabs(a) : k == 1 ? sqrt(a) : k == 2 ? fmin(a, b) : fmax(a, b);
+        }
+    if (!strcmp(name, "iterations"))
+        return e->iterations;
+    for (int i = 0; i < e->f->param_count; i++)
+        if (!strcmp(e->f->params[i].key, name))
+            return e->values[i];
+    snprintf(e->why, sizeof e->why, "unknown name '%s'", name);
+    e->bad = true;
+    return 0;
+}
+
+static double product(expr *e)
+{
+    double v = atom(e);
+    for (;;) {
+        e->p = skip_space(e->p);
+        if (*e->p == '*')
+            e->p++, v *= atom(e);
+        else if (*e->p == '/')
+            e->p++, v /= atom(e);
+        else
+            return v;
+    }
+}
+
+static double sum(expr *e)
+{
+    double v = product(e);
+    for (;;) {
+        e->p = skip_space(e->p);
+        if (*e->p == '+')
+            e->p++, v += product(e);
+        else if (*e->p == '-')
+            e->p++, v -= product(e);
+        else
+            return v;
+    }
+}
+
+bool formula_eval(const formula *f, const char *text, const float *values, int iterations, double *out, err_t *err)
+{
+    expr e = {.p = text, .f = f, .values = values, .iterations = iterations};
+    *out = sum(&e);
+    if (e.bad || *skip_space(e.p) != '\0' || !isfinite(*out))
+        return err_set(err, "formula %s: '%s': %s", f->name, text,
+                       e.why[0] ? e.why : isfinite(*out) ? "malformed expression" : "not a finite number");
+    return true;
+}

@@ -1,0 +1,89 @@
+/* formula — a fractal formula is one GLSL file: its distance estimate, its colouring and its
+ * parameters, declared in the file as annotated uniforms that fathom reads at run time (in the
+ * spirit of Fragmentarium's sliders). No C changes for a new formula: drop the file in
+ * shaders/fractal/, in the user's folder (formula_user_dir()), or name it with --formula FILE.
+ *
+ *   // @formula One line: what it is and whose (cite the paper or article).
+ *   // @iterations 12 [1, 64]      FRACTAL_ITERATIONS (a loop bound): default and range
+ *   // @bound 2 * size             radius of a sphere about the origin that holds the set, an
+ *   //                             expression of the parameters (+ - * / ( ) abs sqrt min max)
+ *   // @step 0.9                   the step factor its estimate needs (quality.step_factor)
+ *   // @require min_radius < fixed_radius "min_radius must be below fixed_radius"
+ *   uniform float uPower;   // @param 8 [2, 16] the exponent n of z -> z^n + c
+ *   uniform float uScale;   // @param 2 [-4, 4] not (-1.05, 1.05) the scale factor s
+ *   uniform int uFolds;     // @param 3 [1, 8] folds per iteration
+ *   uniform vec3 uJulia;    // @param 0.3,0.2,0.1 [-2, 2] the fixed c of the Julia set
+ *   uniform bool uSwap;     // @param false swap x and z each iteration
+ *   uniform vec3 uTint;     // @color 0.9,0.6,0.3 a colour (components 0..1)
+ *
+ * A parameter's scene key is its uniform's name without the 'u', in snake case (uMinRadius ->
+ * min_radius): "fractal": {"formula": "mandelbox", "min_radius": 0.4}, --set fractal.min_radius=0.4.
+ * Every formula also takes the fractal block's own keys (FORMULA_COMMON_KEYS). Pure C. */
+#ifndef FATHOM_FORMULA_H
+#define FATHOM_FORMULA_H
+
+#include <stdbool.h>
+
+#include "util.h"
+
+enum { FORMULA_MAX_PARAMS = 24, FORMULA_NAME_MAX = 64, FORMULA_KEY_MAX = 48, FORMULA_TEXT_MAX = 200,
+       FORMULA_MAX_REQUIRES = 4, FORMULA_EXPR_MAX = 160 };
+
+/* The keys of the fractal block that are not a formula's parameters. */
+#define FORMULA_COMMON_KEYS "formula", "iterations", "bound_radius", "palette", "glow", "glow_color"
+
+typedef enum formula_type { FORMULA_FLOAT, FORMULA_INT, FORMULA_BOOL, FORMULA_VEC3, FORMULA_COLOR } formula_type;
+
+typedef struct formula_param {
+    char key[FORMULA_KEY_MAX];     /* scene key: min_radius */
+    char uniform[FORMULA_KEY_MAX]; /* GLSL name: uMinRadius */
+    char description[FORMULA_TEXT_MAX];
+    formula_type type;
+    float def[3], lo, hi;     /* default (vec3: 3 values) and range (each component) */
+    bool has_gap;             /* values strictly inside (gap_lo, gap_hi) are refused */
+    float gap_lo, gap_hi;
+} formula_param;
+
+typedef struct formula_require {
+    char lhs[FORMULA_EXPR_MAX], rhs[FORMULA_EXPR_MAX], message[FORMULA_TEXT_MAX];
+    bool less; /* lhs < rhs, else lhs > rhs */
+} formula_require;
+
+typedef struct formula {
+    char name[FORMULA_NAME_MAX]; /* the file's name without .glsl */
+    char file[PATH_MAX_LEN];     /* for #include: "fractal/NAME.glsl" under shaders/, or an absolute path */
+    char summary[FORMULA_TEXT_MAX];
+    int iterations, iterations_lo, iterations_hi;
+    char bound[FORMULA_EXPR_MAX]; /* expression of the parameters */
+    float step;                   /* 0: not declared (1) */
+    int param_count;
+    formula_param params[FORMULA_MAX_PARAMS];
+    int require_count;
+    formula_require requires[FORMULA_MAX_REQUIRES];
+} formula;
+
+/* Reads the declarations of a formula's text; `source` names it in messages ("NAME.glsl:LINE: ..."). */
+bool formula_parse(const char *text, const char *source, formula *f, err_t *err);
+
+/* Finds and reads a formula: a path to a .glsl file (absolute or from the current folder), or a name
+ * looked up in the user's folder, then in shaders/fractal/. */
+bool formula_load(const char *name_or_path, formula *f, err_t *err);
+
+/* The user's formula folder: $FATHOM_FORMULAS, else $XDG_CONFIG_HOME/fathom/formulas, else
+ * ~/.config/fathom/formulas (it need not exist). */
+void formula_user_dir(char *out, size_t n);
+
+/* The names of every formula fathom can find, one a line (shipped, then the user's). */
+void formula_list(strbuf *out);
+
+/* --help-formula: the summary, and each parameter with its type, default, range and meaning. */
+void formula_describe(const formula *f, strbuf *out);
+
+/* Evaluates an expression over the parameters' values (values[i] is params[i]'s first component;
+ * "iterations" is known too). False with a message on a malformed expression or an unknown name. */
+bool formula_eval(const formula *f, const char *expr, const float *values, int iterations, double *out, err_t *err);
+
+/* The parameter whose scene key is `key`, or NULL. */
+const formula_param *formula_find(const formula *f, const char *key);
+
+#endif

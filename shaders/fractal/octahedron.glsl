@@ -1,0 +1,56 @@
+// @formula Octahedral kaleidoscopic IFS (Hart 1996 for IFS distance bounds): fold into the octahedron's fundamental wedge, turn, scale about a vertex
+// @iterations 10 [1, 30]
+// @bound 1.01 * offset
+// @step 1
+//
+// abs() and three swaps carry a point into the wedge x ≥ y ≥ z ≥ 0 (the octahedral group's 48 mirror
+// images, as the Menger sponge folds), a rotation turns it, and it is scaled by s about the vertex
+// (offset, 0, 0). Every map is s-Lipschitz, and a point farther than |v| = offset from the origin
+// only grows (|f(z)| ≥ s|z| − (s − 1)|v| > |z|), so the set lies in the ball of radius offset and
+// (|z_n| − offset) / sⁿ is a lower bound on the distance to it (as in sierpinski.glsl).
+#include "fractal/common.glsl"
+uniform float uScale;  // @param 2 [1.2, 4] the scale factor s about the vertex
+uniform float uOffset; // @param 1 [0.1, 4] the vertex (offset, 0, 0)
+uniform vec3 uTwist;   // @param 0.2,0.1,0 [-3.1416, 3.1416] rotation (radians about x, y, z) after each fold
+
+const float OCTA_ESCAPE2 = 1e6;
+
+mat3 octaTwist(vec3 a)
+{
+    float cx = cos(a.x), sx = sin(a.x), cy = cos(a.y), sy = sin(a.y), cz = cos(a.z), sz = sin(a.z);
+    return mat3(1, 0, 0, 0, cx, sx, 0, -sx, cx) * mat3(cy, 0, -sy, 0, 1, 0, sy, 0, cy) * mat3(cz, sz, 0, -sz, cz, 0, 0, 0, 1);
+}
+
+float octahedronDE(vec3 p, out float trap)
+{
+    vec3 z = p, v = vec3(uOffset, 0.0, 0.0);
+    mat3 twist = octaTwist(uTwist);
+    float scale = 1.0;
+    trap = 1e10;
+    for (int i = 0; i < FRACTAL_ITERATIONS; i++) {
+        z = abs(z);
+        if (z.x < z.y) z.xy = z.yx;
+        if (z.x < z.z) z.xz = z.zx;
+        if (z.y < z.z) z.yz = z.zy;
+        z = twist * z;
+        z = z * uScale - v * (uScale - 1.0);
+        scale *= uScale;
+        trap = min(trap, dot(z, z));
+        if (dot(z, z) > OCTA_ESCAPE2)
+            break;
+    }
+    return (length(z) - uOffset) / scale;
+}
+
+vec2 map(vec3 p)
+{
+    float d, trap;
+    return outsideBound(p, d) ? vec2(d, MATERIAL_BOUND) : vec2(octahedronDE(p, trap), 0.0);
+}
+
+vec3 programAlbedo(vec3 p, vec3 n, vec3 dpdx, vec3 dpdy, vec3 base)
+{
+    float trap;
+    octahedronDE(p, trap);
+    return base * paletteColor(sqrt(trap) / (2.0 * uOffset));
+}
