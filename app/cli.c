@@ -24,6 +24,7 @@ static const char USAGE[] =
     "       fathom bench [--scene S] [--size WxH] [--runs N] [--knob NAME=v1,v2,...]... [--out DIR] [--name N]\n"
     "       fathom render --path FLIGHT.json [--frames A-B] [--fps N] --output DIR/frame_%04d.png [options]\n"
     "       fathom stitch --output POSTER.png POSTER.tile-*.png\n"
+    "       fathom check-formula NAME|FILE [--set fractal.KEY=VALUE]...\n"
     "  Opens the explorer window, or renders an offline shot with --output (no display needed).\n"
     "  bench: headless; for fixed views, sweeps each accuracy knob on its own (default: all that\n"
     "  apply), the presets and every effect; time = median of N [5] images after warm-up (wall clock\n"
@@ -37,6 +38,8 @@ static const char USAGE[] =
     "  [30], each written atomically to the pattern's file; frames already on disk are skipped (resume).\n"
     "  --tile I/N renders tile I of N (horizontal strips) of the --output image to OUTPUT.tile-I-of-N.EXT;\n"
     "  stitch joins the N tiles into the whole image, bit for bit as if rendered at once.\n"
+    "  check-formula: NaN/Inf over random points, and the distance estimate against the distance to\n"
+    "  the surface along random rays: the worst overshoot and the step factor that avoids it.\n"
     "\n"
     ;
 /* the options (ISO C bounds one string literal at 4095 characters) */
@@ -400,6 +403,13 @@ bool cli_parse(int argc, char **argv, cli_options *o, err_t *err)
     } else if (argc > 1 && !strcmp(argv[1], "stitch")) {
         o->stitch = true;
         first = 2;
+    } else if (argc > 1 && !strcmp(argv[1], "check-formula")) { /* then the formula, then options */
+        o->check_formula = true;
+        if (argc < 3 || !strncmp(argv[2], "--", 2))
+            return err_set(err, "fathom check-formula needs a formula: a name (fathom --list-formulas) or a .glsl file");
+        if (!set_formula(argv[2], o, err))
+            return false;
+        first = 3;
     }
     for (int i = first; i < argc; i++) {
         const char *a = argv[i];

@@ -4,6 +4,7 @@
  *   fathom bench [options]        what accuracy costs: knob sweeps, presets, effects (time and error)
  *   fathom render --path F ...    a flight: the frames of a camera path (app/view/path.h) to numbered files
  *   fathom stitch --output F T... tiles rendered with --tile I/N, joined into the whole image
+ *   fathom check-formula NAME     a fractal formula's distance estimate checked (jobs/check.h)
  *   fathom --help                 usage
  *
  * Angles are degrees on the command line (radians inside the code); sizes are pixels.
@@ -61,6 +62,7 @@ typedef struct cli_options {
     unsigned aovs; /* aov_flag bits */
     bool print_variant, list_scenes, list_formulas, help, version, quiet;
     bool bench;        /* `fathom bench ...` */
+    bool check_formula; /* `fathom check-formula NAME|FILE ...` (jobs/check.h) */
     int runs;          /* bench: timed images per setting (median reported) */
     const char *out;   /* bench: folder for CSV, plot and summary (NULL: print only) */
     const char *name;  /* bench: file name prefix in that folder (NULL: the scene's name) */

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "jobs/bench.h"
+#include "jobs/check.h"
 #include "jobs/flight.h"
 #include "cli.h"
 #include "window/explore.h"
@@ -158,6 +159,8 @@ int main(int argc, char **argv)
         return finish(flight_render(&opt, &err), &err);
     if (opt.bench)
         return finish(bench_run(&opt, &err), &err);
+    if (opt.check_formula)
+        return finish(check_formula_run(&opt, &err), &err);
     if (!opt.output && !opt.print_variant)
         return finish(explore_run(&opt, &err), &err);
     scene s;

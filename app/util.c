@@ -14,17 +14,33 @@
 #include <sys/stat.h>
 #include <time.h>
 
+/* Formats into err; newline_ok keeps '\n' (a compiler's log), every other control character is '?'. */
+static void err_vset(err_t *err, bool newline_ok, const char *fmt, va_list ap)
+{
+    vsnprintf(err->msg, sizeof err->msg, fmt, ap);
+    for (char *c = err->msg; *c; c++)
+        if (((unsigned char)*c < 0x20 && !(newline_ok && *c == '\n')) || *c == 0x7f)
+            *c = '?';
+}
+
 bool err_set(err_t *err, const char *fmt, ...)
+{
+    if (err) { /* one line, whatever a file name, key or field brought in */
+        va_list ap;
+        va_start(ap, fmt);
+        err_vset(err, false, fmt, ap);
+        va_end(ap);
+    }
+    return false;
+}
+
+bool err_set_lines(err_t *err, const char *fmt, ...)
 {
     if (err) {
         va_list ap;
         va_start(ap, fmt);
-        vsnprintf(err->msg, sizeof err->msg, fmt, ap);
+        err_vset(err, true, fmt, ap);
         va_end(ap);
-        /* one line, whatever a file name, key or field brought in: control characters become '?' */
-        for (char *c = err->msg; *c; c++)
-            if ((unsigned char)*c < 0x20 || *c == 0x7f)
-                *c = '?';
     }
     return false;
 }

@@ -21,6 +21,8 @@ typedef struct err_t {
 
 /* Sets err->msg (printf format). Returns false so callers can `return err_set(...)`. */
 bool err_set(err_t *err, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+/* The same, keeping line breaks: for a message that is many lines by nature (a shader compiler's log). */
+bool err_set_lines(err_t *err, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 
 /* Allocation that cannot come back empty-handed: on failure it prints "fathom: out of memory: WHAT
  * (N MB)" and exits with 1 (an output being written is removed first: image_io's exit handler). For

@@ -14,6 +14,7 @@
 #include "check.h"
 #include "gltest.h"
 #include "gpu/render.h"
+#include "jobs/check.h"
 
 static uint32_t rng = 987654321u;
 static double rnd(double lo, double hi)
@@ -573,6 +574,60 @@ static void user_formula(void **st)
     unsetenv("FATHOM_FORMULAS");
 }
 
+/* check-formula: every shipped formula passes at its declared step factor, and a formula whose
+ * estimate is twice the distance (a ball's, doubled) fails with a worst ratio of 2 and a suggested
+ * step factor of 1/2; a NaN estimate fails the finiteness check. */
+static void formulas_pass_their_check(void **st)
+{
+    (void)st;
+    strbuf names = {0};
+    formula_list(&names);
+    for (char *name = names.data, *nl; name && *name; name = nl + 1) {
+        nl = strchr(name, '\n');
+        *nl = '\0';
+        scene s;
+        err_t e;
+        if (!scene_load(name, NULL, 0, &s, &e))
+            fail_msg("%s", e.msg);
+        formula_check c;
+        if (!check_formula(&s, 7u, &c, &e))
+            fail_msg("%s: %s", name, e.msg);
+        fprintf(stderr, "  %-22s worst %.3f at step %.2f, %d/%d rays\n", name, c.worst, c.step, c.crossing, c.rays);
+        if (!c.ok)
+            fail_msg("formula %s fails its check: worst %.3f at step %.2f, %d non-finite, %d rays met it", name,
+                     c.worst, c.step, c.nonfinite, c.crossing);
+        scene_free(&s);
+    }
+    sb_free(&names);
+    static const char *const BAD[] = {"2.0 * (length(p) - 0.8)", "length(p) < 0.1 ? 0.0 / 0.0 : length(p) - 0.8"};
+    for (int k = 0; k < 2; k++) {
+        char json[1024];
+        scene s;
+        snprintf(json, sizeof json, "{\"program\": \"fractal\", \"fractal\": {\"formula\": \"/tmp/fathom-bad%d.glsl\"}}",
+                 k);
+        char path[300], text[600];
+        snprintf(path, sizeof path, "/tmp/fathom-bad%d.glsl", k);
+        snprintf(text, sizeof text,
+                 "// @formula a wrong estimate\n// @bound 1\n#include \"fractal/common.glsl\"\n"
+                 "vec2 map(vec3 p) { return vec2(%s, 0.0); }\n", BAD[k]);
+        write_text(path, text);
+        load_text(json, NULL, 0, &s);
+        formula_check c;
+        err_t e;
+        if (!check_formula(&s, 7u, &c, &e))
+            fail_msg("%s", e.msg);
+        assert_false(c.ok);
+        if (k == 0) {
+            assert_near(c.worst, 2.0, 0.05);
+            assert_near(c.suggested, 0.5, 0.02);
+        } else {
+            assert_true(c.nonfinite > 0);
+        }
+        scene_free(&s);
+        remove(path);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -585,6 +640,7 @@ int main(void)
         cmocka_unit_test(glow_draws_no_ring),
         cmocka_unit_test(every_formula_draws),
         cmocka_unit_test(user_formula),
+        cmocka_unit_test(formulas_pass_their_check),
     };
     return cmocka_run_group_tests(tests, gl_setup, gl_teardown);
 }

@@ -139,7 +139,7 @@ static GLuint compile(GLenum type, const char *root, const char *file, const cha
         glGetShaderInfoLog(sh, len, NULL, log);
         strbuf msg = {0};
         shader_translate_log(log, &files, &msg);
-        err_set(err, "shader compile error in %s:\n%s", file,
+        err_set_lines(err, "shader compile error in %s:\n%s", file,
                 msg.data ? msg.data : "(no log)");
         sb_free(&msg);
         free(log);
@@ -171,7 +171,7 @@ GLuint shader_build(const char *root, const char *vert, const char *frag, const 
     if (!ok) {
         char log[4096] = {0};
         glGetProgramInfoLog(prog, sizeof log - 1, NULL, log);
-        err_set(err, "shader link error (%s + %s): %s", vert, frag, log);
+        err_set_lines(err, "shader link error (%s + %s): %s", vert, frag, log);
         glDeleteProgram(prog);
         return 0;
     }

@@ -4,9 +4,9 @@
 // @step 1
 //
 // A formula file is GLSL that defines map() (the distance estimate, and 0 as the material) and may
-// define programAlbedo() (its colouring); fractal/common.glsl gives the bounding sphere and the
-// palette. Each annotated uniform is a parameter: its scene key is its name without the 'u', in snake
-// case, and fathom checks the range declared here. Try it:
+// define programAlbedo() (its colouring, announced by #define PROGRAM_ALBEDO); fractal/common.glsl
+// gives the bounding sphere and the palette. Each annotated uniform is a parameter: its scene key is
+// its name without the 'u', in snake case, and fathom checks the range declared here. Try it:
 //   fathom --formula docs/formulas/torus.glsl --set fractal.tube=0.4
 // then copy it into ~/.config/fathom/formulas/ to use it by name ("formula": "torus").
 #include "fractal/common.glsl"
@@ -20,6 +20,7 @@ vec2 map(vec3 p)
     return vec2(length(q) - uTube, 0.0);
 }
 
+#define PROGRAM_ALBEDO 1
 vec3 programAlbedo(vec3 p, vec3 n, vec3 dpdx, vec3 dpdy, vec3 base)
 {
     return base * paletteColor(0.5 + 0.5 * atan(p.z, p.x) / 3.14159265);

@@ -1,5 +1,6 @@
 // Shared by the fractal programs: their parameters, the bounding sphere and orbit-trap colouring.
-// Each formula declares its own parameters as annotated uniforms (app/scene/formula.h).
+// Each formula declares its own parameters as annotated uniforms (app/scene/formula.h); one that
+// colours its surface defines PROGRAM_ALBEDO and programAlbedo() (common/contract.glsl).
 uniform float uBoundRadius; // a sphere about the origin that holds the whole set
 uniform vec3 uPalette[3]; // orbit-trap colours: near, middle, far
 
@@ -26,4 +27,3 @@ vec3 paletteColor(float t)
     return t < 0.5 ? mix(uPalette[0], uPalette[1], 2.0 * t) : mix(uPalette[1], uPalette[2], 2.0 * t - 1.0);
 }
 
-#define PROGRAM_ALBEDO 1

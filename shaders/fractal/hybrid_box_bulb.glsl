@@ -23,10 +23,12 @@ float hybridDE(vec3 c, out float trap)
     float minR2 = uMinRadius * uMinRadius, fixedR2 = uFixedRadius * uFixedRadius;
     vec3 z = c;
     float dr = 1.0;
+    bool escaped = false;
     trap = 1e10;
-    for (int i = 0; i < FRACTAL_ITERATIONS; i++) {
+    for (int i = 0; i < FRACTAL_ITERATIONS && !escaped; i++) {
         float r = length(z);
-        if (r > HYBRID_ESCAPE)
+        escaped = r > HYBRID_ESCAPE;
+        if (escaped)
             break;
         trap = min(trap, r);
         if (i % (uBoxSteps + 1) < uBoxSteps) {
@@ -43,8 +45,10 @@ float hybridDE(vec3 c, out float trap)
             z = rn1 * r * vec3(sin(theta) * cos(phi), cos(theta), sin(theta) * sin(phi)) + c;
         }
     }
+    // an orbit still bounded after every iteration is taken as inside: a bulb step from |z| < 1 resets
+    // dr to about 1, and the estimate there overshot 19-fold (check-formula)
     float r = length(z);
-    return r > 1.0 ? 0.5 * log(r) * r / dr : 0.0;
+    return escaped || r > HYBRID_ESCAPE ? 0.5 * log(r) * r / dr : 0.0;
 }
 
 vec2 map(vec3 p)
@@ -53,6 +57,7 @@ vec2 map(vec3 p)
     return outsideBound(p, d) ? vec2(d, MATERIAL_BOUND) : vec2(hybridDE(p, trap), 0.0);
 }
 
+#define PROGRAM_ALBEDO 1
 vec3 programAlbedo(vec3 p, vec3 n, vec3 dpdx, vec3 dpdy, vec3 base)
 {
     float trap;

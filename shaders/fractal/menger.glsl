@@ -60,6 +60,7 @@ float mengerDE(vec3 p)
 vec2 map(vec3 p) { return vec2(mengerDE(p), 0.0); }
 
 // Colour by how deep the nearest hole is: follow the nearer cube down and note where the point sits.
+#define PROGRAM_ALBEDO 1
 vec3 programAlbedo(vec3 p, vec3 n, vec3 dpdx, vec3 dpdy, vec3 base)
 {
     vec3 q = p / uSize;

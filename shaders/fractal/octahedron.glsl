@@ -48,6 +48,7 @@ vec2 map(vec3 p)
     return outsideBound(p, d) ? vec2(d, MATERIAL_BOUND) : vec2(octahedronDE(p, trap), 0.0);
 }
 
+#define PROGRAM_ALBEDO 1
 vec3 programAlbedo(vec3 p, vec3 n, vec3 dpdx, vec3 dpdy, vec3 base)
 {
     float trap;

@@ -1,0 +1,48 @@
+/* check — `fathom check-formula NAME|FILE`: a formula's distance estimate checked before it is trusted,
+ * with the shader's own map() probed on the GPU:
+ *   - finite: no NaN or Inf over random points in and around its bounding sphere (and on the axes and
+ *     at the origin, where guards matter);
+ *   - a bound: along random rays through the set, the estimate at each sample against the distance to
+ *     the ray's first crossing of the surface (found by dense stepping, then bisection on "estimate
+ *     below a tiny threshold"). That distance is at least the true distance from the sample to the
+ *     set, so an estimate above it overshoots: sphere tracing at step factor k tunnels when
+ *     k · estimate > distance. The report gives the worst ratio, the share above 1, and the step
+ *     factor that keeps every sample's step inside (1 / worst ratio).
+ * A formula passes when nothing is non-finite and its declared @step (1 when absent) times the worst
+ * ratio stays within CHECK_TOLERANCE of 1. */
+#ifndef FATHOM_CHECK_H
+#define FATHOM_CHECK_H
+
+#include <stdbool.h>
+
+#include "cli.h"
+#include "scene/scene.h"
+#include "util.h"
+
+#define CHECK_TOLERANCE 1.02 /* the crossing is located to within a dense step: a few % of slack */
+
+typedef struct formula_check {
+    int points;          /* estimates probed for finiteness */
+    int nonfinite;       /* of them NaN or Inf */
+    int rays, crossing;  /* rays cast, rays that met the surface */
+    int samples;         /* samples compared with their crossing */
+    int over;            /* samples whose estimate exceeds the distance (ratio > 1) */
+    double worst, p99;   /* the worst and the 99th-percentile ratio estimate / distance */
+    double worst_at[3];  /* where the worst ratio was seen */
+    double suggested;    /* the step factor that keeps every sample inside: min(1, 1 / worst) */
+    double step;         /* the step factor the formula declares (1 when it declares none) */
+    bool ok;
+} formula_check;
+
+/* Runs the checks on a fractal scene (its formula and parameters) in the current GL context, after
+ * render_init. `seed` fixes the random rays and points. */
+bool check_formula(const scene *s, unsigned seed, formula_check *out, err_t *err);
+
+/* The report as text, one finding a line. */
+void check_describe(const scene *s, const formula_check *c, strbuf *out);
+
+/* `fathom check-formula NAME|FILE [--set ...]`: opens a headless context, checks, prints the report;
+ * false (with err) when the formula fails or cannot be loaded. */
+bool check_formula_run(const cli_options *opt, err_t *err);
+
+#endif
