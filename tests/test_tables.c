@@ -121,10 +121,22 @@ static char *all_shaders(void)
 {
     static const char *const FILES[] = {
         "common/material.glsl", "common/lights.glsl", "common/fog.glsl",      "common/env.glsl",
-        "common/relief.glsl",   "common/sdf_main.glsl", "fractal/common.glsl", "fractal/mandelbulb.glsl",
-        "fractal/menger.glsl",  "fractal/mandelbox.glsl", "terrain/terrain.glsl", "terrain/noise.glsl",
-        "terrain/layers.glsl",  "common/droplets.glsl"};
+        "common/relief.glsl",   "common/sdf_main.glsl", "fractal/common.glsl", "terrain/terrain.glsl",
+        "terrain/noise.glsl",   "terrain/layers.glsl",  "common/droplets.glsl"};
     strbuf all = {0};
+    /* every formula's own file: its declared parameters are uniforms it declares */
+    strbuf formulas = {0};
+    formula_list(&formulas);
+    for (char *name = strtok(formulas.data, "\n"); name; name = strtok(NULL, "\n")) {
+        char path[PATH_MAX_LEN], *text;
+        err_t e;
+        snprintf(path, sizeof path, "%s/shaders/fractal/%s.glsl", util_data_dir(), name);
+        if (!util_read_file(path, &text, NULL, &e))
+            fail_msg("%s", e.msg);
+        sb_append(&all, text);
+        free(text);
+    }
+    sb_free(&formulas);
     for (size_t i = 0; i < sizeof FILES / sizeof FILES[0]; i++) {
         char path[PATH_MAX_LEN], *text;
         err_t e;
