@@ -2,7 +2,6 @@
 
 #include <cpl_conv.h>
 #include <cpl_error.h>
-#include <cpl_vsi.h>
 #include <gdal.h>
 #include <gdal_alg.h>
 #include <math.h>
@@ -12,6 +11,8 @@
 #include <string.h>
 #include <strings.h>
 #include <unistd.h>
+
+#include "data/gdal_net.h"
 
 #define EARTH_RADIUS 6371000.0 /* m: the IUGG mean radius */
 
@@ -25,44 +26,12 @@ bool dem_is_image(const char *path)
     return false;
 }
 
-/* GDAL's network file systems, each replaced by one that refuses: a DEM (or a VRT inside it, or a
- * zip inside that) never makes fathom send a request. Files on disk and /vsizip/, /vsigzip/, /vsimem/
- * stay. */
-static const char *const NETWORK_PREFIXES[] = {
-    "/vsicurl/", "/vsicurl_streaming/", "/vsis3/", "/vsis3_streaming/", "/vsigs/", "/vsigs_streaming/",
-    "/vsiaz/", "/vsiaz_streaming/", "/vsiadls/", "/vsioss/", "/vsioss_streaming/", "/vsiswift/",
-    "/vsiswift_streaming/", "/vsiwebhdfs/", "/vsihdfs/"};
-
-static void *refuse_open(void *user, const char *name, const char *access)
-{
-    (void)user, (void)access;
-    CPLError(CE_Failure, CPLE_OpenFailed, "'%s': fathom reads no DEM over the network; download it first", name);
-    return NULL;
-}
-
-static int refuse_stat(void *user, const char *name, VSIStatBufL *st, int flags)
-{
-    (void)user, (void)name, (void)st, (void)flags;
-    return -1;
-}
-
-static void network_off(void)
-{
-    VSIFilesystemPluginCallbacksStruct *cb = VSIAllocFilesystemPluginCallbacksStruct();
-    cb->open = refuse_open;
-    cb->stat = refuse_stat;
-    for (size_t i = 0; i < sizeof NETWORK_PREFIXES / sizeof *NETWORK_PREFIXES; i++)
-        VSIInstallPluginHandler(NETWORK_PREFIXES[i], cb);
-    VSIFreeFilesystemPluginCallbacksStruct(cb);
-    OSRSetPROJEnableNetwork(0); /* PROJ's grid downloads too */
-}
-
 static void gdal_init(void)
 {
     static bool done;
     if (!done) {
         GDALAllRegister();
-        network_off();
+        gdal_network_off();
         GDALSetCacheMax64((GIntBig)64 << 20); /* rows are read once: a small block cache, not 5 % of RAM */
         done = true;
     }

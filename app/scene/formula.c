@@ -343,21 +343,26 @@ typedef struct expr {
 
 static double sum(expr *e);
 
+/* Takes `c` (after spaces) if it is next; never steps past the end of the text. */
+static bool take(expr *e, char c)
+{
+    e->p = skip_space(e->p);
+    if (*e->p != c)
+        return false;
+    e->p++;
+    return true;
+}
+
 static double atom(expr *e)
 {
     e->p = skip_space(e->p);
-    if (*e->p == '(') {
-        e->p++;
+    if (take(e, '(')) {
         double v = sum(e);
-        e->p = skip_space(e->p);
-        if (*e->p++ != ')')
-            e->bad = true;
+        e->bad |= !take(e, ')');
         return v;
     }
-    if (*e->p == '-') {
-        e->p++;
+    if (take(e, '-'))
         return -atom(e);
-    }
     if (isdigit((unsigned char)*e->p) || *e->p == '.') {
         char *end;
         double v = strtod(e->p, &end);
@@ -376,15 +381,14 @@ static double atom(expr *e)
     static const char *const FUNCS[] = {"abs", "sqrt", "min", "max"};
     for (int k = 0; k < 4; k++)
         if (!strcmp(name, FUNCS[k])) {
-            e->p = skip_space(e->p);
-            if (*e->p++ != '(')
+            if (!take(e, '(')) {
                 e->bad = true;
+                return 0;
+            }
             double a = sum(e), b = 0;
-            e->p = skip_space(e->p);
-            if (k >= 2 && *e->p++ == ',')
-                b = sum(e), e->p = skip_space(e->p);
-            if (*e->p++ != ')')
-                e->bad = true;
+            if (k >= 2) /* min and max take two */
+                e->bad |= !take(e, ','), b = sum(e);
+            e->bad |= !take(e, ')');
             return k == 0 ? fabs(a) : k == 1 ? sqrt(a) : k == 2 ? fmin(a, b) : fmax(a, b);
         }
     if (!strcmp(name, "iterations"))
@@ -401,11 +405,10 @@ static double product(expr *e)
 {
     double v = atom(e);
     for (;;) {
-        e->p = skip_space(e->p);
-        if (*e->p == '*')
-            e->p++, v *= atom(e);
-        else if (*e->p == '/')
-            e->p++, v /= atom(e);
+        if (take(e, '*'))
+            v *= atom(e);
+        else if (take(e, '/'))
+            v /= atom(e);
         else
             return v;
     }
@@ -415,11 +418,10 @@ static double sum(expr *e)
 {
     double v = product(e);
     for (;;) {
-        e->p = skip_space(e->p);
-        if (*e->p == '+')
-            e->p++, v += product(e);
-        else if (*e->p == '-')
-            e->p++, v -= product(e);
+        if (take(e, '+'))
+            v += product(e);
+        else if (take(e, '-'))
+            v -= product(e);
         else
             return v;
     }

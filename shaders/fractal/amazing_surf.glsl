@@ -17,15 +17,9 @@ uniform vec3 uTwist;        // @param 0.35,0,0.15 [-3.1416, 3.1416] rotation (ra
 
 const float SURF_ESCAPE2 = 1e8;
 
-mat3 surfTwist(vec3 a)
-{
-    float cx = cos(a.x), sx = sin(a.x), cy = cos(a.y), sy = sin(a.y), cz = cos(a.z), sz = sin(a.z);
-    return mat3(1, 0, 0, 0, cx, sx, 0, -sx, cx) * mat3(cy, 0, -sy, 0, 1, 0, sy, 0, cy) * mat3(cz, sz, 0, -sz, cz, 0, 0, 0, 1);
-}
-
 float surfDE(vec3 c, out float trap)
 {
-    mat3 twist = surfTwist(uTwist);
+    mat3 twist = twistMatrix(uTwist);
     float minR2 = uMinRadius * uMinRadius, fixedR2 = uFixedRadius * uFixedRadius;
     vec3 z = c;
     float dr = 1.0;

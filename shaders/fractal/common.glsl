@@ -27,3 +27,10 @@ vec3 paletteColor(float t)
     return t < 0.5 ? mix(uPalette[0], uPalette[1], 2.0 * t) : mix(uPalette[1], uPalette[2], 2.0 * t - 1.0);
 }
 
+// A rotation by a.x about x, then a.y about y, then a.z about z (radians): the per-iteration twist of
+// the kaleidoscopic formulas. A rotation keeps lengths, so it changes no running derivative.
+mat3 twistMatrix(vec3 a)
+{
+    float cx = cos(a.x), sx = sin(a.x), cy = cos(a.y), sy = sin(a.y), cz = cos(a.z), sz = sin(a.z);
+    return mat3(1, 0, 0, 0, cx, sx, 0, -sx, cx) * mat3(cy, 0, -sy, 0, 1, 0, sy, 0, cy) * mat3(cz, sz, 0, -sz, cz, 0, 0, 0, 1);
+}

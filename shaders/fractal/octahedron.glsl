@@ -15,16 +15,10 @@ uniform vec3 uTwist;   // @param 0.2,0.1,0 [-3.1416, 3.1416] rotation (radians a
 
 const float OCTA_ESCAPE2 = 1e6;
 
-mat3 octaTwist(vec3 a)
-{
-    float cx = cos(a.x), sx = sin(a.x), cy = cos(a.y), sy = sin(a.y), cz = cos(a.z), sz = sin(a.z);
-    return mat3(1, 0, 0, 0, cx, sx, 0, -sx, cx) * mat3(cy, 0, -sy, 0, 1, 0, sy, 0, cy) * mat3(cz, sz, 0, -sz, cz, 0, 0, 0, 1);
-}
-
 float octahedronDE(vec3 p, out float trap)
 {
     vec3 z = p, v = vec3(uOffset, 0.0, 0.0);
-    mat3 twist = octaTwist(uTwist);
+    mat3 twist = twistMatrix(uTwist);
     float scale = 1.0;
     trap = 1e10;
     for (int i = 0; i < FRACTAL_ITERATIONS; i++) {

@@ -1,5 +1,6 @@
 /* libFuzzer harness for the small text readers a shared file reaches: a camera path (path_parse), a
- * shot's record in an image (shot_parse) and a tile's record (offline_tile_record). The first input
+ * shot's record in an image (shot_parse), a tile's record (offline_tile_record) and a fractal formula's
+ * declarations with its @bound and @require expressions (formula_parse, formula_eval). The first input
  * byte picks the reader; the rest is its text. Each must return true or false, never crash, hang,
  * leak or trip a sanitizer. Build and run: tests/fuzz/run.sh MINUTES readers. */
 #include <stddef.h>
@@ -8,6 +9,7 @@
 #include <string.h>
 
 #include "jobs/offline.h"
+#include "scene/formula.h"
 #include "view/path.h"
 #include "view/shot.h"
 
@@ -23,7 +25,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     memcpy(text, data + 1, size - 1);
     text[size - 1] = '\0';
     err_t err;
-    switch (data[0] % 3) {
+    switch (data[0] % 4) {
     case 0: {
         path p;
         if (path_parse(text, "fuzz.json", &p, &err)) {
@@ -36,6 +38,19 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     case 1: {
         static shot_desc d;
         shot_parse(text, "fuzz.png", &d, &err);
+        break;
+    }
+    case 3: {
+        static formula f;
+        if (formula_parse(text, "fuzz.glsl", &f, &err)) {
+            float v[FORMULA_MAX_PARAMS];
+            double out;
+            for (int i = 0; i < f.param_count; i++)
+                v[i] = f.params[i].def[0];
+            formula_eval(&f, f.bound, v, f.iterations, &out, &err);
+            for (int i = 0; i < f.require_count; i++)
+                formula_eval(&f, f.requires[i].lhs, v, f.iterations, &out, &err);
+        }
         break;
     }
     default: {

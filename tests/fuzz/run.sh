@@ -1,6 +1,7 @@
 #!/bin/sh
 # Fuzzes the scene parser (TARGET scene, the default), the droplet-file reader and its grid and BVH
-# (TARGET droplets), or the camera-path, shot-record and tile-record readers (TARGET readers) with libFuzzer (clang, ASan + UBSan) for MINUTES minutes [5].
+# (TARGET droplets), or the camera-path, shot-record, tile-record and formula-declaration readers
+# (TARGET readers) with libFuzzer (clang, ASan + UBSan) for MINUTES minutes [5].
 # Seeds: every shipped scene (scenes: the keys and names of the format in scene.dict), or the head of
 # scenes/spray.csv and a ParaView-style file (droplets.dict).
 # Findings (crash-*, leak-*, timeout-*) land in build-fuzz/findings-TARGET; the corpus grows in
@@ -17,10 +18,11 @@ mkdir -p "$build/corpus-$target" "$build/findings-$target"
 if [ "$target" = scene ]; then
     cp "$src"/scenes/*.json "$build/corpus-$target/"
 elif [ "$target" = readers ]; then
-    # the first byte picks the reader: 0 a camera path, 1 a shot record, 2 a tile record
+    # the first byte picks the reader: 0 a camera path, 1 a shot record, 2 a tile record, 3 a formula
     for f in "$src"/docs/flight/*.json; do { printf '\000'; cat "$f"; } >"$build/corpus-$target/path-$(basename "$f")"; done
     printf '\001{"scene":"/x/scenes/csg.json","sets":["a.b=1"],"camera":{"position":[0,1,5],"yaw":0,"pitch":0,"fov_y":0.8},"size":[64,36]}' >"$build/corpus-$target/shot"
     printf '\0022 4 640 360 180 7' >"$build/corpus-$target/tile"
+    for f in "$src"/shaders/fractal/*.glsl; do { printf '\003'; cat "$f"; } >"$build/corpus-$target/formula-$(basename "$f")"; done
 else
     head -n 40 "$src/scenes/spray.csv" >"$build/corpus-$target/spray.csv"
     printf '"Points:0","Points:1","Points:2","diameter"\n0.5,1.5,-2,0.002\n' >"$build/corpus-$target/paraview.csv"
