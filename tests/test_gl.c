@@ -794,9 +794,53 @@ static void grazing_ground_depth(void **st)
     }
 }
 
+/* Point-light radiometry against the formula: a point light of intensity I at distance d makes the
+ * radiance of a diffuse plane proportional to I · cos θ / d² (the course task's falloff). The camera
+ * and the lit point stay fixed, so every angular term but the light's cancels in a ratio:
+ *   - the light straight above at heights 1 and 3: radiance ratio 9 (1/d would give 3);
+ *   - the light at distance 2, straight above and 60° off the normal: ratio 2 (no cosine: 1).
+ * The material has ior 1 (F0 = 0: no specular at these angles beyond 1e-3) and the sky is off. */
+static double centre_radiance(const float light[3])
+{
+    char json[1024];
+    snprintf(json, sizeof json,
+             "{\"program\": \"csg\", \"environment\": {\"intensity\": 0},"
+             " \"lights\": [{\"type\": \"point\", \"position\": [%.9g, %.9g, %.9g], \"intensity\": 10, \"shadow\": \"none\"}],"
+             " \"materials\": {\"ground\": {\"base_color\": [0.5, 0.5, 0.5], \"roughness\": 1, \"ior\": 1}},"
+             " \"objects\": [{\"shape\": \"plane\", \"material\": \"ground\"}],"
+             " \"effects\": {\"ao\": \"off\"}, \"quality\": {\"preset\": \"final\", \"spp\": 1}}",
+             (double)light[0], (double)light[1], (double)light[2]);
+    scene s;
+    load_text(json, NULL, 0, &s);
+    static float rgba[W * H * 4];
+    camera cam = cam_at(0, 1, 3, 0, 0, 0, 40);
+    draw(&s, &cam, W, H, 1, NULL, NULL, rgba);
+    scene_free(&s);
+    return rgba[((H / 2) * W + W / 2) * 4 + 1];
+}
+
+static void point_light_radiometry(void **st)
+{
+    (void)st;
+    double near = centre_radiance((const float[]){0, 1, 0}), far = centre_radiance((const float[]){0, 3, 0});
+    fprintf(stderr, "  radiance below a point light at 1 m %.6g, at 3 m %.6g: ratio %.4f (1/d²: 9)\n", near, far,
+            near / far);
+    assert_true(far > 0);
+    assert_near(near / far, 9.0, 9.0 * 1e-3);
+    /* and the value itself: Lambert's albedo / π · I / d² (albedo 0.5, I = 10, d = 1, F0 = 0) */
+    assert_near(near, 0.5 / 3.14159265358979 * 10, 2e-3);
+    const double deg60 = 60 * 3.14159265358979 / 180;
+    double above = centre_radiance((const float[]){0, 2, 0});
+    double slant = centre_radiance((const float[]){(float)(2 * sin(deg60)), (float)(2 * cos(deg60)), 0});
+    fprintf(stderr, "  at 2 m straight above %.6g, 60 deg off the normal %.6g: ratio %.4f (cos: 2)\n", above, slant,
+            above / slant);
+    assert_near(above / slant, 2.0, 2.0 * 1e-2);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(point_light_radiometry),
         cmocka_unit_test(variants_compile),
         cmocka_unit_test(depth_and_normal_probes),
         cmocka_unit_test(glass_sphere_snell),
