@@ -837,10 +837,46 @@ static void point_light_radiometry(void **st)
     assert_near(above / slant, 2.0, 2.0 * 1e-2);
 }
 
+/* Cook–Torrance against the PBR lecture's formulas, computed here in double: a black dielectric
+ * (ior 1.5: F0 = 0.04, no diffuse) of roughness 0.5 seen at angle θ with a point light at the mirror
+ * angle, so the half vector is the normal: L = D(1) · G1(cos θ)² · F(cos θ) / (4 cos θ) · I / d², with
+ * D(1) = 1 / (π α²), α = r², G1(c) = c / (c(1 − k) + k), k = (r + 1)² / 8, and Schlick's
+ * F(c) = F0 + (1 − F0)(1 − c)⁵. At 75° Schlick's exponent 3 instead of 5 gives 70 % more. */
+static void specular_against_the_lecture(void **st)
+{
+    (void)st;
+    const double d = 2, I = 10, r = 0.5, F0 = 0.04, PI_D = 3.14159265358979;
+    const double angles[] = {30, 60, 75};
+    for (size_t k = 0; k < sizeof angles / sizeof angles[0]; k++) {
+        double th = angles[k] * PI_D / 180, c = cos(th);
+        char json[1024];
+        snprintf(json, sizeof json,
+                 "{\"program\": \"csg\", \"environment\": {\"intensity\": 0},"
+                 " \"lights\": [{\"type\": \"point\", \"position\": [0, %.9g, %.9g], \"intensity\": %g, \"shadow\": \"none\"}],"
+                 " \"materials\": {\"black\": {\"base_color\": [0, 0, 0], \"roughness\": %g, \"ior\": 1.5}},"
+                 " \"objects\": [{\"shape\": \"plane\", \"material\": \"black\"}],"
+                 " \"effects\": {\"ao\": \"off\"}, \"quality\": {\"preset\": \"final\", \"spp\": 1}}",
+                 d * c, -d * sin(th), I, r);
+        scene s;
+        load_text(json, NULL, 0, &s);
+        static float rgba[W * H * 4];
+        camera cam = cam_at(0, d * c, d * sin(th), 0, 0, 0, 30);
+        draw(&s, &cam, W, H, 1, NULL, NULL, rgba);
+        scene_free(&s);
+        double got = rgba[((H / 2) * W + W / 2) * 4 + 1];
+        double alpha = r * r, kk = (r + 1) * (r + 1) / 8, G1 = c / (c * (1 - kk) + kk);
+        double D = 1 / (PI_D * alpha * alpha), F = F0 + (1 - F0) * pow(1 - c, 5);
+        double want = D * G1 * G1 * F / (4 * c) * I / (d * d);
+        fprintf(stderr, "  specular at %2.0f deg: %.6g, the lecture's formula %.6g (F = %.4f)\n", angles[k], got, want, F);
+        assert_near(got, want, want * 2e-3);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(point_light_radiometry),
+        cmocka_unit_test(specular_against_the_lecture),
         cmocka_unit_test(variants_compile),
         cmocka_unit_test(depth_and_normal_probes),
         cmocka_unit_test(glass_sphere_snell),
