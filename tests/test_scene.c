@@ -521,6 +521,9 @@ static void formula_scenes(void **st)
     expect_error("{\"program\": \"fractal\", \"fractal\": {\"formula\": \"nosuch\"}}", NULL, 0,
                  "unknown formula 'nosuch' (known: amazing_surf");
     expect_error("{\"program\": \"nosuch\"}", NULL, 0, "or a formula's name: amazing_surf");
+    /* the Mandelbulb's power as its file declares it: 0 and 1 have no bulb (issue 24's mutant accepted 0) */
+    const char *power0[] = {"fractal.power=0"};
+    expect_error("{\"program\": \"mandelbulb\"}", power0, 1, "fractal.power: expected a number from 2 to 16");
     const char *julia[] = {"fractal.julia=[0.1, 0.2, 0.3]", "fractal.iterations=65"};
     expect_error("{\"program\": \"julia_bulb\"}", julia, 2, "fractal.iterations: expected a number from 1 to 64");
 }
