@@ -3,6 +3,7 @@
 #include "cli.h"
 
 #include <errno.h>
+#include <float.h>
 #include <limits.h>
 #include <math.h>
 #include <stddef.h>
@@ -97,14 +98,23 @@ static bool parse_int(const char *s, long lo, long hi, int *out)
     return true;
 }
 
-static bool parse_float(const char *s, float *out)
+static bool parse_double(const char *s, double *out)
 {
     char *end;
     errno = 0;
-    float v = strtof(s, &end);
+    double v = strtod(s, &end);
     if (errno || end == s || *end != '\0' || !isfinite(v))
         return false;
     *out = v;
+    return true;
+}
+
+static bool parse_float(const char *s, float *out)
+{
+    double v;
+    if (!parse_double(s, &v) || !(fabs(v) <= FLT_MAX))
+        return false;
+    *out = (float)v;
     return true;
 }
 
@@ -119,7 +129,7 @@ bool cli_parse_size(const char *s, int *w, int *h)
     return parse_int(left, 1, MAX_IMAGE_SIDE, w) && parse_int(x + 1, 1, MAX_IMAGE_SIDE, h);
 }
 
-bool cli_parse_vec3(const char *s, float v[3])
+bool cli_parse_vec3(const char *s, double v[3])
 {
     char buf[128];
     if (strlen(s) >= sizeof buf)
@@ -139,7 +149,7 @@ bool cli_parse_vec3(const char *s, float v[3])
         }
     }
     for (int i = 0; i < 3; i++)
-        if (!parse_float(parts[i], &v[i]) || fabsf(v[i]) > CAMERA_MAX_COORD)
+        if (!parse_double(parts[i], &v[i]) || fabs(v[i]) > CAMERA_MAX_COORD)
             return false;
     return true;
 }

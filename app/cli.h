@@ -55,7 +55,8 @@ typedef struct cli_options {
     bool has_view;      /* --scene SHOT.png or --view NAME: the shot's exact camera (shot.h) */
     const char *view_name; /* --view NAME: a saved view of the scene (views.h) */
     camera view;
-    float camera[3], look_at[3], fov_deg;
+    double camera[3], look_at[3];
+    float fov_deg;
     const char *sets[CLI_MAX_SETS]; /* "key=value" scene overrides, in order */
     char preset_sets[CLI_MAX_SETS][48]; /* storage for the overrides --quality writes (slot = its index) */
     int set_count;
@@ -80,7 +81,7 @@ bool cli_parse(int argc, char **argv, cli_options *o, err_t *err);
 bool cli_parse_size(const char *s, int *w, int *h);
 
 /* Parses "X,Y,Z" (finite floats). */
-bool cli_parse_vec3(const char *s, float v[3]);
+bool cli_parse_vec3(const char *s, double v[3]); /* double: a deep zoom's camera needs the digits */
 
 const char *cli_usage(void);
 

@@ -22,8 +22,10 @@ enum { EXIT_USAGE = 2 };
 static void print_variant(const scene *s)
 {
     printf("scene %s (%s): program %s", s->name, s->path, program_name(s->program));
+    const scene_fractal *f = &s->fractal;
     if (program_is_fractal(s->program))
-        printf(" (formula %s)", s->fractal.formula.name);
+        printf(" (formula %s%s%s%s%s)", f->formula.name, f->has_hybrid ? " + " : "", f->has_hybrid ? f->hybrid.name : "",
+               f->has_hybrid ? " hybrid" : "", f->julia ? ", Julia set" : "");
     printf(", quality %s\n", preset_name(s->preset));
     printf("effects compiled in:");
     for (int e = 0; e < EFFECT_COUNT; e++)
@@ -102,8 +104,8 @@ static bool help_formula(const char *name, err_t *err)
 static bool render_shot(const cli_options *opt, const scene *s, err_t *err)
 {
     float fov = opt->has_fov ? opt->fov_deg : s->cam_fov_deg;
-    const float *eye = opt->has_camera ? opt->camera : s->cam_position;
-    const float *at = opt->has_look_at ? opt->look_at : s->cam_look_at;
+    const double *eye = opt->has_camera ? opt->camera : s->cam_position;
+    const double *at = opt->has_look_at ? opt->look_at : s->cam_look_at;
     if (!opt->has_view && camera_degenerate(eye, at))
         return err_set(err, "the camera (%g, %g, %g) is at its look-at point: pass --look-at (or --camera) elsewhere",
                        (double)eye[0], (double)eye[1], (double)eye[2]);

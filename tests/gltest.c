@@ -60,7 +60,8 @@ void draw(const scene *s, const camera *cam, int w, int h, int spp, const char *
 
 camera cam_at(double ex, double ey, double ez, double tx, double ty, double tz, double fov_deg)
 {
-    return camera_look_at((vec3){(float)ex, (float)ey, (float)ez}, (vec3){(float)tx, (float)ty, (float)tz},
+    /* float-rounded, as the float renderer sees them: the references start their rays where the GPU does */
+    return camera_look_at((double[3]){(float)ex, (float)ey, (float)ez}, (double[3]){(float)tx, (float)ty, (float)tz},
                           (float)(fov_deg * DEG2RAD));
 }
 

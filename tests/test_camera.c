@@ -4,6 +4,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdio.h>
+#include <string.h>
 
 #include <cmocka.h>
 
@@ -18,8 +19,8 @@ static void look_at_points_forward(void **st)
     (void)st;
     const float targets[][3] = {{0, 0, -1}, {3, 1, 2}, {-5, -2, 0.5f}, {0.1f, 7, 0}};
     for (size_t i = 0; i < sizeof targets / sizeof targets[0]; i++) {
-        vec3 eye = {1, 2, 3};
-        camera c = camera_look_at(eye, targets[i], 1.0f);
+        double eye[3] = {1, 2, 3}, at[3] = {targets[i][0], targets[i][1], targets[i][2]};
+        camera c = camera_look_at(eye, at, 1.0f);
         camera_basis b = camera_get_basis(&c);
         double d[3], len = 0;
         for (int k = 0; k < 3; k++) {
@@ -66,7 +67,7 @@ static void rays_span_the_field_of_view(void **st)
 {
     (void)st;
     const double fov = 50.0 * GLM_PI / 180.0;
-    camera c = camera_look_at((vec3){0, 0, 0}, (vec3){0, 0, -1}, (float)fov);
+    camera c = camera_look_at((double[3]){0, 0, 0}, (double[3]){0, 0, -1}, (float)fov);
     const int w = 97, h = 61; /* odd: the centre pixel's centre is the image centre */
     vec3 d;
     camera_ray(&c, w, h, 48, 30, d);
@@ -88,7 +89,7 @@ static void rays_span_the_field_of_view(void **st)
 static void moving_and_turning(void **st)
 {
     (void)st;
-    camera c = camera_look_at((vec3){0, 1, 0}, (vec3){0, 1, -1}, 1.0f);
+    camera c = camera_look_at((double[3]){0, 1, 0}, (double[3]){0, 1, -1}, 1.0f);
     camera_input fwd = {.move = {0, 0, 1}};
     camera_update(&c, &fwd, 0.5f, 2.0f, 0.01f);
     assert_near(c.position[2], -1.0, TOL);
@@ -107,8 +108,13 @@ static void moving_and_turning(void **st)
     assert_near(c.pitch, -CAMERA_MAX_PITCH, TOL);
 }
 
-/* Exact distance to a field of spheres and boxes (double): the safe-flight test's world. */
-static double world(const double p[3])
+/* The worlds the slide rule flies through, one per kind of program, each a distance bound in double
+ * with an exact inside test: solids (csg: spheres, boxes and a thin wall, exact distances), a fractal
+ * (the Mandelbulb: a distance estimate, a bound at its step factor 0.9; inside = the orbit stays
+ * bounded) and a terrain (y − h(x, z) over the slope bound: a Lipschitz bound; inside = below h). */
+typedef enum world_kind { WORLD_SOLIDS, WORLD_FRACTAL, WORLD_TERRAIN, WORLD_PLANE } world_kind;
+
+static double solids(const double p[3])
 {
     static const double SPHERES[][4] = {{0, 0, 0, 1}, {3, 0.5, -2, 0.7}, {-2.5, 1, 1.5, 0.4}, {0.5, -3, 0.5, 1.5}};
     double d = INFINITY;
@@ -122,67 +128,182 @@ static double world(const double p[3])
     return fmin(d, sqrt(out) + fmin(in, 0));
 }
 
+enum { BULB_ITERATIONS = 10 };
+static const double BULB_POWER = 8, BULB_STEP = 0.9, BULB_BOUND = 1.6;
+
+/* The Mandelbulb's estimate ½ ln r · r / dr (White and Nylander's triplex power, Y up), with whether
+ * the orbit stayed bounded (inside). */
+static double bulb(const double c[3], bool *inside)
+{
+    double z[3] = {c[0], c[1], c[2]}, dr = 1, r = 0;
+    for (int i = 0; i < BULB_ITERATIONS; i++) {
+        r = sqrt(z[0] * z[0] + z[1] * z[1] + z[2] * z[2]);
+        if (r > 2)
+            break;
+        double theta = r > 0 ? acos(fmin(fmax(z[1] / r, -1), 1)) * BULB_POWER : 0;
+        double phi = atan2(z[2], z[0]) * BULB_POWER, rn = pow(r, BULB_POWER);
+        dr = BULB_POWER * pow(r, BULB_POWER - 1) * dr + 1;
+        z[0] = rn * sin(theta) * cos(phi) + c[0];
+        z[1] = rn * cos(theta) + c[1];
+        z[2] = rn * sin(theta) * sin(phi) + c[2];
+    }
+    r = sqrt(z[0] * z[0] + z[1] * z[1] + z[2] * z[2]);
+    *inside = r <= 2;
+    return *inside ? 0 : 0.5 * log(r) * r / dr;
+}
+
+static double terrain_height(double x, double z) { return 0.6 * sin(1.3 * x) * cos(0.9 * z) + 0.25 * sin(3.1 * x + 2.3 * z); }
+/* |∇h| ≤ 0.6 · √(1.3² + 0.9²) + 0.25 · √(3.1² + 2.3²) < 1.95: the vertical gap over √(1 + 1.95²) bounds the distance */
+static const double TERRAIN_SLOPE = 1.95;
+
+static double world(world_kind k, const double p[3])
+{
+    bool inside;
+    switch (k) {
+    case WORLD_SOLIDS: return solids(p);
+    case WORLD_FRACTAL: /* outside the bounding sphere its distance, as the shader's map() (the estimate is no bound far out) */
+        return camera_norm(p) > BULB_BOUND + 0.1 ? camera_norm(p) - BULB_BOUND : bulb(p, &inside) * BULB_STEP;
+    case WORLD_TERRAIN: return (p[1] - terrain_height(p[0], p[2])) / sqrt(1 + TERRAIN_SLOPE * TERRAIN_SLOPE);
+    case WORLD_PLANE: return p[1];
+    }
+    return 0;
+}
+
+static bool world_inside(world_kind k, const double p[3])
+{
+    bool inside = false;
+    if (k == WORLD_FRACTAL)
+        bulb(p, &inside);
+    else
+        inside = world(k, p) <= 0;
+    return inside;
+}
+
+/* The renderer's probe: the distance at the float-rounded point, as a float (the GPU's numbers). */
+static void probe(void *ctx, const double *pts, int n, float *out)
+{
+    world_kind k = *(const world_kind *)ctx;
+    for (int i = 0; i < n; i++) {
+        double q[3] = {(float)pts[3 * i], (float)pts[3 * i + 1], (float)pts[3 * i + 2]};
+        out[i] = (float)world(k, q);
+    }
+}
+
 static double frand(unsigned *seed)
 {
     *seed = *seed * 1664525u + 1013904223u;
     return (*seed >> 8) / 16777216.0;
 }
 
-/* 1,000 random flights of 200 frames with huge random steps (up to 50 m a frame, the way Shift and a
- * scroll-wheel can ask), in float as the window flies: no flight ever ends a frame inside a solid or
- * crosses one between frames (checked along each step at 1,000 points). */
-static void safe_flight_never_enters_a_solid(void **st)
+/* 1,000 random flights of 200 frames per world, half the steps aimed at the solids, with steps at
+ * every scale from 1e-6 of the world's size to 50 times it (the way Shift and a scroll-wheel can ask): no
+ * flight ever ends a frame inside a solid or crosses one between frames (checked along both legs of
+ * each step's path at CHECKS points each with the exact inside test). */
+static void slide_never_enters_a_solid(void **st)
+{
+    enum { CHECKS = 250 };
+    (void)st;
+    const world_kind kinds[] = {WORLD_SOLIDS, WORLD_FRACTAL, WORLD_TERRAIN};
+    const double size[] = {6, 1.5, 6};
+    for (int w = 0; w < 3; w++) {
+        world_kind k = kinds[w];
+        unsigned seed = 42;
+        int crossings = 0, steps = 0;
+        double closest = INFINITY, kept = 0;
+        for (int f = 0; f < 1000; f++) {
+            double pos[3];
+            do {
+                for (int i = 0; i < 3; i++)
+                    pos[i] = (2 * frand(&seed) - 1) * size[w];
+            } while (world(k, pos) <= 0.01 * size[w]);
+            for (int s = 0; s < 200; s++) {
+                /* log-uniform lengths from 1e-6 to 50 sizes, half of them aimed at the solids near the origin */
+                double from[3] = {pos[0], pos[1], pos[2]}, to[3], dir[3];
+                double len = size[w] * pow(10, -6 + 7.7 * frand(&seed)), aim = frand(&seed) < 0.5 ? 1 : 0;
+                for (int i = 0; i < 3; i++)
+                    dir[i] = (2 * frand(&seed) - 1) - aim * from[i] / fmax(camera_norm(from), 1e-9);
+                double dl = fmax(camera_norm(dir), 1e-9);
+                for (int i = 0; i < 3; i++)
+                    to[i] = from[i] + len * dir[i] / dl;
+                double corner[3];
+                kept += camera_slide(from, to, 1.0f, camera_resolution(from, false), probe, &k, corner);
+                for (int j = 1; j <= 2 * CHECKS; j++) { /* the path: from → corner → to */
+                    double q[3], u = (j % CHECKS) / (double)CHECKS;
+                    const double *a = j <= CHECKS ? from : corner, *b = j <= CHECKS ? corner : to;
+                    for (int i = 0; i < 3; i++)
+                        q[i] = a[i] + (b[i] - a[i]) * (j % CHECKS == 0 ? 1.0 : u);
+                    if (world_inside(k, q)) {
+                        fprintf(stderr, "  entered at %d/(2 x CHECKS) of a %.3g step from %.9g %.9g %.9g (bound there %.3g)\n", j,
+                                len, from[0], from[1], from[2], world(k, from));
+                        crossings++;
+                        break;
+                    }
+                }
+                closest = fmin(closest, world(k, to));
+                memcpy(pos, to, sizeof pos);
+                steps++;
+            }
+        }
+        fprintf(stderr, "  world %d: %d steps in 1000 flights: %d entered a solid; closest approach %.3g; mean kept %.3f\n",
+                w, steps, crossings, closest, kept / steps);
+        assert_int_equal(crossings, 0);
+        assert_true(closest > 0);
+    }
+}
+
+/* Sliding: a step never stalls near a surface. 10 µm above the plane y = 0, a step of 5 cm that leaves
+ * it at 45° keeps ≥ 90 % of its length (the two-ball rule kept 6e-5 of it); one along the surface at
+ * the skin's clearance keeps all of it; one into the surface at 30° keeps its part along the surface
+ * and stops at the skin; and after that, backing away is free. */
+static void slide_never_stalls(void **st)
 {
     (void)st;
-    unsigned seed = 42;
-    int crossings = 0, steps = 0;
-    double closest = INFINITY;
-    for (int f = 0; f < 1000; f++) {
-        vec3 pos;
-        double p[3];
-        do {
-            for (int i = 0; i < 3; i++)
-                pos[i] = (float)(12 * frand(&seed) - 6), p[i] = pos[i];
-        } while (world(p) <= 0.05);
-        for (int k = 0; k < 200; k++) {
-            vec3 from, to;
-            glm_vec3_copy(pos, from);
-            double len = 50 * pow(frand(&seed), 3);
-            for (int i = 0; i < 3; i++)
-                to[i] = from[i] + (float)(len * (2 * frand(&seed) - 1));
-            double here[3] = {from[0], from[1], from[2]}, there[3] = {to[0], to[1], to[2]};
-            camera_clamp_step(from, to, (float)world(here), (float)world(there));
-            for (int j = 1; j <= 1000; j++) {
-                double q[3];
-                for (int i = 0; i < 3; i++)
-                    q[i] = (double)from[i] + ((double)to[i] - (double)from[i]) * (double)j / 1000.0;
-                if (world(q) <= 0) {
-                    crossings++;
-                    break;
-                }
-            }
-            double end[3] = {to[0], to[1], to[2]};
-            closest = fmin(closest, world(end));
-            glm_vec3_copy(to, pos);
-            steps++;
-        }
+    world_kind k = WORLD_PLANE;
+    const double L = 0.05, res = 1e-9;
+    for (int a = 1; a < 36; a++) { /* away from the surface at 5° … 85° off it */
+        double ang = a * 2.5 * GLM_PI / 180, from[3] = {0.3, 1e-5, -0.2};
+        double to[3] = {from[0] + L * cos(ang), from[1] + L * sin(ang), from[2]};
+        float kept = camera_slide(from, to, 1.0f, res, probe, &k, NULL);
+        if (kept < 0.9f)
+            fprintf(stderr, "  at %.1f degrees: kept %.4f\n", ang * 180 / GLM_PI, (double)kept);
+        if (fabs(ang - GLM_PI / 4) < 1e-9)
+            fprintf(stderr, "  10 um from a plane, a 5 cm step at 45 degrees off it keeps %.4f\n", (double)kept);
+        assert_true(kept >= 0.9f);
     }
-    fprintf(stderr, "  %d steps in 1000 flights: %d entered a solid; closest approach %.3g m\n", steps, crossings,
-            closest);
-    assert_int_equal(crossings, 0);
-    assert_true(closest > 0);
+    /* along the surface at the skin's clearance: all of it */
+    double from[3] = {0, CAMERA_SKIN * L, 0}, to[3] = {L, CAMERA_SKIN * L, 0};
+    assert_true(camera_slide(from, to, 1.0f, res, probe, &k, NULL) >= 0.999f);
+    /* into it at 30° from 1 m: the part along it is kept, the height stops at the skin */
+    double hi[3] = {0, 1, 0}, in[3] = {2 * cos(GLM_PI / 6), 1 - 2 * sin(GLM_PI / 6), 0};
+    camera_slide(hi, in, 1.0f, res, probe, &k, NULL);
+    assert_true(fabs(in[0] - 2 * cos(GLM_PI / 6)) < 1e-6 && fabs(in[1] - CAMERA_SKIN * 2) < 1e-6);
+    /* stuck at 4 µm in front of a wall (the glass sphere's case): straight back and sideways move */
+    double near[3] = {0, 4e-6, 0}, back[3] = {0, 0.067, 0}, side[3] = {0.067, 4e-6, 0};
+    assert_true(camera_slide(near, back, 1.0f, res, probe, &k, NULL) >= 0.999f);
+    double near2[3] = {0, 4e-6, 0};
+    float sideways = camera_slide(near2, side, 1.0f, res, probe, &k, NULL);
+    fprintf(stderr, "  4 um from a plane, a 6.7 cm step along it keeps %.2g (the skin: %.2g m)\n", (double)sideways,
+            CAMERA_SKIN * 0.067);
     /* inside (or unknown) the move is free, so a camera can get out; far away is clamped to the range */
-    vec3 a = {0, 0, 0}, b = {5, 0, 0};
-    assert_true(camera_clamp_step(a, b, -0.5f, 1.0f) == 1.0f && b[0] == 5.0f);
-    /* at 1e-5 from a surface (the plane y = 0) and moving straight away from it: allowed */
-    vec3 c = {0, 1e-5f, 0}, d = {0, 2, 0};
-    assert_true(camera_clamp_step(c, d, 1e-5f, 2.0f) == 1.0f);
-    /* a step past a thin wall, both ends free by 0.1: refused, shortened to 0.9 of the free ball */
-    vec3 e = {0, 0, 0}, g = {1, 0, 0};
-    assert_true(fabsf(camera_clamp_step(e, g, 0.1f, 0.1f) - 0.09f) < 1e-4f);
-    vec3 far = {1e9f, 0, 0}, centre = {1, 0, 0};
+    double a[3] = {0, -0.5, 0}, b[3] = {5, -0.5, 0};
+    assert_true(camera_slide(a, b, 1.0f, res, probe, &k, NULL) == 1.0f && b[0] == 5.0);
+    double far[3] = {1e9, 0, 0}, centre[3] = {1, 0, 0};
     camera_clamp_range(far, centre, 100);
-    assert_true(fabsf(far[0] - 101.0f) < 1e-3f);
+    assert_true(fabs(far[0] - 101.0) < 1e-9);
+}
+
+/* A deep zoom's camera keeps a double's digits: a step of 1e-13 at |p| = 1 moves it (a float cannot). */
+static void deep_positions(void **st)
+{
+    (void)st;
+    camera c = camera_look_at((double[3]){1, 0, 0}, (double[3]){1, 0, -1}, 1.0f);
+    camera_input fwd = {.move = {0, 0, 1}};
+    camera_update(&c, &fwd, 1.0f, 1e-13f, 0.0f);
+    assert_true(c.position[2] < 0 && fabs(c.position[2] + 1e-13) < 1e-20);
+    assert_false(camera_degenerate((double[3]){1, 0, 0}, (double[3]){1, 0, 1e-13}));
+    assert_true(camera_degenerate((double[3]){1, 0, 0}, (double[3]){1 + 2.2e-16, 0, 0}));
+    assert_true(camera_resolution((double[3]){1, 0, 0}, true) < 1e-14);
+    assert_true(camera_resolution((double[3]){1, 0, 0}, false) > 1e-7);
 }
 
 int main(void)
@@ -193,7 +314,9 @@ int main(void)
         cmocka_unit_test(basis_is_orthonormal_and_level),
         cmocka_unit_test(rays_span_the_field_of_view),
         cmocka_unit_test(moving_and_turning),
-        cmocka_unit_test(safe_flight_never_enters_a_solid),
+        cmocka_unit_test(slide_never_enters_a_solid),
+        cmocka_unit_test(slide_never_stalls),
+        cmocka_unit_test(deep_positions),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -95,10 +95,11 @@ static void size_and_vec_parsers(void **st)
     assert_false(cli_parse_size("x61", &w, &h));
     assert_false(cli_parse_size("97x", &w, &h));
     assert_false(cli_parse_size("97 x61", &w, &h));
-    float v[3];
+    double v[3];
     assert_true(cli_parse_vec3("-1e-3,2,3.25", v));
-    assert_near(v[0], -1e-3f, 0);
-    assert_near(v[2], 3.25f, 0);
+    assert_true(v[0] == -1e-3 && v[2] == 3.25);
+    /* a deep zoom's camera keeps a double's digits (a float would round it to 0.3) */
+    assert_true(cli_parse_vec3("0.30000000000001,0,0", v) && v[0] != 0.3 && fabs(v[0] - 0.30000000000001) < 1e-16);
     assert_false(cli_parse_vec3("1,,3", v));
     assert_false(cli_parse_vec3("1e30,1e30,1e30", v)); /* said "same point" as its look-at before */
     assert_true(cli_parse_vec3("1e7,-1e7,0", v));

@@ -404,7 +404,7 @@ static const char DECLARED[] =
     "uniform float uScale;      // @param 2 [-4, 4] not (-1.05, 1.05) the scale\n"
     "uniform int uFolds;        // @param 3 [1, 8] folds\n"
     "uniform bool uSwapAxes;    // @param true swap them\n"
-    "uniform vec3 uJulia;       // @param 0.1,-0.2,0.3 [-2, 2] c\n"
+    "uniform vec3 uSeed;        // @param 0.1,-0.2,0.3 [-2, 2] c\n"
     "uniform vec3 uTint;        // @color 0.9,0.5,0.1 a colour\n"
     "uniform float uInner;      // @param 0.5 [0.01, 10] inner\n"
     "uniform float uOuter;      // @param 1 [0.01, 10] outer\n"
@@ -431,7 +431,7 @@ static void formula_declarations(void **st)
     assert_true(q->has_gap && q->gap_lo == -1.05f && q->gap_hi == 1.05f && q->lo == -4 && q->hi == 4);
     assert_string_equal(q->uniform, "uScale");
     assert_string_equal(q->description, "the scale");
-    q = formula_find(&f, "julia");
+    q = formula_find(&f, "seed");
     assert_int_equal(q->type, FORMULA_VEC3);
     assert_near(q->def[1], -0.2, 1e-7);
     assert_int_equal(formula_find(&f, "tint")->type, FORMULA_COLOR);
@@ -509,7 +509,8 @@ static void formula_scenes(void **st)
     expect_error(BOX, order, 2, "fractal.min_radius must be below fixed_radius");
     const char *unknown[] = {"fractal.power=8"};
     expect_error(BOX, unknown, 1, "unknown key 'power' (allowed here: formula, iterations, bound_radius, palette, "
-                                  "glow, glow_color, scale, min_radius, fixed_radius, fold_limit)");
+                                  "glow, glow_color, julia, julia_c, hybrid, steps, precision, scale, min_radius, "
+                                  "fixed_radius, fold_limit)");
     /* the formula switched by an override: its own keys apply */
     const char *bulb[] = {"fractal.formula=mandelbulb", "fractal.power=6"};
     assert_true(load(BOX, bulb, 2, &s, &e));
@@ -524,14 +525,72 @@ static void formula_scenes(void **st)
     /* the Mandelbulb's power as its file declares it: 0 and 1 have no bulb (issue 24's mutant accepted 0) */
     const char *power0[] = {"fractal.power=0"};
     expect_error("{\"program\": \"mandelbulb\"}", power0, 1, "fractal.power: expected a number from 2 to 16");
-    const char *julia[] = {"fractal.julia=[0.1, 0.2, 0.3]", "fractal.iterations=65"};
-    expect_error("{\"program\": \"julia_bulb\"}", julia, 2, "fractal.iterations: expected a number from 1 to 64");
+    const char *julia[] = {"fractal.julia=true", "fractal.julia_c=[0.1, 0.2, 0.3]", "fractal.iterations=65"};
+    expect_error("{\"program\": \"mandelbulb\"}", julia, 3, "fractal.iterations: expected a number from 1 to 64");
+    /* Julia sets and hybrids: step formulas only, and a hybrid's own keys are its formula's */
+    const char *julia_menger[] = {"fractal.julia=true"};
+    expect_error("{\"program\": \"menger\"}", julia_menger, 1, "julia, julia_c and steps belong to step formulas");
+    const char *hybrid_menger[] = {"fractal.hybrid.formula=menger"};
+    expect_error(BOX, hybrid_menger, 1, "fractal.hybrid.formula: menger has its own estimate (no @de)");
+    const char *hybrid_self[] = {"fractal.hybrid.formula=mandelbox"};
+    expect_error(BOX, hybrid_self, 1, "mandelbox with itself is mandelbox with more iterations");
+    const char *hybrid_key[] = {"fractal.hybrid.formula=mandelbulb", "fractal.hybrid.scale=2"};
+    expect_error(BOX, hybrid_key, 2, "fractal.hybrid.scale: unknown key 'scale' (allowed here: formula, steps, power, bailout)");
+    const char *hybrid_range[] = {"fractal.hybrid.formula=mandelbulb", "fractal.hybrid.power=40"};
+    expect_error(BOX, hybrid_range, 2, "fractal.hybrid.power: expected a number from 2 to 16");
+    const char *hybrid[] = {"fractal.hybrid.formula=mandelbulb", "fractal.hybrid.power=6", "fractal.steps=2"};
+    assert_true(load(BOX, hybrid, 3, &s, &e));
+    assert_true(s.fractal.has_hybrid && s.fractal.steps[0] == 2 && s.fractal.steps[1] == 1);
+    assert_near(s.fractal.hybrid_values[0][0], 6, 0);
+    assert_near(s.fractal.escape, 64, 0); /* a log hybrid's escape: the larger radius, at most 64 */
+    assert_non_null(strstr(s.map_glsl, "#define uPower " HYBRID_PREFIX "uPower"));
+    scene_free(&s);
+    /* precision: double needs a formula written for it, and a whole power for the bulb */
+    const char *deep_surf[] = {"fractal.precision=double"};
+    expect_error("{\"program\": \"amazing_surf\"}", deep_surf, 1, "fractal.precision: double needs a formula written for it");
+    const char *deep_power[] = {"fractal.precision=double", "fractal.power=7.5"};
+    expect_error("{\"program\": \"mandelbulb\"}", deep_power, 2, "fractal.precision: double needs a formula written for it (@deep) with whole power");
+    const char *deep_ok[] = {"fractal.precision=double", "fractal.power=7"};
+    assert_true(load("{\"program\": \"mandelbulb\"}", deep_ok, 2, &s, &e) && s.fractal.deep_now);
+    scene_free(&s);
+}
+
+/* The new directives: a step formula declares @de and @escape together; @deep names real parameters. */
+static void formula_step_declarations(void **st)
+{
+    (void)st;
+    formula f;
+    err_t e;
+    static const char STEP[] = "// @formula s\n// @de log\n// @escape 2 * bailout\n// @trap 0 (bailout / 2)\n"
+                               "// @deep whole power\nuniform float uPower; // @param 8 [2, 16] n\n"
+                               "uniform float uBailout; // @param 2 [1, 9] b\n";
+    if (!formula_parse(STEP, "s.glsl", &f, &e))
+        fail_msg("%s", e.msg);
+    assert_true(f.step_formula && f.de_log && f.deep);
+    assert_string_equal(f.escape, "2 * bailout");
+    assert_string_equal(f.trap[0], "0");
+    assert_string_equal(f.trap[1], "(bailout / 2)");
+    assert_string_equal(f.deep_whole, "power");
+    static const struct { const char *text, *error; } BAD[] = {
+        {"// @formula s\n// @de log\n", "s.glsl: a step formula (formulaStep) declares both @de and @escape"},
+        {"// @formula s\n// @escape 2\n", "declares both @de and @escape"},
+        {"// @formula s\n// @de quadratic\n", "s.glsl:2: expected @de log"},
+        {"// @formula s\n// @trap 0\n", "s.glsl:2: expected @trap LO HI"},
+        {"// @formula s\n// @deep whole nosuch\n", "@deep whole nosuch: no such parameter"},
+        {"// @formula s\n// @deep maybe\n", "s.glsl:2: expected @deep, or @deep whole KEY"},
+    };
+    for (size_t i = 0; i < sizeof BAD / sizeof BAD[0]; i++) {
+        assert_false(formula_parse(BAD[i].text, "s.glsl", &f, &e));
+        if (!strstr(e.msg, BAD[i].error))
+            fail_msg("'%s' does not mention '%s'", e.msg, BAD[i].error);
+    }
 }
 
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(formula_declarations),
+        cmocka_unit_test(formula_step_declarations),
         cmocka_unit_test(formula_scenes),
         cmocka_unit_test(shipped_csg_scene),
         cmocka_unit_test(minimal_defaults),

@@ -1,6 +1,7 @@
 /* The tables every concept is generated from: QUALITY_KNOBS (app/scene/quality.h), PROGRAM_LIST
  * (app/scene/program.h) and the named uniforms the scene module uploads. Each check compares the generated
  * parts with each other or with the shader sources, so a row that drifts from its uses fails here. */
+#include <dirent.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -117,34 +118,29 @@ static void programs_registry(void **st)
 
 /* ---- uniforms: every name the scene module uploads is declared by some shader ---------------------- */
 
+/* Every shader file, concatenated: each .glsl under shaders/ and its folders (one level). */
 static char *all_shaders(void)
 {
-    static const char *const FILES[] = {
-        "common/material.glsl", "common/lights.glsl", "common/fog.glsl",      "common/env.glsl",
-        "common/relief.glsl",   "common/sdf_main.glsl", "fractal/common.glsl", "terrain/terrain.glsl",
-        "terrain/noise.glsl",   "terrain/layers.glsl",  "common/droplets.glsl"};
+    static const char *const FOLDERS[] = {"", "common", "fractal", "terrain", "csg"};
     strbuf all = {0};
-    /* every formula's own file: its declared parameters are uniforms it declares */
-    strbuf formulas = {0};
-    formula_list(&formulas);
-    for (char *name = strtok(formulas.data, "\n"); name; name = strtok(NULL, "\n")) {
-        char path[PATH_MAX_LEN], *text;
-        err_t e;
-        snprintf(path, sizeof path, "%s/shaders/fractal/%s.glsl", util_data_dir(), name);
-        if (!util_read_file(path, &text, NULL, &e))
-            fail_msg("%s", e.msg);
-        sb_append(&all, text);
-        free(text);
-    }
-    sb_free(&formulas);
-    for (size_t i = 0; i < sizeof FILES / sizeof FILES[0]; i++) {
-        char path[PATH_MAX_LEN], *text;
-        err_t e;
-        snprintf(path, sizeof path, "%s/shaders/%s", util_data_dir(), FILES[i]);
-        if (!util_read_file(path, &text, NULL, &e))
-            fail_msg("%s", e.msg);
-        sb_append(&all, text);
-        free(text);
+    for (size_t f = 0; f < sizeof FOLDERS / sizeof FOLDERS[0]; f++) {
+        char dir[PATH_MAX_LEN];
+        snprintf(dir, sizeof dir, "%s/shaders/%s", util_data_dir(), FOLDERS[f]);
+        DIR *d = opendir(dir);
+        assert_non_null(d);
+        for (struct dirent *e; (e = readdir(d));) {
+            size_t n = strlen(e->d_name);
+            if (n < 5 || (strcmp(e->d_name + n - 5, ".glsl") && strcmp(e->d_name + n - 5, ".frag")))
+                continue;
+            char path[PATH_MAX_LEN * 2], *text;
+            err_t err;
+            snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
+            if (!util_read_file(path, &text, NULL, &err))
+                fail_msg("%s", err.msg);
+            sb_append(&all, text);
+            free(text);
+        }
+        closedir(d);
     }
     return all.data;
 }
@@ -159,6 +155,9 @@ static void check_declared(void *user, const char *name, uniform_type type, int 
     (void)data;
     seen *s = user;
     s->count++;
+    /* a hybrid's second formula's uniforms: its own declarations, renamed by #define in program.glsl */
+    if (!strncmp(name, HYBRID_PREFIX, strlen(HYBRID_PREFIX)))
+        name += strlen(HYBRID_PREFIX);
     assert_true(comps >= 1 && comps <= 4 && count >= 0);
     assert_true(type == UNIFORM_FLOAT || type == UNIFORM_INT);
     /* declared on a line "uniform TYPE a, b[N];": the name as a whole word after the type */

@@ -721,11 +721,11 @@ static void out_of_steps_is_not_a_miss(void **st)
             scene a, b;
             load_text_file(SCENES[k], sa, 2, &a);
             load_text_file(SCENES[k], sb, 3, &b);
-            float eye[3], at[3]; /* grazing: just above the ground at the look-at point, level */
+            double eye[3], at[3]; /* grazing: just above the ground at the look-at point, level */
             for (int i = 0; i < 3; i++)
                 eye[i] = a.cam_position[i], at[i] = a.cam_look_at[i];
             camera cams[2] = {camera_look_at_deg(eye, at, a.cam_fov_deg)};
-            at[1] = eye[1] = a.cam_position[1] * 0.25f + a.cam_look_at[1] * 0.75f;
+            at[1] = eye[1] = (float)(a.cam_position[1] * 0.25 + a.cam_look_at[1] * 0.75);
             cams[1] = camera_look_at_deg(eye, at, a.cam_fov_deg);
             int missed = 0, exhausted = 0;
             for (int c = 0; c < 2; c++) {

@@ -16,6 +16,7 @@
 #include "gpu/render_scene.h"
 #include "gpu/res_droplets.h"
 #include "gpu/res_heightfield.h"
+#include "gpu/gpu.h"
 #include "gpu/shader.h"
 
 enum { NUM_TARGETS = 3 };
@@ -41,6 +42,7 @@ static struct {
     GLuint preview_fbo, preview_tex; /* the last moving image, shown where a still one has no sample yet */
     int preview_w, preview_h;
     camera cam;
+    double origin[3]; /* a deep zoom's: the world position the shader's coordinates are relative to */
     unsigned runtime_effects; /* effects switched on at run time (bits as in effect.h) */
 } state = {.runtime_effects = ~0u};
 
@@ -188,6 +190,54 @@ void render_begin(const camera *c)
     state.cam = *c;
     state.samples = 0;
     state.band_done = 0;
+    const scene *s = render_scene_current();
+    bool deep = s && s->fractal.deep_now;
+    for (int i = 0; i < 3; i++)
+        state.origin[i] = deep ? c->position[i] : 0.0;
+}
+
+void render_origin(double origin[3]) { memcpy(origin, state.origin, sizeof state.origin); }
+
+void render_set_origin(const double origin[3]) { memcpy(state.origin, origin, sizeof state.origin); }
+
+void render_origin_uniforms(GLuint prog)
+{
+    GLint o = glGetUniformLocation(prog, "uOrigin");
+    if (o < 0) /* a float program: its positions are world positions */
+        return;
+    glUniform3d(o, state.origin[0], state.origin[1], state.origin[2]);
+    glUniform3f(glGetUniformLocation(prog, "uOriginApprox"), (float)state.origin[0], (float)state.origin[1],
+                (float)state.origin[2]);
+    glUniform1f(glGetUniformLocation(prog, "uOriginFloor"), (float)camera_resolution(state.origin, true));
+}
+
+bool render_fit_precision(scene *s, const camera *c, int height, err_t *err)
+{
+    if (s->program != PROGRAM_FRACTAL || !s->fractal.deep_ok || s->fractal.precision != PRECISION_AUTO)
+        return true;
+    bool deep = s->fractal.deep_now;
+    double origin[3] = {0, 0, 0};
+    float p[3], d[2];
+    for (int i = 0; i < 3; i++) {
+        origin[i] = deep ? c->position[i] : 0.0;
+        p[i] = (float)(c->position[i] - origin[i]);
+    }
+    render_set_origin(origin);
+    if (!render_probe(s, NULL, p, 1, d, err))
+        return false;
+    bool want = scene_needs_double(s, fabs((double)d[0]), c, height, deep);
+    if (want == deep)
+        return true;
+    if (want && !render_has_fp64())
+        return err_set(err, "this view needs double precision (a deep zoom), which this OpenGL (%s) lacks "
+                            "(GL_ARB_gpu_shader_fp64): the image stops resolving detail here", gpu_describe());
+    s->fractal.deep_now = want;
+    return render_set_scene(s, NULL, err);
+}
+
+bool render_has_fp64(void)
+{
+    return epoxy_gl_version() >= 40 || epoxy_has_gl_extension("GL_ARB_gpu_shader_fp64");
 }
 
 int render_samples(void) { return state.samples; }
@@ -271,7 +321,11 @@ static void sample_rows(int y0, int y1)
     camera_basis b = camera_get_basis(&state.cam);
     glUniform2f(loc("uResolution"), (float)state.full_width, (float)state.full_height);
     glUniform2f(loc("uTileOffset"), (float)state.tile_x, (float)state.tile_y);
-    glUniform3fv(loc("uCamPos"), 1, state.cam.position);
+    float eye[3];
+    for (int i = 0; i < 3; i++) /* relative to the origin: 0 in a deep zoom, the world position otherwise */
+        eye[i] = (float)(state.cam.position[i] - state.origin[i]);
+    glUniform3fv(loc("uCamPos"), 1, eye);
+    render_origin_uniforms(state.prog);
     glUniform3fv(loc("uCamForward"), 1, b.forward);
     glUniform3fv(loc("uCamRight"), 1, b.right);
     glUniform3fv(loc("uCamUp"), 1, b.up);

@@ -42,6 +42,19 @@ void render_active_size(int *width, int *height);
  * whole image. Call before render_begin. */
 void render_set_window(int full_width, int full_height, int left, int top);
 void render_begin(const camera *c); /* new view: restart accumulation */
+
+/* Deep zoom. A fractal whose formula compiles in double (formula.h @deep) switches to double where a
+ * float cannot resolve the view (scene_needs_double). The shader then works in coordinates relative
+ * to an origin, the eye, held here in double (render_begin sets it); probes take their points
+ * relative to it too (0 everywhere else). render_fit_precision probes the distance at the camera and
+ * sets s->fractal.deep_now as the view needs, re-setting the scene when it changes (false: the GL
+ * lacks doubles, or a GL error). */
+void render_origin(double origin[3]);
+void render_set_origin(const double origin[3]);
+bool render_fit_precision(scene *s, const camera *c, int height, err_t *err);
+bool render_has_fp64(void);
+/* Uploads the origin to prog when it reads one (a double program). */
+void render_origin_uniforms(GLuint prog);
 void render_sample(void);           /* add one sample */
 int render_samples(void);
 /* The next `rows` rows (from the top) of the current sample: the window spreads a full-size sample

@@ -25,6 +25,7 @@ static bool probe_run(const scene *s, const char *frag, const char *extra_define
     if (!prog)
         return false;
     render_scene_uniforms(prog, s);
+    render_origin_uniforms(prog);
     render_scene_bind();
     GLint max_side = 0;
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_side);

@@ -242,8 +242,8 @@ static bool make_references(const scene *base, metrics *convergence, double *ref
     camera start = camera_look_at_deg(base->cam_position, base->cam_look_at, base->cam_fov_deg);
     for (int v = 0; v < VIEWS; v++) {
         /* turn the camera about the vertical through the look-at point */
-        float a = glm_rad((float)v * VIEW_TURN_DEG), ca = cosf(a), sa = sinf(a);
-        float d[3], pos[3];
+        double a = glm_rad((float)v * VIEW_TURN_DEG), ca = cos(a), sa = sin(a);
+        double d[3], pos[3];
         for (int k = 0; k < 3; k++)
             d[k] = base->cam_position[k] - base->cam_look_at[k];
         pos[0] = base->cam_look_at[0] + ca * d[0] + sa * d[2];

@@ -37,11 +37,11 @@ static int cmp_double(const void *a, const void *b)
 
 static camera flight_camera(const scene *s, int frame)
 {
-    float f = (float)frame / (FLIGHT_FRAMES - 1), eye[3];
+    double f = (double)frame / (FLIGHT_FRAMES - 1), eye[3];
     for (int i = 0; i < 3; i++)
         eye[i] = s->cam_position[i] + DOLLY * f * (s->cam_look_at[i] - s->cam_position[i]);
     camera c = camera_look_at_deg(eye, s->cam_look_at, s->cam_fov_deg);
-    c.yaw += glm_rad(TURN_DEG) * f;
+    c.yaw += glm_rad(TURN_DEG) * (float)f;
     return c;
 }
 
@@ -91,7 +91,7 @@ static void reproject(history *hs, const camera *cam, const uint8_t *now, const 
             pixel_dir(cam, &b, x, y, w, h, d);
             bool sky = isinf(z);
             for (int k = 0; k < 3; k++) /* the point seen, relative to the old camera (sky: a direction) */
-                v[k] = sky ? d[k] : cam->position[k] + d[k] * z - hs->cam.position[k];
+                v[k] = sky ? d[k] : (float)(cam->position[k] - hs->cam.position[k]) + d[k] * z;
             float zf = glm_vec3_dot(v, pb.forward);
             if (zf <= 0)
                 continue;

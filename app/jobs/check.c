@@ -191,7 +191,10 @@ static bool check_rays(const scene *s, unsigned *seed, formula_check *c, err_t *
 
 bool check_formula(const scene *s, unsigned seed, formula_check *out, err_t *err)
 {
-    *out = (formula_check){.step = s->fractal.formula.step > 0 ? s->fractal.formula.step : 1.0};
+    /* a Julia set or a hybrid is not the formula its @step was measured for: the scene's own step factor */
+    bool mode = s->fractal.julia || s->fractal.has_hybrid;
+    *out = (formula_check){.step = mode ? s->quality.step_factor : s->fractal.formula.step > 0 ? s->fractal.formula.step : 1.0,
+                           .mode = mode};
     if (!program_is_fractal(s->program))
         return err_set(err, "%s: check-formula checks fractal formulas; this scene's program is %s", s->path,
                        program_name(s->program));
@@ -205,16 +208,20 @@ bool check_formula(const scene *s, unsigned seed, formula_check *out, err_t *err
 void check_describe(const scene *s, const formula_check *c, strbuf *out)
 {
     const formula *f = &s->fractal.formula;
-    sb_printf(out, "formula %s (%s): %s\n", f->name, f->file, c->ok ? "passes" : "FAILS");
+    sb_printf(out, "formula %s (%s)%s%s%s: %s\n", f->name, f->file, s->fractal.julia ? ", Julia set" : "",
+              s->fractal.has_hybrid ? ", hybrid with " : "", s->fractal.has_hybrid ? s->fractal.hybrid.name : "",
+              c->ok ? "passes" : "FAILS");
     sb_printf(out, "  finite: %d of %d estimates are NaN or Inf\n", c->nonfinite, c->points);
     sb_printf(out, "  bound: %d of %d rays met the surface; over %d samples the estimate / distance to the "
                    "crossing is at worst %.3f (99th percentile %.3f), above 1 at %d\n",
               c->crossing, c->rays, c->samples, c->worst, c->p99, c->over);
     if (c->worst > 1)
         sb_printf(out, "  worst at (%.4g, %.4g, %.4g)\n", c->worst_at[0], c->worst_at[1], c->worst_at[2]);
-    sb_printf(out, "  step factor: declared %.3g; every sample stays inside its crossing at %.3g%s\n", c->step,
-              c->suggested,
-              c->step * c->worst <= CHECK_TOLERANCE ? "" : ": set @step (and quality.step_factor) to it or lower");
+    sb_printf(out, "  step factor: %s %.3g; every sample stays inside its crossing at %.3g%s\n",
+              c->mode ? "the scene's (a Julia set or hybrid)" : "declared", c->step, c->suggested,
+              c->step * c->worst <= CHECK_TOLERANCE ? ""
+              : c->mode ? ": set quality.step_factor to it or lower"
+                        : ": set @step (and quality.step_factor) to it or lower");
     if (c->crossing == 0)
         sb_printf(out, "  no ray met the surface: check @bound and the parameters\n");
 }

@@ -30,7 +30,8 @@ typedef struct formula_check {
     double worst, p99;   /* the worst and the 99th-percentile ratio estimate / distance */
     double worst_at[3];  /* where the worst ratio was seen */
     double suggested;    /* the step factor that keeps every sample inside: min(1, 1 / worst) */
-    double step;         /* the step factor the formula declares (1 when it declares none) */
+    double step;         /* the step factor the formula declares (1 when it declares none), or the scene's */
+    bool mode;           /* a Julia set or a hybrid: checked at the scene's step factor */
     bool ok;
 } formula_check;
 

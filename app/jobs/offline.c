@@ -212,8 +212,11 @@ bool offline_render_current(const offline_desc *desc, err_t *err)
 {
     offline_desc dd = offline_desc_defaults(desc);
     const offline_desc *d = &dd;
-    if (!render_set_scene(d->scene, NULL, err)) /* the output was checked by the caller, before the GPU */
+    scene fit = *d->scene; /* a deep zoom: the precision the view needs (render_fit_precision) */
+    if (!render_set_scene(d->scene, NULL, err) || /* the output was checked by the caller, before the GPU */
+        !render_fit_precision(&fit, &d->cam, d->height, err))
         return false;
+    const char *precision = fit.fractal.deep_now ? ", double precision" : "";
     double t0 = util_now();
     int top = 0, rows = d->height;
     char tile[128] = "";
@@ -231,10 +234,11 @@ bool offline_render_current(const offline_desc *desc, err_t *err)
     if (!image_writer_finish(w, err))
         return false;
     if (!d->quiet && d->tile_count)
-        fprintf(stderr, "wrote %s (tile %d of %d: rows %d-%d of %dx%d, %d spp, %.2f s, %s)\n", d->output, d->tile_index,
-                d->tile_count, top, top + rows - 1, d->width, d->height, d->spp, util_now() - t0, gpu_describe());
+        fprintf(stderr, "wrote %s (tile %d of %d: rows %d-%d of %dx%d, %d spp%s, %.2f s, %s)\n", d->output,
+                d->tile_index, d->tile_count, top, top + rows - 1, d->width, d->height, d->spp, precision,
+                util_now() - t0, gpu_describe());
     else if (!d->quiet)
-        fprintf(stderr, "wrote %s (%dx%d, %d spp, %.2f s, %s)\n", d->output, d->width, d->height, d->spp,
+        fprintf(stderr, "wrote %s (%dx%d, %d spp%s, %.2f s, %s)\n", d->output, d->width, d->height, d->spp, precision,
                 util_now() - t0, gpu_describe());
     return true;
 }

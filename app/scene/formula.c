@@ -119,9 +119,54 @@ static bool param_line(const char *line, const char *at, formula_param *q, char 
     return true;
 }
 
+/* The directives of a formula's estimate: @escape, @de, @trap, @deep (formula.h). *handled: the
+ * directive was one of them; then a problem is written to why (empty: none). */
+static void estimate_directive(formula *f, const char *at, char *why, size_t n, bool *handled)
+{
+    const char *p;
+    *handled = true;
+    why[0] = '\0';
+    if (!strncmp(at, "@escape", 7)) {
+        snprintf(f->escape, sizeof f->escape, "%s", skip_space(at + 7));
+        if (!f->escape[0])
+            snprintf(why, n, "expected @escape EXPR: the radius beyond which orbits only grow");
+    } else if (!strncmp(at, "@de", 3) && (at[3] == ' ' || at[3] == '\t' || !at[3])) {
+        p = skip_space(at + 3);
+        if (strcmp(p, "log") && strcmp(p, "linear"))
+            snprintf(why, n, "expected @de log (orbits grow like a power) or @de linear (like a scale)");
+        f->step_formula = true;
+        f->de_log = !strcmp(p, "log");
+    } else if (!strncmp(at, "@trap", 5)) {
+        /* two expressions: split at the first space outside parentheses */
+        const char *q = skip_space(at + 5), *c = q;
+        for (int depth = 0; *c && (depth > 0 || (*c != ' ' && *c != '\t')); c++)
+            depth += *c == '(' ? 1 : *c == ')' ? -1 : 0;
+        const char *hi = skip_space(c);
+        if (c == q || !*hi || c - q >= FORMULA_EXPR_MAX) {
+            snprintf(why, n, "expected @trap LO HI: the orbit trap's values spread over the palette");
+            return;
+        }
+        snprintf(f->trap[0], sizeof f->trap[0], "%.*s", (int)(c - q), q);
+        snprintf(f->trap[1], sizeof f->trap[1], "%s", hi);
+    } else if (!strncmp(at, "@deep", 5)) {
+        f->deep = true;
+        p = skip_space(at + 5);
+        if (*p && strncmp(p, "whole ", 6))
+            snprintf(why, n, "expected @deep, or @deep whole KEY... (parameters that must be whole numbers there)");
+        else if (*p)
+            snprintf(f->deep_whole, sizeof f->deep_whole, "%s", skip_space(p + 6));
+    } else {
+        *handled = false;
+    }
+}
+
 /* One "// @..." directive on line `line` (text from the '@'). */
 static bool directive(formula *f, const char *line, const char *at, char *why, size_t n)
 {
+    bool handled;
+    estimate_directive(f, at, why, n, &handled);
+    if (handled)
+        return why[0] == '\0';
     const char *p;
     if (!strncmp(at, "@param", 6) || !strncmp(at, "@color", 6)) {
         if (f->param_count == FORMULA_MAX_PARAMS)
@@ -170,7 +215,8 @@ static bool directive(formula *f, const char *line, const char *at, char *why, s
         snprintf(r->message, sizeof r->message, "%.*s", (int)(close - msg - 1), msg + 1);
         f->require_count++;
     } else {
-        return snprintf(why, n, "unknown directive (known: @formula @iterations @bound @step @require @param @color)") < 0;
+        return snprintf(why, n, "unknown directive (known: @formula @iterations @bound @step @escape @de @trap @deep @require "
+                                "@param @color)") < 0;
     }
     return true;
 }
@@ -179,6 +225,8 @@ bool formula_parse(const char *text, const char *source, formula *f, err_t *err)
 {
     *f = (formula){.iterations = 1, .iterations_lo = 1, .iterations_hi = 1};
     snprintf(f->bound, sizeof f->bound, "2");
+    snprintf(f->trap[0], sizeof f->trap[0], "0");
+    snprintf(f->trap[1], sizeof f->trap[1], "1");
     int line = 1;
     for (const char *p = text; *p; line++) {
         const char *eol = strchr(p, '\n');
@@ -196,6 +244,18 @@ bool formula_parse(const char *text, const char *source, formula *f, err_t *err)
     }
     if (!f->summary[0])
         return err_set(err, "%s: no '// @formula' line: a formula file says what it is there", source);
+    if (f->step_formula != (f->escape[0] != 0))
+        return err_set(err, "%s: a step formula (formulaStep) declares both @de and @escape; a formula with its "
+                            "own formulaDE declares neither", source);
+    for (const char *k = f->deep_whole; *k;) { /* every key @deep names is a parameter */
+        size_t len = strcspn(k, " \t");
+        bool found = false;
+        for (int i = 0; i < f->param_count; i++)
+            found |= strlen(f->params[i].key) == len && !strncmp(f->params[i].key, k, len);
+        if (!found)
+            return err_set(err, "%s: @deep whole %.*s: no such parameter", source, (int)len, k);
+        k = skip_space(k + len);
+    }
     return true;
 }
 
@@ -320,6 +380,13 @@ void formula_describe(const formula *f, strbuf *out)
     }
     for (int i = 0; i < f->require_count; i++)
         sb_printf(out, "  requires %s %c %s\n", f->requires[i].lhs, f->requires[i].less ? '<' : '>', f->requires[i].rhs);
+    if (f->step_formula)
+        sb_printf(out, "  a step formula (z -> f(z) + c, estimate %s, escape radius %s): fractal.julia and "
+                       "fractal.julia_c draw its Julia sets; fractal.hybrid alternates it with another step formula\n",
+                  f->de_log ? "1/2 ln r r / dr" : "r / dr", f->escape);
+    if (f->deep)
+        sb_printf(out, "  compiles in double for a deep zoom (fractal.precision auto)%s%s\n",
+                  f->deep_whole[0] ? " with whole " : "", f->deep_whole);
 }
 
 const formula_param *formula_find(const formula *f, const char *key)

@@ -8,13 +8,31 @@
  *   // @bound 2 * size             radius of a sphere about the origin that holds the set, an
  *   //                             expression of the parameters (+ - * / ( ) abs sqrt min max)
  *   // @step 0.9                   the step factor its estimate needs (quality.step_factor)
+ *   // @trap 0.4 1.1               the orbit trap's values (two expressions) spread over the palette
  *   // @require min_radius < fixed_radius "min_radius must be below fixed_radius"
+ *   // @deep whole power           written against real/real3 (fractal/common.glsl), so it compiles
+ *   //                             in double for a deep zoom; "whole KEY..." names parameters that
+ *   //                             must be whole numbers there (the Mandelbulb's power)
  *   uniform float uPower;   // @param 8 [2, 16] the exponent n of z -> z^n + c
  *   uniform float uScale;   // @param 2 [-4, 4] not (-1.05, 1.05) the scale factor s
  *   uniform int uFolds;     // @param 3 [1, 8] folds per iteration
  *   uniform vec3 uJulia;    // @param 0.3,0.2,0.1 [-2, 2] the fixed c of the Julia set
  *   uniform bool uSwap;     // @param false swap x and z each iteration
  *   uniform vec3 uTint;     // @color 0.9,0.6,0.3 a colour (components 0..1)
+ *
+ * The estimate comes in one of two forms:
+ *   - its own: `real formulaDE(real3 p, out float trap)`, a distance bound at world point p and an
+ *     orbit trap (the Menger sponge, the kaleidoscopic and quaternion formulas);
+ *   - a step formula, z → f(z) + c: it declares `// @de log` (orbits grow like a power: the
+ *     estimate is ½ ln r · r / dr) or `// @de linear` (like a scale: r / dr) and `// @escape EXPR`,
+ *     and gives only `void formulaStep(inout real3 z, inout real dr, inout float trap)`: z ← f(z),
+ *     dr ← |f'(z)| dr, and trap the smallest of some measure of z along the orbit (@trap's range).
+ *     The loop in fractal/iterate.glsl adds c, so every step formula has a Julia mode (fractal.julia,
+ *     fractal.julia_c) and can be one half of a hybrid (fractal.hybrid: another step formula's
+ *     steps alternate with its own). Such a file declares nothing at global scope but its uniforms
+ *     and formulaStep (shared helpers live in fractal/common.glsl), so two of them fit in one shader.
+ * fractal/map.glsl makes map() and the colouring from either; a formula that colours its own way
+ * defines FORMULA_ALBEDO, PROGRAM_ALBEDO and programAlbedo().
  *
  * A parameter's scene key is its uniform's name without the 'u', in snake case (uMinRadius ->
  * min_radius): "fractal": {"formula": "mandelbox", "min_radius": 0.4}, --set fractal.min_radius=0.4.
@@ -30,7 +48,8 @@ enum { FORMULA_MAX_PARAMS = 24, FORMULA_NAME_MAX = 64, FORMULA_KEY_MAX = 48, FOR
        FORMULA_MAX_REQUIRES = 4, FORMULA_EXPR_MAX = 160 };
 
 /* The keys of the fractal block that are not a formula's parameters. */
-#define FORMULA_COMMON_KEYS "formula", "iterations", "bound_radius", "palette", "glow", "glow_color"
+#define FORMULA_COMMON_KEYS "formula", "iterations", "bound_radius", "palette", "glow", "glow_color", "julia", \
+    "julia_c", "hybrid", "steps", "precision"
 
 typedef enum formula_type { FORMULA_FLOAT, FORMULA_INT, FORMULA_BOOL, FORMULA_VEC3, FORMULA_COLOR } formula_type;
 
@@ -56,6 +75,12 @@ typedef struct formula {
     int iterations, iterations_lo, iterations_hi;
     char bound[FORMULA_EXPR_MAX]; /* expression of the parameters */
     float step;                   /* 0: not declared (1) */
+    char trap[2][FORMULA_EXPR_MAX]; /* the orbit trap's range: expressions of the parameters */
+    bool step_formula;            /* formulaStep and the loop (@de), not its own formulaDE */
+    bool de_log;                  /* @de log: ½ ln r · r / dr; else r / dr */
+    char escape[FORMULA_EXPR_MAX]; /* @escape: an expression of the parameters */
+    bool deep;                    /* @deep: compiles in double */
+    char deep_whole[FORMULA_TEXT_MAX]; /* @deep whole KEY...: keys that must be whole numbers in double */
     int param_count;
     formula_param params[FORMULA_MAX_PARAMS];
     int require_count;

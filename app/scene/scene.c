@@ -1,5 +1,7 @@
 #include "scene/scene.h"
 
+#include "view/camera.h"
+
 #include <assert.h>
 #include <dirent.h>
 #include <math.h>
@@ -320,6 +322,18 @@ void scene_free(scene *s)
     free(s->csg_nodes);
     s->map_glsl = NULL;
     s->csg_list = s->csg_nodes = NULL;
+}
+
+bool scene_needs_double(const scene *s, double distance, const camera *c, int height, bool now)
+{
+    const scene_fractal *f = &s->fractal;
+    if (s->program != PROGRAM_FRACTAL || !f->deep_ok || f->precision == PRECISION_FLOAT)
+        return false;
+    if (f->precision == PRECISION_DOUBLE)
+        return true;
+    double threshold = (double)s->quality.hit_k * distance * (double)camera_pixel_angle(c, height);
+    double resolution = (double)PRECISION_REL * (camera_norm(c->position) + distance);
+    return threshold < DEEP_MARGIN * (now ? 2.0 : 1.0) * resolution;
 }
 
 void scene_preamble(const scene *s, strbuf *out)

@@ -65,10 +65,27 @@ typedef struct scene_light {
 
 typedef enum effect_mode { EFFECT_AUTO, EFFECT_ON, EFFECT_OFF } effect_mode;
 
+/* How a fractal's formula is computed: "auto" switches to double where a float cannot resolve the
+ * view (the renderer decides, app/gpu/render.c), when the formula allows it (@deep). */
+typedef enum fractal_precision { PRECISION_AUTO, PRECISION_FLOAT, PRECISION_DOUBLE } fractal_precision;
+/* A hybrid's second formula's uniforms are renamed with this prefix (uPower -> uHybrid_uPower). */
+#define HYBRID_PREFIX "uHybrid_"
+
 /* Fractal programs' parameters (the "fractal" block). Each program reads the ones it names. */
 typedef struct scene_fractal {
     formula formula;     /* the formula's declarations, read from its GLSL file (formula.h) */
     float values[FORMULA_MAX_PARAMS][3]; /* its parameters' values, in its declared order */
+    bool has_hybrid;     /* "hybrid": a second step formula alternates with the first */
+    formula hybrid;
+    float hybrid_values[FORMULA_MAX_PARAMS][3];
+    int steps[2];        /* a hybrid's cycle: steps of the formula, then steps of the hybrid */
+    bool julia;          /* step formulas: c is julia_c for every point (a Julia set), not the point */
+    float julia_c[3];
+    float escape;        /* step formulas: the escape radius (formula.h @escape) */
+    float trap[2];       /* the orbit trap's range over the palette (@trap) */
+    fractal_precision precision;
+    bool deep_ok;        /* the formula (and hybrid) can compile in double with these values */
+    bool deep_now;       /* this variant is compiled in double (PRECISION_DOUBLE) */
     int iterations;      /* iterations of the formula (Menger: levels of the sponge) */
     float bound_radius;  /* a sphere that holds the whole set (marching starts at it) */
     float palette[3][3]; /* orbit-trap colours: near, middle, far */
@@ -82,7 +99,8 @@ typedef struct scene {
     char title[256];
     program_kind program;
 
-    float cam_position[3], cam_look_at[3], cam_fov_deg;
+    double cam_position[3], cam_look_at[3]; /* double: a deep zoom's view (view/camera.h) */
+    float cam_fov_deg;
     bool cam_auto; /* "camera": "auto" (terrain): camera, distances, fog and layers framed from the DEM */
 
     float env_color[3];
@@ -163,6 +181,16 @@ void scene_preamble(const scene *s, strbuf *out);
 /* The scene's named uniforms: materials, lights, environment, fog, then the program's own. Texture
  * units and sizes are the renderer's (render_scene.c). */
 void scene_uniforms(const scene *s, const uniform_sink *u);
+
+/* Deep zoom: whether a fractal view from camera c (an image `height` rows high) whose nearest surface
+ * lies `distance` away needs double precision: its hit threshold there (hit_k · distance · pixel
+ * angle) comes within DEEP_MARGIN of a float's resolution at the eye (PRECISION_REL · (|eye| +
+ * distance)). A view that needs it has it only where the formula allows it (deep_ok) and the scene
+ * asks for "auto" ("double": always). `now`: the current choice; going back to float takes twice the
+ * margin, so a camera hovering at the limit does not switch every frame. */
+#define DEEP_MARGIN 4.0
+struct camera;
+bool scene_needs_double(const scene *s, double distance, const struct camera *c, int height, bool now);
 
 /* Lists scene names under <data>/scenes into out (one per line). */
 void scene_list(strbuf *out);

@@ -132,7 +132,7 @@ bool parse_camera(scene_ctx *c, const cJSON *root)
     scene *s = c->s;
     bool fractal = program_is_fractal(s->program);
     const cJSON *cam = cJSON_GetObjectItemCaseSensitive(root, "camera");
-    static const float cam_pos[3] = {0, 1, 5}, cam_at[3] = {0, 0, 0};
+    static const double cam_pos[3] = {0, 1, 5}, cam_at[3] = {0, 0, 0};
     if (cJSON_IsString(cam)) { /* "auto": framed from the terrain's extent once it is known (scene.c) */
         if (strcmp(cam->valuestring, "auto") || (s->program != PROGRAM_TERRAIN && s->program != PROGRAM_FRACTAL))
             return fail(c, "camera", "expected an object with position and look_at%s",
@@ -153,8 +153,8 @@ bool parse_camera(scene_ctx *c, const cJSON *root)
     } else {
         s->adaptive_speed = fractal;
     }
-    if (!get_vec3(c, cam, "camera", "position", cam_pos, -1e7f, 1e7f, s->cam_position) ||
-        !get_vec3(c, cam, "camera", "look_at", cam_at, -1e7f, 1e7f, s->cam_look_at) ||
+    if (!get_dvec3(c, cam, "camera", "position", cam_pos, -CAMERA_MAX_COORD, CAMERA_MAX_COORD, s->cam_position) ||
+        !get_dvec3(c, cam, "camera", "look_at", cam_at, -CAMERA_MAX_COORD, CAMERA_MAX_COORD, s->cam_look_at) ||
         !get_num(c, cam, "camera", "fov", 50, 1, 170, &s->cam_fov_deg))
         return false;
     if (camera_degenerate(s->cam_position, s->cam_look_at))

@@ -81,14 +81,14 @@ bool get_int(scene_ctx *c, const cJSON *obj, const char *path, const char *key, 
     return true;
 }
 
-bool get_vec3(scene_ctx *c, const cJSON *obj, const char *path, const char *key, const float def[3],
-                     float lo, float hi, float out[3])
+bool get_dvec3(scene_ctx *c, const cJSON *obj, const char *path, const char *key, const double def[3], double lo,
+               double hi, double out[3])
 {
     const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
     char p[512];
     child_path(p, sizeof p, path, key);
     if (!v) {
-        memcpy(out, def, sizeof(float) * 3);
+        memcpy(out, def, sizeof(double) * 3);
         return true;
     }
     if (!cJSON_IsArray(v) || cJSON_GetArraySize(v) != 3)
@@ -97,11 +97,22 @@ bool get_vec3(scene_ctx *c, const cJSON *obj, const char *path, const char *key,
         const cJSON *e = cJSON_GetArrayItem(v, i);
         if (!cJSON_IsNumber(e) || !isfinite(e->valuedouble) || e->valuedouble < lo || e->valuedouble > hi) {
             char range[128];
-            snprintf(range, sizeof range, "%g to %g", (double)lo, (double)hi);
+            snprintf(range, sizeof range, "%g to %g", lo, hi);
             return fail(c, p, "expected three numbers, each from %s", range);
         }
-        out[i] = (float)e->valuedouble;
+        out[i] = e->valuedouble;
     }
+    return true;
+}
+
+bool get_vec3(scene_ctx *c, const cJSON *obj, const char *path, const char *key, const float def[3],
+                     float lo, float hi, float out[3])
+{
+    double d[3] = {def[0], def[1], def[2]}, v[3];
+    if (!get_dvec3(c, obj, path, key, d, lo, hi, v))
+        return false;
+    for (int i = 0; i < 3; i++)
+        out[i] = (float)v[i];
     return true;
 }
 

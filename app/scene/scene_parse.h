@@ -37,6 +37,9 @@ bool get_num(scene_ctx *c, const cJSON *obj, const char *path, const char *key, 
 bool get_int(scene_ctx *c, const cJSON *obj, const char *path, const char *key, int def, int lo, int hi, int *out);
 bool get_vec3(scene_ctx *c, const cJSON *obj, const char *path, const char *key, const float def[3], float lo,
               float hi, float out[3]);
+/* The same in double (camera positions: a deep zoom needs more than a float's digits). */
+bool get_dvec3(scene_ctx *c, const cJSON *obj, const char *path, const char *key, const double def[3], double lo,
+               double hi, double out[3]);
 bool get_str(scene_ctx *c, const cJSON *obj, const char *path, const char *key, const char *def, const char **out);
 
 /* A string from a NULL-terminated list of names: *out = its index (def when the key is missing).

@@ -62,15 +62,16 @@ static bool fail_formula(scene_ctx *c, const char *path)
     return fail(c, path, "%s", why.msg);
 }
 
-/* One declared parameter from the block (its default when absent), checked against its declaration. */
-static bool get_param(scene_ctx *c, const cJSON *use, const formula_param *q, float v[3])
+/* One declared parameter from the block at `path` (its default when absent), checked against its
+ * declaration. */
+static bool get_param(scene_ctx *c, const cJSON *use, const char *path, const formula_param *q, float v[3])
 {
-    char path[128];
-    snprintf(path, sizeof path, "fractal.%s", q->key);
+    char key[128];
+    child_path(key, sizeof key, path, q->key);
     switch (q->type) {
     case FORMULA_INT: {
         int i;
-        if (!get_int(c, use, "fractal", q->key, (int)q->def[0], (int)q->lo, (int)q->hi, &i))
+        if (!get_int(c, use, path, q->key, (int)q->def[0], (int)q->lo, (int)q->hi, &i))
             return false;
         v[0] = (float)i;
         break;
@@ -78,45 +79,204 @@ static bool get_param(scene_ctx *c, const cJSON *use, const formula_param *q, fl
     case FORMULA_BOOL: {
         const cJSON *b = cJSON_GetObjectItemCaseSensitive(use, q->key);
         if (b && !cJSON_IsBool(b) && !(cJSON_IsNumber(b) && (b->valuedouble == 0 || b->valuedouble == 1)))
-            return fail(c, path, "expected true or false");
+            return fail(c, key, "expected true or false");
         v[0] = !b ? q->def[0] : cJSON_IsBool(b) ? (float)cJSON_IsTrue(b) : (float)b->valuedouble;
         break;
     }
     case FORMULA_VEC3:
     case FORMULA_COLOR:
-        return get_vec3(c, use, "fractal", q->key, q->def, q->lo, q->hi, v);
+        return get_vec3(c, use, path, q->key, q->def, q->lo, q->hi, v);
     default:
-        if (!get_num(c, use, "fractal", q->key, q->def[0], q->lo, q->hi, v))
+        if (!get_num(c, use, path, q->key, q->def[0], q->lo, q->hi, v))
             return false;
     }
     if (q->has_gap && v[0] > q->gap_lo && v[0] < q->gap_hi)
-        return fail(c, path, "%g is between %g and %g, where the formula has no set: take a value outside",
+        return fail(c, key, "%g is between %g and %g, where the formula has no set: take a value outside",
                     (double)v[0], (double)q->gap_lo, (double)q->gap_hi);
     return true;
 }
 
-/* The formula's @require lines over the values read. */
-static bool check_requires(scene_ctx *c, const scene_fractal *fr)
+/* Evaluates a formula's expression over its parameters' values (first components). */
+static bool eval(scene_ctx *c, const char *path, const formula *f, float (*values)[3], int iterations,
+                 const char *expr, double *out)
 {
-    const formula *f = &fr->formula;
     float first[FORMULA_MAX_PARAMS];
     for (int i = 0; i < f->param_count; i++)
-        first[i] = fr->values[i][0];
+        first[i] = values[i][0];
+    return formula_eval(f, expr, first, iterations, out, c->err) || fail_formula(c, path);
+}
+
+/* The formula's @require lines over the values read. */
+static bool check_requires(scene_ctx *c, const char *path, const formula *f, float (*values)[3], int iterations)
+{
     for (int i = 0; i < f->require_count; i++) {
         const formula_require *r = &f->requires[i];
         double a, b;
-        if (!formula_eval(f, r->lhs, first, fr->iterations, &a, c->err) ||
-            !formula_eval(f, r->rhs, first, fr->iterations, &b, c->err))
-            return fail_formula(c, "fractal");
+        if (!eval(c, path, f, values, iterations, r->lhs, &a) || !eval(c, path, f, values, iterations, r->rhs, &b))
+            return false;
         if (r->less ? !(a < b) : !(a > b))
-            return fail(c, "fractal", "%s (formula %s: %s %c %s)", r->message, f->name, r->lhs, r->less ? '<' : '>',
-                        r->rhs);
+            return fail(c, path, "%s (formula %s: %s %c %s)", r->message, f->name, r->lhs, r->less ? '<' : '>', r->rhs);
     }
     return true;
 }
 
+/* A formula's parameters from the block at `path`, with the block's own keys (`common`, NULL-ended)
+ * allowed beside them; then its requirements. */
+static bool formula_block(scene_ctx *c, const cJSON *use, const char *path, const char *const *common,
+                          const formula *f, float (*values)[3], int iterations)
+{
+    const char *keys[BLOCK_KEYS_MAX];
+    int n = 0;
+    while (common[n])
+        keys[n] = common[n], n++;
+    for (int i = 0; i < f->param_count; i++)
+        keys[n++] = f->params[i].key;
+    keys[n] = NULL;
+    if (!check_keys(c, use, path, keys))
+        return false;
+    for (int i = 0; i < f->param_count; i++)
+        if (!get_param(c, use, path, &f->params[i], values[i]))
+            return false;
+    return check_requires(c, path, f, values, iterations);
+}
+
+/* Whether the formula's double-precision path takes these values (@deep whole KEY...). */
+static bool deep_ok(const formula *f, float (*values)[3])
+{
+    if (!f->deep)
+        return false;
+    for (int i = 0; i < f->param_count; i++)
+        if (strstr(f->deep_whole, f->params[i].key) && values[i][0] != floorf(values[i][0]))
+            return false;
+    return true;
+}
+
+/* "hybrid": {"formula": NAME, "steps": N, its parameters...}: a second step formula whose N steps
+ * follow the first one's `steps` in each cycle. */
+static bool hybrid_block(scene_ctx *c, const cJSON *block, scene_fractal *fr)
+{
+    const cJSON *h = cJSON_GetObjectItemCaseSensitive(block, "hybrid");
+    if (!h)
+        return true;
+    const char *name = NULL;
+    if (!cJSON_IsObject(h))
+        return fail(c, "fractal.hybrid", "expected an object like {\"formula\": \"mandelbulb\", \"steps\": 1}");
+    if (!fr->formula.step_formula)
+        return fail(c, "fractal.hybrid", "formula %s has its own estimate (no @de): only step formulas take part in "
+                    "hybrids", fr->formula.name);
+    if (!get_str(c, h, "fractal.hybrid", "formula", NULL, &name))
+        return false;
+    if (!name)
+        return fail(c, "fractal.hybrid.formula", "missing: name the step formula whose steps alternate with %s's",
+                    fr->formula.name);
+    if (!formula_load(name, &fr->hybrid, c->err))
+        return fail_formula(c, "fractal.hybrid.formula");
+    if (!fr->hybrid.step_formula)
+        return fail(c, "fractal.hybrid.formula", "%s has its own estimate (no @de): only step formulas take part in "
+                    "hybrids", fr->hybrid.name);
+    if (!strcmp(fr->hybrid.file, fr->formula.file))
+        return fail(c, "fractal.hybrid.formula", "%s with itself is %s with more iterations: name another", name, name);
+    static const char *const common[] = {"formula", "steps", NULL};
+    fr->has_hybrid = true;
+    return get_int(c, h, "fractal.hybrid", "steps", 1, 1, 16, &fr->steps[1]) &&
+           formula_block(c, h, "fractal.hybrid", common, &fr->hybrid, fr->hybrid_values, fr->iterations);
+}
+
+/* A step formula's loop: the escape radius (a hybrid's: the larger, at most HYBRID_LOG_ESCAPE when
+ * one of them grows like a power, whose next step would leave the float range) and Julia mode. */
+static const float HYBRID_LOG_ESCAPE = 64.0f;
+static bool step_loop(scene_ctx *c, const cJSON *use, scene_fractal *fr)
+{
+    static const float JULIA_C[3] = {-0.6f, 0.4f, 0.2f};
+    const cJSON *julia = cJSON_GetObjectItemCaseSensitive(use, "julia");
+    if (julia && !cJSON_IsBool(julia))
+        return fail(c, "fractal.julia", "expected true or false");
+    fr->julia = cJSON_IsTrue(julia);
+    if (!fr->formula.step_formula) {
+        if (fr->julia || cJSON_GetObjectItemCaseSensitive(use, "julia_c") || cJSON_GetObjectItemCaseSensitive(use, "steps"))
+            return fail(c, "fractal", "julia, julia_c and steps belong to step formulas (@de); %s has its own estimate",
+                        fr->formula.name);
+        return true;
+    }
+    double a, b = 0;
+    if (!get_vec3(c, use, "fractal", "julia_c", JULIA_C, -4, 4, fr->julia_c) ||
+        !get_int(c, use, "fractal", "steps", 1, 1, 16, &fr->steps[0]) ||
+        !eval(c, "fractal", &fr->formula, fr->values, fr->iterations, fr->formula.escape, &a) ||
+        (fr->has_hybrid && !eval(c, "fractal.hybrid", &fr->hybrid, fr->hybrid_values, fr->iterations, fr->hybrid.escape, &b)))
+        return false;
+    bool log_de = fr->formula.de_log || (fr->has_hybrid && fr->hybrid.de_log);
+    double escape = fmax(a, b);
+    if (fr->has_hybrid && log_de)
+        escape = fmin(escape, HYBRID_LOG_ESCAPE);
+    if (!(escape > 1 && escape < 1e18))
+        return fail(c, "fractal", "the escape radius %g (formula %s's @escape) is not above 1", escape, fr->formula.name);
+    fr->escape = (float)escape;
+    return true;
+}
+
+/* The orbit trap's range and the bounding sphere (the larger of a hybrid's two unless the scene sets it). */
+static bool trap_and_bound(scene_ctx *c, const cJSON *use, scene_fractal *fr)
+{
+    const formula *f = &fr->formula;
+    double lo, hi, bound, other = 0;
+    if (!eval(c, "fractal", f, fr->values, fr->iterations, f->trap[0], &lo) ||
+        !eval(c, "fractal", f, fr->values, fr->iterations, f->trap[1], &hi) ||
+        !eval(c, "fractal", f, fr->values, fr->iterations, f->bound, &bound) ||
+        (fr->has_hybrid && !eval(c, "fractal.hybrid", &fr->hybrid, fr->hybrid_values, fr->iterations, fr->hybrid.bound, &other)))
+        return false;
+    if (!(hi > lo))
+        return fail(c, "fractal", "formula %s's @trap %s %s gives %g to %g: the second must be larger", f->name, f->trap[0],
+                    f->trap[1], lo, hi);
+    fr->trap[0] = (float)lo, fr->trap[1] = (float)hi;
+    bound = fmax(bound, other);
+    return get_num(c, use, "fractal", "bound_radius", (float)fmin(fmax(bound, BOUND_MIN), BOUND_MAX), BOUND_MIN,
+                   BOUND_MAX, &fr->bound_radius);
+}
+
+/* "precision": "auto" (double once the view needs it and the formula allows it), "float", "double". */
+static bool precision(scene_ctx *c, const cJSON *use, scene_fractal *fr)
+{
+    static const char *const names[] = {"auto", "float", "double", NULL};
+    int p = 0;
+    if (!get_enum(c, use, "fractal", "precision", "precision", names, 0, &p))
+        return false;
+    fr->precision = (fractal_precision)p;
+    fr->deep_ok = deep_ok(&fr->formula, fr->values) && (!fr->has_hybrid || deep_ok(&fr->hybrid, fr->hybrid_values)) &&
+                  !c->s->has_droplets;
+    if (fr->precision == PRECISION_DOUBLE && !fr->deep_ok)
+        return fail(c, "fractal.precision", "double needs a formula written for it (@deep)%s%s: %s cannot",
+                    fr->formula.deep_whole[0] ? " with whole " : "", fr->formula.deep_whole,
+                    fr->has_hybrid && fr->formula.deep ? fr->hybrid.name : fr->formula.name);
+    fr->deep_now = fr->precision == PRECISION_DOUBLE;
+    return true;
+}
+
+/* The program.glsl of a formula: the shared code, the formula (a step formula's step renamed, as a
+ * hybrid's two are, and the second one's uniforms renamed too: HYBRID_PREFIX), the step loop, map(). */
+static void fractal_code(scene_ctx *c, const scene_fractal *fr)
+{
+    strbuf *o = &c->code;
+    sb_append(o, "#include \"fractal/common.glsl\"\n");
+    if (!fr->formula.step_formula) {
+        sb_printf(o, "#include \"%s\"\n", fr->formula.file);
+    } else {
+        sb_printf(o, "#define formulaStep formulaStepA\n#include \"%s\"\n#undef formulaStep\n", fr->formula.file);
+        if (fr->has_hybrid) {
+            sb_append(o, "#define FORMULA_HYBRID 1\n#define formulaStep formulaStepB\n");
+            for (int i = 0; i < fr->hybrid.param_count; i++)
+                sb_printf(o, "#define %s " HYBRID_PREFIX "%s\n", fr->hybrid.params[i].uniform, fr->hybrid.params[i].uniform);
+            sb_printf(o, "#include \"%s\"\n#undef formulaStep\n", fr->hybrid.file);
+            for (int i = 0; i < fr->hybrid.param_count; i++)
+                sb_printf(o, "#undef %s\n", fr->hybrid.params[i].uniform);
+        }
+        bool log_de = fr->formula.de_log || (fr->has_hybrid && fr->hybrid.de_log);
+        sb_printf(o, "#define FORMULA_DE_LOG %d\n#include \"fractal/iterate.glsl\"\n", log_de);
+    }
+    sb_append(o, "#include \"fractal/map.glsl\"\n");
+}
+
 /* The fractal block: "formula" (or the program's name when it names one), the block's own keys and
- * the formula's declared parameters (formula.h); map() is the formula file's. */
+ * the formula's declared parameters (formula.h); a hybrid's second formula; map() is made of them. */
 bool fractal_parse(scene_ctx *c, const cJSON *root)
 {
     scene_fractal *fr = &c->s->fractal;
@@ -124,39 +284,22 @@ bool fractal_parse(scene_ctx *c, const cJSON *root)
     cJSON *empty = cJSON_CreateObject();
     const cJSON *use = block ? block : empty;
     const char *name = c->formula;
+    static const char *const common[] = {FORMULA_COMMON_KEYS, NULL};
     bool ok = cJSON_IsObject(use) || fail(c, "fractal", "expected an object {...}");
     ok = ok && get_str(c, use, "fractal", "formula", c->formula, &name);
     if (ok && !name)
         ok = fail(c, "fractal.formula", "missing: name a formula (fathom --list-formulas), e.g. \"formula\": \"mandelbulb\"");
     ok = ok && (formula_load(name, &fr->formula, c->err) || fail_formula(c, "fractal.formula"));
     const formula *f = &fr->formula;
-    if (ok) {
-        const char *keys[BLOCK_KEYS_MAX] = {FORMULA_COMMON_KEYS};
-        int n = 0;
-        while (keys[n])
-            n++;
-        for (int i = 0; i < f->param_count; i++)
-            keys[n++] = f->params[i].key;
-        keys[n] = NULL;
-        ok = check_keys(c, use, "fractal", keys) && fractal_common(c, use, fr) &&
-             get_int(c, use, "fractal", "iterations", f->iterations, f->iterations_lo, f->iterations_hi, &fr->iterations);
-    }
-    for (int i = 0; ok && i < f->param_count; i++)
-        ok = get_param(c, use, &f->params[i], fr->values[i]);
-    ok = ok && check_requires(c, fr);
-    if (ok) {
-        float first[FORMULA_MAX_PARAMS];
-        double bound;
-        for (int i = 0; i < f->param_count; i++)
-            first[i] = fr->values[i][0];
-        ok = (formula_eval(f, f->bound, first, fr->iterations, &bound, c->err) || fail_formula(c, "fractal")) &&
-             get_num(c, use, "fractal", "bound_radius", (float)fmin(fmax(bound, BOUND_MIN), BOUND_MAX), BOUND_MIN,
-                     BOUND_MAX, &fr->bound_radius);
-    }
+    fr->steps[0] = fr->steps[1] = 1;
+    ok = ok && fractal_common(c, use, fr) &&
+         get_int(c, use, "fractal", "iterations", f->iterations, f->iterations_lo, f->iterations_hi, &fr->iterations) &&
+         formula_block(c, use, "fractal", common, f, fr->values, fr->iterations) && hybrid_block(c, use, fr) &&
+         step_loop(c, use, fr) && trap_and_bound(c, use, fr) && precision(c, use, fr);
     cJSON_Delete(empty);
     if (ok) {
         default_material(c->s);
-        sb_printf(&c->code, "#include \"%s\"\n", f->file);
+        fractal_code(c, fr);
     }
     return ok;
 }
@@ -166,7 +309,7 @@ bool fractal_frame(scene *s, err_t *err)
     (void)err;
     const float R = s->fractal.bound_radius, DIR[3] = {0.55f, 0.42f, 0.72f}; /* a unit three-quarter view */
     for (int i = 0; i < 3; i++)
-        s->cam_position[i] = 2.4f * R * DIR[i], s->cam_look_at[i] = 0;
+        s->cam_position[i] = 2.4 * R * DIR[i], s->cam_look_at[i] = 0;
     s->cam_fov_deg = 45;
     s->quality.max_dist = fmaxf(s->quality.max_dist, 6 * R);
     return true;
@@ -175,24 +318,41 @@ bool fractal_frame(scene *s, err_t *err)
 void fractal_defines(const scene *s, strbuf *out)
 {
     sb_printf(out, "#define FRACTAL_ITERATIONS %d\n", s->fractal.iterations);
+    if (s->fractal.deep_now) /* a deep zoom: common/uniforms.glsl, fractal/common.glsl */
+        sb_append(out, "#extension GL_ARB_gpu_shader_fp64 : require\n#define PRECISION_DOUBLE 1\n");
 }
 
-/* The block's own uniforms (shaders/fractal/common.glsl and the glow in sdf_main.glsl), then each
- * declared parameter under its uniform's name. */
+/* The block's own uniforms (shaders/fractal/common.glsl and iterate.glsl, the glow in sdf_main.glsl), then
+ * each declared parameter under its uniform's name (a hybrid's second formula's with HYBRID_PREFIX). */
+static void param_uniforms(const formula *f, const float *values, const char *prefix, const uniform_sink *u)
+{
+    for (int i = 0; i < f->param_count; i++) {
+        const formula_param *q = &f->params[i];
+        char name[FORMULA_KEY_MAX + 16];
+        snprintf(name, sizeof name, "%s%s", prefix, q->uniform);
+        if (q->type == FORMULA_INT || q->type == FORMULA_BOOL)
+            uniform_i(u, name, (int)values[3 * i]);
+        else
+            uniform_fv(u, name, q->type >= FORMULA_VEC3 ? 3 : 1, 1, values + 3 * i);
+    }
+}
+
 void fractal_uniforms(const scene *s, const uniform_sink *u)
 {
     const scene_fractal *f = &s->fractal;
     uniform_f(u, "uBoundRadius", f->bound_radius);
     uniform_fv(u, "uPalette", 3, 3, &f->palette[0][0]);
+    uniform_fv(u, "uTrapRange", 2, 1, f->trap);
     uniform_fv(u, "uGlowColor", 3, 1, f->glow_color);
     uniform_f(u, "uGlowStrength", f->glow);
-    for (int i = 0; i < f->formula.param_count; i++) {
-        const formula_param *q = &f->formula.params[i];
-        if (q->type == FORMULA_INT || q->type == FORMULA_BOOL)
-            uniform_i(u, q->uniform, (int)f->values[i][0]);
-        else
-            uniform_fv(u, q->uniform, q->type >= FORMULA_VEC3 ? 3 : 1, 1, f->values[i]);
-    }
+    uniform_f(u, "uEscape", f->escape);
+    uniform_i(u, "uJulia", f->julia);
+    uniform_fv(u, "uJuliaC", 3, 1, f->julia_c);
+    uniform_i(u, "uStepsA", f->steps[0]);
+    uniform_i(u, "uStepsB", f->steps[1]);
+    param_uniforms(&f->formula, &f->values[0][0], "", u);
+    if (f->has_hybrid)
+        param_uniforms(&f->hybrid, &f->hybrid_values[0][0], HYBRID_PREFIX, u);
 }
 
 /* ---- terrains: the "terrain" block ------------------------------------------------------------ */
@@ -295,8 +455,8 @@ bool terrain_frame(scene *s, err_t *err)
         range[0] *= ex, range[1] *= ex, relief *= ex;
     }
     /* over the southern edge, looking north across the middle: the near half fills the view */
-    float at[3] = {0, (float)(range[0] + 0.3 * relief), (float)(-0.1 * size[1])};
-    float eye[3] = {(float)(-0.1 * size[0]), (float)(range[1] + 0.12 * R), (float)(0.5 * size[1] + 0.05 * R)};
+    double at[3] = {0, range[0] + 0.3 * relief, -0.1 * size[1]};
+    double eye[3] = {-0.1 * size[0], range[1] + 0.12 * R, 0.5 * size[1] + 0.05 * R};
     memcpy(s->cam_position, eye, sizeof eye);
     memcpy(s->cam_look_at, at, sizeof at);
     s->cam_fov_deg = 50;

@@ -6,28 +6,37 @@
 
 static float clampf(float v, float lo, float hi) { return v < lo ? lo : v > hi ? hi : v; }
 
-camera camera_look_at(const vec3 eye, const vec3 target, float fov_y)
+double camera_distance(const double a[3], const double b[3])
+{
+    double d[3] = {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+    return camera_norm(d);
+}
+
+double camera_norm(const double a[3]) { return sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]); }
+
+camera camera_look_at(const double eye[3], const double target[3], float fov_y)
 {
     camera c = {.fov_y = fov_y};
-    glm_vec3_copy((float *)eye, c.position);
-    vec3 d;
-    glm_vec3_sub((float *)target, (float *)eye, d);
-    float len = glm_vec3_norm(d);
+    double d[3];
+    for (int i = 0; i < 3; i++) {
+        c.position[i] = eye[i];
+        d[i] = target[i] - eye[i];
+    }
+    double len = camera_norm(d);
     if (len > 0) {
-        glm_vec3_scale(d, 1.0f / len, d);
-        c.yaw = atan2f(-d[0], -d[2]);
-        c.pitch = clampf(asinf(clampf(d[1], -1, 1)), -CAMERA_MAX_PITCH, CAMERA_MAX_PITCH);
+        c.yaw = (float)atan2(-d[0], -d[2]);
+        c.pitch = clampf((float)asin(fmin(fmax(d[1] / len, -1.0), 1.0)), -CAMERA_MAX_PITCH, CAMERA_MAX_PITCH);
     }
     return c;
 }
 
-bool camera_degenerate(const vec3 eye, const vec3 target)
+bool camera_degenerate(const double eye[3], const double target[3])
 {
-    float d = glm_vec3_distance((float *)eye, (float *)target);
-    return !(d > 1e-6f * (1.0f + glm_vec3_norm((float *)eye)));
+    /* double positions: a deep zoom looks at a point 1e-13 away; nearer than a few ulps is no direction */
+    return !(camera_distance(eye, target) > 8 * DBL_EPSILON * (1.0 + camera_norm(eye)));
 }
 
-camera camera_look_at_deg(const vec3 eye, const vec3 target, float fov_y_deg)
+camera camera_look_at_deg(const double eye[3], const double target[3], float fov_y_deg)
 {
     return camera_look_at(eye, target, glm_rad(fov_y_deg));
 }
@@ -54,34 +63,128 @@ void camera_update(camera *c, const camera_input *in, float dt, float speed, flo
     c->pitch = clampf(c->pitch - in->look[1] * sensitivity, -CAMERA_MAX_PITCH, CAMERA_MAX_PITCH);
     c->yaw = remainderf(c->yaw, 2.0f * GLM_PIf);
     camera_basis b = camera_get_basis(c);
-    float step = speed * dt * (in->fast ? FAST_FACTOR : 1.0f);
-    vec3 world_up = {0, 1, 0};
-    glm_vec3_muladds(b.right, in->move[0] * step, c->position);
-    glm_vec3_muladds(world_up, in->move[1] * step, c->position);
-    glm_vec3_muladds(b.forward, in->move[2] * step, c->position);
+    double step = (double)speed * (double)dt * (in->fast ? FAST_FACTOR : 1.0);
+    for (int i = 0; i < 3; i++)
+        c->position[i] += step * ((double)(in->move[0] * b.right[i]) + (double)(in->move[2] * b.forward[i])) +
+                          (i == 1 ? step * (double)in->move[1] : 0.0);
 }
 
-float camera_clamp_step(const vec3 from, vec3 to, float free_from, float free_to)
+double camera_resolution(const double p[3], bool deep)
 {
-    if (!(free_from > 0))
-        return 1.0f;
-    /* float resolution of the position, with room: a step that ends closer could round into a surface */
-    float margin = 8.0f * FLT_EPSILON * (1.0f + glm_vec3_norm((float *)from) + glm_vec3_norm(to));
-    float len = glm_vec3_distance((float *)from, to);
-    if (free_to > margin && len <= free_from + free_to - margin)
-        return 1.0f;
-    float limit = fmaxf(CAMERA_SAFE_FRACTION * free_from - margin, 0.0f);
-    if (len <= limit)
-        return 1.0f;
-    float keep = limit / len;
+    /* 4 ulps of the largest coordinate's magnitude, and of 1 near the origin */
+    double ulp = deep ? DBL_EPSILON : (double)FLT_EPSILON;
+    return 8.0 * ulp * (1.0 + camera_norm(p));
+}
+
+/* The tetrahedron of central differences: the gradient is the sum of k[i] · f(p + h k[i]). */
+static const double TETRAHEDRON[4][3] = {{1, -1, -1}, {-1, -1, 1}, {-1, 1, -1}, {1, 1, 1}};
+
+/* The distance's gradient at `from` from the tetrahedron's four probes, unit or 0. */
+static void slide_normal(const float d[4], double n[3])
+{
+    const double(*k)[3] = TETRAHEDRON;
     for (int i = 0; i < 3; i++)
-        to[i] = from[i] + (to[i] - from[i]) * keep;
+        n[i] = k[0][i] * d[0] + k[1][i] * d[1] + k[2][i] * d[2] + k[3][i] * d[3];
+    double len = camera_norm(n);
+    for (int i = 0; i < 3; i++)
+        n[i] = len > 0 ? n[i] / len : 0.0;
+}
+
+/* Where the samples lie along a leg, as fractions in increasing order. The slide (CAMERA_SLIDE_SAMPLES):
+ * CAMERA_SLIDE_NEAR of them geometrically close to the start (a move away from a surface the camera
+ * is near: each free ball there is small), then CAMERA_SLIDE_UNIFORM evenly to the end (a move
+ * along a surface, CAMERA_SKIN away from it). The lift (CAMERA_LIFT_SAMPLES, straight out from a
+ * surface): geometrically, each free ball about twice the last. */
+static double slide_fraction(int i)
+{
+    if (i < CAMERA_SLIDE_NEAR)
+        return ldexp(1.0 / CAMERA_SLIDE_UNIFORM, i - CAMERA_SLIDE_NEAR);
+    return (double)(i - CAMERA_SLIDE_NEAR + 1) / CAMERA_SLIDE_UNIFORM;
+}
+
+static double lift_fraction(int i) { return ldexp(1.0, i - (CAMERA_LIFT_SAMPLES - 1)); }
+
+/* How far along a leg of length `len` a chain of free balls reaches from its start (free radius
+ * `reach`): the fraction of the last sample it covers that lies `resolution` clear of any surface.
+ * *last gets that sample's free radius. */
+static double covered(const float *d, int n, double (*fraction)(int), double len, double reach, float step_factor,
+                      double resolution, double *last)
+{
+    double keep = 0.0;
+    for (int j = 0; j < n; j++) {
+        double t = len * fraction(j), r = (double)d[j] * (double)step_factor - resolution;
+        if (!(r > 0) || t - r > reach)
+            break;
+        reach = fmax(reach, t + r);
+        keep = fraction(j);
+        *last = r;
+    }
     return keep;
 }
 
-void camera_clamp_range(vec3 pos, const vec3 centre, float max_distance)
+float camera_slide(const double from[3], double to[3], float step_factor, double resolution, camera_probe_fn probe,
+                   void *ctx, double corner[3])
 {
-    float d = glm_vec3_distance(pos, (float *)centre);
+    double corner_here[3];
+    corner = corner ? corner : corner_here;
+    for (int i = 0; i < 3; i++)
+        corner[i] = from[i];
+    double m[3] = {to[0] - from[0], to[1] - from[1], to[2] - from[2]};
+    double len = camera_norm(m);
+    if (!(len > 0))
+        return 1.0f;
+    /* the distance at `from` and its gradient */
+    const double(*k)[3] = TETRAHEDRON;
+    enum { N = CAMERA_LIFT_SAMPLES + CAMERA_SLIDE_SAMPLES };
+    double h = fmax(4.0 * resolution, 1e-3 * len), pts[N * 3];
+    float d[N];
+    for (int j = 0; j < 5; j++)
+        for (int i = 0; i < 3; i++)
+            pts[3 * j + i] = from[i] + (j ? h * k[j - 1][i] : 0.0);
+    probe(ctx, pts, 5, d);
+    double free0 = (double)d[0] * (double)step_factor;
+    if (!(free0 > 0)) /* inside a solid, or unknown: let the camera out */
+        return 1.0f;
+    /* the camera keeps CAMERA_SKIN of its step from surfaces: closer, it first lifts straight out to
+     * there (leg 1); then it moves, the part of the move into the surface cut so that it stays there,
+     * the rest sliding along (leg 2) */
+    double n[3], skin = fmax(CAMERA_SKIN * len, 4.0 * resolution);
+    slide_normal(d + 1, n);
+    double lift = camera_norm(n) > 0 ? fmax(skin - free0, 0.0) : 0.0, start[3];
+    for (int i = 0; i < 3; i++)
+        start[i] = from[i] + lift * n[i];
+    double into = -(m[0] * n[0] + m[1] * n[1] + m[2] * n[2]), allowed = fmax(free0 + lift - skin, 0.0);
+    if (into > allowed)
+        for (int i = 0; i < 3; i++)
+            m[i] += (into - allowed) * n[i];
+    /* both legs' free balls in one probe */
+    for (int j = 0; j < CAMERA_LIFT_SAMPLES; j++)
+        for (int i = 0; i < 3; i++)
+            pts[3 * j + i] = from[i] + lift * n[i] * lift_fraction(j);
+    for (int j = 0; j < CAMERA_SLIDE_SAMPLES; j++)
+        for (int i = 0; i < 3; i++)
+            pts[3 * (CAMERA_LIFT_SAMPLES + j) + i] = start[i] + m[i] * slide_fraction(j);
+    probe(ctx, pts, N, d);
+    double last = free0 - resolution, keep1 = 1.0, keep2 = 0.0, slid = camera_norm(m);
+    if (lift > 0)
+        keep1 = covered(d, CAMERA_LIFT_SAMPLES, lift_fraction, lift, free0 - resolution, step_factor, resolution, &last);
+    if (keep1 == 1.0)
+        keep2 = covered(d + CAMERA_LIFT_SAMPLES, CAMERA_SLIDE_SAMPLES, slide_fraction, slid, last, step_factor,
+                        resolution, &last);
+    if (keep1 < 1.0 && keep1 * lift < CAMERA_SAFE_FRACTION * free0) { /* no way out: what the start's own free ball allows */
+        keep1 = 0.0;
+        keep2 = slid > 0 ? fmin(fmax(CAMERA_SAFE_FRACTION * free0 - resolution, 0.0) / slid, 1.0) : 0.0;
+    }
+    for (int i = 0; i < 3; i++) {
+        corner[i] = from[i] + lift * n[i] * keep1;
+        to[i] = corner[i] + m[i] * keep2;
+    }
+    return (float)(keep2 * slid / len);
+}
+
+void camera_clamp_range(double pos[3], const double centre[3], double max_distance)
+{
+    double d = camera_distance(pos, centre);
     if (d > max_distance)
         for (int i = 0; i < 3; i++)
             pos[i] = centre[i] + (pos[i] - centre[i]) * (max_distance / d);

@@ -14,7 +14,7 @@
 #include <stdbool.h>
 
 typedef struct camera {
-    vec3 position;
+    double position[3]; /* double: a deep zoom resolves detail far below a float's step at |p| ~ 1 */
     float yaw, pitch; /* radians */
     float fov_y;      /* radians */
 } camera;
@@ -37,27 +37,47 @@ typedef struct camera_input {
 
 /* True when target is (within float rounding of) eye: no direction to look in. Scene files and the
  * command line refuse it. */
-bool camera_degenerate(const vec3 eye, const vec3 target);
+bool camera_degenerate(const double eye[3], const double target[3]);
 /* A camera at `eye` looking at `target` (target == eye keeps yaw = pitch = 0). */
-camera camera_look_at(const vec3 eye, const vec3 target, float fov_y);
+camera camera_look_at(const double eye[3], const double target[3], float fov_y);
 /* The same with the field of view in degrees (scene files and the command line speak degrees). */
-camera camera_look_at_deg(const vec3 eye, const vec3 target, float fov_y_deg);
+camera camera_look_at_deg(const double eye[3], const double target[3], float fov_y_deg);
 camera_basis camera_get_basis(const camera *c);
 
 /* Moves and turns by one frame of input: speed in m/s, sensitivity in radians per pixel. */
 void camera_update(camera *c, const camera_input *in, float dt, float speed, float sensitivity);
 
-/* Safe flight. free_from and free_to bound the free space around `from` and around the proposed `to`
- * (a distance bound times its step factor: no surface lies closer). If the two free balls cover the
- * segment (|to − from| < free_from + free_to, less float resolution) the move cannot cross a surface
- * and is kept; else it is shortened to CAMERA_SAFE_FRACTION of free_from. Either way the camera stays
- * float resolution away from any surface, and can always move away from one. free_from <= 0 (inside a
- * solid, or unknown) leaves the move alone, so a camera inside can get out. Returns the fraction kept. */
-#define CAMERA_SAFE_FRACTION 0.9f
-float camera_clamp_step(const vec3 from, vec3 to, float free_from, float free_to);
+/* Safe flight that slides. The renderer's distance bound (times its step factor) around a point is
+ * free of surfaces. The camera is a ball CAMERA_SKIN of its step wide: closer than that to a surface
+ * (the gradient of the distance at `from` gives its normal) it first lifts straight out to that
+ * clearance; then the part of the move into the surface is cut so that it keeps that clearance, and
+ * the rest slides along the surface. Each leg is kept as far as a chain of free balls, centred on
+ * samples along it, covers it from its start, and ends on a sample at least `resolution` clear: the
+ * camera never crosses or enters a solid, never sticks to a surface (the skin shrinks with the step,
+ * so a slower camera comes closer), and moving away from a surface is never held back. Inside a
+ * solid (a bound <= 0 at `from`) the move is left alone, so a camera can get out.
+ * probe(ctx, points, n, out) fills out[i] with the distance bound at points[i] (xyz each);
+ * resolution: the smallest step the renderer resolves there (camera_resolution). corner (may be
+ * NULL) gets the end of the first leg: the camera's path is from → corner → to. Returns the fraction
+ * of the move's length kept along the second leg. */
+typedef void (*camera_probe_fn)(void *ctx, const double *points, int n, float *out);
+enum { CAMERA_SLIDE_UNIFORM = 16, CAMERA_SLIDE_NEAR = 8,
+       CAMERA_SLIDE_SAMPLES = CAMERA_SLIDE_UNIFORM + CAMERA_SLIDE_NEAR, CAMERA_LIFT_SAMPLES = 12 };
+#define CAMERA_SKIN (2.0 / CAMERA_SLIDE_UNIFORM) /* of the step: free balls of neighbours still overlap */
+#define CAMERA_SAFE_FRACTION 0.9 /* of the start's free ball: always a safe move */
+float camera_slide(const double from[3], double to[3], float step_factor, double resolution, camera_probe_fn probe,
+                   void *ctx, double corner[3]);
+
+/* The position's resolution where the renderer works in float (deep = false) or in double (a deep
+ * zoom): a few units in the last place of |p|, with room. */
+double camera_resolution(const double p[3], bool deep);
 
 /* Keeps pos within max_distance of centre (along the line from centre): no flight to infinity. */
-void camera_clamp_range(vec3 pos, const vec3 centre, float max_distance);
+void camera_clamp_range(double pos[3], const double centre[3], double max_distance);
+
+/* |a − b| and |a| in double (positions are double). */
+double camera_distance(const double a[3], const double b[3]);
+double camera_norm(const double a[3]);
 
 /* The unit primary-ray direction through pixel (x, y) of a width × height image (see top). */
 void camera_ray(const camera *c, int width, int height, float x, float y, vec3 dir);

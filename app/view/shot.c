@@ -21,11 +21,11 @@ void shot_describe(const char *scene_path, const char *const *sets, int set_coun
     for (int i = 0; i < set_count; i++)
         cJSON_AddItemToArray(arr, cJSON_CreateString(sets[i]));
     cJSON *c = cJSON_AddObjectToObject(j, "camera");
-    /* %.9g keeps every float exactly */
+    /* %.9g keeps every float exactly, %.17g every double (the position: a deep zoom's digits) */
     char num[64];
     cJSON *pos = cJSON_AddArrayToObject(c, "position");
     for (int i = 0; i < 3; i++) {
-        snprintf(num, sizeof num, "%.9g", (double)cam->position[i]);
+        snprintf(num, sizeof num, "%.17g", cam->position[i]);
         cJSON_AddItemToArray(pos, cJSON_CreateRaw(num));
     }
     snprintf(num, sizeof num, "%.9g", (double)cam->yaw);
@@ -43,11 +43,20 @@ void shot_describe(const char *scene_path, const char *const *sets, int set_coun
     cJSON_Delete(j);
 }
 
-static bool number(const cJSON *v, double lo, double hi, float *out)
+static bool number_d(const cJSON *v, double lo, double hi, double *out)
 {
     if (!cJSON_IsNumber(v) || !isfinite(v->valuedouble) || v->valuedouble < lo || v->valuedouble > hi)
         return false;
-    *out = (float)v->valuedouble;
+    *out = v->valuedouble;
+    return true;
+}
+
+static bool number(const cJSON *v, double lo, double hi, float *out)
+{
+    double d;
+    if (!number_d(v, lo, hi, &d))
+        return false;
+    *out = (float)d;
     return true;
 }
 
@@ -67,7 +76,7 @@ bool shot_parse(const char *text, const char *source, shot_desc *d, err_t *err)
               cJSON_IsArray(size) && number(cJSON_GetArrayItem(size, 0), 1, 16384, &w) &&
               number(cJSON_GetArrayItem(size, 1), 1, 16384, &h);
     for (int i = 0; ok && i < 3; i++)
-        ok = number(cJSON_GetArrayItem(pos, i), -CAMERA_MAX_COORD, CAMERA_MAX_COORD, &d->cam.position[i]);
+        ok = number_d(cJSON_GetArrayItem(pos, i), -CAMERA_MAX_COORD, CAMERA_MAX_COORD, &d->cam.position[i]);
     if (ok) {
         snprintf(d->scene, sizeof d->scene, "%s", scene->valuestring);
         for (const cJSON *s = sets->child; ok && s; s = s->next) {

@@ -3,6 +3,7 @@
 #include <epoxy/gl.h>
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
+#include <assert.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -264,12 +265,12 @@ static bool load_scene(const char *name, const cli_options *opt, bool first, err
     app.base_set_count = base;
     if (!same_file) { /* a reload of the same file keeps the camera where the user flew it */
         float fov = first && opt->has_fov ? opt->fov_deg : app.scene.cam_fov_deg;
-        const float *pos = first && opt->has_camera ? opt->camera : app.scene.cam_position;
-        const float *at = first && opt->has_look_at ? opt->look_at : app.scene.cam_look_at;
+        const double *pos = first && opt->has_camera ? opt->camera : app.scene.cam_position;
+        const double *at = first && opt->has_look_at ? opt->look_at : app.scene.cam_look_at;
         app.cam = first && opt->has_view ? opt->view : camera_look_at_deg(pos, at, fov);
         app.start_speed = app.scene.adaptive_speed
                               ? DEFAULT_SPEED
-                              : START_SPEED_FRACTION * glm_vec3_distance(app.scene.cam_position, app.scene.cam_look_at);
+                              : START_SPEED_FRACTION * (float)camera_distance(app.scene.cam_position, app.scene.cam_look_at);
         app.speed = app.start_speed;
         load_flight();
     }
@@ -414,9 +415,10 @@ static void hud(int w, int h)
         snprintf(speed, sizeof speed, "speed %.2f m/s", (double)app.speed);
     /* where the hit threshold meets float resolution, closer detail would only be noise */
     float d = app.surface_distance, pa = camera_pixel_angle(c, h);
-    if (app.scene.adaptive_speed && app.scene.quality.hit_k * d * pa < PRECISION_REL * (glm_vec3_norm((float *)c->position) + d))
+    float pnorm = (float)camera_norm(c->position);
+    if (app.scene.adaptive_speed && app.scene.quality.hit_k * d * pa < PRECISION_REL * (pnorm + d))
         snprintf(limit, sizeof limit, "float precision reached: detail below %.2g m cannot be resolved here\n",
-                 (double)(PRECISION_REL * (glm_vec3_norm((float *)c->position) + d)));
+                 (double)(PRECISION_REL * (pnorm + d)));
     char internal[96];
     int iw, ih;
     render_active_size(&iw, &ih);
@@ -468,6 +470,21 @@ static void list_scene_names(void)
     sb_free(&list);
 }
 
+/* The renderer's distance bound at n points (the slide rule's probe). */
+static void probe_distances(void *ctx, const double *points, int n, float *out)
+{
+    (void)ctx;
+    enum { MAX_POINTS = 64 };
+    float p[MAX_POINTS * 3] = {0}, d[MAX_POINTS * 2];
+    err_t e;
+    assert(n <= MAX_POINTS);
+    for (int i = 0; i < 3 * n; i++)
+        p[i] = (float)points[i];
+    bool ok = render_probe(&app.scene, NULL, p, n, d, &e);
+    for (int i = 0; i < n; i++)
+        out[i] = ok ? d[2 * i] : -1.0f; /* unknown: the move is left alone */
+}
+
 /* One frame's flight. Scroll sets the speed (within MIN/MAX_SPEED_FACTOR of the scene's start speed),
  * which follows the distance to the surface where the scene asks for it (fractals: close up stays
  * controllable). Every program's map() at the camera bounds the free space around it: the frame's step
@@ -489,22 +506,21 @@ static void fly(GLFWwindow *win, float dt)
     camera_input in = read_input(win);
     float dist[2] = {0, 0};
     err_t e;
-    bool probed = render_probe(&app.scene, NULL, app.cam.position, 1, dist, &e);
+    float here[3] = {(float)app.cam.position[0], (float)app.cam.position[1], (float)app.cam.position[2]};
+    render_probe(&app.scene, NULL, here, 1, dist, &e);
     app.surface_distance = fabsf(dist[0]);
     float speed = app.speed;
     if (app.scene.adaptive_speed)
         speed = app.speed * fmaxf(app.surface_distance, MIN_ADAPTIVE_DISTANCE);
-    vec3 before;
-    glm_vec3_copy(app.cam.position, before);
+    double before[3];
+    memcpy(before, app.cam.position, sizeof before);
     camera_update(&app.cam, &in, dt, speed, MOUSE_SENSITIVITY);
-    float after[2]; /* the second probe only when the camera moved */
-    bool moved = !glm_vec3_eqv(before, app.cam.position);
-    if (probed && moved && render_probe(&app.scene, NULL, app.cam.position, 1, after, &e))
-        camera_clamp_step(before, app.cam.position, dist[0] * app.scene.quality.step_factor,
-                          after[0] * app.scene.quality.step_factor);
+    if (memcmp(before, app.cam.position, sizeof before))
+        camera_slide(before, app.cam.position, app.scene.quality.step_factor, camera_resolution(before, false),
+                     probe_distances, NULL, NULL);
     camera_clamp_range(app.cam.position, app.scene.cam_look_at, app.scene.quality.max_dist);
     float ground;
-    if (app.walking && render_ground_height(app.cam.position[0], app.cam.position[2], &ground))
+    if (app.walking && render_ground_height((float)app.cam.position[0], (float)app.cam.position[2], &ground))
         app.cam.position[1] = ground + WALK_HEIGHT;
 }
 

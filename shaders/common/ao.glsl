@@ -3,15 +3,20 @@
 #ifndef AO_RADIUS
 #define AO_RADIUS 0.6     // metres probed along the normal
 #endif
+// The radius probed for a point seen `t` from the eye: a program with detail at every scale (a
+// fractal seen in a deep zoom) ties it to the view (fractal/common.glsl); the rest probe AO_RADIUS.
+#ifndef AO_RADIUS_AT
+#define AO_RADIUS_AT(t) AO_RADIUS
+#endif
 #ifndef AO_STRENGTH
 #define AO_STRENGTH 1.5
 #endif
 
-float calcAO(vec3 p, vec3 n)
+float calcAO(vec3 p, vec3 n, float t)
 {
-    float occ = 0.0, weight = 1.0, total = 0.0;
+    float occ = 0.0, weight = 1.0, total = 0.0, radius = AO_RADIUS_AT(t);
     for (int i = 1; i <= AO_SAMPLES; i++) {
-        float h = AO_RADIUS * float(i) / float(AO_SAMPLES);
+        float h = radius * float(i) / float(AO_SAMPLES);
         float d = map(p + n * h).x;
         occ += weight * clamp((h - d) / h, 0.0, 1.0);
         total += weight;

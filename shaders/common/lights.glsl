@@ -33,7 +33,7 @@ vec3 directLight(vec3 p, vec3 n, vec3 v, Material m, vec3 F0, float pathT)
         float dist;
         vec3 radiance = uLightColor[i];
         if (!uLightDirectional[i]) {
-            vec3 toLight = uLightVec[i] - p;
+            vec3 toLight = uLightVec[i] - worldApprox(p);
             float d2 = max(dot(toLight, toLight), 1e-8);
             dist = sqrt(d2);
             l = toLight / dist;

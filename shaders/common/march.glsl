@@ -16,11 +16,20 @@
 
 // Positions are float: near |p| a step below about 4 ulps (|p| · 2⁻²¹, PRECISION_REL from the C
 // preamble) cannot be resolved and would only add noise, so the threshold never goes below that.
+// In a deep zoom positions are relative to the eye (uCamPos = 0), so that floor is relative to the
+// distance travelled, and the double origin's own resolution is added (common/uniforms.glsl).
+float positionFloor(float t)
+{
+#ifdef PRECISION_DOUBLE
+    return PRECISION_REL * t + uOriginFloor;
+#else
+    return PRECISION_REL * (length(uCamPos) + t);
+#endif
+}
 
 float hitEps(float t)
 {
-    float floatFloor = PRECISION_REL * (length(uCamPos) + t);
-    return max(max(float(HIT_K) * uPixelAngle * t, HIT_EPS_MIN), floatFloor);
+    return max(max(float(HIT_K) * uPixelAngle * t, HIT_EPS_MIN), positionFloor(t));
 }
 
 #include "common/hit.glsl"
@@ -69,7 +78,7 @@ float refineCrossing(vec3 ro, vec3 rd, float side, float a, float fa, float b, f
 {
     int lastSide = 0;
     for (int i = 0; i < REFINE_STEPS; i++) {
-        float floorEps = PRECISION_REL * (length(uCamPos) + pathT + a);
+        float floorEps = positionFloor(pathT + a);
         if (b - a <= floorEps || fa <= floorEps)
             break;
         float t = clamp(a + (b - a) * fa / (fa - fb), a, b);
@@ -133,7 +142,7 @@ Hit castRay(vec3 ro, vec3 rd, float tmax, float side, float pathT)
     float tPrev2 = 0.0, fPrev2 = 0.0;                       // the sample before that
     float bestRatio = 1e30, tBest = 0.0, matBest = 0.0; // the closest approach, in thresholds
     bool lastBound = false; // the last step was on a bound: the ray had left the surfaces' reach
-    float floorBase = PRECISION_REL * (length(uCamPos) + pathT); // float resolution at t = 0
+    float floorBase = positionFloor(pathT); // float resolution at t = 0
     for (int i = 0; i < MAX_STEPS; i++) {
         h.steps = i + 1;
         vec2 d = map(ro + rd * t);
@@ -199,7 +208,7 @@ Hit castRay(vec3 ro, vec3 rd, float tmax, float side, float pathT)
 float normalEps(float eps, float t)
 {
 #if MARCH_REFINES
-    return max(NORMAL_EPS_FRACTION * eps, 16.0 * PRECISION_REL * (length(uCamPos) + t));
+    return max(NORMAL_EPS_FRACTION * eps, 16.0 * positionFloor(t));
 #else
     return eps;
 #endif

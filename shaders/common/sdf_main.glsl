@@ -48,7 +48,7 @@ vec3 shadeSurface(vec3 p, vec3 n, vec3 v, Material m, vec3 F0, float pathT, bool
     float ao = 1.0;
 #if FX_AO
     if (fxOn(FX_AO_BIT))
-        ao = calcAO(p, n);
+        ao = calcAO(p, n, pathT);
 #endif
     float NdotV = max(dot(n, v), MIN_COSINE);
     vec3 F = fresnelSchlickRoughness(NdotV, F0, m.roughness);
@@ -364,7 +364,7 @@ void writeOutputs(Path P, Ray ray)
 #endif
 #if FX_FOG
     if (fxOn(FX_FOG_BIT))
-        radiance = applyFog(radiance, ray.o, ray.d, P.primaryT);
+        radiance = applyFog(radiance, worldApprox(ray.o), ray.d, P.primaryT);
 #endif
     oColor = vec4(radiance, 1.0);
     oNormalDepth = vec4(P.firstN, P.firstT);

@@ -10,6 +10,18 @@ uniform int uAdaptive;          // 1: only pixels the edge mask keeps take this 
 uniform sampler2D uEdgeMask;
 uniform vec2 uJitter;       // sub-pixel offset of this sample, pixels; (0,0) for the first
 
+// A deep zoom (PRECISION_DOUBLE: fractal/common.glsl): positions here are relative to the eye, whose
+// world position is a double (uOrigin, read by the formula); uCamPos is then 0. worldApprox() brings
+// a position back to the world where a float's accuracy is plenty (point lights, height fog), and
+// uOriginFloor is the double origin's own resolution (hit thresholds never go below it).
+#ifdef PRECISION_DOUBLE
+uniform vec3 uOriginApprox;
+uniform float uOriginFloor;
+vec3 worldApprox(vec3 p) { return p + uOriginApprox; }
+#else
+vec3 worldApprox(vec3 p) { return p; }
+#endif
+
 // Run-time switches for the compiled-in effects (bit FX_NAME_BIT), all on unless the bench measures
 // what an effect costs when compiled in but switched off.
 uniform uint uFxRuntime;

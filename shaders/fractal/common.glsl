@@ -1,8 +1,39 @@
-// Shared by the fractal programs: their parameters, the bounding sphere and orbit-trap colouring.
-// Each formula declares its own parameters as annotated uniforms (app/scene/formula.h); one that
-// colours its surface defines PROGRAM_ALBEDO and programAlbedo() (common/contract.glsl).
+// Shared by every fractal formula (app/scene/formula.h has the file format): the precision-neutral
+// types, the bounding sphere, orbit-trap colouring, and the pieces several formulas are made of.
+//
+// Precision. A formula is written once against `real`, `real3`, `real4` and `realMat3`. Normally
+// these are float types. For a deep zoom (the hit threshold near a float's resolution: formulas that
+// declare @deep) the program is compiled with PRECISION_DOUBLE and they are doubles: the whole
+// shader then works in coordinates relative to the eye, and worldOf() adds the eye's double
+// position uOrigin back before the formula iterates. GLSL's doubles have +, −, ×, ÷, sqrt, abs,
+// min, max, clamp, floor, dot and length, but no pow, exp, log or trigonometry: a @deep formula uses
+// only those, or the helpers below that work in both precisions (realLog, bulbPower).
+#ifdef PRECISION_DOUBLE
+#define real double
+#define real3 dvec3
+#define real4 dvec4
+#define realMat3 dmat3
+uniform dvec3 uOrigin; // the eye, in world coordinates (app/gpu/render.c)
+real3 worldOf(vec3 p) { return uOrigin + real3(p); }
+#else
+#define real float
+#define real3 vec3
+#define real4 vec4
+#define realMat3 mat3
+real3 worldOf(vec3 p) { return p; }
+#endif
+
 uniform float uBoundRadius; // a sphere about the origin that holds the whole set
-uniform vec3 uPalette[3]; // orbit-trap colours: near, middle, far
+uniform vec3 uPalette[3];   // orbit-trap colours: near, middle, far
+uniform vec2 uTrapRange;    // the formula's @trap: the orbit trap's values spread over the palette
+
+// A zoom goes as deep as positions resolve (common/march.glsl's positionFloor), not to a fixed
+// threshold in metres: the fractal has detail at every scale.
+#define HIT_EPS_MIN 0.0
+
+// Ambient occlusion looks as far as the scale of the view: half the distance from the eye, at most
+// the usual 0.6 m (common/ao.glsl); a deep zoom's creases are 1e-12 wide.
+#define AO_RADIUS_AT(t) min(0.6, 0.5 * (t))
 
 // The footprint rule defines a fractal's surface at a level of detail (a ray within HIT_K pixel
 // footprints of the set has hit it): the marcher does not refine these hits (common/march.glsl).
@@ -14,10 +45,10 @@ uniform vec3 uPalette[3]; // orbit-trap colours: near, middle, far
 // estimate away from the set.
 const float BOUND_MARGIN = 0.1;
 
-// True (with the bound's distance in d) when p is far enough outside the bounding sphere to use it.
-bool outsideBound(vec3 p, out float d)
+// True (with the bound's distance in d) when P is far enough outside the bounding sphere to use it.
+bool outsideBound(real3 P, out float d)
 {
-    d = length(p) - uBoundRadius;
+    d = float(length(P)) - uBoundRadius;
     return d > BOUND_MARGIN;
 }
 
@@ -33,4 +64,95 @@ mat3 twistMatrix(vec3 a)
 {
     float cx = cos(a.x), sx = sin(a.x), cy = cos(a.y), sy = sin(a.y), cz = cos(a.z), sz = sin(a.z);
     return mat3(1, 0, 0, 0, cx, sx, 0, -sx, cx) * mat3(cy, 0, -sy, 0, 1, 0, sy, 0, cy) * mat3(cz, sz, 0, -sz, cz, 0, 0, 0, 1);
+}
+
+// ln x in either precision. The estimates only need the logarithm to a float's relative accuracy
+// (they are bounds scaled by a step factor), while their arguments need a double's digits.
+real realLog(real x) { return real(log(float(x))); }
+
+// The Mandelbulb's "triplex" power (D. White and P. Nylander, 2009): z = r (sin θ cos φ, cos θ,
+// sin θ sin φ) with θ from +Y and φ around it goes to rⁿ (sin nθ cos nφ, cos nθ, sin nθ sin nφ).
+// Returns rⁿ⁻¹ (for the running derivative n rⁿ⁻¹). At r → 0 and on the axis, acos and atan are
+// 0/0 and undefined: each falls back to its limit (tests/test_fractal.c fails without the guards).
+// In double precision (no trigonometry) and for a whole n it is exact algebra: (cos θ + i sin θ)ⁿ
+// and ((x + i z) / ρ)ⁿ by repeated complex products, ρ = √(x² + z²).
+#ifndef BULB_GUARDS // tests compile them out (0) to show what each prevents
+#define BULB_GUARDS 1
+#endif
+const float BULB_TINY = BULB_GUARDS != 0 ? 1e-30 : -1.0;
+
+#ifdef PRECISION_DOUBLE
+dvec2 complexPowD(dvec2 a, int n)
+{
+    dvec2 r = dvec2(1.0, 0.0);
+    for (int i = 0; i < n; i++)
+        r = dvec2(r.x * a.x - r.y * a.y, r.x * a.y + r.y * a.x);
+    return r;
+}
+
+real bulbPower(inout real3 z, float power)
+{
+    int n = int(power + 0.5); // @deep formulas ask for a whole power (formula.h: @deep whole)
+    real r = length(z), rho = length(z.xz);
+    dvec2 theta = BULB_GUARDS == 0 || r > 0.0 ? complexPowD(dvec2(z.y, rho) / r, n) : dvec2(1.0, 0.0);
+    dvec2 phi = BULB_GUARDS == 0 || rho > 0.0 ? complexPowD(z.xz / rho, n) : dvec2(1.0, 0.0);
+    real rn1 = 1.0;
+    for (int i = 1; i < n; i++)
+        rn1 *= r;
+    z = rn1 * r * real3(theta.y * phi.x, theta.x, theta.y * phi.y);
+    return rn1;
+}
+#else
+real bulbPower(inout real3 z, float power)
+{
+    float r = length(z);
+    float theta = r > BULB_TINY ? acos(clamp(z.y / r, -1.0, 1.0)) : 0.0;
+    float phi = (BULB_GUARDS == 0 || z.x != 0.0 || z.z != 0.0) ? atan(z.z, z.x) : 0.0;
+    float rn1 = r > BULB_TINY ? pow(r, power - 1.0) : 0.0;
+    theta *= power;
+    phi *= power;
+    z = rn1 * r * vec3(sin(theta) * cos(phi), cos(theta), sin(theta) * sin(phi));
+    return rn1;
+}
+#endif
+
+// The Mandelbox's folds (T. Lowe, 2010): the box fold reflects each coordinate beyond ±limit back
+// inside; the sphere fold inverts in the sphere of radius fixedR, and scales by (fixedR / minR)²
+// within minR. Returns the sphere fold's factor (the running derivative's).
+real sphereFold(inout real3 z, float minR, float fixedR)
+{
+    real r2 = dot(z, z), minR2 = real(minR * minR), fixedR2 = real(fixedR * fixedR);
+    real k = r2 < minR2 ? fixedR2 / minR2 : (r2 < fixedR2 ? fixedR2 / r2 : real(1.0));
+    z *= k;
+    return k;
+}
+
+real3 boxFold(real3 z, float limit) { return clamp(z, -real(limit), real(limit)) * 2.0 - z; }
+
+// The exact distance to the cube of half-side h about the origin (common/sdf.glsl's sdBox, in either
+// precision): the Menger sponge's cells, and the cube an infinite set is cut to (the maximum of two
+// distance bounds is a bound of the intersection).
+real realBox(real3 p, real h)
+{
+    real3 q = abs(p) - h;
+    return length(max(q, 0.0)) + min(max(q.x, max(q.y, q.z)), 0.0);
+}
+
+// The folds of the kaleidoscopic formulas: into the wedge x ≥ y ≥ z ≥ 0 of the cube's 48 mirror
+// images (the octahedral group), and across the tetrahedron's three mirror planes x + y, x + z, y + z.
+real3 foldOctahedral(real3 z)
+{
+    z = abs(z);
+    if (z.x < z.y) z.xy = z.yx;
+    if (z.x < z.z) z.xz = z.zx;
+    if (z.y < z.z) z.yz = z.zy;
+    return z;
+}
+
+real3 foldTetrahedral(real3 z)
+{
+    if (z.x + z.y < 0.0) z.xy = -z.yx;
+    if (z.x + z.z < 0.0) z.xz = -z.zx;
+    if (z.y + z.z < 0.0) z.yz = -z.zy;
+    return z;
 }

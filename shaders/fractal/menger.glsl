@@ -2,6 +2,8 @@
 // @iterations 4 [1, 7]
 // @bound size * 1.7320508
 // @step 1
+// @trap 0 1
+// @deep
 //
 // The Menger sponge, level FRACTAL_ITERATIONS, as an exact distance (not the usual bound).
 // The sponge is symmetric under the cube's 48 reflections, so folding p into x ≥ y ≥ z ≥ 0 keeps its
@@ -13,34 +15,28 @@
 #include "fractal/common.glsl"
 uniform float uSize; // @param 1 [0.001, 10000] half the cube's side (metres)
 
-const vec3 MENGER_CORNER = vec3(2.0 / 3.0, 2.0 / 3.0, 2.0 / 3.0);
-const vec3 MENGER_EDGE = vec3(2.0 / 3.0, 2.0 / 3.0, 0.0);
+#define FORMULA_EXACT 1 // fractal/map.glsl: no bounding sphere
 
-vec3 foldOctahedral(vec3 q)
-{
-    q = abs(q);
-    if (q.x < q.y) q.xy = q.yx;
-    if (q.y < q.z) q.yz = q.zy;
-    if (q.x < q.y) q.xy = q.yx;
-    return q;
-}
+const real3 MENGER_CORNER = real3(2.0 / 3.0, 2.0 / 3.0, 2.0 / 3.0);
+const real3 MENGER_EDGE = real3(2.0 / 3.0, 2.0 / 3.0, 0.0);
 
-float mengerDE(vec3 p)
+real formulaDE(real3 p, out float trap)
 {
     const int N = FRACTAL_ITERATIONS;
     const int PATHS = 1 << N;
-    float size = uSize;
-    vec3 q0 = p / size;
-    float best = 1e10;
+    real size = uSize;
+    real3 q0 = p / size;
+    real best = 1e10;
     int m = 0;
+    trap = 0.0;
     for (int guard = 0; guard < PATHS && m < PATHS; guard++, m++) {
-        vec3 q = q0;
-        float scale = 1.0;
+        real3 q = q0;
+        real scale = 1.0;
         bool pruned = false;
         for (int l = 0; l < N; l++) {
             q = foldOctahedral(q);
-            vec3 a = 3.0 * (q - MENGER_CORNER), b = 3.0 * (q - MENGER_EDGE);
-            float da = sdBox(a, vec3(1.0)), db = sdBox(b, vec3(1.0));
+            real3 a = 3.0 * (q - MENGER_CORNER), b = 3.0 * (q - MENGER_EDGE);
+            real da = realBox(a, 1.0), db = realBox(b, 1.0);
             bool second = ((m >> (N - 1 - l)) & 1) == 1;
             bool takeA = (da <= db) != second;
             scale /= 3.0;
@@ -52,24 +48,23 @@ float mengerDE(vec3 p)
             q = takeA ? a : b;
         }
         if (!pruned)
-            best = min(best, sdBox(q, vec3(1.0)) * scale);
+            best = min(best, realBox(q, 1.0) * scale);
     }
     return best * size;
 }
 
-vec2 map(vec3 p) { return vec2(mengerDE(p), 0.0); }
-
 // Colour by how deep the nearest hole is: follow the nearer cube down and note where the point sits.
+#define FORMULA_ALBEDO 1
 #define PROGRAM_ALBEDO 1
 vec3 programAlbedo(vec3 p, vec3 n, vec3 dpdx, vec3 dpdy, vec3 base)
 {
-    vec3 q = p / uSize;
+    real3 q = worldOf(p) / real(uSize);
     float trap = 1.0;
     for (int l = 0; l < FRACTAL_ITERATIONS; l++) {
         q = foldOctahedral(q);
-        vec3 a = 3.0 * (q - MENGER_CORNER), b = 3.0 * (q - MENGER_EDGE);
-        q = sdBox(a, vec3(1.0)) <= sdBox(b, vec3(1.0)) ? a : b;
-        trap = min(trap, length(q.yz) / 1.5 + float(l) * 0.02);
+        real3 a = 3.0 * (q - MENGER_CORNER), b = 3.0 * (q - MENGER_EDGE);
+        q = realBox(a, 1.0) <= realBox(b, 1.0) ? a : b;
+        trap = min(trap, float(length(q.yz)) / 1.5 + float(l) * 0.02);
     }
     return base * paletteColor(trap);
 }

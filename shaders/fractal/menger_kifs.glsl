@@ -2,6 +2,8 @@
 // @iterations 6 [1, 20]
 // @bound 1.7320508 * 1.2
 // @step 0.8
+// @trap 0 3
+// @deep
 //
 // Unlike menger.glsl (exact distance, no rotation), this iterates: fold into x ≥ y ≥ z ≥ 0, turn by
 // the twist, scale by s about the corner (1, 1, 1), and move the points of the middle slab (z above
@@ -15,40 +17,22 @@ uniform vec3 uTwist;  // @param 0.1,0.08,0 [-3.1416, 3.1416] rotation (radians a
 
 const float MKIFS_ESCAPE2 = 1e6;
 
-float mengerKifsDE(vec3 p, out float trap)
+real formulaDE(real3 p, out float trap)
 {
-    vec3 z = p;
-    mat3 twist = twistMatrix(uTwist);
-    float scale = 1.0, s = uScale;
+    real3 z = p;
+    realMat3 twist = realMat3(twistMatrix(uTwist));
+    real scale = 1.0, s = uScale;
     trap = 1e10;
     for (int i = 0; i < FRACTAL_ITERATIONS; i++) {
-        z = abs(z);
-        if (z.x < z.y) z.xy = z.yx;
-        if (z.x < z.z) z.xz = z.zx;
-        if (z.y < z.z) z.yz = z.zy;
-        z = twist * z;
+        z = twist * foldOctahedral(z);
         z.xy = z.xy * s - (s - 1.0);
         z.z = z.z * s;
         if (z.z > 0.5 * (s - 1.0))
             z.z -= s - 1.0;
         scale *= s;
-        trap = min(trap, dot(z, z));
+        trap = min(trap, float(length(z)));
         if (dot(z, z) > MKIFS_ESCAPE2)
             break;
     }
     return (length(z) - 1.7320508) / scale;
-}
-
-vec2 map(vec3 p)
-{
-    float d, trap;
-    return outsideBound(p, d) ? vec2(d, MATERIAL_BOUND) : vec2(mengerKifsDE(p, trap), 0.0);
-}
-
-#define PROGRAM_ALBEDO 1
-vec3 programAlbedo(vec3 p, vec3 n, vec3 dpdx, vec3 dpdy, vec3 base)
-{
-    float trap;
-    mengerKifsDE(p, trap);
-    return base * paletteColor(sqrt(trap) / 3.0);
 }

@@ -2,6 +2,8 @@
 // @iterations 10 [1, 30]
 // @bound 1.01 * offset
 // @step 1
+// @trap 0 2 * offset
+// @deep
 //
 // abs() and three swaps carry a point into the wedge x ≥ y ≥ z ≥ 0 (the octahedral group's 48 mirror
 // images, as the Menger sponge folds), a rotation turns it, and it is scaled by s about the vertex
@@ -15,37 +17,19 @@ uniform vec3 uTwist;   // @param 0.2,0.1,0 [-3.1416, 3.1416] rotation (radians a
 
 const float OCTA_ESCAPE2 = 1e6;
 
-float octahedronDE(vec3 p, out float trap)
+real formulaDE(real3 p, out float trap)
 {
-    vec3 z = p, v = vec3(uOffset, 0.0, 0.0);
-    mat3 twist = twistMatrix(uTwist);
-    float scale = 1.0;
+    real3 z = p, v = real3(uOffset, 0.0, 0.0);
+    realMat3 twist = realMat3(twistMatrix(uTwist));
+    real scale = 1.0, s = uScale;
     trap = 1e10;
     for (int i = 0; i < FRACTAL_ITERATIONS; i++) {
-        z = abs(z);
-        if (z.x < z.y) z.xy = z.yx;
-        if (z.x < z.z) z.xz = z.zx;
-        if (z.y < z.z) z.yz = z.zy;
-        z = twist * z;
-        z = z * uScale - v * (uScale - 1.0);
-        scale *= uScale;
-        trap = min(trap, dot(z, z));
+        z = twist * foldOctahedral(z);
+        z = z * s - v * (s - 1.0);
+        scale *= s;
+        trap = min(trap, float(length(z)));
         if (dot(z, z) > OCTA_ESCAPE2)
             break;
     }
-    return (length(z) - uOffset) / scale;
-}
-
-vec2 map(vec3 p)
-{
-    float d, trap;
-    return outsideBound(p, d) ? vec2(d, MATERIAL_BOUND) : vec2(octahedronDE(p, trap), 0.0);
-}
-
-#define PROGRAM_ALBEDO 1
-vec3 programAlbedo(vec3 p, vec3 n, vec3 dpdx, vec3 dpdy, vec3 base)
-{
-    float trap;
-    octahedronDE(p, trap);
-    return base * paletteColor(sqrt(trap) / (2.0 * uOffset));
+    return (length(z) - real(uOffset)) / scale;
 }

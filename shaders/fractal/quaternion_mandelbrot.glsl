@@ -2,6 +2,8 @@
 // @iterations 12 [1, 64]
 // @bound 2.1
 // @step 0.9
+// @trap 0 1.5
+// @deep
 //
 // As quaternion_julia.glsl, but c is the point drawn, so the running derivative gains the "+ 1" of
 // the Mandelbrot set: q' → 2 q q' + 1 (|q'| bounded by 2|q||q'| + 1). The estimate is
@@ -12,33 +14,19 @@ uniform float uSlice; // @param 0.0 [-2, 2] the w of the 3D slice drawn
 
 const float QM_ESCAPE2 = 256.0;
 
-float quatMandelDE(vec3 p, out float trap)
+real formulaDE(real3 p, out float trap)
 {
-    vec4 c = vec4(p.y, p.x, p.z, uSlice); // the real axis upright: the set's axis of revolution is y
-    vec4 q = c;
-    float q2 = dot(q, q), dq = 1.0;
+    real4 c = real4(p.y, p.x, p.z, uSlice); // the real axis upright: the set's axis of revolution is y
+    real4 q = c;
+    real q2 = dot(q, q), dq = 1.0;
     trap = 1e10;
     for (int i = 0; i < FRACTAL_ITERATIONS; i++) {
         dq = 2.0 * sqrt(q2) * dq + 1.0;
-        q = vec4(q.x * q.x - dot(q.yzw, q.yzw), 2.0 * q.x * q.yzw) + c;
+        q = real4(q.x * q.x - dot(q.yzw, q.yzw), 2.0 * q.x * q.yzw) + c;
         q2 = dot(q, q);
-        trap = min(trap, q2);
+        trap = min(trap, float(sqrt(q2)));
         if (q2 > QM_ESCAPE2)
             break;
     }
-    return q2 > 1.0 ? 0.25 * sqrt(q2) * log(q2) / dq : 0.0;
-}
-
-vec2 map(vec3 p)
-{
-    float d, trap;
-    return outsideBound(p, d) ? vec2(d, MATERIAL_BOUND) : vec2(quatMandelDE(p, trap), 0.0);
-}
-
-#define PROGRAM_ALBEDO 1
-vec3 programAlbedo(vec3 p, vec3 n, vec3 dpdx, vec3 dpdy, vec3 base)
-{
-    float trap;
-    quatMandelDE(p, trap);
-    return base * paletteColor(smoothstep(0.0, 1.5, sqrt(trap)));
+    return q2 > 1.0 ? 0.25 * sqrt(q2) * realLog(q2) / dq : real(0.0);
 }

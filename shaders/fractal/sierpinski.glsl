@@ -2,6 +2,8 @@
 // @iterations 12 [1, 30]
 // @bound 1.74 * offset
 // @step 1
+// @trap 0 3 * offset
+// @deep
 //
 // Each iteration folds space by the tetrahedron's three mirror planes through the origin (a point on
 // the negative side is reflected to the positive one), so every point is carried into the part of
@@ -16,36 +18,19 @@ uniform vec3 uTwist;   // @param 0,0,0 [-3.1416, 3.1416] rotation (radians about
 
 const float KIFS_ESCAPE2 = 1e6;
 
-float sierpinskiDE(vec3 p, out float trap)
+real formulaDE(real3 p, out float trap)
 {
-    vec3 z = p, v = vec3(uOffset);
-    mat3 twist = twistMatrix(uTwist);
-    float scale = 1.0;
+    real3 z = p, v = real3(uOffset);
+    realMat3 twist = realMat3(twistMatrix(uTwist));
+    real scale = 1.0, s = uScale;
     trap = 1e10;
     for (int i = 0; i < FRACTAL_ITERATIONS; i++) {
-        if (z.x + z.y < 0.0) z.xy = -z.yx;
-        if (z.x + z.z < 0.0) z.xz = -z.zx;
-        if (z.y + z.z < 0.0) z.yz = -z.zy;
-        z = twist * z;
-        z = z * uScale - v * (uScale - 1.0);
-        scale *= uScale;
-        trap = min(trap, dot(z, z));
+        z = twist * foldTetrahedral(z);
+        z = z * s - v * (s - 1.0);
+        scale *= s;
+        trap = min(trap, float(length(z)));
         if (dot(z, z) > KIFS_ESCAPE2)
             break;
     }
-    return (length(z) - 1.7320508 * uOffset) / scale;
-}
-
-vec2 map(vec3 p)
-{
-    float d, trap;
-    return outsideBound(p, d) ? vec2(d, MATERIAL_BOUND) : vec2(sierpinskiDE(p, trap), 0.0);
-}
-
-#define PROGRAM_ALBEDO 1
-vec3 programAlbedo(vec3 p, vec3 n, vec3 dpdx, vec3 dpdy, vec3 base)
-{
-    float trap;
-    sierpinskiDE(p, trap);
-    return base * paletteColor(sqrt(trap) / (3.0 * uOffset));
+    return (length(z) - 1.7320508 * real(uOffset)) / scale;
 }

@@ -1,0 +1,24 @@
+// map() and the orbit-trap colouring for every formula: app/scene/scene_programs.c includes this
+// after the formula, whose estimate is `real formulaDE(real3 p, out float trap)` (its own, or the
+// step formulas' loop in fractal/iterate.glsl). Positions arrive relative to the eye in a deep zoom:
+// worldOf() (fractal/common.glsl) makes them world positions in the precision the formula runs in.
+vec2 map(vec3 p)
+{
+    real3 P = worldOf(p);
+    float d, trap;
+#ifndef FORMULA_EXACT // an exact distance (menger.glsl) is a better step than the bounding sphere's
+    if (outsideBound(P, d))
+        return vec2(d, MATERIAL_BOUND);
+#endif
+    return vec2(float(formulaDE(P, trap)), 0.0);
+}
+
+#ifndef FORMULA_ALBEDO // a formula may colour its surface its own way (menger.glsl)
+#define PROGRAM_ALBEDO 1
+vec3 programAlbedo(vec3 p, vec3 n, vec3 dpdx, vec3 dpdy, vec3 base)
+{
+    float trap;
+    formulaDE(worldOf(p), trap);
+    return base * paletteColor(smoothstep(uTrapRange.x, uTrapRange.y, trap));
+}
+#endif
