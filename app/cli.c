@@ -15,6 +15,7 @@
 #include "view/camera.h"
 #include "view/path.h"
 #include "scene/quality.h"
+#include "scene/scene.h"
 #include "data/image_io.h"
 
 enum { MAX_IMAGE_SIDE = 16384, MAX_SPP = 1 << 16, DEFAULT_RUNS = 5, MAX_RUNS = 1000 };
@@ -477,6 +478,8 @@ bool cli_apply_shot_text(cli_options *o, const char *text, const char *source, s
 {
     if (!shot_parse(text, source, d, err))
         return false;
+    if (d->scene_text) /* a user's own scene, carried whole: it reopens on any machine */
+        scene_provide_text(d->scene, d->scene_text);
     if (d->set_count + o->set_count > CLI_MAX_SETS)
         return err_set(err, "%s: its %d overrides and the command line's %d are more than %d", source, d->set_count,
                        o->set_count, CLI_MAX_SETS);
@@ -499,9 +502,10 @@ bool cli_apply_shot_text(cli_options *o, const char *text, const char *source, s
 bool cli_apply_shot(cli_options *o, shot_desc *d, err_t *err)
 {
     char *text;
+    bool preset = shot_is_preset(o->scene);
     if (!util_file_exists(o->scene))
-        return err_set(err, "image '%s' not found: check the path", o->scene);
-    if (!image_read_text(o->scene, SHOT_KEY, &text, err))
+        return err_set(err, "%s '%s' not found: check the path", preset ? "preset" : "image", o->scene);
+    if (preset ? !util_read_file(o->scene, &text, NULL, err) : !image_read_text(o->scene, SHOT_KEY, &text, err))
         return false;
     bool ok = cli_apply_shot_text(o, text, o->scene, d, err);
     free(text);

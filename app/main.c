@@ -146,7 +146,7 @@ int main(int argc, char **argv)
     if (opt.dem && !util_file_exists(opt.dem))
         return finish(err_set(&err, "--dem: file '%s' not found (a path from the folder you are in)", opt.dem), &err);
     static shot_desc shot; /* --scene SHOT.png: opt points into it */
-    if (opt.scene && shot_is_image(opt.scene) && !cli_apply_shot(&opt, &shot, &err))
+    if (opt.scene && (shot_is_image(opt.scene) || shot_is_preset(opt.scene)) && !cli_apply_shot(&opt, &shot, &err))
         return finish(false, &err);
     static shot_desc view; /* --view NAME: likewise */
     if (opt.view_name && !apply_view(&opt, &view, &err))

@@ -67,9 +67,21 @@ vec3 linearToSrgb(vec3 c)
     return mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), c));
 }
 
+// The heat map's legend, a bar along the bottom-left corner (the window labels it): the same heat()
+// as the image, so its colours cannot drift from the map's.
+const vec2 LEGEND_AT = vec2(16.0, 16.0), LEGEND_SIZE = vec2(256.0, 12.0);
+bool legend(out vec4 c)
+{
+    vec2 p = (gl_FragCoord.xy - LEGEND_AT) / LEGEND_SIZE;
+    c = vec4(p.x <= 1.0 ? heat(p.x) : vec3(1.0, 0.0, 1.0), 1.0); // then a magenta patch: out of steps
+    return p.y >= 0.0 && p.y <= 1.0 && p.x >= 0.0 && p.x <= 1.1;
+}
+
 void main()
 {
     if (uView == 1) {
+        if (uDstSize.x > 2.0 * LEGEND_SIZE.x && legend(oColor))
+            return;
         float steps = texelFetch(uAux, nearestTexel(), 0).x;
         const vec3 OUT_OF_STEPS = vec3(1.0, 0.0, 1.0); // magenta: the step budget ran out here
         oColor = vec4(steps < 0.0 ? OUT_OF_STEPS : heat(steps / uMaxSteps), 1.0);

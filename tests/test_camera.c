@@ -292,6 +292,37 @@ static void slide_never_stalls(void **st)
     assert_true(fabs(far[0] - 101.0) < 1e-9);
 }
 
+/* The pivot's direction in the camera's own frame (right, up, forward), unit. */
+static void seen(const camera *c, const double pivot[3], double out[3])
+{
+    camera_basis b = camera_get_basis(c);
+    double d[3] = {pivot[0] - c->position[0], pivot[1] - c->position[1], pivot[2] - c->position[2]}, len = camera_norm(d);
+    out[0] = (d[0] * b.right[0] + d[1] * b.right[1] + d[2] * b.right[2]) / len;
+    out[1] = (d[0] * b.up[0] + d[1] * b.up[1] + d[2] * b.up[2]) / len;
+    out[2] = (d[0] * b.forward[0] + d[1] * b.forward[1] + d[2] * b.forward[2]) / len;
+}
+
+/* Orbiting turns the camera about a pivot off the screen's centre (the point a drag started on): the
+ * pivot stays where it is on the screen and at the same distance; pitch stops short of straight down. */
+static void orbit_keeps_the_pivot(void **st)
+{
+    (void)st;
+    camera c = camera_look_at((double[3]){1, 2, 5}, (double[3]){0, 0.5, 0}, 0.9f);
+    const double pivot[3] = {0.4, 0.2, -0.3}; /* not where the camera looks */
+    double before[3], after[3], r0 = camera_distance(c.position, pivot);
+    seen(&c, pivot, before);
+    for (int i = 0; i < 50; i++) {
+        camera_orbit(&c, pivot, 0.07f, (float)(i % 3 - 1) * 0.05f);
+        seen(&c, pivot, after);
+        for (int k = 0; k < 3; k++)
+            assert_near(after[k], before[k], 1e-5);
+        assert_near(camera_distance(c.position, pivot), r0, 1e-9 * r0);
+    }
+    for (int i = 0; i < 100; i++)
+        camera_orbit(&c, pivot, 0, -0.1f);
+    assert_true(c.pitch >= -CAMERA_MAX_PITCH);
+}
+
 /* A deep zoom's camera keeps a double's digits: a step of 1e-13 at |p| = 1 moves it (a float cannot). */
 static void deep_positions(void **st)
 {
@@ -317,6 +348,7 @@ int main(void)
         cmocka_unit_test(slide_never_enters_a_solid),
         cmocka_unit_test(slide_never_stalls),
         cmocka_unit_test(deep_positions),
+        cmocka_unit_test(orbit_keeps_the_pivot),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -43,6 +43,7 @@ static struct {
     int preview_w, preview_h;
     camera cam;
     double origin[3]; /* a deep zoom's: the world position the shader's coordinates are relative to */
+    float heat_max;   /* the steps heat map's top (0: the scene's MAX_STEPS) */
     unsigned runtime_effects; /* effects switched on at run time (bits as in effect.h) */
 } state = {.runtime_effects = ~0u};
 
@@ -432,7 +433,9 @@ void render_display(GLuint fbo, int width, int height, float exposure, render_vi
     glUniform1i(glGetUniformLocation(p, "uEdgeAware"), state.edge_aware ? 1 : 0);
     glUniform1f(glGetUniformLocation(p, "uInvRefSamples"), state.ref_samples ? 1.0f / (float)state.ref_samples : 0.0f);
     glUniform1i(glGetUniformLocation(p, "uView"), (GLint)view);
-    glUniform1f(glGetUniformLocation(p, "uMaxSteps"), render_scene_current() ? (float)render_scene_current()->quality.max_steps : 1.0f);
+    float top = state.heat_max > 0 ? state.heat_max
+                : render_scene_current() ? (float)render_scene_current()->quality.max_steps : 1.0f;
+    glUniform1f(glGetUniformLocation(p, "uMaxSteps"), top);
     glUniform1f(glGetUniformLocation(state.display_prog, "uExposure"), exposure);
     glUniform2f(glGetUniformLocation(p, "uSrcSize"), (float)state.width, (float)state.height);
     glUniform2f(glGetUniformLocation(p, "uDstSize"), (float)width, (float)height);
@@ -507,6 +510,52 @@ void render_read_aovs(float *aov8)
     free(a);
     free(b);
     flip_rows(aov8, state.height, (size_t)state.width * AOV_FLOATS * sizeof(float));
+}
+
+void render_set_heat_max(float steps) { state.heat_max = steps; }
+
+float render_heat_max(void)
+{
+    const scene *s = render_scene_current();
+    return state.heat_max > 0 ? state.heat_max : s ? (float)s->quality.max_steps : 1.0f;
+}
+
+bool render_read_pixel(int x, int y_from_top, float out[AOV_FLOATS])
+{
+    if (!state.fbo || x < 0 || y_from_top < 0 || x >= state.width || y_from_top >= state.height || state.samples == 0)
+        return false;
+    int y = state.height - 1 - y_from_top;
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, state.fbo);
+    glReadBuffer(GL_COLOR_ATTACHMENT1);
+    glReadPixels(x, y, 1, 1, GL_RGBA, GL_FLOAT, out);
+    glReadBuffer(GL_COLOR_ATTACHMENT2);
+    glReadPixels(x, y, 1, 1, GL_RGBA, GL_FLOAT, out + 4);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    if (out[AOV_SLOT_DEPTH] < 0.0f)
+        out[AOV_SLOT_DEPTH] = INFINITY;
+    return true;
+}
+
+double render_reference_rmse(void)
+{
+    if (!state.ref_samples || !state.samples)
+        return -1.0;
+    size_t n = (size_t)state.width * (size_t)state.height;
+    float *now = util_alloc(sizeof(float) * 4 * n, "the reference comparison");
+    float *ref = util_alloc(sizeof(float) * 4 * n, "the reference comparison");
+    read_target(state.fbo, GL_COLOR_ATTACHMENT0, GL_FLOAT, now);
+    read_target(state.ref_fbo, GL_COLOR_ATTACHMENT0, GL_FLOAT, ref);
+    double sum = 0;
+    for (size_t i = 0; i < n; i++) { /* each pixel's mean: alpha counts its samples */
+        float a = now[4 * i + 3] > 0 ? 1.0f / now[4 * i + 3] : 0.0f, b = ref[4 * i + 3] > 0 ? 1.0f / ref[4 * i + 3] : 0.0f;
+        for (int c = 0; c < 3; c++) {
+            double d = (double)(now[4 * i + (size_t)c] * a - ref[4 * i + (size_t)c] * b);
+            sum += d * d;
+        }
+    }
+    free(now);
+    free(ref);
+    return sqrt(sum / (3.0 * (double)n));
 }
 
 bool render_reload(err_t *err)

@@ -82,6 +82,15 @@ typedef enum render_view { VIEW_COLOR, VIEW_STEPS, VIEW_DIFFERENCE } render_view
 
 /* Keeps the current image as the reference that VIEW_DIFFERENCE compares against. */
 void render_grab_reference(void);
+/* The root-mean-square difference of the current image's linear colour to the grabbed reference
+ * (each pixel's mean over its samples; the same size); −1 without a reference. Reads both back. */
+double render_reference_rmse(void);
+/* The steps heat map's top (VIEW_STEPS: blue 0 … red at this many steps); 0: the scene's MAX_STEPS. */
+void render_set_heat_max(float steps);
+float render_heat_max(void);
+/* The AOVs of one pixel of the active image (row 0 at the top): what is under the cursor. False
+ * before the first sample or outside the image. */
+bool render_read_pixel(int x, int y_from_top, float out[8]);
 
 /* Tone-mapped sRGB colour (or the steps heat map) into framebuffer `fbo` (0 = window), the active image
  * stretched to width × height (bilinear; texel for texel when the sizes are equal). */

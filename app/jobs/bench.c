@@ -30,23 +30,6 @@ typedef struct sweep {
 } sweep;
 enum { MAX_SWEEPS = KNOB_COUNT + 8 };
 
-static bool scope_applies(knob_scope scope, const scene *s)
-{
-    switch (scope) {
-    case SCOPE_ANY: return true;
-    case SCOPE_SHADOWS: return s->effects & (1u << EFFECT_SHADOWS);
-    case SCOPE_AO: return s->effects & (1u << EFFECT_AO);
-    case SCOPE_BOUNCES: return s->effects & ((1u << EFFECT_REFLECTIONS) | (1u << EFFECT_REFRACTION));
-    case SCOPE_TEXTURES: return s->effects & (1u << EFFECT_TEXTURES);
-    case SCOPE_REFINES: /* common/march.glsl refines; fractals define their surface by the footprint */
-        return !program_is_fractal(s->program) && !s->terrain.heightmap[0];
-    case SCOPE_SEARCH: /* the lab's search runs: linear terrain, or relief materials */
-        return (s->terrain.heightmap[0] && !s->terrain.maxmip) || (s->effects & (1u << EFFECT_RELIEF));
-    case SCOPE_DROPLETS: return s->effects & (1u << EFFECT_DROPLETS);
-    }
-    return false;
-}
-
 /* A fractal's iterations from a third of its default to a third past it (within the range its formula
  * declares, formula.h), the default among them: where detail stops paying for its time. */
 static void fractal_iterations_sweep(const formula *f, sweep *out)
@@ -83,7 +66,7 @@ static int list_sweeps(const scene *s, sweep *out, bool *applies)
         snprintf(out[n].name, sizeof out[n].name, "%s", d->name);
         snprintf(out[n].key, sizeof out[n].key, "quality.%s", d->name);
         snprintf(out[n].values, sizeof out[n].values, "%s", d->sweep);
-        applies[n++] = scope_applies(d->scope, s);
+        applies[n++] = scene_knob_applies(s, (knob_id)k);
     }
     /* the program's own: "key=v1,v2;key2=…", named by the key's last part */
     const char *own = program_get(s->program)->bench;

@@ -199,20 +199,20 @@ static int nesting(const char *text, int limit, const char **at)
  * mistake it is. The file's own error is reported as the file's; else the override that breaks it
  * alone is named (a --set or --dem), or "the overrides" when only together they do. */
 static bool load_text(const char *text, const char *path, const char *const *sets, int set_count, scene *s,
-                      bool blame, err_t *err);
+                      bool blame, param_list *params, err_t *err);
 
 static void blame_override(const char *text, const char *path, const char *const *sets, int set_count, err_t *err)
 {
     scene alone;
     err_t other;
-    if (!load_text(text, path, NULL, 0, &alone, false, &other)) {
+    if (!load_text(text, path, NULL, 0, &alone, false, NULL, &other)) {
         *err = other;
         return;
     }
     scene_free(&alone);
     const char *culprit = NULL;
     for (int i = 0; i < set_count && !culprit; i++) {
-        if (load_text(text, path, &sets[i], 1, &alone, false, &other))
+        if (load_text(text, path, &sets[i], 1, &alone, false, NULL, &other))
             scene_free(&alone);
         else
             culprit = sets[i];
@@ -230,11 +230,87 @@ static void blame_override(const char *text, const char *path, const char *const
 bool scene_load_text(const char *text, const char *path, const char *const *sets, int set_count, scene *s,
                      err_t *err)
 {
-    return load_text(text, path, sets, set_count, s, true, err);
+    return load_text(text, path, sets, set_count, s, true, NULL, err);
+}
+
+static bool scene_text(const char *path, char **text, err_t *err);
+
+bool scene_knob_applies(const scene *s, knob_id k)
+{
+    switch (knob_get_def(k)->scope) {
+    case SCOPE_ANY: return true;
+    case SCOPE_SHADOWS: return s->effects & (1u << EFFECT_SHADOWS);
+    case SCOPE_AO: return s->effects & (1u << EFFECT_AO);
+    case SCOPE_BOUNCES: return s->effects & ((1u << EFFECT_REFLECTIONS) | (1u << EFFECT_REFRACTION));
+    case SCOPE_TEXTURES: return s->effects & (1u << EFFECT_TEXTURES);
+    case SCOPE_REFINES: /* common/march.glsl refines; fractals define their surface by the footprint */
+        return !program_is_fractal(s->program) && !s->terrain.heightmap[0];
+    case SCOPE_SEARCH: /* the lab's search runs: linear terrain, or relief materials */
+        return (s->terrain.heightmap[0] && !s->terrain.maxmip) || (s->effects & (1u << EFFECT_RELIEF));
+    case SCOPE_DROPLETS: return s->effects & (1u << EFFECT_DROPLETS);
+    }
+    return false;
+}
+
+/* What the parser does not read key by key: every quality knob (with its help, whether the file sets
+ * it or not) and the preset; and the formulas' descriptions for their parameters. */
+static void finish_params(const scene *s, param_list *l)
+{
+    for (int k = 0; k < KNOB_COUNT; k++) {
+        const knob_def *d = knob_get_def((knob_id)k);
+        if (!scene_knob_applies(s, (knob_id)k)) { /* nothing about what the scene does not use */
+            for (int i = 0; i < l->count; i++)
+                if (!strncmp(l->items[i].key, "quality.", 8) && !strcmp(l->items[i].key + 8, d->name))
+                    l->items[i] = l->items[--l->count];
+            continue;
+        }
+        scene_param p = {.type = d->type == KNOB_INT ? PARAM_INT : PARAM_FLOAT, .lo = d->min, .hi = d->max,
+                         .value = {knob_value(&s->quality, (knob_id)k)}};
+        snprintf(p.key, sizeof p.key, "quality.%s", d->name);
+        snprintf(p.help, sizeof p.help, "%s", d->help);
+        params_add(l, &p);
+    }
+    scene_param preset = {.type = PARAM_ENUM, .hi = PRESET_COUNT - 1, .value = {s->preset}, .key = "quality.preset"};
+    size_t at = 0;
+    for (int i = 0; i < PRESET_COUNT; i++, preset.name_count++) {
+        const char *name = preset_name((quality_preset)i);
+        memcpy(preset.names + at, name, strlen(name) + 1);
+        at += strlen(name) + 1;
+    }
+    snprintf(preset.help, sizeof preset.help, "sets every knob to the preset's value (then the file's own knobs)");
+    params_add(l, &preset);
+    for (int e = 0; e < EFFECT_COUNT; e++) { /* every effect: compiled in when the content needs it, or forced */
+        scene_param fx = {.type = PARAM_ENUM, .hi = 2, .value = {s->effect_modes[e]}, .name_count = 3};
+        memcpy(fx.names, "auto\0on\0off", sizeof "auto\0on\0off");
+        snprintf(fx.key, sizeof fx.key, "effects.%s", effect_name((effect)e));
+        snprintf(fx.help, sizeof fx.help, "auto: compiled in when the scene needs it (now %s); on, off: forced",
+                 s->effects & (1u << e) ? "in" : "out");
+        params_add(l, &fx);
+    }
+    for (int i = 0; i < l->count; i++) {
+        scene_param *p = &l->items[i];
+        bool hybrid = !strncmp(p->key, "fractal.hybrid.", 15);
+        const formula *f = hybrid ? &s->fractal.hybrid : &s->fractal.formula;
+        const formula_param *q = !strncmp(p->key, "fractal.", 8) ? formula_find(f, p->key + (hybrid ? 15 : 8)) : NULL;
+        if (q && program_is_fractal(s->program))
+            snprintf(p->help, sizeof p->help, "%s", q->description);
+    }
+}
+
+bool scene_load_params(const char *name_or_path, const char *const *sets, int set_count, scene *s,
+                       param_list *params, err_t *err)
+{
+    char path[PATH_MAX_LEN];
+    char *text;
+    if (!scene_locate(name_or_path, path, sizeof path, err) || !scene_text(path, &text, err))
+        return false;
+    bool ok = load_text(text, path, sets, set_count, s, true, params, err);
+    free(text);
+    return ok;
 }
 
 static bool load_text(const char *text, const char *path, const char *const *sets, int set_count, scene *s,
-                      bool blame, err_t *err)
+                      bool blame, param_list *params, err_t *err)
 {
     *s = (scene){0};
     snprintf(s->path, sizeof s->path, "%s", path);
@@ -256,7 +332,7 @@ static bool load_text(const char *text, const char *path, const char *const *set
         line_col(text, end ? end : text, &line, &col);
         return err_set(err, "%s:%d:%d: malformed JSON near here (check commas, quotes and brackets)", path, line, col);
     }
-    scene_ctx c = {.file = path, .err = err, .s = s};
+    scene_ctx c = {.file = path, .err = err, .s = s, .params = params};
     bool ok = check_duplicates(&c, root, "");
     for (int i = 0; ok && i < set_count; i++)
         ok = scene_apply_set(root, sets[i], err); /* its errors name the override already */
@@ -269,6 +345,8 @@ static bool load_text(const char *text, const char *path, const char *const *set
     cJSON_Delete(root);
     if (ok) {
         s->map_glsl = c.code.data;
+        if (params)
+            finish_params(s, params);
     } else {
         sb_free(&c.code);
         scene_free(s);
@@ -276,10 +354,44 @@ static bool load_text(const char *text, const char *path, const char *const *set
     return ok;
 }
 
+/* Scene texts a shot or preset carried (scene_provide_text), by the path the scene had. */
+enum { PROVIDED_MAX = 8 };
+static struct {
+    char path[PROVIDED_MAX][PATH_MAX_LEN];
+    char *text[PROVIDED_MAX];
+    int count;
+} provided;
+
+static const char *provided_text(const char *path)
+{
+    for (int i = 0; i < provided.count; i++)
+        if (!strcmp(provided.path[i], path))
+            return provided.text[i];
+    return NULL;
+}
+
+void scene_provide_text(const char *path, const char *text)
+{
+    for (int i = 0; i < provided.count; i++)
+        if (!strcmp(provided.path[i], path)) {
+            free(provided.text[i]);
+            provided.text[i] = util_strdup(text);
+            return;
+        }
+    if (provided.count == PROVIDED_MAX) { /* the oldest goes */
+        free(provided.text[0]);
+        memmove(&provided.path[0], &provided.path[1], sizeof provided.path[0] * (PROVIDED_MAX - 1));
+        memmove(&provided.text[0], &provided.text[1], sizeof provided.text[0] * (PROVIDED_MAX - 1));
+        provided.count--;
+    }
+    snprintf(provided.path[provided.count], PATH_MAX_LEN, "%s", path);
+    provided.text[provided.count++] = util_strdup(text);
+}
+
 bool scene_locate(const char *name_or_path, char *out, size_t n, err_t *err)
 {
     if (strchr(name_or_path, '/') || strstr(name_or_path, ".json")) {
-        if (!util_file_exists(name_or_path))
+        if (!util_file_exists(name_or_path) && !provided_text(name_or_path))
             return err_set(err, "scene file '%s' not found: check the path, or pass a name from --list-scenes",
                            name_or_path);
         snprintf(out, n, "%s", name_or_path);
@@ -304,11 +416,22 @@ bool scene_locate(const char *name_or_path, char *out, size_t n, err_t *err)
     return true;
 }
 
+/* The scene's text: the one a shot carried for this path, else the file's. */
+static bool scene_text(const char *path, char **text, err_t *err)
+{
+    const char *carried = provided_text(path);
+    if (carried) {
+        *text = util_strdup(carried);
+        return true;
+    }
+    return util_read_file(path, text, NULL, err);
+}
+
 bool scene_load(const char *name_or_path, const char *const *sets, int set_count, scene *s, err_t *err)
 {
     char path[PATH_MAX_LEN];
     char *text;
-    if (!scene_locate(name_or_path, path, sizeof path, err) || !util_read_file(path, &text, NULL, err))
+    if (!scene_locate(name_or_path, path, sizeof path, err) || !scene_text(path, &text, err))
         return false;
     bool ok = scene_load_text(text, path, sets, set_count, s, err);
     free(text);

@@ -160,12 +160,22 @@ typedef struct scene {
     int csg_list_count, csg_node_count;
 } scene;
 
+/* A scene's text carried by a shot or a preset (shot.h), standing in for the file at `path` from now
+ * on, whether that file is there or not (the shot reopens as it was made, on any machine). Files the
+ * scene names are still found relative to that path's folder. */
+void scene_provide_text(const char *path, const char *text);
+
 /* Finds the file for a scene name ("csg" -> <data>/scenes/csg.json) or checks a path. */
 bool scene_locate(const char *name_or_path, char *out, size_t n, err_t *err);
 
 /* Parses the scene file, applies the "key=value" overrides in order, validates every key and value,
  * derives the effect set and generates map(). Syntax errors name line and column. */
 bool scene_load(const char *name_or_path, const char *const *sets, int set_count, scene *s, err_t *err);
+
+/* scene_load, recording every tunable value it reads into params (scene/params.h: the window's panel). */
+struct param_list;
+bool scene_load_params(const char *name_or_path, const char *const *sets, int set_count, scene *s,
+                       struct param_list *params, err_t *err);
 
 /* The same from text already in memory (path is used for messages and relative paths). */
 bool scene_load_text(const char *text, const char *path, const char *const *sets, int set_count, scene *s,
@@ -191,6 +201,10 @@ void scene_uniforms(const scene *s, const uniform_sink *u);
 #define DEEP_MARGIN 4.0
 struct camera;
 bool scene_needs_double(const scene *s, double distance, const struct camera *c, int height, bool now);
+
+/* Whether quality knob k has any effect in s (its scope, quality.h): the bench sweeps only those, the
+ * window shows only those. */
+bool scene_knob_applies(const scene *s, knob_id k);
 
 /* Lists scene names under <data>/scenes into out (one per line). */
 void scene_list(strbuf *out);

@@ -47,22 +47,31 @@ bool check_keys(scene_ctx *c, const cJSON *obj, const char *path, const char *co
     return true;
 }
 
+scene_param *record_param(scene_ctx *c, const char *path, const char *key, param_type type, const double *v,
+                          double lo, double hi)
+{
+    if (!c->params)
+        return NULL;
+    scene_param p = {.type = type, .lo = lo, .hi = hi};
+    child_path(p.key, sizeof p.key, path, key);
+    for (int i = 0; i < (type == PARAM_VEC3 || type == PARAM_COLOR ? 3 : 1); i++)
+        p.value[i] = v[i];
+    return params_add(c->params, &p);
+}
+
 bool get_num(scene_ctx *c, const cJSON *obj, const char *path, const char *key, float def, float lo,
                     float hi, float *out)
 {
     const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
     char p[512];
     child_path(p, sizeof p, path, key);
-    if (!v) {
-        *out = def;
-        return true;
-    }
-    if (!cJSON_IsNumber(v) || !isfinite(v->valuedouble) || v->valuedouble < lo || v->valuedouble > hi) {
+    if (v && (!cJSON_IsNumber(v) || !isfinite(v->valuedouble) || v->valuedouble < lo || v->valuedouble > hi)) {
         char range[128];
         snprintf(range, sizeof range, "%g to %g", (double)lo, (double)hi);
         return fail(c, p, "expected a number from %s", range);
     }
-    *out = (float)v->valuedouble;
+    *out = v ? (float)v->valuedouble : def;
+    record_param(c, path, key, PARAM_FLOAT, (const double[1]){*out}, lo, hi);
     return true;
 }
 
@@ -78,6 +87,7 @@ bool get_int(scene_ctx *c, const cJSON *obj, const char *path, const char *key, 
         return fail(c, p, "expected a whole number");
     }
     *out = (int)f;
+    record_param(c, path, key, PARAM_INT, (const double[1]){f}, lo, hi);
     return true;
 }
 
@@ -113,6 +123,8 @@ bool get_vec3(scene_ctx *c, const cJSON *obj, const char *path, const char *key,
         return false;
     for (int i = 0; i < 3; i++)
         out[i] = (float)v[i];
+    bool colour = strstr(key, "color") && lo >= 0 && hi <= 1;
+    record_param(c, path, key, colour ? PARAM_COLOR : PARAM_VEC3, v, lo, hi);
     return true;
 }
 
@@ -142,6 +154,17 @@ bool get_enum(scene_ctx *c, const cJSON *obj, const char *path, const char *key,
     for (int i = 0; names[i]; i++)
         if (!strcmp(v, names[i])) {
             *out = i;
+            int n = 0;
+            while (names[n])
+                n++;
+            scene_param *p = record_param(c, path, key, PARAM_ENUM, (const double[1]){i}, 0, n - 1);
+            if (p) {
+                size_t at = 0;
+                for (int k = 0; k < n && at + strlen(names[k]) + 1 < sizeof p->names; k++, p->name_count++) {
+                    memcpy(p->names + at, names[k], strlen(names[k]) + 1);
+                    at += strlen(names[k]) + 1;
+                }
+            }
             return true;
         }
     char p[KEY_PATH_MAX];

@@ -8,6 +8,7 @@
 #include <cjson/cJSON.h>
 #include <stdbool.h>
 
+#include "scene/params.h"
 #include "scene/scene.h"
 #include "scene/uniforms.h"
 
@@ -21,7 +22,13 @@ typedef struct scene_ctx {
     strbuf code; /* generated GLSL: program.glsl */
     int next_var;
     const char *formula; /* "program": "NAME" naming a formula: the fractal program with that formula */
+    param_list *params;  /* when not NULL, every tunable value read is recorded here (params.h) */
 } scene_ctx;
+
+/* Records a tunable value read by hand (the get_* functions record their own): its key path, type,
+ * value (v[0] for a number or bool, v[0..2] for a vector) and range. Does nothing without c->params. */
+scene_param *record_param(scene_ctx *c, const char *path, const char *key, param_type type, const double *v,
+                          double lo, double hi);
 
 bool fail(scene_ctx *c, const char *path, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
 

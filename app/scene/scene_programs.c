@@ -10,13 +10,29 @@
 
 /* ---- fractals: the "fractal" block ------------------------------------------------------------ */
 
+/* The palette's three colours as parameters, elements of one array (an edit sets the whole palette:
+ * a file without one has no array to index). */
+static void record_palette(scene_ctx *c, float pal[3][3])
+{
+    for (int i = 0; i < 3; i++) {
+        char key[8];
+        snprintf(key, sizeof key, "%d", i);
+        scene_param *p = record_param(c, "fractal.palette", key, PARAM_COLOR,
+                                      (const double[3]){pal[i][0], pal[i][1], pal[i][2]}, 0, 1);
+        if (p)
+            p->array_len = 3, p->array_index = i;
+    }
+}
+
 static bool get_palette(scene_ctx *c, const cJSON *f, float out[3][3])
 {
     static const float def[3][3] = {{0.95f, 0.55f, 0.25f}, {0.25f, 0.45f, 0.75f}, {0.92f, 0.9f, 0.85f}};
     memcpy(out, def, sizeof def);
     const cJSON *pal = cJSON_GetObjectItemCaseSensitive(f, "palette");
-    if (!pal)
+    if (!pal) {
+        record_palette(c, out);
         return true;
+    }
     if (!cJSON_IsArray(pal) || cJSON_GetArraySize(pal) != 3)
         return fail(c, "fractal.palette", "expected three colours [[r,g,b], [r,g,b], [r,g,b]] (near, middle, far)");
     int i = 0;
@@ -30,6 +46,7 @@ static bool get_palette(scene_ctx *c, const cJSON *f, float out[3][3])
             out[i][k] = (float)v->valuedouble;
         }
     }
+    record_palette(c, out);
     return true;
 }
 
@@ -81,6 +98,7 @@ static bool get_param(scene_ctx *c, const cJSON *use, const char *path, const fo
         if (b && !cJSON_IsBool(b) && !(cJSON_IsNumber(b) && (b->valuedouble == 0 || b->valuedouble == 1)))
             return fail(c, key, "expected true or false");
         v[0] = !b ? q->def[0] : cJSON_IsBool(b) ? (float)cJSON_IsTrue(b) : (float)b->valuedouble;
+        record_param(c, path, q->key, PARAM_BOOL, (const double[1]){v[0]}, 0, 1);
         break;
     }
     case FORMULA_VEC3:
@@ -192,6 +210,8 @@ static bool step_loop(scene_ctx *c, const cJSON *use, scene_fractal *fr)
     if (julia && !cJSON_IsBool(julia))
         return fail(c, "fractal.julia", "expected true or false");
     fr->julia = cJSON_IsTrue(julia);
+    if (fr->formula.step_formula)
+        record_param(c, "fractal", "julia", PARAM_BOOL, (const double[1]){fr->julia}, 0, 1);
     if (!fr->formula.step_formula) {
         if (fr->julia || cJSON_GetObjectItemCaseSensitive(use, "julia_c") || cJSON_GetObjectItemCaseSensitive(use, "steps"))
             return fail(c, "fractal", "julia, julia_c and steps belong to step formulas (@de); %s has its own estimate",

@@ -182,6 +182,32 @@ float camera_slide(const double from[3], double to[3], float step_factor, double
     return (float)(keep2 * slid / len);
 }
 
+/* v rotated by angle a about the unit axis k (Rodrigues). */
+static void rotate(double v[3], const double k[3], double a)
+{
+    double c = cos(a), s = sin(a), kv = k[0] * v[0] + k[1] * v[1] + k[2] * v[2];
+    double x[3] = {k[1] * v[2] - k[2] * v[1], k[2] * v[0] - k[0] * v[2], k[0] * v[1] - k[1] * v[0]};
+    for (int i = 0; i < 3; i++)
+        v[i] = v[i] * c + x[i] * s + k[i] * kv * (1 - c);
+}
+
+void camera_orbit(camera *c, const double pivot[3], float dyaw, float dpitch)
+{
+    float pitch = clampf(c->pitch + dpitch, -CAMERA_MAX_PITCH, CAMERA_MAX_PITCH);
+    dpitch = pitch - c->pitch;
+    camera_basis b = camera_get_basis(c);
+    double off[3], up[3] = {0, 1, 0}, right[3] = {b.right[0], b.right[1], b.right[2]};
+    for (int i = 0; i < 3; i++)
+        off[i] = c->position[i] - pivot[i];
+    /* a pitch up turns the view up about the camera's right axis: the camera goes down around the pivot */
+    rotate(off, right, dpitch);
+    rotate(off, up, dyaw);
+    for (int i = 0; i < 3; i++)
+        c->position[i] = pivot[i] + off[i];
+    c->yaw = remainderf(c->yaw + dyaw, 2.0f * GLM_PIf);
+    c->pitch = pitch;
+}
+
 void camera_clamp_range(double pos[3], const double centre[3], double max_distance)
 {
     double d = camera_distance(pos, centre);

@@ -72,6 +72,12 @@ float camera_slide(const double from[3], double to[3], float step_factor, double
  * zoom): a few units in the last place of |p|, with room. */
 double camera_resolution(const double p[3], bool deep);
 
+/* Turntable about a pivot: the camera turns by dyaw about the vertical through the pivot and by dpitch
+ * about its own horizontal axis through the pivot, its view turning with it, so the pivot stays
+ * where it is on the screen (the point under the cursor a drag started on). Pitch stops short of
+ * ±CAMERA_MAX_PITCH. */
+void camera_orbit(camera *c, const double pivot[3], float dyaw, float dpitch);
+
 /* Keeps pos within max_distance of centre (along the line from centre): no flight to infinity. */
 void camera_clamp_range(double pos[3], const double centre[3], double max_distance);
 

@@ -62,7 +62,7 @@ static void draw_quads(int n, const float rgba[4])
     glDrawElements(GL_TRIANGLES, n * 6, GL_UNSIGNED_INT, NULL);
 }
 
-void hud_draw(const char *text, int width, int height, float scale)
+void hud_draw(const char *text, float x, float y, int width, int height, float scale)
 {
     if (!state.prog || !text || !*text)
         return;
@@ -70,10 +70,12 @@ void hud_draw(const char *text, int width, int height, float scale)
     int quads = stb_easy_font_print(PAD, PAD, copy, NULL, state.verts, MAX_QUADS * 4 * VERTEX_BYTES);
     float w = (float)stb_easy_font_width(copy) + 2 * PAD, h = (float)stb_easy_font_height(copy) + 2 * PAD;
     free(copy);
-    for (int i = 0; i < quads * 4; i++) { /* scale about the origin */
+    if (y < 0)
+        y += (float)height - h * scale;
+    for (int i = 0; i < quads * 4; i++) { /* scale about the origin, then move to (x, y) */
         float *v = (float *)(state.verts + i * VERTEX_BYTES);
-        v[0] *= scale;
-        v[1] *= scale;
+        v[0] = v[0] * scale + x;
+        v[1] = v[1] * scale + y;
     }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glViewport(0, 0, width, height);
@@ -87,7 +89,8 @@ void hud_draw(const char *text, int width, int height, float scale)
     /* the panel first, reusing the text buffer's head for its one quad */
     char *text_verts = util_alloc((size_t)quads * 4 * VERTEX_BYTES, "the HUD");
     memcpy(text_verts, state.verts, (size_t)quads * 4 * VERTEX_BYTES);
-    float panel[4][4] = {{0, 0, 0, 0}, {w * scale, 0, 0, 0}, {w * scale, h * scale, 0, 0}, {0, h * scale, 0, 0}};
+    float x1 = x + w * scale, y1 = y + h * scale;
+    float panel[4][4] = {{x, y, 0, 0}, {x1, y, 0, 0}, {x1, y1, 0, 0}, {x, y1, 0, 0}};
     memcpy(state.verts, panel, sizeof panel);
     static const float panel_rgba[4] = {0.0f, 0.0f, 0.0f, 0.55f}, text_rgba[4] = {1.0f, 1.0f, 0.85f, 1.0f};
     draw_quads(1, panel_rgba);

@@ -8,7 +8,8 @@
 
 bool hud_init(err_t *err);
 void hud_shutdown(void);
-/* Draws `text` (lines split by '\n') at the top-left of a viewport of the given size, scaled by `scale`. */
-void hud_draw(const char *text, int width, int height, float scale);
+/* Draws `text` (lines split by '\n') on a translucent panel whose top-left corner is at (x, y)
+ * pixels from the viewport's top-left (a negative y: that far above its bottom), scaled by `scale`. */
+void hud_draw(const char *text, float x, float y, int width, int height, float scale);
 
 #endif

@@ -1,0 +1,84 @@
+/* params — the tunable values of a scene (params.h). */
+#include "scene/params.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+scene_param *params_add(param_list *l, const scene_param *p)
+{
+    for (int i = 0; i < l->count; i++)
+        if (!strcmp(l->items[i].key, p->key)) {
+            l->items[i] = *p;
+            return &l->items[i];
+        }
+    if (l->count == l->cap) {
+        l->cap = l->cap ? 2 * l->cap : 64;
+        l->items = util_realloc(l->items, (size_t)l->cap * sizeof *l->items, "scene parameters");
+    }
+    l->items[l->count] = *p;
+    return &l->items[l->count++];
+}
+
+const scene_param *params_find(const param_list *l, const char *key)
+{
+    for (int i = 0; i < l->count; i++)
+        if (!strcmp(l->items[i].key, key))
+            return &l->items[i];
+    return NULL;
+}
+
+void params_free(param_list *l)
+{
+    free(l->items);
+    *l = (param_list){0};
+}
+
+void params_section(const char *key, char *out, size_t n)
+{
+    size_t len = strcspn(key, ".");
+    snprintf(out, n, "%.*s", (int)len, key);
+}
+
+/* The name of an enum's value i. */
+static const char *enum_name(const scene_param *p, int i)
+{
+    const char *s = p->names;
+    for (int k = 0; k < i && k < p->name_count; k++)
+        s += strlen(s) + 1;
+    return s;
+}
+
+/* The components of a value, comma-separated. */
+static int components(const scene_param *p, const double *v, char *out, size_t n)
+{
+    if (p->type == PARAM_VEC3 || p->type == PARAM_COLOR)
+        return snprintf(out, n, "%.9g,%.9g,%.9g", v[0], v[1], v[2]);
+    return snprintf(out, n, "%.9g", v[0]);
+}
+
+void params_override(const param_list *l, const scene_param *p, const double v[3], char *out, size_t n)
+{
+    if (p->array_len > 0) { /* the whole array: "a.b=[[..],[..]]" */
+        size_t key_len = strlen(p->key) - strlen(strrchr(p->key, '.'));
+        int at = snprintf(out, n, "%.*s=[", (int)key_len, p->key);
+        for (int i = 0; i < p->array_len && at > 0 && (size_t)at < n; i++) {
+            char sibling[PARAM_KEY_MAX + 16], value[128];
+            snprintf(sibling, sizeof sibling, "%.*s.%d", (int)key_len, p->key, i);
+            const scene_param *q = i == p->array_index ? p : params_find(l, sibling);
+            components(p, i == p->array_index || !q ? v : q->value, value, sizeof value);
+            at += snprintf(out + at, n - (size_t)at, "%s[%s]", i ? ", " : "", value);
+        }
+        if (at > 0 && (size_t)at < n)
+            snprintf(out + at, n - (size_t)at, "]");
+        return;
+    }
+    switch (p->type) {
+    case PARAM_INT: snprintf(out, n, "%s=%d", p->key, (int)v[0]); break;
+    case PARAM_BOOL: snprintf(out, n, "%s=%s", p->key, v[0] != 0 ? "true" : "false"); break;
+    case PARAM_ENUM: snprintf(out, n, "%s=%s", p->key, enum_name(p, (int)v[0])); break;
+    case PARAM_VEC3:
+    case PARAM_COLOR: snprintf(out, n, "%s=%.9g,%.9g,%.9g", p->key, v[0], v[1], v[2]); break;
+    default: snprintf(out, n, "%s=%.9g", p->key, v[0]); break;
+    }
+}
