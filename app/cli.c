@@ -47,7 +47,7 @@ static const char USAGE[] =
 /* the options (ISO C bounds one string literal at 4095 characters) */
 static const char USAGE_OPTIONS[] =
     "  --scene NAME|FILE     scene to load: a name from scenes/ (csg), a scene file path, or a PNG/EXR\n"
-    "                        fathom wrote (reopens its scene, overrides and view) [csg]\n"
+    "                        or .fathom preset fathom wrote (reopens its scene, overrides and view) [csg]\n"
     "  --dem FILE            open any DEM GDAL reads (GeoTIFF, .hgt, .asc, netCDF, VRT, ...) with a\n"
     "                        camera framed from its extent (the dem scene, with terrain.heightmap=FILE)\n"
     "  --formula NAME|FILE   a fractal formula: a shipped or user name, or your own .glsl file (the\n"
@@ -67,7 +67,9 @@ static const char USAGE_OPTIONS[] =
     "  --set KEY=VALUE       override any scene parameter, e.g. --set materials.glass.ior=1.33,\n"
     "                        --set effects.fog=off, --set lights.0.intensity=40 (repeatable)\n"
     "  --aov LIST            extra EXR channels: depth,normal,steps,exit (needs .exr output)\n"
-    "  --frames N            window mode: render N frames, then exit; with --path: frames A-B or N\n"
+    "  --frames N            window mode: render N frames, then exit (and say what they cost); with\n"
+    "                        --path: frames A-B or N\n"
+    "  --panel               window: start with the parameter panel open (F1 toggles it)\n"
     "  --path FILE           a camera path (keyframes) to render frame by frame (with --output PATTERN)\n"
     "  --tile I/N            render only tile I of N of the --output image (for posters and farms)\n"
     "  --fps N               window: frame rate to hold while moving (lower internal resolution) [30];\n"
@@ -77,7 +79,8 @@ static const char USAGE_OPTIONS[] =
     "  --quiet               no progress bar\n"
     "  --help, --version\n"
     "\n"
-    "Window keys: WASD move, mouse look, Space/C up/down, Shift faster, scroll speed, 1-9 scenes,\n"
+    "Window keys: WASD move, mouse look, Space/C up/down, Shift faster, scroll speed, F1 or Tab the\n"
+    "parameter panel, F2 the full HUD, O orbit, T walk, 1-9 scenes, Ctrl+Z undo, Ctrl+S save a preset,\n"
     "R reload shaders, P or F12 screenshot, N keyframe (Shift+N clears, L plays the flight), Esc quit.\n";
 
 const char *cli_usage(void)
@@ -340,6 +343,7 @@ static bool set_flag(const char *a, cli_options *o)
         {"--frame-times", offsetof(cli_options, frame_times)},
         {"--interactive", offsetof(cli_options, interactive)},
         {"--terrain-scale", offsetof(cli_options, terrain_scale)},
+        {"--panel", offsetof(cli_options, panel)},
     };
     for (size_t i = 0; i < sizeof FLAGS / sizeof FLAGS[0]; i++)
         if (!strcmp(a, FLAGS[i].name)) {
@@ -381,6 +385,8 @@ static bool check_combinations(const cli_options *o, err_t *err)
         return err_set(err, "--aov needs an offline shot: add --output FILE.exr");
     if (o->fps && ((o->output && !o->path) || (o->bench && !o->interactive)))
         return err_set(err, "--fps is the window's (and bench --interactive's): it does not apply here");
+    if (o->panel && (o->output || o->bench || o->path || o->check_formula))
+        return err_set(err, "--panel is the window's: it does not apply here");
     if (o->interactive && !o->bench)
         return err_set(err, "--interactive belongs to fathom bench");
     if (o->terrain_scale && !o->bench)

@@ -62,6 +62,7 @@ typedef struct cli_options {
     int set_count;
     unsigned aovs; /* aov_flag bits */
     bool print_variant, list_scenes, list_formulas, help, version, quiet;
+    bool panel; /* window: start with the parameter panel open */
     bool bench;        /* `fathom bench ...` */
     bool check_formula; /* `fathom check-formula NAME|FILE ...` (jobs/check.h) */
     int runs;          /* bench: timed images per setting (median reported) */

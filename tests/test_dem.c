@@ -175,6 +175,42 @@ static void geographic_int16_nodata(void **st)
     free(hts);
 }
 
+/* Where a texel is on the Earth (the window's cursor read-out): geographic coordinates come back as
+ * the geotransform says; UTM on the central meridian against the footpoint latitude (Snyder 1987,
+ * "Map projections: a working manual", eqs. 3-24 to 3-26, 8-18) computed here; a south-up raster's
+ * rows count from the north like fathom's; a raster without a CRS has no latitude. */
+static void georeference_lonlat(void **st)
+{
+    (void)st;
+    double v[4 * 3] = {0};
+    const double arcsec = 1.0 / 3600;
+    const double geo[6] = {8.0, arcsec, 0, 46.5, 0, -arcsec};
+    dem_geo *g = dem_geo_open(write_tif(&(tif){"ll.tif", GDT_Float32, 4, 3, geo, 4326, false, 0, 0, 0}, v));
+    double lon, lat;
+    assert_true(g && dem_geo_lonlat(g, 2.5, 1.0, &lon, &lat));
+    assert_near(lon, 8.0 + 2.5 * arcsec, 1e-12);
+    assert_near(lat, 46.5 - arcsec, 1e-12);
+    dem_geo_close(g);
+    const double utm[6] = {500000, 30, 0, 5200000, 0, -25};
+    g = dem_geo_open(write_tif(&(tif){"ll-utm.tif", GDT_Float32, 4, 3, utm, 32633, false, 0, 0, 0}, v));
+    assert_true(g && dem_geo_lonlat(g, 0, 2, &lon, &lat));
+    const double a = 6378137, f = 1 / 298.257223563, e2 = f * (2 - f), k0 = 0.9996, N = 5200000 - 2 * 25;
+    double e1 = (1 - sqrt(1 - e2)) / (1 + sqrt(1 - e2));
+    double mu = N / k0 / (a * (1 - e2 / 4 - 3 * e2 * e2 / 64 - 5 * e2 * e2 * e2 / 256));
+    double phi = mu + (1.5 * e1 - 27 * pow(e1, 3) / 32) * sin(2 * mu) + (21 * e1 * e1 / 16 - 55 * pow(e1, 4) / 32) * sin(4 * mu) +
+                 151 * pow(e1, 3) / 96 * sin(6 * mu) + 1097 * pow(e1, 4) / 512 * sin(8 * mu);
+    assert_near(lon, 15.0, 1e-9); /* zone 33's central meridian */
+    assert_near(lat, phi * 180 / M_PI, 1e-7);
+    dem_geo_close(g);
+    const double up[6] = {500000, 30, 0, 5200000, 0, 25}; /* south-up: fathom's row 0 is the file's last */
+    g = dem_geo_open(write_tif(&(tif){"ll-south.tif", GDT_Float32, 4, 3, up, 32633, false, 0, 0, 0}, v));
+    double lat0, lat3;
+    assert_true(dem_geo_lonlat(g, 0, 0, &lon, &lat0) && dem_geo_lonlat(g, 0, 3, &lon, &lat3));
+    assert_true(lat0 > lat3); /* north first */
+    dem_geo_close(g);
+    assert_null(dem_geo_open(write_tif(&(tif){"ll-none.tif", GDT_Float32, 4, 3, NULL, 0, false, 0, 0, 0}, v)));
+}
+
 /* A raster stored south to north (positive y pixel size) comes back north row first. */
 static void south_up_is_flipped(void **st)
 {
@@ -454,7 +490,7 @@ int main(void)
         cmocka_unit_test(projected_float),  cmocka_unit_test(projected_feet),   cmocka_unit_test(geographic_int16_nodata),
         cmocka_unit_test(south_up_is_flipped), cmocka_unit_test(holes_and_fill), cmocka_unit_test(refused),
         cmocka_unit_test(ascii_grid),          cmocka_unit_test(dem_scene_frames_any_dem),
-        cmocka_unit_test(hostile_numbers),     cmocka_unit_test(no_network),
+        cmocka_unit_test(hostile_numbers),     cmocka_unit_test(no_network),     cmocka_unit_test(georeference_lonlat),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

@@ -706,12 +706,16 @@ static void ridges_have_no_black_dashes(void **st)
  * At every preset, from the shipped camera and a grazing one, no pixel may be a miss where a march
  * with a budget a hundred times longer hits: a ray that exhausts its steps near the ground returns
  * its best candidate (flagged by negative steps) instead of the sky. */
+/* A ray that runs out of steps is resolved (the tail: common/march.glsl, within its stated tolerance)
+ * or flagged, never drawn as a guess: against a march with 100x the steps, every pixel whose hit, miss
+ * or depth differs either went into the tail (more steps than max_steps) or is flagged unresolved
+ * (negative steps); and the noise terrain, whose horizon ran out of steps by the thousand and showed a
+ * false band there, leaves none unresolved at the interactive and final presets. */
 static void out_of_steps_is_not_a_miss(void **st)
 {
     (void)st;
     static const char *const SCENES[] = {"noise", "jacksboro", "himalaya"};
     static float test[W * H * AOV], longer[W * H * AOV];
-    int noise_exhausted = 0;
     for (size_t k = 0; k < sizeof SCENES / sizeof SCENES[0]; k++)
         for (int p = 0; p < PRESET_COUNT; p++) {
             char preset[64], steps[64];
@@ -727,25 +731,30 @@ static void out_of_steps_is_not_a_miss(void **st)
             camera cams[2] = {camera_look_at_deg(eye, at, a.cam_fov_deg)};
             at[1] = eye[1] = (float)(a.cam_position[1] * 0.25 + a.cam_look_at[1] * 0.75);
             cams[1] = camera_look_at_deg(eye, at, a.cam_fov_deg);
-            int missed = 0, exhausted = 0;
+            int silent = 0, flagged = 0, differ = 0, tail = 0;
             for (int c = 0; c < 2; c++) {
                 draw(&a, &cams[c], W, H, 1, NULL, test, NULL);
                 draw(&b, &cams[c], W, H, 1, NULL, longer, NULL);
                 for (int i = 0; i < W * H; i++) {
-                    missed += isinf(test[i * AOV + AOV_SLOT_DEPTH]) && !isinf(longer[i * AOV + AOV_SLOT_DEPTH]);
-                    exhausted += test[i * AOV + AOV_SLOT_STEPS] < 0;
+                    float za = test[i * AOV + AOV_SLOT_DEPTH], zb = longer[i * AOV + AOV_SLOT_DEPTH];
+                    float used = test[i * AOV + AOV_SLOT_STEPS];
+                    bool unresolved = used < 0, tailed = used > (float)a.quality.max_steps;
+                    bool differs = isinf(za) != isinf(zb) || (!isinf(za) && fabsf(za - zb) > 0.01f * zb);
+                    flagged += unresolved;
+                    tail += tailed;
+                    differ += differs;
+                    silent += differs && !unresolved && !tailed;
                 }
             }
-            fprintf(stderr, "%s %s: %d pixels miss where 100x the steps hit; %d ran out of steps\n", SCENES[k],
-                    preset_name((quality_preset)p), missed, exhausted);
-            assert_int_equal(missed, 0);
-            noise_exhausted += k == 0 ? exhausted : 0;
+            fprintf(stderr, "%s %s: %d rays went on past max_steps, %d were left unresolved; %d pixels differ from "
+                    "100x the steps, %d of them neither\n", SCENES[k], preset_name((quality_preset)p), tail, flagged,
+                    differ, silent);
+            assert_int_equal(silent, 0);
+            if (k == 0 && (p == PRESET_INTERACTIVE || p == PRESET_FINAL))
+                assert_int_equal(flagged, 0);
             scene_free(&a);
             scene_free(&b);
         }
-    /* the noise terrain's horizon runs out of steps at every preset (thousands of pixels at 480x270):
-     * the flag must reach the steps AOV (issue 24: removing it passed every test) */
-    assert_true(noise_exhausted > 0);
 }
 
 int main(void)

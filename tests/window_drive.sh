@@ -4,8 +4,8 @@
 #   - the csg scene: W flies into the glass sphere, which stops the camera outside it; S backs out and
 #     D slides sideways (the camera used to stick at the first surface it touched);
 #   - the Mandelbulb: W flies in (the speed follows the distance), S backs out again;
-#   - the panel: F1 opens it, typing fractal.power=5 in its field changes the image (two P screenshots
-#     differ) and the preset records the edit; Ctrl+Z takes it back;
+#   - the panel: Enter opens it with its key=value field ready, typing fractal.power=5 there changes the
+#     image (two P screenshots differ) and the preset records the edit; Ctrl+Z takes it back;
 #   - a user's scene in a folder: its preset opens after the folder has moved (the scene travels in it).
 # Usage: window_drive.sh FATHOM   (needs xvfb-run and xdotool; exits 77, skipped, without them)
 fathom=$(realpath "$1")
@@ -74,7 +74,7 @@ o=$(from "$tmp/bulb-out" 0 0 0)
 check "mandelbulb: W flies in ($i m from the centre, from 2.28)" '! ge "$i" 1.6'
 check "mandelbulb: S backs out again ($o m)" 'ge "$o" "$(awk -v i="$i" "BEGIN { print i + 0.02 }")"'
 
-drive panel --scene mandelbulb -- "key p" "sleep 4" "key F1" "sleep 1" "type fractal.power=5" "key Return" "sleep 6" \
+drive panel --scene mandelbulb -- "key p" "sleep 4" "key Return" "sleep 1" "type fractal.power=5" "key Return" "sleep 6" \
     "key p" "sleep 4" "save ../edited" "key ctrl+z" "sleep 2" "save ../undone"
 shots=$(ls "$tmp/panel"/fathom-*.png 2>/dev/null | wc -l)
 check "panel: two screenshots" '[ "$shots" -eq 2 ]'

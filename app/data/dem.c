@@ -239,3 +239,60 @@ bool dem_fill_holes(float *heights, int w, int h, err_t *err)
     GDALClose(ds);
     return ok;
 }
+
+struct dem_geo {
+    double gt[6];
+    int height;       /* rows: a south-up raster's rows count from the south */
+    OGRCoordinateTransformationH to_wgs84;
+};
+
+dem_geo *dem_geo_open(const char *path)
+{
+    if (dem_is_image(path))
+        return NULL;
+    gdal_init();
+    GDALDatasetH ds = GDALOpen(path, GA_ReadOnly);
+    if (!ds)
+        return NULL;
+    double gt[6];
+    OGRSpatialReferenceH srs = GDALGetSpatialRef(ds);
+    dem_geo *g = NULL;
+    if (srs && GDALGetGeoTransform(ds, gt) == CE_None && gt[2] == 0 && gt[4] == 0) {
+        OGRSpatialReferenceH wgs84 = OSRNewSpatialReference(NULL);
+        OSRSetWellKnownGeogCS(wgs84, "WGS84");
+        OSRSetAxisMappingStrategy(wgs84, OAMS_TRADITIONAL_GIS_ORDER); /* x = longitude, y = latitude */
+        OGRSpatialReferenceH from = OSRClone(srs);
+        OSRSetAxisMappingStrategy(from, OAMS_TRADITIONAL_GIS_ORDER);
+        OGRCoordinateTransformationH t = OCTNewCoordinateTransformation(from, wgs84);
+        if (t) {
+            g = util_calloc(1, sizeof *g, "a DEM's georeferencing");
+            memcpy(g->gt, gt, sizeof gt);
+            g->height = GDALGetRasterYSize(ds);
+            g->to_wgs84 = t;
+        }
+        OSRDestroySpatialReference(from);
+        OSRDestroySpatialReference(wgs84);
+    }
+    GDALClose(ds);
+    return g;
+}
+
+bool dem_geo_lonlat(const dem_geo *g, double col, double row, double *lon, double *lat)
+{
+    if (!g)
+        return false;
+    double file_row = g->gt[5] > 0 ? g->height - row : row; /* fathom's row 0 is always north */
+    double x = g->gt[0] + col * g->gt[1], y = g->gt[3] + file_row * g->gt[5], z = 0;
+    if (!OCTTransform(g->to_wgs84, 1, &x, &y, &z))
+        return false;
+    *lon = x, *lat = y;
+    return true;
+}
+
+void dem_geo_close(dem_geo *g)
+{
+    if (!g)
+        return;
+    OCTDestroyCoordinateTransformation(g->to_wgs84);
+    free(g);
+}

@@ -43,6 +43,14 @@ bool dem_read(const char *path, int max_side, int *w, int *h, float **heights, d
  * (GDAL's approximate minimum and maximum, scale and offset applied). */
 bool dem_probe(const char *path, int *w, int *h, double range[2], dem_info *info, err_t *err);
 
+/* A DEM's georeferencing, to say where a point of it is on the Earth: fathom's texel coordinates
+ * (column, row from the north-west corner, continuous) to longitude and latitude (WGS 84). NULL from
+ * dem_geo_open when the file has no geotransform and CRS (or is a plain image). */
+typedef struct dem_geo dem_geo;
+dem_geo *dem_geo_open(const char *path);
+bool dem_geo_lonlat(const dem_geo *g, double col, double row, double *lon, double *lat);
+void dem_geo_close(dem_geo *g);
+
 /* Fills NaN texels by GDAL's inverse-distance interpolation from the nearest valid ones
  * (GDALFillNodata); false with a message if it cannot. */
 bool dem_fill_holes(float *heights, int w, int h, err_t *err);

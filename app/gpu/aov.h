@@ -1,8 +1,8 @@
 /* aov — the layout of the per-pixel outputs besides colour (render_read_aovs): AOV_FLOATS floats a
  * pixel, rows top first. Depth is the distance along the unit ray to the first hit, +inf on a miss;
- * steps counts the primary ray's march steps (height samples on terrain), negated when the ray ran
- * out of its step budget and took its best candidate instead of a located surface; exit is the
- * direction in which the main path left the scene. */
+ * steps counts the primary ray's march steps (height samples on terrain), negated when the ray was
+ * left unresolved (its budget and the tail after it ran out: common/march.glsl; drawn as a miss);
+ * exit is the direction in which the main path left the scene. */
 #ifndef FATHOM_AOV_H
 #define FATHOM_AOV_H
 

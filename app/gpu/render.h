@@ -53,7 +53,8 @@ void render_origin(double origin[3]);
 void render_set_origin(const double origin[3]);
 bool render_fit_precision(scene *s, const camera *c, int height, err_t *err);
 bool render_has_fp64(void);
-/* Uploads the origin to prog when it reads one (a double program). */
+/* Uploads the view to prog: the eye (relative to the origin) and the pixel's angle of the last
+ * render_begin, and the origin when prog reads one (a double program). Probes see the view too. */
 void render_origin_uniforms(GLuint prog);
 void render_sample(void);           /* add one sample */
 int render_samples(void);

@@ -148,7 +148,7 @@ static void summary_header(const bench_results *r, FILE *f)
     fprintf(f, "Error: colour RMSE and PSNR of the 8-bit display image; depth error in pixel footprints over pixels "
                "both renders hit; flips: pixels that hit in one and miss in the other; IoU: of the two hit masks (worst "
                "view); edge px: how far the farthest flipped pixel lies from the reference's silhouette; out of "
-               "steps: pixels whose primary ray ran out of steps (resolved to its best candidate). Every knob row starts from "
+               "steps: pixels whose primary ray was left unresolved (its steps and their tail ran out; drawn as a miss). Every knob row starts from "
                "the scene's `%s` preset. `*` marks the Pareto front (no setting is both faster and closer). Settings "
                "of 64 spp or more are timed once per view.\n\n",
             preset_name(r->base->preset));

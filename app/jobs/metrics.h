@@ -27,7 +27,7 @@ typedef struct metrics {
     double iou;          /* hit masks: |both| / |either| (1 when neither hits anything) */
     double edge_max_px;  /* how far the edge moved (pixels; 0: no flip) */
     double mean_steps;
-    double exhausted_share; /* pixels of the test render whose primary ray ran out of steps */
+    double exhausted_share; /* pixels of the test render whose primary ray was left unresolved */
     int depth_pixels; /* pixels both hit */
 } metrics;
 

@@ -134,6 +134,7 @@ typedef struct scene {
         bool fill_nodata; /* nodata: "hole" (rays pass) or "fill" (GDALFillNodata) */
         bool patch_normals; /* normals: "smooth" (vertex normals blended across the cell) or "patch" (exact) */
         float sand_line, snow_line; /* metres: sand below, snow above (after exaggeration) */
+        bool elevation_ramp;        /* "colors": "elevation": a hypsometric tint by true height, no layers */
         float grass_slope;          /* grass where the normal's y is above this, else rock */
         /* program noise: f(p) = y − base − amplitude · fbm(p · frequency), `octaves` octaves */
         float base, amplitude, frequency;

@@ -51,7 +51,6 @@ static bool get_palette(scene_ctx *c, const cJSON *f, float out[3][3])
 }
 
 static const float WARM[3] = {1.0f, 0.6f, 0.3f};
-static const float SQRT3 = 1.7320508f;
 enum { BLOCK_KEYS_MAX = FORMULA_MAX_PARAMS + 8 };
 static const float BOUND_MIN = 1e-3f, BOUND_MAX = 1e6f;
 
@@ -403,7 +402,7 @@ bool heightmap_parse(scene_ctx *c, const cJSON *root)
     struct scene_terrain *t = &c->s->terrain;
     const cJSON *tb = cJSON_GetObjectItemCaseSensitive(root, "terrain");
     static const char *const keys[] = {"heightmap", "spacing", "height_min", "height_max", "exaggeration", "method",
-                                       "sand_line", "snow_line", "grass_slope", "nodata", "normals", NULL};
+                                       "sand_line", "snow_line", "grass_slope", "nodata", "normals", "colors", NULL};
     if (!tb)
         return fail(c, "terrain", "a terrain scene needs a \"terrain\" block with a \"heightmap\"");
     if (!check_keys(c, tb, "terrain", keys))
@@ -452,6 +451,10 @@ bool heightmap_parse(scene_ctx *c, const cJSON *root)
     if (!get_enum(c, tb, "terrain", "normals", "normals", NORMALS, 0, &m))
         return false;
     t->patch_normals = m == 1;
+    static const char *const COLORS[] = {"layers", "elevation", NULL};
+    if (!get_enum(c, tb, "terrain", "colors", "terrain colouring", COLORS, 0, &m))
+        return false;
+    t->elevation_ramp = m == 1;
     return true;
 }
 
@@ -460,6 +463,8 @@ bool heightmap_parse(scene_ctx *c, const cJSON *root)
  * size: the far distance, haze over its width, sand and snow by the height range, textures that
  * repeat every 24 texels. A DEM whose relief is under 2 % of its width (a continent, at true scale a
  * flat plate) is exaggerated up to that, at most ×20, unless the scene sets terrain.exaggeration. */
+static const double SNOW_ALTITUDE = 2500.0; /* metres: below it a DEM framed by "auto" gets no snow */
+
 bool terrain_frame(scene *s, err_t *err)
 {
     struct scene_terrain *t = &s->terrain;
@@ -485,7 +490,9 @@ bool terrain_frame(scene *s, err_t *err)
     s->fog_falloff = (float)(2.0 / relief);
     s->fog_height = (float)range[0];
     t->sand_line = (float)(range[0] + 0.03 * relief);
-    t->snow_line = (float)(range[0] + 0.85 * relief);
+    /* snow on the DEM's highest ground, but only where it is high on the Earth too: a lowland's top is
+     * not snowed over (the exaggerated heights: SNOW_ALTITUDE times the exaggeration) */
+    t->snow_line = (float)fmax(range[0] + 0.85 * relief, SNOW_ALTITUDE * t->exaggeration);
     for (int i = 0; i < s->material_count; i++)
         if (s->materials[i].texture >= 0)
             s->materials[i].uv_scale = (float)(1.0 / (24.0 * fmin(spacing[0], spacing[1])));
@@ -502,6 +509,8 @@ void heightmap_defines(const scene *s, strbuf *out)
 /* The layered albedo (shaders/terrain/layers.glsl): which material each layer uses, and where. */
 void layer_uniforms(const scene *s, const uniform_sink *u)
 {
+    uniform_i(u, "uElevationRamp", s->terrain.elevation_ramp);
+    uniform_f(u, "uExaggeration", s->terrain.exaggeration > 0 ? s->terrain.exaggeration : 1.0f);
     uniform_f(u, "uSandLine", s->terrain.sand_line);
     uniform_f(u, "uSnowLine", s->terrain.snow_line);
     uniform_f(u, "uGrassSlope", s->terrain.grass_slope);
@@ -521,15 +530,12 @@ void layer_uniforms(const scene *s, const uniform_sink *u)
 void noise_uniforms(const scene *s, const uniform_sink *u)
 {
     const struct scene_terrain *t = &s->terrain;
-    const float QUINTIC_SLOPE = 30.0f / 16.0f;
-    float grad = 0, amp = 0.5f, freq = t->frequency;
-    for (int o = 0; o < t->octaves; o++, amp *= 0.5f, freq *= 2.0f)
-        grad += amp * freq * QUINTIC_SLOPE * SQRT3;
+    const float QUINTIC_SLOPE = 30.0f / 16.0f; /* per unit on each axis: the quintic's steepest */
+    uniform_f(u, "uNoiseSlope", QUINTIC_SLOPE);
     uniform_f(u, "uNoiseBase", t->base);
     uniform_f(u, "uNoiseAmplitude", t->amplitude);
     uniform_f(u, "uNoiseFrequency", t->frequency);
     uniform_i(u, "uNoiseOctaves", t->octaves);
-    uniform_f(u, "uNoiseBound", 1.0f / (1.0f + t->amplitude * grad));
     uniform_f(u, "uTerrainHeightMin", t->base);
     uniform_f(u, "uTerrainHeightMax", t->base + t->amplitude);
     layer_uniforms(s, u);

@@ -15,9 +15,11 @@
 #include <string.h>
 #include <time.h>
 
+#include "data/dem.h"
 #include "gpu/aov.h"
 #include "gpu/gpu.h"
 #include "gpu/render.h"
+#include "gpu/res_heightfield.h"
 #include "jobs/offline.h"
 #include "scene/overrides.h"
 #include "scene/params.h"
@@ -30,7 +32,8 @@
 #include "window/panel.h"
 #include "window/recorder.h"
 
-enum { MAX_SCENES = 9, FRAME_HISTORY = 30, DEFAULT_FPS = 30, COST_MAX = 32, PROBE_MAX = 64, CURSOR_SETTLE_FRAMES = 3 };
+enum { MAX_SCENES = 9, FRAME_HISTORY = 30, DEFAULT_FPS = 30, COST_MAX = 32, PROBE_MAX = 64, CURSOR_SETTLE_FRAMES = 3,
+       STAT_MAX = 100000 };
 typedef enum hud_mode { HUD_LINE, HUD_FULL, HUD_HIDDEN } hud_mode;
 static const float MOUSE_SENSITIVITY = 0.0025f; /* radians per pixel */
 static const float SPEED_STEP = 1.25f;          /* per scroll notch */
@@ -60,7 +63,7 @@ static struct {
     char names[MAX_SCENES][SCENE_NAME_MAX];
     int scene_count, pending_scene; /* pending: −1 none */
     bool reload, screenshot, go_home, save_view, panel, add_key, clear_keys, toggle_play;
-    bool undo, redo, save_preset, copy_preset, paste_preset;
+    bool undo, redo, save_preset, copy_preset, paste_preset, focus_field;
     int recall_view; /* Ctrl+1…9 pressed: 1…9; 0 none */
     hud_mode hud;
     render_view view;
@@ -77,6 +80,8 @@ static struct {
     int frame_index;
     double sample_ms;   /* the last full-size sample's time (or the moving frames' estimate of it) */
     double band_ms;     /* the current full-size sample's bands so far */
+    double frame_sample_ms; /* this frame's sample */
+    double overhead_ms; /* a frame's time besides its sample (display, HUD, panel, swap, probes): smoothed */
     res_controller res; /* the internal resolution while moving */
     bool scaled;        /* the last frame was rendered below full size */
     double band_rows;   /* rows of a still image's sample per display frame (0: not yet known) */
@@ -87,6 +92,12 @@ static struct {
     char cursor_info[256];
     char preset_path[PATH_MAX_LEN];
     recorder flight;
+    dem_geo *geo; /* the DEM's georeferencing (latitude and longitude under the cursor), or NULL */
+    char geo_path[PATH_MAX_LEN];
+    /* --frames: what each frame cost (the whole frame, and the panel's share), moving or still */
+    double *stat_frame_ms, *stat_panel_ms, *stat_swap_ms;
+    bool *stat_moving;
+    int stat_count, stat_cap;
 } app;
 
 /* ---- input ------------------------------------------------------------------------------------- */
@@ -131,6 +142,8 @@ static void plain_key(GLFWwindow *w, int key, int mods)
     case GLFW_KEY_ESCAPE: glfwSetWindowShouldClose(w, GLFW_TRUE); break;
     case GLFW_KEY_F1:
     case GLFW_KEY_TAB: app.panel = !app.panel; break;
+    case GLFW_KEY_ENTER:
+    case GLFW_KEY_KP_ENTER: app.panel = app.focus_field = true; break;
     case GLFW_KEY_F2: app.hud = app.hud == HUD_FULL ? HUD_LINE : HUD_FULL; break;
     case GLFW_KEY_F3: app.hud = app.hud == HUD_HIDDEN ? HUD_LINE : HUD_HIDDEN; break;
     case GLFW_KEY_R: app.reload = true; break;
@@ -402,6 +415,11 @@ static bool load_scene(const char *name, bool first, err_t *err)
     app.have_scene = true;
     if (!same_file)
         reset_camera(first);
+    if (strcmp(app.geo_path, app.scene.terrain.heightmap)) { /* a DEM's place on the Earth, for the cursor */
+        dem_geo_close(app.geo);
+        app.geo = app.scene.terrain.heightmap[0] ? dem_geo_open(app.scene.terrain.heightmap) : NULL;
+        snprintf(app.geo_path, sizeof app.geo_path, "%s", app.scene.terrain.heightmap);
+    }
     if (!knob_window_steps(app.knob) || !scene_knob_applies(&app.scene, app.knob))
         app.knob = next_knob(app.knob);
     return true;
@@ -636,7 +654,9 @@ static void panel_model_of(int w, int h, panel_model *m)
                        .costs = app.costs, .cost_count = app.cost_count, .exposure = app.exposure, .view = app.view,
                        .heat_max = render_heat_max(), .can_undo = app.edits.undo_count > 0,
                        .can_redo = app.edits.redo_count > 0, .message = app.message,
-                       .cursor_info = app.cursor_info[0] ? app.cursor_info : NULL, .preset_path = app.preset_path};
+                       .cursor_info = app.cursor_info[0] ? app.cursor_info : NULL, .preset_path = app.preset_path,
+                       .focus_set_field = app.focus_field};
+    app.focus_field = false;
     double ms = average_ms();
     m->fps = ms > 0 ? 1000.0 / ms : 0;
     render_active_size(&m->internal_width, &m->internal_height);
@@ -714,7 +734,7 @@ static void hud_details(int h, strbuf *t)
             sb_printf(t, "%s%s %g%s  ", k == (int)app.knob ? "[" : "", knob_get_def((knob_id)k)->name,
                       knob_value(&app.scene.quality, (knob_id)k), k == (int)app.knob ? "]" : "");
     sb_printf(t, "\nWASD move  mouse look  Space/C up/down  Shift fast  scroll speed  O orbit%s\n"
-                 "F1 panel  F2 this help  F3 hide  1-%d scenes  K knob  =/- step  H steps  G grab  V difference\n"
+                 "F1 panel  Enter type an edit  F2 this help  F3 hide  1-%d scenes  K knob  =/- step  H steps  G grab  V difference\n"
                  "Home start  B save view  Ctrl+1-9 recall  Ctrl+Z undo  Ctrl+S preset  N keyframe (%d)  L play  "
                  "R reload  P shot  Esc quit\n",
               app.scene.terrain.heightmap[0] ? "  T walk" : "", app.scene_count, app.flight.key_count);
@@ -745,7 +765,7 @@ static void hud(int w, int h)
     sb_free(&t);
     if (app.view == VIEW_STEPS) { /* the legend's labels over the bar display.frag draws */
         char legend[160];
-        snprintf(legend, sizeof legend, "primary-ray steps a pixel: 0 (blue) ... %.0f (red); magenta: out of steps",
+        snprintf(legend, sizeof legend, "primary-ray steps a pixel: 0 (blue) ... %.0f (red); magenta: unresolved (out of steps)",
                  (double)render_heat_max());
         hud_draw(legend, 16, -34, w, h, scale);
     }
@@ -890,8 +910,9 @@ static bool draw(int w, int h, bool restart, camera *shown, bool *moved)
         glFinish();
         double ms = (glfwGetTime() - t0) * 1000.0;
         note_sample(ms, iw, ih, w, h, complete);
-        if (moving)
-            res_update(&app.res, ms, (double)iw * ih, (double)w * h);
+        app.frame_sample_ms = ms;
+        if (moving) /* the whole frame keeps to the target: the display, HUD, panel and swap too */
+            res_update(&app.res, ms + app.overhead_ms, (double)iw * ih, (double)w * h);
         else if (refining && ms > 0) /* the next band: as many rows as fit the target */
             app.band_rows *= fmin(fmax(app.res.target_ms / ms, 0.5), 2.0);
         if (!moving && refining && render_samples() == app.scene.quality.spp)
@@ -912,8 +933,20 @@ static void cursor_info(GLFWwindow *win, int w, int h)
     if (!point_under((int)app.mouse[0], (int)app.mouse[1], w, h, p))
         return;
     (void)win;
-    snprintf(app.cursor_info, sizeof app.cursor_info, "under the cursor: (%.6g, %.6g, %.6g), %.4g m away", p[0], p[1],
-             p[2], camera_distance(p, app.cam.position));
+    double dist = camera_distance(p, app.cam.position), lon, lat;
+    int tx, ty;
+    const heightfield *hf = res_heightfield_loaded(&tx, &ty);
+    float ex = app.scene.terrain.exaggeration > 0 ? app.scene.terrain.exaggeration : 1.0f;
+    if (hf && dem_geo_lonlat(app.geo, (p[0] - (double)hf->x0) / (double)hf->dx, (p[2] - (double)hf->z0) / (double)hf->dz,
+                             &lon, &lat))
+        snprintf(app.cursor_info, sizeof app.cursor_info, "under the cursor: %.5f° %c, %.5f° %c, %.0f m high, %.4g m away",
+                 fabs(lat), lat >= 0 ? 'N' : 'S', fabs(lon), lon >= 0 ? 'E' : 'W', p[1] / (double)ex, dist);
+    else if (hf)
+        snprintf(app.cursor_info, sizeof app.cursor_info, "under the cursor: x %.6g, z %.6g, %.0f m high, %.4g m away",
+                 p[0], p[2], p[1] / (double)ex, dist);
+    else
+        snprintf(app.cursor_info, sizeof app.cursor_info, "under the cursor: (%.6g, %.6g, %.6g), %.4g m away", p[0],
+                 p[1], p[2], dist);
 }
 
 /* A deep zoom: the precision the view needs (render_fit_precision). True when the program changed. */
@@ -960,11 +993,63 @@ static void loop(GLFWwindow *win)
         hud(w, h);
         panel_model m;
         panel_model_of(w, h, &m);
+        if (app.stat_count < app.stat_cap)
+            glFinish(); /* what came before is not the panel's */
+        double p0 = glfwGetTime();
         panel_frame(app.panel, &m, &act);
+        bool stats = app.stat_count < app.stat_cap;
+        double t = stats ? (glFinish(), glfwGetTime()) : 0;
         glfwSwapBuffers(win);
+        double over = (glfwGetTime() - now) * 1000.0 - app.frame_sample_ms;
+        app.overhead_ms = app.overhead_ms > 0 ? 0.8 * app.overhead_ms + 0.2 * over : over;
+        app.frame_sample_ms = 0;
+        if (stats) { /* --frames: what the frame, and the panel and the swap in it, cost */
+            double t1 = glfwGetTime();
+            app.stat_panel_ms[app.stat_count] = (t - p0) * 1000.0;
+            app.stat_swap_ms[app.stat_count] = (t1 - t) * 1000.0;
+            app.stat_frame_ms[app.stat_count] = (t1 - now) * 1000.0;
+            app.stat_moving[app.stat_count++] = moved;
+        }
         if (!refining && !moved && !app.opt->frames && !app.panel)
             glfwWaitEventsTimeout(IDLE_WAIT_S); /* converged: do not spin */
     }
+}
+
+static int cmp_ms(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* The median of the n values v[i] where pick[i] == want (sorted in place into tmp); 0 when none. */
+static double median_of(const double *v, const bool *pick, bool want, int n, double *tmp, int *count)
+{
+    int k = 0;
+    for (int i = 0; i < n; i++)
+        if (pick[i] == want)
+            tmp[k++] = v[i];
+    *count = k;
+    qsort(tmp, (size_t)k, sizeof *tmp, cmp_ms);
+    return k ? tmp[k / 2] : 0;
+}
+
+/* --frames N: one line on what the frames cost, moving and still, and the panel's share of them. */
+static void frame_summary(int w, int h)
+{
+    if (!app.stat_count)
+        return;
+    double *tmp = util_alloc(sizeof *tmp * (size_t)app.stat_count, "the frame statistics");
+    int moving, still;
+    double mf = median_of(app.stat_frame_ms, app.stat_moving, true, app.stat_count, tmp, &moving);
+    double mp = median_of(app.stat_panel_ms, app.stat_moving, true, app.stat_count, tmp, &moving);
+    double sf = median_of(app.stat_frame_ms, app.stat_moving, false, app.stat_count, tmp, &still);
+    double sp = median_of(app.stat_panel_ms, app.stat_moving, false, app.stat_count, tmp, &still);
+    double ms = median_of(app.stat_swap_ms, app.stat_moving, true, app.stat_count, tmp, &moving);
+    fprintf(stderr, "fathom: %d frames at %dx%d (%s): %d moving, median %.1f ms (%.1f fps), the panel %.2f ms of it, "
+                    "the swap %.1f ms; %d still, median %.1f ms, the panel %.2f ms; %s\n",
+            app.stat_count, w, h, app.panel ? "panel open" : "panel closed", moving, mf, mf > 0 ? 1000.0 / mf : 0.0, mp,
+            ms, still, sf, sp, gpu_describe());
+    free(tmp);
 }
 
 bool explore_run(const cli_options *opt, err_t *err)
@@ -977,6 +1062,14 @@ bool explore_run(const cli_options *opt, err_t *err)
     app.exposure = DEFAULT_EXPOSURE;
     app.res = res_init((float)(opt->fps ? opt->fps : DEFAULT_FPS), RES_MIN_SCALE);
     app.knob = next_knob((knob_id)(KNOB_COUNT - 1));
+    app.panel = opt->panel;
+    if (opt->frames) {
+        app.stat_cap = opt->frames < STAT_MAX ? opt->frames : STAT_MAX;
+        app.stat_frame_ms = util_calloc((size_t)app.stat_cap, sizeof(double), "the frame statistics");
+        app.stat_panel_ms = util_calloc((size_t)app.stat_cap, sizeof(double), "the frame statistics");
+        app.stat_swap_ms = util_calloc((size_t)app.stat_cap, sizeof(double), "the frame statistics");
+        app.stat_moving = util_calloc((size_t)app.stat_cap, sizeof(bool), "the frame statistics");
+    }
     for (int i = 0; i < opt->set_count && i < CLI_MAX_SETS; i++)
         snprintf(app.base[i], OVERRIDE_LEN, "%s", opt->sets[i]);
     app.base_count = opt->set_count < CLI_MAX_SETS ? opt->set_count : CLI_MAX_SETS;
@@ -995,11 +1088,19 @@ bool explore_run(const cli_options *opt, err_t *err)
     if (ok) {
         fprintf(stderr, "fathom: %s\n", gpu_describe());
         loop(win);
+        int w, h;
+        glfwGetFramebufferSize(win, &w, &h);
+        frame_summary(w, h);
     }
+    free(app.stat_frame_ms);
+    free(app.stat_panel_ms);
+    free(app.stat_swap_ms);
+    free(app.stat_moving);
     panel_shutdown();
     hud_shutdown();
     render_shutdown();
     recorder_free(&app.flight);
+    dem_geo_close(app.geo);
     params_free(&app.params);
     if (app.have_scene)
         scene_free(&app.scene);

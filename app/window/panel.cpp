@@ -315,9 +315,9 @@ void draw(const panel_model *m, panel_actions *out)
     ImGui::Begin("fathom", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
     ImGui::TextWrapped("%s", m->scene_title);
     ImGui::PushItemWidth(-110.0f);
-    if (ImGui::IsWindowAppearing())
+    if (m->focus_set_field) /* Enter in the window: type an edit (the panel does not take the keyboard by itself) */
         ImGui::SetKeyboardFocusHere();
-    if (ImGui::InputTextWithHint("##set", "key=value, as --set (Enter)", state.set, sizeof state.set,
+    if (ImGui::InputTextWithHint("##set", "Enter, then key=value as --set takes it", state.set, sizeof state.set,
                                  ImGuiInputTextFlags_EnterReturnsTrue)) {
         std::snprintf(out->set, sizeof out->set, "%s", state.set);
         out->edit_started = true;

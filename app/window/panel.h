@@ -48,6 +48,7 @@ typedef struct panel_model {
     const char *message;
     const char *cursor_info; /* a DEM's latitude, longitude and height under the cursor, or NULL */
     const char *preset_path; /* where "Save preset" writes */
+    bool focus_set_field;    /* the key=value field takes the keyboard (Enter was pressed) */
 } panel_model;
 
 typedef struct panel_actions {

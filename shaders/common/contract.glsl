@@ -14,6 +14,9 @@
 //   PROGRAM_CAST_RAY   Hit castRay(vec3 ro, vec3 rd, float tmax, float side, float pathT)
 //                      its own primary/secondary marcher (terrain: max-mipmap or the lab's search);
 //                      default: sphere tracing in common/march.glsl.
+//   PROGRAM_MAP_ALONG  vec2 mapAlong(vec3 p, vec3 dir): a bound on the distance to the surface along
+//                      the unit direction dir only (common/march.glsl steps rays by it); map() stays
+//                      a bound in every direction (normals, AO, the camera's probes use it).
 //   PROGRAM_NORMAL     vec3 calcNormal(vec3 p, float eps, vec3 fallback)
 //                      its own normals (terrain: from the heightfield; noise: analytic gradient);
 //                      default: central differences of map().

@@ -6,7 +6,7 @@ struct Hit {
     float t;        // distance along the ray from its origin
     float mat;      // material index
     int steps;
-    bool exhausted; // the step budget ran out: t is the best candidate along the ray, not a located surface
+    bool exhausted; // unresolved: the step budget and its tail (common/march.glsl) ran out; not a hit
     int boundSteps; // of `steps`, those taken on a bound (MATERIAL_BOUND): not near the shape
 };
 

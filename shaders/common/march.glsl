@@ -57,10 +57,10 @@ float hitEps(float t)
 // narrow gaps keep their true size (tests/test_silhouette.c). A program whose surface *is* defined
 // by the footprint (fractals at a level of detail: PROGRAM_FOOTPRINT_SURFACE) keeps the plain rule.
 // (A secant step toward the predicted crossing converged faster on grazing hits, but stepped across
-// corner slivers up to 2 eps thick.)
+// corner slivers up to 2 eps thick, and as a guess for rays out of steps it put hits behind a crossing
+// it had skipped.)
 //
-// A ray that runs out of MAX_STEPS short of tmax is not a miss: it returns its best candidate, the
-// step where the distance was fewest thresholds away (Keinert et al. 2014), with `exhausted` set.
+// A ray that runs out of MAX_STEPS short of tmax is neither a hit nor a miss: tailMarch() below.
 #ifndef NEAR_MIN_STEP
 #define NEAR_MIN_STEP 0.0
 #endif
@@ -103,35 +103,59 @@ float refineCrossing(vec3 ro, vec3 rd, float side, float a, float fa, float b, f
 }
 
 #ifndef PROGRAM_CAST_RAY // a program may march its own way (terrain)
-// A ray out of steps near a surface (never on a bound) takes its closest approach as a candidate hit
-// (h.exhausted), or the crossing that its last two samples predict when a probe confirms it.
-void acceptExhausted(inout Hit h, inout float t, float tBest, float matBest, vec3 ro, vec3 rd, float tmax,
-                     float side, float pathT, float tPrev, float fPrev, float tPrev2, float fPrev2)
-{
-    h.hit = true;
-    h.exhausted = true;
-    t = tBest;
-    h.mat = matBest;
-#if MARCH_REFINES
-    // A ray grazing a face creeps toward it by plain steps that shrink geometrically (by 1 − sin of
-    // the angle: ~40 steps an e-fold at 1.5°) and runs out of steps short of it, a few % of the
-    // depth: the band along a ground plane's horizon. The last two samples predict the crossing
-    // (secant); one probe a little past it, and if that is inside, the bracket is refined as any
-    // crossing. Only out-of-steps rays take this guess, and only a confirmed crossing replaces
-    // the best candidate (a secant step in the main loop stepped across corner slivers).
-    if (fPrev > 0.0 && fPrev2 > fPrev) {
-        float tStar = tPrev + 1.5 * fPrev * (tPrev - tPrev2) / (fPrev2 - fPrev);
-        if (tStar < tmax) {
-            float fStar = side * map(ro + rd * tStar).x;
-            h.steps++;
-            if (fStar < 0.0) {
-                t = refineCrossing(ro, rd, side, tPrev, fPrev, tStar, fStar, pathT, h.steps);
-                h.mat = map(ro + rd * t).y;
-                h.exhausted = false;
-            }
-        }
-    }
+// The distance the march steps by. A program may give a bound along the ray instead of around the
+// point (PROGRAM_MAP_ALONG: vec2 mapAlong(vec3 p, vec3 dir), no surface within that distance along
+// dir: Galin et al. 2020, "Segment tracing using local Lipschitz bounds"), which can be far longer
+// where the field changes slowly in that direction. Its sign and material are map()'s.
+#ifdef PROGRAM_MAP_ALONG
+vec2 marchMap(vec3 p, vec3 dir) { return mapAlong(p, dir); }
+#else
+vec2 marchMap(vec3 p, vec3 dir) { return map(p); }
 #endif
+
+// A ray that runs out of MAX_STEPS short of tmax has found nothing yet: it is neither a hit nor a miss.
+// It goes on, up to TAIL_STEPS more, taking steps of at least TAIL_MIN_STEP thresholds (so it cannot
+// crawl: a ray that skims a surface for a long way is what runs out), and ends as any ray ends: a
+// crossing refined to the surface, a hit within the threshold (a fractal's footprint), or past tmax, a
+// miss. The tolerance this costs is stated: a sliver of surface thinner than TAIL_MIN_STEP thresholds
+// along the ray can be stepped over. A ray still unresolved after that is flagged (h.exhausted, the
+// steps AOV negative, magenta in the heat map) and drawn as a miss: never a guess drawn as geometry.
+#ifndef TAIL_MIN_STEP
+#define TAIL_MIN_STEP 4.0
+#endif
+#ifndef TAIL_STEPS
+#define TAIL_STEPS MAX_STEPS
+#endif
+void tailMarch(inout Hit h, inout float t, vec3 ro, vec3 rd, float tmax, float side, float pathT, float tPrev,
+               float fPrev)
+{
+    for (int i = 0; i < TAIL_STEPS && !h.hit; i++) {
+        vec2 d = marchMap(ro + rd * t, rd * side);
+        float dist = side * d.x, eps = hitEps(pathT + t);
+        bool bound = isBound(d);
+        h.steps++;
+#if MARCH_REFINES
+        if (!bound && abs(dist) <= positionFloor(pathT + t)) {
+            h.hit = true;
+        } else if (!bound && dist < 0.0) { // crossed since the last sample: locate the surface
+            t = refineCrossing(ro, rd, side, tPrev, fPrev, t, dist, pathT, h.steps);
+            d = map(ro + rd * t);
+            h.hit = true;
+        }
+#else
+        h.hit = !bound && dist < eps;
+#endif
+        if (h.hit) {
+            h.mat = d.y;
+            return;
+        }
+        tPrev = t;
+        fPrev = dist;
+        t += bound ? dist : max(dist * float(STEP_FACTOR), TAIL_MIN_STEP * eps);
+        if (t > tmax)
+            return; // a miss
+    }
+    h.exhausted = true;
 }
 
 Hit castRay(vec3 ro, vec3 rd, float tmax, float side, float pathT)
@@ -139,27 +163,18 @@ Hit castRay(vec3 ro, vec3 rd, float tmax, float side, float pathT)
     Hit h = Hit(false, 0.0, -1.0, 0, false, 0);
     float omega = float(OVER_RELAX);
     float t = 0.0, tPrev = 0.0, rPrev = 0.0, fPrev = 0.0; // rPrev = |fPrev|: the last ball's radius
-    float tPrev2 = 0.0, fPrev2 = 0.0;                       // the sample before that
-    float bestRatio = 1e30, tBest = 0.0, matBest = 0.0; // the closest approach, in thresholds
-    bool lastBound = false; // the last step was on a bound: the ray had left the surfaces' reach
     float floorBase = positionFloor(pathT); // float resolution at t = 0
     for (int i = 0; i < MAX_STEPS; i++) {
         h.steps = i + 1;
-        vec2 d = map(ro + rd * t);
+        vec2 d = marchMap(ro + rd * t, rd * side);
         float dist = side * d.x;
         float eps = hitEps(pathT + t);
         bool bound = isBound(d);
-        lastBound = bound;
         h.boundSteps += bound ? 1 : 0;
         if (omega > 1.0 && i > 0 && (abs(dist) + rPrev < t - tPrev || (MARCH_REFINES == 1 && dist < 0.0))) {
             t = tPrev + rPrev * float(STEP_FACTOR);
             omega = 1.0;
             continue;
-        }
-        if (!bound && dist / eps < bestRatio) {
-            bestRatio = dist / eps;
-            tBest = t;
-            matBest = d.y;
         }
         float step = omega * dist * float(STEP_FACTOR);
 #if MARCH_REFINES
@@ -184,8 +199,6 @@ Hit castRay(vec3 ro, vec3 rd, float tmax, float side, float pathT)
             h.mat = d.y;
             break;
         }
-        tPrev2 = tPrev;
-        fPrev2 = fPrev;
         tPrev = t;
         fPrev = dist;
         rPrev = abs(dist);
@@ -193,8 +206,8 @@ Hit castRay(vec3 ro, vec3 rd, float tmax, float side, float pathT)
         if (t > tmax)
             break;
     }
-    if (!h.hit && t <= tmax && h.steps >= MAX_STEPS && bestRatio < 1e30 && !lastBound) // out of steps near a surface
-        acceptExhausted(h, t, tBest, matBest, ro, rd, tmax, side, pathT, tPrev, fPrev, tPrev2, fPrev2);
+    if (!h.hit && t <= tmax && h.steps >= MAX_STEPS) // out of steps: not yet a hit, nor a miss
+        tailMarch(h, t, ro, rd, tmax, side, pathT, tPrev, fPrev);
     h.t = t;
     return h;
 }

@@ -8,7 +8,8 @@
 // Outputs (sample 0 of each frame writes the AOVs; later samples only add colour):
 //   0: linear RGB radiance, alpha 1 (accumulated by additive blending)
 //   1: world normal of the first hit, depth along the unit ray (−1 on a miss: C turns it into +inf)
-//   2: primary-ray march steps (negative when the ray ran out of them and took its best candidate),
+//   2: primary-ray march steps (negative when the ray was left unresolved: its budget and the tail ran
+//      out before a hit or a miss; drawn as a miss),
 //      direction in which the path left the scene
 
 #include "common/uniforms.glsl"
@@ -368,7 +369,7 @@ void writeOutputs(Path P, Ray ray)
 #endif
     oColor = vec4(radiance, 1.0);
     oNormalDepth = vec4(P.firstN, P.firstT);
-    oAux = vec4(P.firstExhausted ? -float(P.firstSteps) : float(P.firstSteps), P.rd); // negative: out of steps
+    oAux = vec4(P.firstExhausted ? -float(P.firstSteps) : float(P.firstSteps), P.rd); // negative: unresolved
 }
 
 void main()

@@ -5,6 +5,23 @@ uniform float uSandLine;   // sand below this height (metres)
 uniform float uSnowLine;   // snow above this height (metres)
 uniform float uGrassSlope; // grass where normal.y exceeds this
 uniform int uLayerSand, uLayerGrass, uLayerRock, uLayerSnow; // material indices
+uniform int uElevationRamp;   // 1: colour by true height (terrain.colors = elevation) instead of layers
+uniform float uExaggeration;  // heights are true heights times this
+
+// A hypsometric tint, the map makers' colours for height above the sea (true metres): lowland greens,
+// upland tans and browns, grey rock, then snow; each surface keeps its texture's light and shade.
+// (Written as a chain of mixes: constant arrays indexed in a loop made llvmpipe's terrain shader a
+// hundred times slower.)
+vec3 elevationRamp(float m)
+{
+    vec3 c = mix(vec3(0.30, 0.52, 0.30), vec3(0.52, 0.66, 0.38), clamp(m / 300.0, 0.0, 1.0));
+    c = mix(c, vec3(0.82, 0.78, 0.50), clamp((m - 300.0) / 500.0, 0.0, 1.0));
+    c = mix(c, vec3(0.70, 0.54, 0.36), clamp((m - 800.0) / 700.0, 0.0, 1.0));
+    c = mix(c, vec3(0.58, 0.50, 0.46), clamp((m - 1500.0) / 1000.0, 0.0, 1.0));
+    c = mix(c, vec3(0.80, 0.80, 0.80), clamp((m - 2500.0) / 1500.0, 0.0, 1.0));
+    return mix(c, vec3(0.97, 0.97, 1.00), clamp((m - 4000.0) / 1500.0, 0.0, 1.0));
+}
+
 vec3 layerColor(int m, vec3 p, vec3 n, vec3 dpdx, vec3 dpdy)
 {
     if (m < 0)
@@ -28,5 +45,8 @@ vec3 programAlbedo(vec3 p, vec3 n, vec3 dpdx, vec3 dpdy, vec3 base)
     float sand = 1.0 - smoothstep(uSandLine - 0.02 * range, uSandLine + 0.02 * range, p.y);
     vec3 c = mix(layerColor(uLayerRock, p, n, dpdx, dpdy), layerColor(uLayerGrass, p, n, dpdx, dpdy), grass);
     c = mix(c, layerColor(uLayerSand, p, n, dpdx, dpdy), sand);
-    return mix(c, layerColor(uLayerSnow, p, n, dpdx, dpdy), snow);
+    c = mix(c, layerColor(uLayerSnow, p, n, dpdx, dpdy), snow);
+    // the ramp keeps the layers' light and shade (their luminance about its mean), not their colour
+    float shade = dot(c, vec3(0.299, 0.587, 0.114));
+    return uElevationRamp != 0 ? elevationRamp(p.y / uExaggeration) * (0.65 + 0.5 * shade) : c;
 }
