@@ -237,6 +237,12 @@ static void panel_params(void **st)
         fail_msg("%s", e.msg);
     assert_non_null(params_find(&l, "materials.glass.ior"));
     assert_non_null(params_find(&l, "objects.1.radius")); /* the glass sphere (0 is the ground plane) */
+    /* the panel titles each element by what it is */
+    assert_string_equal(params_label_of(&l, "objects.1"), "sphere (glass)");
+    assert_string_equal(params_label_of(&l, "objects.3"), "difference");
+    assert_string_equal(params_label_of(&l, "objects.3.children.0"), "round_box (ceramic)");
+    assert_string_equal(params_label_of(&l, "lights.1"), "directional");
+    assert_null(params_label_of(&l, "objects.99"));
     scene_free(&s);
     params_free(&l);
 }

@@ -541,6 +541,22 @@ void render_read_aovs(float *aov8)
     flip_rows(aov8, state.height, (size_t)state.width * AOV_FLOATS * sizeof(float));
 }
 
+long render_unresolved_pixels(void)
+{
+    size_t n = (size_t)state.width * (size_t)state.height;
+    float *steps = util_alloc(sizeof(float) * n, "the steps readback");
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, state.fbo);
+    glReadBuffer(GL_COLOR_ATTACHMENT2); /* AOV_SLOT_STEPS is its red channel */
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, state.width, state.height, GL_RED, GL_FLOAT, steps);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    long count = 0;
+    for (size_t i = 0; i < n; i++)
+        count += steps[i] < 0.0f;
+    free(steps);
+    return count;
+}
+
 void render_set_heat_max(float steps) { state.heat_max = steps; }
 
 float render_heat_max(void)

@@ -104,6 +104,8 @@ void render_read_linear(float *rgba);
 /* srgb8 of the active image stretched to width × height (at most the targets' size), as the window shows it. */
 void render_read_stretched_srgb8(uint8_t *rgba, int width, int height, float exposure);
 void render_read_aovs(float *aov8);
+/* Pixels of the current image whose primary ray ran out of steps and its tail (drawn as a miss). */
+long render_unresolved_pixels(void);
 
 /* Terrain scenes: the ground height under world (x, z); false for other scenes. */
 bool render_ground_height(float x, float z, float *height);

@@ -158,7 +158,7 @@ bool offline_tile_name(const char *output, int index, int count, char *out, size
 }
 
 /* Renders rows [top, top + height) of the d->width × d->height image (all of it, or one tile) into w. */
-static bool render_bands(const offline_desc *d, int top, int height, image_writer *w, err_t *err)
+static bool render_bands(const offline_desc *d, int top, int height, image_writer *w, long *unresolved, err_t *err)
 {
     int rows = band_rows(d, height), bands = (height + rows - 1) / rows;
     double t0 = util_now();
@@ -177,6 +177,7 @@ static bool render_bands(const offline_desc *d, int top, int height, image_write
         if (e != GL_NO_ERROR)
             return err_set(err, "cannot render '%s': the GL failed on a %dx%d band (%s); try a smaller --strip-rows",
                            d->output, d->width, h, e == GL_OUT_OF_MEMORY ? "out of GPU memory" : "GL error");
+        *unresolved += render_unresolved_pixels();
         if (!write_band(w, d->output, d->width, h, d->aovs, err))
             return false;
     }
@@ -227,7 +228,8 @@ bool offline_render_current(const offline_desc *desc, err_t *err)
     image_writer *w = open_writer(d->output, d->width, rows, d->aovs, d->description, tile[0] ? tile : NULL, err);
     if (!w)
         return false;
-    if (!render_bands(d, top, rows, w, err)) {
+    long unresolved = 0;
+    if (!render_bands(d, top, rows, w, &unresolved, err)) {
         image_writer_abort(w);
         return false;
     }
@@ -240,6 +242,10 @@ bool offline_render_current(const offline_desc *desc, err_t *err)
     else if (!d->quiet)
         fprintf(stderr, "wrote %s (%dx%d, %d spp%s, %.2f s, %s)\n", d->output, d->width, d->height, d->spp, precision,
                 util_now() - t0, gpu_describe());
+    if (!d->quiet && unresolved)
+        fprintf(stderr, "note: %ld pixel%s (%.3g%%) ran out of steps and are drawn as misses (the steps AOV marks them "
+                        "negative); raise quality.max_steps or use --quality final\n",
+                unresolved, unresolved == 1 ? "" : "s", 100.0 * (double)unresolved / ((double)d->width * rows));
     return true;
 }
 

@@ -28,9 +28,29 @@ const scene_param *params_find(const param_list *l, const char *key)
     return NULL;
 }
 
+void params_label(param_list *l, const char *key, const char *text)
+{
+    if (l->label_count == l->label_cap) {
+        l->label_cap = l->label_cap ? 2 * l->label_cap : 16;
+        l->labels = util_realloc(l->labels, (size_t)l->label_cap * sizeof *l->labels, "scene parameter labels");
+    }
+    param_label *b = &l->labels[l->label_count++];
+    snprintf(b->key, sizeof b->key, "%s", key);
+    snprintf(b->text, sizeof b->text, "%s", text);
+}
+
+const char *params_label_of(const param_list *l, const char *key)
+{
+    for (int i = l->label_count - 1; i >= 0; i--)
+        if (!strcmp(l->labels[i].key, key))
+            return l->labels[i].text;
+    return NULL;
+}
+
 void params_free(param_list *l)
 {
     free(l->items);
+    free(l->labels);
     *l = (param_list){0};
 }
 

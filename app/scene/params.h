@@ -31,9 +31,17 @@ typedef struct scene_param {
     int array_len, array_index; /* one element of an array value (the palette's colours), else 0, 0 */
 } scene_param;
 
+/* What a group of keys is, for its heading: "objects.3" is "box (red)". */
+typedef struct param_label {
+    char key[PARAM_KEY_MAX];
+    char text[64];
+} param_label;
+
 typedef struct param_list {
     scene_param *items;
     int count, cap;
+    param_label *labels;
+    int label_count, label_cap;
 } param_list;
 
 #ifdef __cplusplus
@@ -43,6 +51,9 @@ extern "C" { /* the panel (window/panel.cpp) reads the list */
 /* Adds (or, for a key already there, replaces) a parameter; returns where it is kept. */
 scene_param *params_add(param_list *l, const scene_param *p);
 const scene_param *params_find(const param_list *l, const char *key);
+/* Names the group of keys under key ("objects.3" -> "box (red)"); NULL when none is named. */
+void params_label(param_list *l, const char *key, const char *text);
+const char *params_label_of(const param_list *l, const char *key);
 void params_free(param_list *l);
 
 /* The block a key belongs to (its first segment: "materials", "fractal"...), into out. */

@@ -209,6 +209,8 @@ bool parse_lights(scene_ctx *c, const cJSON *root)
             return false;
         out->type = (light_type)type;
         out->shadow = (shadow_mode)shadow;
+        if (c->params)
+            params_label(c->params, p, TYPES[type]);
         /* a point light has a position, a directional light a direction: the other key is a mistake */
         const char *own = type == LIGHT_POINT ? "position" : "direction", *other = type == LIGHT_POINT ? "direction" : "position";
         if (cJSON_GetObjectItemCaseSensitive(l, other)) {

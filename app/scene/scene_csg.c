@@ -359,6 +359,13 @@ static int emit_node(scene_ctx *c, const cJSON *node, const char *path, const ch
         fail(c, path, "a node has either \"shape\" or \"op\", not both");
         return -1;
     }
+    if (c->params && (shape || op)) {
+        const cJSON *material = cJSON_GetObjectItemCaseSensitive(node, "material");
+        char text[64];
+        snprintf(text, sizeof text, cJSON_IsString(material) ? "%s (%s)" : "%s", shape ? shape : op,
+                 cJSON_IsString(material) ? material->valuestring : "");
+        params_label(c->params, path, text);
+    }
     if (shape)
         return emit_primitive(c, node, path, pin, shape);
     if (op)

@@ -32,7 +32,7 @@
 #include "window/panel.h"
 #include "window/recorder.h"
 
-enum { MAX_SCENES = 9, FRAME_HISTORY = 30, DEFAULT_FPS = 30, COST_MAX = 32, PROBE_MAX = 64, CURSOR_SETTLE_FRAMES = 3,
+enum { MAX_SCENES = 9, FRAME_HISTORY = 30, FULL_HISTORY = 16, DEFAULT_FPS = 30, COST_MAX = 32, PROBE_MAX = 64, CURSOR_SETTLE_FRAMES = 3,
        STAT_MAX = 100000 };
 typedef enum hud_mode { HUD_LINE, HUD_FULL, HUD_HIDDEN } hud_mode;
 static const float MOUSE_SENSITIVITY = 0.0025f; /* radians per pixel */
@@ -87,7 +87,10 @@ static struct {
     double band_rows;   /* rows of a still image's sample per display frame (0: not yet known) */
     panel_cost costs[COST_MAX]; /* what each edited parameter costs */
     int cost_count;
-    int cost_pending;         /* the cost waiting for its next full sample, −1: none */
+    int cost_pending;         /* the cost waiting for its samples and its converged image, −1: none */
+    long unresolved;          /* the converged image's pixels out of steps (drawn as misses); −1: not counted */
+    double full_ms[FULL_HISTORY]; /* this image's full-size sample times, for the costs' medians */
+    int full_count;
     double reference_rmse;    /* the converged image against the grabbed reference; −1: none */
     char cursor_info[256];
     char preset_path[PATH_MAX_LEN];
@@ -151,7 +154,7 @@ static void plain_key(GLFWwindow *w, int key, int mods)
     case GLFW_KEY_F12: app.screenshot = true; break;
     case GLFW_KEY_H: app.view = app.view == VIEW_STEPS ? VIEW_COLOR : VIEW_STEPS; break;
     case GLFW_KEY_G:
-        render_grab_reference();
+        render_grab_reference(), app.reference_rmse = 0;
         snprintf(app.message, sizeof app.message, "grabbed this frame as the reference: V shows the difference");
         break;
     case GLFW_KEY_V: app.view = app.view == VIEW_DIFFERENCE ? VIEW_COLOR : VIEW_DIFFERENCE; break;
@@ -443,6 +446,21 @@ static bool edit(const char *kv)
     return true;
 }
 
+/* The median of this image's full-size sample times, but its first. */
+static double median_full_ms(void)
+{
+    double v[FULL_HISTORY];
+    int skip = app.full_count > 1; /* the first also compiled the program (llvmpipe: 200-400 ms more) */
+    int n = app.full_count - skip;
+    memcpy(v, app.full_ms + skip, sizeof v[0] * (size_t)n);
+    for (int i = 1; i < n; i++) /* a handful: insertion sort */
+        for (int j = i; j > 0 && v[j - 1] > v[j]; j--) {
+            double t = v[j];
+            v[j] = v[j - 1], v[j - 1] = t;
+        }
+    return n == 0 ? 0 : n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
 /* A cost entry for an edit of key: the sample time and the reference error before it; the after comes
  * with the next full-size sample (note_sample). */
 static void note_cost(const char *kv)
@@ -452,6 +470,10 @@ static void note_cost(const char *kv)
     int i = 0;
     while (i < app.cost_count && strcmp(app.costs[i].key, key))
         i++;
+    if (i < app.cost_count) { /* the newest edit is the last entry */
+        memmove(app.costs + i, app.costs + i + 1, sizeof app.costs[0] * (size_t)(app.cost_count - i - 1));
+        i = --app.cost_count;
+    }
     if (i == app.cost_count) {
         if (app.cost_count == COST_MAX) { /* the oldest goes */
             memmove(app.costs, app.costs + 1, sizeof app.costs[0] * (COST_MAX - 1));
@@ -460,7 +482,7 @@ static void note_cost(const char *kv)
         app.cost_count++;
         snprintf(app.costs[i].key, sizeof app.costs[i].key, "%s", key);
     }
-    app.costs[i].ms_before = app.sample_ms;
+    app.costs[i].ms_before = app.full_count ? median_full_ms() : app.sample_ms;
     app.costs[i].ms_after = 0;
     app.costs[i].rmse_before = app.reference_rmse;
     app.costs[i].rmse_after = -1;
@@ -640,6 +662,15 @@ static const char *program_block(const scene *s)
     return s->program == PROGRAM_CSG ? "objects" : "terrain";
 }
 
+/* The converged image's rays that found no answer: said, never hidden (they are drawn as misses). */
+static const char *unresolved_text(void)
+{
+    static char text[160];
+    snprintf(text, sizeof text, "%ld px ran out of steps (drawn as misses): H shows them magenta; raise quality.max_steps",
+             app.unresolved);
+    return text;
+}
+
 static void panel_model_of(int w, int h, panel_model *m)
 {
     camera_basis b = camera_get_basis(&app.cam);
@@ -655,14 +686,22 @@ static void panel_model_of(int w, int h, panel_model *m)
                        .heat_max = render_heat_max(), .can_undo = app.edits.undo_count > 0,
                        .can_redo = app.edits.redo_count > 0, .message = app.message,
                        .cursor_info = app.cursor_info[0] ? app.cursor_info : NULL, .preset_path = app.preset_path,
-                       .focus_set_field = app.focus_field};
+                       .focus_set_field = app.focus_field,
+                       .unresolved = app.unresolved > 0 ? unresolved_text() : NULL};
     app.focus_field = false;
     double ms = average_ms();
     m->fps = ms > 0 ? 1000.0 / ms : 0;
     render_active_size(&m->internal_width, &m->internal_height);
+    /* The look-at comes from a float direction: shown to the decimal that direction holds (-0.1, not
+     * -0.0999999968; 0, not -8e-09), which is far below a double's digits only in a deep zoom. */
+    double quantum = pow(10.0, floor(log10(dist * 1e-6)));
     for (int i = 0; i < 3; i++) {
         m->position[i] = app.cam.position[i];
-        m->look_at[i] = app.cam.position[i] + (double)b.forward[i] * dist;
+        double offset = (double)b.forward[i] * dist;
+        m->look_at[i] = app.cam.position[i] + offset;
+        double rounded = round(m->look_at[i] / quantum) * quantum;
+        if (fabs(rounded - m->look_at[i]) < 1e-6 * dist)
+            m->look_at[i] = rounded + 0.0; /* and 0, not -0 */
     }
 }
 
@@ -756,6 +795,8 @@ static void hud(int w, int h)
         sb_printf(&t, "%.1f ms a frame (%.1f fps)\n", ms, ms > 0 ? 1000.0 / ms : 0.0);
         hud_details(h, &t);
     }
+    if (app.unresolved > 0)
+        sb_printf(&t, "%s\n", unresolved_text());
     if (app.cursor_info[0])
         sb_printf(&t, "%s\n", app.cursor_info);
     if (app.message[0] && !app.panel)
@@ -851,17 +892,24 @@ static void note_sample(double ms, int iw, int ih, int w, int h, bool complete)
         if (complete)
             app.sample_ms = app.band_ms, app.band_ms = 0;
     }
-    if (complete && iw == w && ih == h && app.cost_pending >= 0 && render_samples() == 1) {
-        app.costs[app.cost_pending].ms_after = app.sample_ms;
-        if (app.reference_rmse < 0)
-            app.cost_pending = -1;
-    }
+    if (!complete || iw != w || ih != h)
+        return;
+    if (render_samples() == 1) /* a new image: its samples' times start again */
+        app.full_count = 0;
+    if (app.full_count < FULL_HISTORY)
+        app.full_ms[app.full_count++] = app.sample_ms;
+    if (app.cost_pending >= 0) /* the median so far: one sample that also compiled or met a busy core is not the cost */
+        app.costs[app.cost_pending].ms_after = median_full_ms();
 }
 
 /* Once the image has converged: its difference to the grabbed reference (the pending cost's "after"). */
 static void note_converged(void)
 {
-    if (app.reference_rmse < 0 && !(app.costs[0].key[0] && app.cost_pending >= 0))
+    if (app.cost_pending >= 0 && app.reference_rmse < 0) { /* no reference: the time is all there is */
+        app.cost_pending = -1;
+        return;
+    }
+    if (app.reference_rmse < 0)
         return;
     double rmse = render_reference_rmse();
     if (rmse < 0)
@@ -915,8 +963,10 @@ static bool draw(int w, int h, bool restart, camera *shown, bool *moved)
             res_update(&app.res, ms + app.overhead_ms, (double)iw * ih, (double)w * h);
         else if (refining && ms > 0) /* the next band: as many rows as fit the target */
             app.band_rows *= fmin(fmax(app.res.target_ms / ms, 0.5), 2.0);
+        if (render_samples() == 1)
+            app.unresolved = -1;
         if (!moving && refining && render_samples() == app.scene.quality.spp)
-            note_converged();
+            note_converged(), app.unresolved = render_unresolved_pixels();
     }
     app.scaled = iw != w || ih != h;
     render_display(0, w, h, app.exposure, app.view);
@@ -1059,6 +1109,7 @@ bool explore_run(const cli_options *opt, err_t *err)
     app.pending_scene = -1;
     app.cost_pending = -1;
     app.reference_rmse = -1;
+    app.unresolved = -1;
     app.exposure = DEFAULT_EXPOSURE;
     app.res = res_init((float)(opt->fps ? opt->fps : DEFAULT_FPS), RES_MIN_SCALE);
     app.knob = next_knob((knob_id)(KNOB_COUNT - 1));

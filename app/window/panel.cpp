@@ -1,13 +1,17 @@
 /* panel — see panel.h. Dear ImGui 1.86 (Debian's libimgui-dev) with its GLFW and OpenGL 3 backends. */
 #include "window/panel.h"
 
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
 #include <imgui.h>
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -27,7 +31,25 @@ struct {
     double typed_position[3], typed_look_at[3];
     float typed_fov;
     bool typed_valid;
+    GLFWwindow *window;
+    GLFWkeyfun imgui_key;                     /* the backend's key callback, which ours wraps */
+    std::vector<int> pressed, late_release, due_release; /* keys pressed since the last frame; releases held back */
 } state;
+
+/* Dear ImGui 1.86 reads keys as held-down flags at each frame: a key pressed and released between two
+ * frames (a quick tap while a slow frame renders, or xdotool) would never be seen down. A release that
+ * comes before any frame saw its press is handed to ImGui one frame later, before that frame begins
+ * (never inside a frame: ImGui checks its modifier keys do not change there). */
+void on_key(GLFWwindow *window, int key, int scancode, int action, int mods)
+{
+    if (action == GLFW_PRESS)
+        state.pressed.push_back(key);
+    if (action == GLFW_RELEASE && std::find(state.pressed.begin(), state.pressed.end(), key) != state.pressed.end()) {
+        state.late_release.push_back(key);
+        return;
+    }
+    state.imgui_key(window, key, scancode, action, mods);
+}
 
 /* Turns the control's new value into an override (and an undo step when the user took hold of it). */
 void edited(const param_list *l, const scene_param *p, const double v[3], panel_actions *out)
@@ -105,23 +127,24 @@ bool number_control(const char *label, const scene_param *p, double *v)
     return changed;
 }
 
+void cost_text(const panel_cost *c)
+{
+    ImGui::TextDisabled("  costs %.1f ms a sample (was %.1f)", c->ms_after, c->ms_before);
+    if (c->rmse_after >= 0)
+        ImGui::TextDisabled("  RMSE to the reference %.4f (was %.4f)", c->rmse_after, c->rmse_before);
+}
+
 void cost_line(const panel_model *m, const scene_param *p)
 {
-    for (int i = 0; i < m->cost_count; i++) {
-        const panel_cost *c = &m->costs[i];
-        if (std::strcmp(c->key, p->key) || c->ms_after <= 0)
-            continue;
-        char rmse[96] = "";
-        if (c->rmse_after >= 0)
-            std::snprintf(rmse, sizeof rmse, ";  off the reference %.4f (was %.4f)", c->rmse_after, c->rmse_before);
-        ImGui::TextDisabled("  costs %.1f ms a sample (was %.1f)%s", c->ms_after, c->ms_before, rmse);
-    }
+    for (int i = 0; i < m->cost_count; i++)
+        if (!std::strcmp(m->costs[i].key, p->key) && m->costs[i].ms_after > 0)
+            cost_text(&m->costs[i]);
 }
 
 /* One parameter's control: its label is the key inside its section. */
-void param_control(const panel_model *m, const scene_param *p, size_t section_len, panel_actions *out)
+void param_control(const panel_model *m, const scene_param *p, size_t prefix_len, panel_actions *out)
 {
-    const char *label = p->key + section_len + (p->key[section_len] == '.' ? 1 : 0);
+    const char *label = p->key + prefix_len + (p->key[prefix_len] == '.' ? 1 : 0);
     double v[3] = {p->value[0], p->value[1], p->value[2]};
     bool changed = false;
     ImGui::PushID(p->key);
@@ -180,6 +203,33 @@ void param_control(const panel_model *m, const scene_param *p, size_t section_le
     ImGui::PopID();
 }
 
+/* The array element a key belongs to ("objects.3" for "objects.3.children.0.radius"), or "" when the
+ * key after its section is not an element's (the palette's colours stay one list). */
+std::string element_of(const char *key, size_t section_len)
+{
+    const char *rest = key + section_len;
+    if (*rest != '.' || !std::isdigit((unsigned char)rest[1]))
+        return "";
+    size_t n = 1 + std::strspn(rest + 1, "0123456789");
+    if (rest[n] != '.')
+        return "";
+    return std::string(key, section_len + n);
+}
+
+/* The element's index (-1: not an element's key), for listing elements in order. */
+long element_index(const char *key, size_t section_len)
+{
+    return element_of(key, section_len).empty() ? -1 : std::strtol(key + section_len + 1, nullptr, 10);
+}
+
+/* An element's tree node, titled by what the scene calls it ("3: box (red)"); true when open. */
+bool element_node(const param_list *l, const std::string &g, size_t section_len)
+{
+    const char *label = params_label_of(l, g.c_str());
+    std::string title = g.substr(section_len + 1) + (label ? std::string(": ") + label : std::string());
+    return ImGui::TreeNode(g.c_str(), "%s", title.c_str());
+}
+
 /* The sections in the order the parser met them (the camera has its own). */
 void param_sections(const panel_model *m, panel_actions *out)
 {
@@ -198,13 +248,34 @@ void param_sections(const panel_model *m, panel_actions *out)
         ImGuiTreeNodeFlags open = (m->program_block && s == m->program_block) || s == "quality" ? ImGuiTreeNodeFlags_DefaultOpen : 0;
         if (!ImGui::CollapsingHeader(title.c_str(), open))
             continue;
-        bool any = false;
+        std::vector<const scene_param *> listed; /* the section's keys, its elements in index order */
         for (int i = 0; i < m->params->count; i++) {
             char sec[PARAM_KEY_MAX];
             params_section(m->params->items[i].key, sec, sizeof sec);
             if (s == sec)
-                param_control(m, &m->params->items[i], s.size(), out), any = true;
+                listed.push_back(&m->params->items[i]);
         }
+        std::stable_sort(listed.begin(), listed.end(), [&](const scene_param *a, const scene_param *b) {
+            return element_index(a->key, s.size()) < element_index(b->key, s.size());
+        });
+        bool any = !listed.empty();
+        std::string group; /* the element being listed ("objects.3"), its tree node open or not */
+        bool group_open = false;
+        for (const scene_param *p : listed) {
+            std::string g = element_of(p->key, s.size());
+            if (g != group) {
+                if (group_open)
+                    ImGui::TreePop();
+                group = g;
+                group_open = g.empty() || element_node(m->params, g, s.size());
+            }
+            if (g.empty())
+                param_control(m, p, s.size(), out);
+            else if (group_open)
+                param_control(m, p, g.size(), out);
+        }
+        if (group_open && !group.empty())
+            ImGui::TreePop();
         if (!any)
             ImGui::TextDisabled("nothing to tune here");
     }
@@ -219,6 +290,12 @@ void view_section(const panel_model *m, panel_actions *out)
         ImGui::Text("moving: %dx%d inside a %dx%d window", m->internal_width, m->internal_height, m->width, m->height);
     else
         ImGui::Text("%dx%d%s", m->width, m->height, m->double_precision ? ", double precision (deep zoom)" : "");
+    if (m->unresolved)
+    {
+        ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.45f, 1.0f, 1.0f));
+        ImGui::TextWrapped("%s", m->unresolved);
+        ImGui::PopStyleColor();
+    }
     if (m->cursor_info)
         ImGui::TextUnformatted(m->cursor_info);
     float exposure = m->exposure;
@@ -241,6 +318,10 @@ void view_section(const panel_model *m, panel_actions *out)
         ImGui::Text("RMSE to it %.4f", m->reference_rmse);
     else
         ImGui::TextDisabled("no reference yet");
+    if (m->cost_count > 0 && m->costs[m->cost_count - 1].ms_after > 0) { /* the last edit, where it shows */
+        ImGui::TextDisabled("last edit: %s", m->costs[m->cost_count - 1].key);
+        cost_text(&m->costs[m->cost_count - 1]);
+    }
     ImGui::BeginDisabled(!m->can_undo);
     if (ImGui::Button("Undo (Ctrl+Z)"))
         out->undo = true;
@@ -347,6 +428,8 @@ extern "C" bool panel_init(GLFWwindow *window, err_t *err)
             ImGui::DestroyContext();
             return err_set(err, "the parameter panel (Dear ImGui) cannot start on this OpenGL");
         }
+        state.window = window;
+        state.imgui_key = glfwSetKeyCallback(window, on_key);
         state.ready = true;
         return true;
     } catch (const std::exception &e) {
@@ -372,6 +455,11 @@ extern "C" void panel_frame(bool shown, const panel_model *m, panel_actions *out
     if (!state.ready)
         return;
     try {
+        for (int key : state.due_release) /* between frames, as GLFW's own events come */
+            state.imgui_key(state.window, key, 0, GLFW_RELEASE, 0);
+        state.due_release = state.late_release; /* their presses are seen in this frame */
+        state.late_release.clear();
+        state.pressed.clear();
         ImGui_ImplOpenGL3_NewFrame();
         ImGui_ImplGlfw_NewFrame();
         ImGui::NewFrame();

@@ -38,6 +38,7 @@ typedef struct panel_model {
     double ms_per_sample, fps;
     int samples, spp, width, height, internal_width, internal_height;
     bool double_precision;
+    const char *unresolved; /* what the converged image could not resolve, or NULL */
     double reference_rmse; /* the image against the grabbed reference; −1: none grabbed */
     const panel_cost *costs;
     int cost_count;
