@@ -5,12 +5,19 @@
 vec2 map(vec3 p)
 {
     real3 P = worldOf(p);
-    float d, trap;
+    float trap;
 #ifndef FORMULA_EXACT // an exact distance (menger.glsl) is a better step than the bounding sphere's
-    if (outsideBound(P, d))
-        return vec2(d, MATERIAL_BOUND);
-#endif
+    // the bounding sphere and its margin: fractal/common.glsl
+    float bound = float(length(P)) - uBoundRadius, eps = boundThreshold(p);
+    if (bound > max(BOUND_MARGIN, BOUND_MARGIN_THRESHOLDS * eps))
+        return vec2(bound, MATERIAL_BOUND);
+    float de = float(formulaDE(P, trap));
+    if (bound > BOUND_MARGIN && de > eps)
+        return vec2(de, MATERIAL_BOUND);
+    return vec2(de, 0.0);
+#else
     return vec2(float(formulaDE(P, trap)), 0.0);
+#endif
 }
 
 #ifndef FORMULA_ALBEDO // a formula may colour its surface its own way (menger.glsl)
