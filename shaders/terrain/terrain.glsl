@@ -96,7 +96,13 @@ vec2 terrainSlab(vec3 ro, vec3 rd)
     // a zero direction component gives NaN when ro sits exactly on that plane: treat as inside
     tmin = mix(tmin, vec3(-1e30), isnan(tmin));
     tmax = mix(tmax, vec3(1e30), isnan(tmax));
-    return vec2(max(max(max(tmin.x, tmin.y), tmin.z), 0.0), min(min(tmax.x, tmax.y), tmax.z));
+    float enter = max(max(max(tmin.x, tmin.y), tmin.z), 0.0);
+    // The terrain is solid from hmin up to the ground: a ray that comes in through a side wall in the
+    // sliver below hmin is under the floor and stays there (it goes down): it misses. Before, it hit
+    // the wall 1–2 mm below the floor, a strip along a DEM's bottom edge.
+    if (rd.y < 0.0 && enter > 0.0 && ro.y + rd.y * enter < uTerrainHeightMin)
+        return vec2(1.0, 0.0);
+    return vec2(enter, min(min(tmax.x, tmax.y), tmax.z));
 }
 
 // First s in [0, sEnd] where the ray meets cell `cell`'s bilinear patch; −1 if none. c0: the ray's
