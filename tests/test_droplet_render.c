@@ -22,6 +22,7 @@
 #include <cmocka.h>
 
 #include "check.h"
+#include "data/droplets.h"
 #include "gltest.h"
 #include "gpu/render.h"
 
@@ -306,7 +307,7 @@ static void centre_pixel_is_the_closed_form(void **st)
     /* nothing but the droplet in view (the scene's one sphere is far behind the camera), no lights,
      * a uniform environment */
     droplet_scene(sph, 1,
-                  "\"objects\": [{\"shape\": \"sphere\", \"radius\": 0.1, \"position\": [0, 1, 50], \"material\": \"a\"}], "
+                  "\"objects\": [{\"shape\": \"sphere\", \"radius\": 0.1, \"position\": [0, 1, -50], \"material\": \"a\"}], "
                   "\"environment\": {\"color\": [0.8, 0.6, 0.4], \"intensity\": 1}, \"lights\": [], "
                   "\"quality\": {\"droplet_lod\": 0, \"spp\": 1},",
                   &s);
@@ -324,6 +325,47 @@ static void centre_pixel_is_the_closed_form(void **st)
     }
     /* its depth is the droplet's front */
     assert_near(aov[(S / 2 * S + S / 2) * AOV + AOV_SLOT_DEPTH], 2 - sph[3], 1e-5);
+    unlink(csv_path);
+    scene_free(&s);
+}
+
+/* The same pixel when the droplet is below the level of detail (radius 1 mm at 2 m, a pixel 1.1 mm
+ * there, droplet_lod 2): the ray is not bent but goes on dimmed by the mean transmittance over the
+ * droplet's disc, Σ w_k e^(−σ 2r cos θt_k), and gathers its mean reflectance R (both from the table
+ * test_droplets checks against traced rays), so in a uniform environment C it is C · (T + R). With the
+ * reflection dropped it is C · T: off by R ≈ 0.066 (water), 60x the tolerance. */
+static void centre_pixel_below_the_level_of_detail(void **st)
+{
+    (void)st;
+    double sph[4] = {0, 1, 0, 0.001};
+    scene s;
+    droplet_scene(sph, 1,
+                  "\"objects\": [{\"shape\": \"sphere\", \"radius\": 0.1, \"position\": [0, 1, -50], \"material\": \"a\"}], "
+                  "\"environment\": {\"color\": [0.8, 0.6, 0.4], \"intensity\": 1}, \"lights\": [], "
+                  "\"quality\": {\"droplet_lod\": 2, \"spp\": 1},",
+                  &s);
+    enum { S = 33 };
+    camera cam = cam_at(0, 1, -2, 0, 1, 0, 1);
+    assert_true(sph[3] < 2 * camera_pixel_angle(&cam, S) * 2); /* below the level of detail: not traced */
+    static float aov[S * S * AOV], rgba[S * S * 4];
+    draw(&s, &cam, S, S, 1, NULL, aov, rgba);
+    check_finite("a sub-pixel droplet", aov, rgba, S * S);
+    const float *px = rgba + 4 * (S / 2 * S + S / 2);
+    droplet_lod_table t;
+    droplets_lod_table(s.droplets.ior, &t);
+    const double C[3] = {0.8, 0.6, 0.4};
+    for (int c = 0; c < 3; c++) {
+        double T = 0;
+        for (int k = 0; k < DROPLET_LOD_NODES; k++)
+            T += t.weight[k] * exp(-s.droplets.absorption[c] * 2 * sph[3] * t.cos_t[k]);
+        double want = C[c] * (T + t.reflect);
+        fprintf(stderr, "  channel %d: %.6f, mean transmittance %.5f + reflectance %.5f: %.6f\n", c, (double)px[c], T,
+                (double)t.reflect, want);
+        assert_near(px[c], want, 1e-3);
+    }
+    /* a pixel beside it sees the environment untouched, and the droplet is no surface */
+    assert_near(rgba[4 * (S / 2 * S + S / 2 - 3)], C[0], 1e-5);
+    assert_true(isinf(aov[(S / 2 * S + S / 2) * AOV + AOV_SLOT_DEPTH]));
     unlink(csv_path);
     scene_free(&s);
 }
@@ -467,6 +509,7 @@ int main(void)
         cmocka_unit_test(walk_matches_brute_force),
         cmocka_unit_test(single_droplet_follows_snell),
         cmocka_unit_test(centre_pixel_is_the_closed_form),
+        cmocka_unit_test(centre_pixel_below_the_level_of_detail),
         cmocka_unit_test(overlapping_and_cut_droplets_leave_no_holes),
         cmocka_unit_test(sub_pixel_droplets_dim_like_traced_ones),
     };
