@@ -49,6 +49,10 @@ expect bad-spp 2 "bad --spp '-1'" 1 -- "$fathom" --spp -1 --output "$tmp/out.png
 expect bad-fov 2 "bad --fov '400'" 1 -- "$fathom" --fov 400 --output "$tmp/out.png"
 expect bad-extension 2 "must end in .png or .exr" 1 -- "$fathom" --output "$tmp/out.jpg"
 expect unknown-option 2 "unknown option '--colour'" 1 -- "$fathom" --colour red
+# a GPU asked for by number never falls back to software quietly (this machine has no hardware EGL
+# device, or not 99 of them); a number that is not one is refused
+expect egl-device-missing 1 "FATHOM_EGL_DEVICE=99: no such hardware EGL device" 1 -- env FATHOM_EGL_DEVICE=99 "$fathom" $out
+expect egl-device-bad 1 "FATHOM_EGL_DEVICE='gpu0' is not a device number" 1 -- env FATHOM_EGL_DEVICE=gpu0 "$fathom" $out
 expect unknown-set-key 1 "materials.glass.iro: unknown key 'iro'" 1 -- "$fathom" --set materials.glass.iro=1.3 $out
 expect bad-set-value 1 "materials.glass.ior: expected a number from 1 to 4 (from the override materials.glass.ior=9)" 1 -- "$fathom" --set materials.glass.ior=9 $out
 expect unwritable-output 1 "folder '$tmp/no/such/dir' does not exist" 1 -- "$fathom" --output "$tmp/no/such/dir/out.png" --size 33x21 --quiet

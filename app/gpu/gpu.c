@@ -50,25 +50,29 @@ static bool open_window(const gpu_desc *d, err_t *err)
     return true;
 }
 
-/* A hardware EGL device (skips Mesa's software device, which surfaceless covers). */
-static EGLDisplay device_display(void)
+/* A hardware EGL device (skips Mesa's software device, which surfaceless covers). *hardware counts
+ * the hardware devices seen. Device enumeration comes as EGL_EXT_device_enumeration (Mesa) or inside
+ * EGL_EXT_device_base (NVIDIA's driver advertises only that one). */
+static EGLDisplay device_display(int wanted, int *hardware)
 {
+    *hardware = 0;
     if (!epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_platform_device") ||
-        !epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_device_enumeration"))
+        !(epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_device_enumeration") ||
+          epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_device_base")))
         return EGL_NO_DISPLAY;
     EGLDeviceEXT devices[MAX_EGL_DEVICES];
     EGLint n = 0;
     if (!eglQueryDevicesEXT(MAX_EGL_DEVICES, devices, &n))
         return EGL_NO_DISPLAY;
-    /* FATHOM_EGL_DEVICE=K: the K-th hardware device (farms whose scheduler does not hide the other
-     * GPUs); else the first that initialises (a task confined to its GPU by cgroups gets that one) */
-    const char *want = getenv("FATHOM_EGL_DEVICE");
-    int wanted = want && *want ? atoi(want) : -1, hardware = -1;
+    /* wanted = K: the K-th hardware device (farms whose scheduler does not hide the other GPUs); −1:
+     * the first that initialises (a task confined to its GPU by cgroups gets that one) */
+    int hardware_index = -1;
     for (EGLint i = 0; i < n; i++) {
         const char *ext = eglQueryDeviceStringEXT(devices[i], EGL_EXTENSIONS);
         if (ext && strstr(ext, "EGL_MESA_device_software"))
             continue;
-        if (++hardware != wanted && wanted >= 0)
+        ++*hardware;
+        if (++hardware_index != wanted && wanted >= 0)
             continue;
         EGLDisplay dpy = eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, devices[i], NULL);
         if (dpy != EGL_NO_DISPLAY && eglInitialize(dpy, NULL, NULL))
@@ -82,8 +86,17 @@ static bool open_headless(err_t *err)
     /* The EXT entry point: libepoxy aborts on EGL 1.5's eglGetPlatformDisplay before a display exists. */
     if (!epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_platform_base"))
         return err_set(err, "headless rendering needs EGL_EXT_platform_base: install Mesa's EGL (libegl-mesa0)");
-    const char *platform = "EGL device";
-    state.dpy = device_display();
+    const char *platform = "EGL device", *want = getenv("FATHOM_EGL_DEVICE");
+    char *end = NULL;
+    long wanted = want && *want ? strtol(want, &end, 10) : -1;
+    if (want && *want && (*end || wanted < 0 || wanted > 1000000))
+        return err_set(err, "FATHOM_EGL_DEVICE='%s' is not a device number (0, 1, ...): unset it to take the first GPU",
+                       want);
+    int hardware;
+    state.dpy = device_display((int)wanted, &hardware);
+    if (state.dpy == EGL_NO_DISPLAY && wanted >= 0) /* asked for a GPU: never fall back to software quietly */
+        return err_set(err, "FATHOM_EGL_DEVICE=%ld: no such hardware EGL device that initialises (%d found): "
+                            "number them from 0, or unset it", wanted, hardware);
     if (state.dpy == EGL_NO_DISPLAY) {
         platform = "EGL surfaceless";
         if (!epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_MESA_platform_surfaceless"))
