@@ -186,7 +186,7 @@ static void georeference_lonlat(void **st)
     const double arcsec = 1.0 / 3600;
     const double geo[6] = {8.0, arcsec, 0, 46.5, 0, -arcsec};
     dem_geo *g = dem_geo_open(write_tif(&(tif){"ll.tif", GDT_Float32, 4, 3, geo, 4326, false, 0, 0, 0}, v));
-    double lon, lat;
+    double lon = NAN, lat = NAN; /* clang: assert_true may return, but not to here */
     assert_true(g && dem_geo_lonlat(g, 2.5, 1.0, &lon, &lat));
     assert_near(lon, 8.0 + 2.5 * arcsec, 1e-12);
     assert_near(lat, 46.5 - arcsec, 1e-12);
@@ -204,7 +204,7 @@ static void georeference_lonlat(void **st)
     dem_geo_close(g);
     const double up[6] = {500000, 30, 0, 5200000, 0, 25}; /* south-up: fathom's row 0 is the file's last */
     g = dem_geo_open(write_tif(&(tif){"ll-south.tif", GDT_Float32, 4, 3, up, 32633, false, 0, 0, 0}, v));
-    double lat0, lat3;
+    double lat0 = NAN, lat3 = NAN;
     assert_true(dem_geo_lonlat(g, 0, 0, &lon, &lat0) && dem_geo_lonlat(g, 0, 3, &lon, &lat3));
     assert_true(lat0 > lat3); /* north first */
     dem_geo_close(g);

@@ -682,7 +682,7 @@ static void panel_model_of(int w, int h, panel_model *m)
                        .can_walk = app.scene.terrain.heightmap[0] != 0, .ms_per_sample = app.sample_ms,
                        .samples = render_samples(), .spp = app.scene.quality.spp, .width = w, .height = h,
                        .double_precision = app.scene.fractal.deep_now, .reference_rmse = app.reference_rmse,
-                       .costs = app.costs, .cost_count = app.cost_count, .exposure = app.exposure, .view = app.view,
+                       .costs = app.costs, .cost_count = app.cost_count, .exposure = app.exposure, .view = (int)app.view,
                        .heat_max = render_heat_max(), .can_undo = app.edits.undo_count > 0,
                        .can_redo = app.edits.redo_count > 0, .message = app.message,
                        .cursor_info = app.cursor_info[0] ? app.cursor_info : NULL, .preset_path = app.preset_path,
@@ -1032,7 +1032,12 @@ static void loop(GLFWwindow *win)
         }
         if (!recorder_play(&app.flight, dt, &app.cam, app.message, sizeof app.message))
             move_camera(win, dt, w, h);
-        restart |= handle_requests() | panel_apply(&act) | presets(win, &act, w, h) | views(w, h) | fit_precision(h);
+        bool asked = handle_requests(); /* every one runs, each applying what was asked: no short-circuit */
+        asked = panel_apply(&act) || asked;
+        asked = presets(win, &act, w, h) || asked;
+        asked = views(w, h) || asked;
+        asked = fit_precision(h) || asked;
+        restart = restart || asked;
         bool moved, refining = draw(w, h, restart, &shown, &moved);
         restart = false;
         if (app.screenshot) {
