@@ -12,8 +12,8 @@ check() { if eval "$2"; then passed=$((passed + 1)); else failed=$((failed + 1))
 check "bench exits 0" '[ $? -eq 0 ]'
 csv="$out/csg-knobs.csv"
 check "knob CSV written" '[ -s "$csv" ]'
-check "knob CSV has 17 columns on every line" \
-    '[ "$(awk -F, "{print NF}" "$csv" | sort -u)" = "17" ]'
+check "knob CSV has 18 columns on every line" \
+    '[ "$(awk -F, "{print NF}" "$csv" | sort -u)" = "18" ]'
 # 2 + 2 + 1 knob rows and 4 presets, plus the header
 check "knob CSV has 10 lines" '[ "$(wc -l < "$csv")" -eq 10 ]'
 check "times and errors are numbers >= 0" \

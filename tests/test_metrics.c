@@ -101,6 +101,31 @@ static void silhouette_iou_and_edge(void **st)
     assert_near(same.edge_max_px, 0, 0);
 }
 
+/* The edge RMSE counts the reference's silhouette pixels only: a 3 x 3 block of hits in a 9 x 5 image
+ * has 8 rim pixels and 12 misses beside it; an error at the block's centre is not counted until the
+ * centre lies 10 % deeper than its neighbours (one surface behind another), one beside it always. */
+static void edge_rmse_counts_silhouettes_only(void **st)
+{
+    (void)st;
+    enum { SW = 9, SH = 5 };
+    uint8_t a[SW * SH * 4] = {0}, b[SW * SH * 4] = {0};
+    float aa[SW * SH * 8] = {0}, ab[SW * SH * 8] = {0};
+    for (int i = 0; i < SW * SH; i++) {
+        int x = i % SW, y = i / SW;
+        aa[i * 8 + 3] = ab[i * 8 + 3] = x >= 3 && x <= 5 && y >= 1 && y <= 3 ? 2.0f : INFINITY;
+    }
+    a[(2 * SW + 4) * 4] = 255;                                           /* the centre: red off by 1 */
+    a[(2 * SW + 2) * 4] = a[(2 * SW + 2) * 4 + 1] = a[(2 * SW + 2) * 4 + 2] = 51; /* beside: 0.2 each */
+    image_view va = {SW, SH, a, aa}, vb = {SW, SH, b, ab};
+    metrics m = metrics_compare(&va, &vb, 0.01);
+    assert_int_equal(m.edge_pixels, 20);
+    assert_near(m.edge_rmse, sqrt(3 * 0.04 / (3 * 20)), 1e-12);
+    ab[(2 * SW + 4) * 8 + 3] = 2.2f;
+    m = metrics_compare(&va, &vb, 0.01);
+    assert_int_equal(m.edge_pixels, 21);
+    assert_near(m.edge_rmse, sqrt((3 * 0.04 + 1) / (3 * 21)), 1e-12);
+}
+
 static void upscale_is_exact_on_flat_and_keeps_layout(void **st)
 {
     (void)st;
@@ -139,6 +164,7 @@ int main(void)
         cmocka_unit_test(identical_images),
         cmocka_unit_test(known_errors),
         cmocka_unit_test(silhouette_iou_and_edge),
+        cmocka_unit_test(edge_rmse_counts_silhouettes_only),
         cmocka_unit_test(upscale_is_exact_on_flat_and_keeps_layout),
         cmocka_unit_test(pareto_front),
     };

@@ -193,6 +193,8 @@ static bool measure(const char *knob_name, const char *value, const char *const 
         if (scale != 1.0) /* steps were counted at the smaller size: per output pixel they are fewer */
             m.mean_steps *= scale * scale;
         out->m.rmse += m.rmse * m.rmse / VIEWS; /* mean square, rooted below */
+        out->m.edge_rmse += m.edge_rmse * m.edge_rmse / VIEWS;
+        out->m.edge_pixels += m.edge_pixels;
         out->m.depth_mean_fp += m.depth_mean_fp / VIEWS;
         out->m.depth_max_fp = fmax(out->m.depth_max_fp, m.depth_max_fp);
         out->m.flip_share += m.flip_share / VIEWS;
@@ -204,6 +206,7 @@ static bool measure(const char *knob_name, const char *value, const char *const 
         free(aov);
     }
     out->m.rmse = sqrt(out->m.rmse);
+    out->m.edge_rmse = sqrt(out->m.edge_rmse);
     out->m.psnr_db = out->m.rmse > 0 ? 20 * log10(1 / out->m.rmse) : INFINITY;
     free(ms);
     scene_free(&s);

@@ -12,13 +12,14 @@ void bench_print(const bench_results *r)
 {
     printf("%s, %dx%d, %s; reference converged to RMSE %.5f\n", r->opt->scene, r->w, r->h, gpu_describe(),
            r->conv->rmse);
-    printf("%-16s %-10s %10s %8s %8s %10s %10s %7s %8s %8s %7s %7s\n", "knob", "value", "ms/image", "RMSE", "PSNR",
-           "depth fp", "max fp", "flips%", "IoU", "edge px", "steps", "out%");
+    printf("%-16s %-10s %10s %8s %8s %8s %10s %10s %7s %8s %8s %7s %7s\n", "knob", "value", "ms/image", "RMSE",
+           "edgeRMSE", "PSNR", "depth fp", "max fp", "flips%", "IoU", "edge px", "steps", "out%");
     for (int i = 0; i < r->nrows; i++) {
         const bench_row *w = &r->rows[i];
-        printf("%-16s %-10s %10.1f %8.4f %8.1f %10.3f %10.2f %7.2f %8.4f %8.1f %7.1f %7.2f%s\n", w->knob, w->value,
-               w->ms, w->m.rmse, w->m.psnr_db, w->m.depth_mean_fp, w->m.depth_max_fp, 100 * w->m.flip_share, w->m.iou,
-               w->m.edge_max_px, w->m.mean_steps, 100 * w->m.exhausted_share, w->front ? "  *" : "");
+        printf("%-16s %-10s %10.1f %8.4f %8.4f %8.1f %10.3f %10.2f %7.2f %8.4f %8.1f %7.1f %7.2f%s\n", w->knob,
+               w->value, w->ms, w->m.rmse, w->m.edge_rmse, w->m.psnr_db, w->m.depth_mean_fp, w->m.depth_max_fp,
+               100 * w->m.flip_share, w->m.iou, w->m.edge_max_px, w->m.mean_steps, 100 * w->m.exhausted_share,
+               w->front ? "  *" : "");
     }
     for (int i = 0; i < EFFECT_COUNT; i++)
         printf("effect %-13s in scene %-3s  out %7.1f ms  in %7.1f ms  in, off %7.1f ms\n", effect_name(r->fx[i].e),
@@ -43,13 +44,13 @@ static bool write_csv(const bench_results *r, err_t *err)
     if (!f)
         return false;
     fprintf(f, "scene,width,height,views,knob,value,ms_per_image,rmse,psnr_db,depth_mean_fp,depth_max_fp,"
-               "flip_share,iou,edge_max_px,mean_steps,out_of_steps_share,pareto\n");
+               "flip_share,iou,edge_max_px,mean_steps,out_of_steps_share,edge_rmse,pareto\n");
     for (int i = 0; i < r->nrows; i++) {
         const bench_row *w = &r->rows[i];
-        fprintf(f, "%s,%d,%d,%d,%s,%s,%.3f,%.6f,%.3f,%.4f,%.4f,%.6f,%.6f,%.2f,%.3f,%.6f,%d\n", r->opt->scene, r->w,
-                r->h, r->views, w->knob, w->value, w->ms, w->m.rmse, isinf(w->m.psnr_db) ? 999.0 : w->m.psnr_db,
+        fprintf(f, "%s,%d,%d,%d,%s,%s,%.3f,%.6f,%.3f,%.4f,%.4f,%.6f,%.6f,%.2f,%.3f,%.6f,%.6f,%d\n", r->opt->scene,
+                r->w, r->h, r->views, w->knob, w->value, w->ms, w->m.rmse, isinf(w->m.psnr_db) ? 999.0 : w->m.psnr_db,
                 w->m.depth_mean_fp, w->m.depth_max_fp, w->m.flip_share, w->m.iou, w->m.edge_max_px, w->m.mean_steps,
-                w->m.exhausted_share, w->front);
+                w->m.exhausted_share, w->m.edge_rmse, w->front);
     }
     fclose(f);
     f = open_out(r, "effects.csv", path, err);
@@ -146,7 +147,8 @@ static void summary_header(const bench_results *r, FILE *f)
                "errors well above these are the knobs', not the reference's.\n\n",
             r->ref_spp, r->ref_ms, c->rmse, c->psnr_db, c->depth_mean_fp, c->depth_max_fp, 100 * c->flip_share);
     fprintf(f, "Error: colour RMSE and PSNR of the 8-bit display image; depth error in pixel footprints over pixels "
-               "both renders hit; flips: pixels that hit in one and miss in the other; IoU: of the two hit masks (worst "
+               "both renders hit; edge RMSE: colour RMSE over the reference's silhouette pixels alone (where anti-aliasing "
+               "shows); flips: pixels that hit in one and miss in the other; IoU: of the two hit masks (worst "
                "view); edge px: how far the farthest flipped pixel lies from the reference's silhouette; out of "
                "steps: pixels whose primary ray was left unresolved (its steps and their tail ran out; drawn as a miss). Every knob row starts from "
                "the scene's `%s` preset. `*` marks the Pareto front (no setting is both faster and closer). Settings "
@@ -162,13 +164,14 @@ static bool write_summary(const bench_results *r, err_t *err)
         return false;
     summary_header(r, f);
     fprintf(f, "![error against time](%s-plot.png)\n\n", prefix(r));
-    fprintf(f, "| knob | value | ms/image | RMSE | PSNR dB | depth mean (fp) | depth max (fp) | flips %% | IoU | "
-               "edge px | steps/px | out of steps %% |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+    fprintf(f, "| knob | value | ms/image | RMSE | edge RMSE | PSNR dB | depth mean (fp) | depth max (fp) | flips %% | "
+               "IoU | edge px | steps/px | out of steps %% |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (int i = 0; i < r->nrows; i++) {
         const bench_row *w = &r->rows[i];
-        fprintf(f, "| %s | %s%s | %.1f | %.4f | %.1f | %.3f | %.2f | %.2f | %.4f | %.1f | %.1f | %.2f |\n", w->knob,
-                w->value, w->front ? " *" : "", w->ms, w->m.rmse, w->m.psnr_db, w->m.depth_mean_fp, w->m.depth_max_fp,
-                100 * w->m.flip_share, w->m.iou, w->m.edge_max_px, w->m.mean_steps, 100 * w->m.exhausted_share);
+        fprintf(f, "| %s | %s%s | %.1f | %.4f | %.4f | %.1f | %.3f | %.2f | %.2f | %.4f | %.1f | %.1f | %.2f |\n",
+                w->knob, w->value, w->front ? " *" : "", w->ms, w->m.rmse, w->m.edge_rmse, w->m.psnr_db,
+                w->m.depth_mean_fp, w->m.depth_max_fp, 100 * w->m.flip_share, w->m.iou, w->m.edge_max_px,
+                w->m.mean_steps, 100 * w->m.exhausted_share);
     }
     fprintf(f, "\n## Effects: compiled in, compiled out, compiled in but switched off\n\n"
                "ms per 1-spp frame at the start view. *In scene*: the scene calls for it (so fathom compiles it).\n\n"

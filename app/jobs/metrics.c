@@ -45,6 +45,46 @@ static void silhouettes(const image_view *test, const image_view *ref, metrics *
     m->iou = either ? (double)both / (double)either : 1.0;
 }
 
+/* A pixel of the reference's silhouette: a 4-neighbour misses where it hits (or the reverse), or both
+ * hit 5 % apart in depth (one surface before another). */
+static bool on_silhouette(const image_view *ref, int x, int y)
+{
+    const int dx[4] = {1, -1, 0, 0}, dy[4] = {0, 0, 1, -1};
+    double z = ref->aov[((size_t)y * (size_t)ref->width + (size_t)x) * AOV_FLOATS + AOV_SLOT_DEPTH];
+    for (int k = 0; k < 4; k++) {
+        int u = x + dx[k], v = y + dy[k];
+        if (u < 0 || v < 0 || u >= ref->width || v >= ref->height)
+            continue;
+        double n = ref->aov[((size_t)v * (size_t)ref->width + (size_t)u) * AOV_FLOATS + AOV_SLOT_DEPTH];
+        if (isinf(n) != isinf(z) || (!isinf(z) && fabs(n - z) > 0.05 * fmin(n, z)))
+            return true;
+    }
+    return false;
+}
+
+/* The colour's squared error at pixel i, summed over its three channels (display colour, 0..1). */
+static double colour_se(const image_view *test, const image_view *ref, size_t i)
+{
+    double se = 0;
+    for (int c = 0; c < 3; c++) {
+        double d = ((double)test->srgb[i * 4 + (size_t)c] - (double)ref->srgb[i * 4 + (size_t)c]) / 255.0;
+        se += d * d;
+    }
+    return se;
+}
+
+static void edges(const image_view *test, const image_view *ref, metrics *m)
+{
+    double se = 0;
+    for (int y = 0; y < ref->height; y++)
+        for (int x = 0; x < ref->width; x++)
+            if (on_silhouette(ref, x, y)) {
+                se += colour_se(test, ref, (size_t)y * (size_t)ref->width + (size_t)x);
+                m->edge_pixels++;
+            }
+    m->edge_rmse = m->edge_pixels ? sqrt(se / (3.0 * m->edge_pixels)) : 0;
+}
+
 metrics metrics_compare(const image_view *test, const image_view *ref, double pixel_angle)
 {
     assert(test->width == ref->width && test->height == ref->height);
@@ -54,10 +94,7 @@ metrics metrics_compare(const image_view *test, const image_view *ref, double pi
     long exhausted = 0;
     size_t flips = 0;
     for (size_t i = 0; i < n; i++) {
-        for (int c = 0; c < 3; c++) {
-            double d = ((double)test->srgb[i * 4 + (size_t)c] - (double)ref->srgb[i * 4 + (size_t)c]) / 255.0;
-            se += d * d;
-        }
+        se += colour_se(test, ref, i);
         double ta = test->aov[i * AOV_FLOATS + AOV_SLOT_DEPTH], tr = ref->aov[i * AOV_FLOATS + AOV_SLOT_DEPTH];
         float st = test->aov[i * AOV_FLOATS + AOV_SLOT_STEPS];
         steps += fabsf(st);
@@ -78,6 +115,7 @@ metrics metrics_compare(const image_view *test, const image_view *ref, double pi
     m.mean_steps = steps / (double)n;
     m.exhausted_share = (double)exhausted / (double)n;
     silhouettes(test, ref, &m);
+    edges(test, ref, &m);
     return m;
 }
 

@@ -5,8 +5,10 @@
  * |t − t_ref| / (t_ref · pixel angle), mean and max. Flips: share of pixels that hit in one render
  * and miss in the other; silhouettes: IoU of the two hit masks, and how far the edge moved: over
  * flipped pixels, the largest distance (pixels) to the nearest reference pixel that agrees with the
- * test there (a silhouette one pixel too fat gives 1). Steps: mean primary-ray march steps of the
- * render under test, and the share of its pixels that ran out of steps (negative steps AOV).
+ * test there (a silhouette one pixel too fat gives 1). Edges: the colour RMSE over the reference's
+ * silhouette pixels alone (a 4-neighbour misses where it hits, or lies 5 % nearer or farther), where
+ * anti-aliasing shows. Steps: mean primary-ray march steps of the render under test, and the share of
+ * its pixels that ran out of steps (negative steps AOV).
  */
 #ifndef FATHOM_METRICS_H
 #define FATHOM_METRICS_H
@@ -26,6 +28,8 @@ typedef struct metrics {
     double flip_share;
     double iou;          /* hit masks: |both| / |either| (1 when neither hits anything) */
     double edge_max_px;  /* how far the edge moved (pixels; 0: no flip) */
+    double edge_rmse;    /* colour RMSE over the reference's silhouette pixels (0 when it has none) */
+    int edge_pixels;
     double mean_steps;
     double exhausted_share; /* pixels of the test render whose primary ray was left unresolved */
     int depth_pixels; /* pixels both hit */

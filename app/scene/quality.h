@@ -43,6 +43,7 @@ typedef enum knob_scope {
     SCOPE_SEARCH,   /* the lab's linear + binary search runs: linear terrain, relief materials */
     SCOPE_REFINES,  /* sphere-traced programs whose distance is exact or a bound (not fractals' level-of-detail surfaces) */
     SCOPE_DROPLETS, /* scenes with droplets */
+    SCOPE_EXACT,    /* programs whose distance is exact or a tight bound (csg): a cone's coverage needs it */
 } knob_scope;
 
 /* clang-format off */
@@ -80,6 +81,8 @@ typedef enum knob_scope {
       "droplet surfaces a path may cross (entries, exits, internal reflections); then it goes on straight")        \
     X(droplet_cull, INT,   "DROPLET_CULL", 0,     1,      1,    1,       1,     1,    0,   0,    "0,1",                   SCOPE_DROPLETS, \
       "1: the droplets' grid walk stops at the scene's surface, so droplets behind it cost nothing; 0: it walks on (the same image, to measure the saving)") \
+    X(coverage,     INT,   "COVERAGE",     0,     1,      0,    0,       0,     0,    0,   0,    "0,1",                   SCOPE_EXACT,    \
+      "1: cone coverage anti-aliasing (csg): a surface the centre ray passes within half a pixel gets its share of the pixel [docs/bench/coverage]") \
     X(spp,          INT,   NULL,         1,     65536,  1,    4,       16,    256,  2,   0,    "1,2,4,8,16",            SCOPE_ANY,      \
       "samples per pixel for offline shots and a still window (progressive, jittered)")
 /* clang-format on */

@@ -248,6 +248,7 @@ bool scene_knob_applies(const scene *s, knob_id k)
     case SCOPE_SEARCH: /* the lab's search runs: linear terrain, or relief materials */
         return (s->terrain.heightmap[0] && !s->terrain.maxmip) || (s->effects & (1u << EFFECT_RELIEF));
     case SCOPE_DROPLETS: return s->effects & (1u << EFFECT_DROPLETS);
+    case SCOPE_EXACT: return program_get(s->program)->family == FAMILY_CSG;
     }
     return false;
 }

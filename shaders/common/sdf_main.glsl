@@ -38,6 +38,10 @@ uniform vec3 uGlowColor;
 uniform float uGlowStrength;
 #endif
 
+#if MARCH_COVERAGE // coverage anti-aliasing (coveredRadiance below) applies to the centre sample only
+bool coverOn() { return uJitter == vec2(0.0); }
+#endif
+
 layout(location = 0) out vec4 oColor;
 layout(location = 1) out vec4 oNormalDepth;
 layout(location = 2) out vec4 oAux;
@@ -71,6 +75,7 @@ struct Path {
     bool firstExhausted;    // the primary ray ran out of steps (its hit is a best candidate)
     bool escaped;           // the path left the scene
     bool primary;           // nothing met yet: the next hit is the first (its normal and depth are the AOVs)
+    bool passBy;            // the hit is a silhouette the ray passed by, from outside (coverage)
 #if FX_DROPLETS
     // Droplets (common/droplets.glsl): the path is in air or inside droplet dropIn. A droplet's
     // surfaces are found analytically, so they do not count against BOUNCES but against their own
@@ -103,6 +108,7 @@ Path startPath(Ray ray)
     P.firstExhausted = false;
     P.escaped = false;
     P.primary = true;
+    P.passBy = false;
 #if FX_DROPLETS
     P.drops = fxOn(FX_DROPLETS_BIT);
     P.dropIn = P.drops ? dropletAt(P.ro, -1) : -1;
@@ -271,7 +277,9 @@ bool opaqueSurface(inout Path P, Material m, vec3 p, vec3 pSurface, vec3 nOut, f
     if (dot(n, v) < 0.02)
         n = normalize(n + (0.02 - dot(n, v)) * v);
 #else
-    if (dot(n, v) < 0.0) // camera inside a solid or a ray along the surface: light the side we see
+    if (P.passBy && dot(n, v) < 0.02) // a silhouette passed by: its normal is across the ray, and
+        n = normalize(n + (0.02 - dot(n, v)) * v); // a flip would point into the solid (black AO)
+    else if (dot(n, v) < 0.0) // camera inside a solid or a ray along the surface: light the side we see
         n = -n;
 #endif
     float ior = max(m.ior, 1.0);
@@ -333,7 +341,15 @@ int traceSegment(inout Path P, Ray ray, int bounce)
             return SEGMENT_FREE;
     } else
 #endif
-    h = castRay(P.ro, P.rd, tmax, P.side, P.pathT);
+    {
+#if MARCH_COVERAGE
+        coverTrack = P.primary && coverOn(); // the primary ray's pass-bys: main()
+#endif
+        h = castRay(P.ro, P.rd, tmax, P.side, P.pathT);
+#if MARCH_COVERAGE
+        coverTrack = false;
+#endif
+    }
     if (P.primary) {
         P.firstSteps = h.steps;
         P.firstBoundSteps = h.boundSteps;
@@ -352,8 +368,8 @@ int traceSegment(inout Path P, Ray ray, int bounce)
     return shadeHit(P, ray, h, bounce);
 }
 
-// Glow and fog over the whole path, then the colour and the AOVs.
-void writeOutputs(Path P, Ray ray)
+// Glow and fog over the whole path: the colour it brings.
+vec3 pathRadiance(Path P, Ray ray)
 {
     vec3 radiance = P.radiance;
 #if FX_GLOW // light gathered where the primary ray crept along the surface (many steps)
@@ -367,6 +383,52 @@ void writeOutputs(Path P, Ray ray)
     if (fxOn(FX_FOG_BIT))
         radiance = applyFog(radiance, worldApprox(ray.o), ray.d, P.primaryT);
 #endif
+    return radiance;
+}
+
+// The path's segments from bounce `from` on, then its way out of glass it could not leave.
+void followPath(inout Path P, Ray ray, int from)
+{
+    for (int bounce = from; bounce <= BOUNCES; bounce++) {
+        int next = traceSegment(P, ray, bounce);
+        if (next == SEGMENT_FREE)
+            bounce--; // a droplet event spends no bounce
+        else if (next == SEGMENT_END)
+            break;
+    }
+    if (!P.escaped && P.side < 0.0) // the path ran out of bounces inside glass: let it leave unbent
+        P.radiance += P.throughput * environment(P.rd);
+}
+
+#if MARCH_COVERAGE
+// Coverage anti-aliasing from the cone, for the centre sample (later jittered samples are point
+// samples of the same box-filtered pixel, so the two estimates may be averaged). A surface the
+// primary ray passed by nearer than its hit, within half a pixel width of the pixel's centre, covers
+// the share 1/2 − ratio of the pixel (a straight edge across a box pixel, ratio pixel widths from its
+// centre); that share gets the colour of a second path that takes the pass-by point as its hit. Where
+// the centre hit a surface, nothing is known of how far inside its silhouette it lies: such pixels
+// count as covered (the half of an edge's error this does not remove).
+vec3 coveredRadiance(Path P, Ray ray, vec3 radiance)
+{
+    float share = clamp(0.5 - coverRatio, 0.0, 1.0);
+    if (share <= 0.0 || (P.firstT >= 0.0 && P.firstT <= coverT))
+        return radiance;
+    Path Q = startPath(ray);
+    Hit h = Hit(true, coverT, map(ray.o + ray.d * coverT).y, 0, false, 0);
+    Q.passBy = true;
+    int next = shadeHit(Q, ray, h, 0);
+    Q.passBy = false;
+    if (next != SEGMENT_END)
+        followPath(Q, ray, 1);
+    else if (!Q.escaped && Q.side < 0.0)
+        Q.radiance += Q.throughput * environment(Q.rd);
+    return mix(radiance, pathRadiance(Q, ray), share);
+}
+#endif
+
+// The colour and the AOVs (those of the centre ray's own path).
+void writeOutputs(Path P, Ray ray, vec3 radiance)
+{
     oColor = vec4(radiance, 1.0);
     oNormalDepth = vec4(P.firstN, P.firstT);
     oAux = vec4(P.firstExhausted ? -float(P.firstSteps) : float(P.firstSteps), P.rd); // negative: unresolved
@@ -378,14 +440,11 @@ void main()
         discard; // adaptive sampling: the centre sample is this pixel's mean already
     Ray ray = primaryRay(gl_FragCoord.xy);
     Path P = startPath(ray);
-    for (int bounce = 0; bounce <= BOUNCES; bounce++) {
-        int next = traceSegment(P, ray, bounce);
-        if (next == SEGMENT_FREE)
-            bounce--; // a droplet event spends no bounce
-        else if (next == SEGMENT_END)
-            break;
-    }
-    if (!P.escaped && P.side < 0.0) // the path ran out of bounces inside glass: let it leave unbent
-        P.radiance += P.throughput * environment(P.rd);
-    writeOutputs(P, ray);
+    followPath(P, ray, 0);
+    vec3 radiance = pathRadiance(P, ray);
+#if MARCH_COVERAGE
+    if (coverOn())
+        radiance = coveredRadiance(P, ray, radiance);
+#endif
+    writeOutputs(P, ray, radiance);
 }
