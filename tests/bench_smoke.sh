@@ -26,6 +26,22 @@ check "effects CSV lists every effect" \
 check "plot is a PNG" '[ "$(head -c 8 "$out/csg-plot.png" | od -An -tx1 | tr -d " \n")" = "89504e470d0a1a0a" ]'
 check "summary links the plot" 'grep -q "](csg-plot.png)" "$out/csg-summary.md"'
 check "bad knob is refused" '! "$fathom" bench --knob nosuch=1 --size 8x8 2>/dev/null'
+# stopped half-way (as a user's Ctrl+C), a run keeps the rows it finished, whole lines, no temporary file
+"$fathom" bench --scene csg --size 40x24 --runs 2 --knob max_steps=8,16,32,64,128,256,512 --knob spp=1,2,4,8 \
+    --out "$out" --name stopped --quiet >/dev/null 2>&1 &
+bench=$!
+for i in $(seq 600); do
+    [ -f "$out/stopped-knobs.csv" ] && [ "$(wc -l < "$out/stopped-knobs.csv")" -ge 3 ] && break
+    sleep 0.2
+done
+kill -INT $bench 2>/dev/null
+wait $bench
+stopped=$?
+check "a stopped run exits non-zero" '[ $stopped -ne 0 ]'
+check "a stopped run keeps its finished rows" '[ "$(wc -l < "$out/stopped-knobs.csv")" -ge 3 ]'
+check "... as whole lines" '[ "$(awk -F, "{print NF}" "$out/stopped-knobs.csv" | sort -u)" = "18" ]'
+check "... and leaves no temporary file" '[ ! -e "$out/stopped-knobs.csv.part" ]'
+check "... nor a summary of a run not done" '[ ! -e "$out/stopped-summary.md" ]'
 [ "$failed" -eq 0 ] || cat "$out/stderr"
 echo "bench_smoke: $passed passed, $failed failed"
 [ "$failed" -eq 0 ]

@@ -312,6 +312,29 @@ static bool measure_effects(const scene *base, effect_row *rows, err_t *err)
 
 /* ---- the run ------------------------------------------------------------------------------------ */
 
+/* Marks the Pareto front among the rows measured so far. */
+static void mark_front(void)
+{
+    double t[MAX_ROWS], e[MAX_ROWS];
+    bool front[MAX_ROWS];
+    for (int i = 0; i < B.nrows; i++)
+        t[i] = B.rows[i].ms, e[i] = B.rows[i].m.rmse;
+    metrics_pareto(t, e, B.nrows, front);
+    for (int i = 0; i < B.nrows; i++)
+        B.rows[i].front = front[i];
+}
+
+/* A row is measured: with --out, the knob CSV so far goes to disk (a stopped run keeps it). */
+static bool row_done(err_t *err)
+{
+    B.nrows++;
+    if (!B.opt->out)
+        return true;
+    mark_front();
+    bench_results res = {.opt = B.opt, .w = B.w, .h = B.h, .views = VIEWS, .rows = B.rows, .nrows = B.nrows};
+    return bench_write_rows(&res, err);
+}
+
 static bool add_sweep_rows(const sweep *k, const char *values, err_t *err)
 {
     char list[512];
@@ -333,9 +356,8 @@ static bool add_sweep_rows(const sweep *k, const char *values, err_t *err)
             if (*end || scale <= 0 || scale > 1)
                 return err_set(err, "bad --knob resolution_scale value '%s': expected a number in (0, 1]", v);
         }
-        if (!measure(k->name, v, sets, n, scale, &B.rows[B.nrows], err))
+        if (!measure(k->name, v, sets, n, scale, &B.rows[B.nrows], err) || !row_done(err))
             return false;
-        B.nrows++;
     }
     return true;
 }
@@ -469,20 +491,13 @@ bool bench_run(const cli_options *opt, err_t *err)
         char set[64];
         snprintf(set, sizeof set, "quality.preset=%s", preset_name((quality_preset)p));
         const char *sets[] = {set};
-        ok = measure("preset", preset_name((quality_preset)p), sets, 1, 1.0, &B.rows[B.nrows], err);
-        B.nrows += ok;
+        ok = measure("preset", preset_name((quality_preset)p), sets, 1, 1.0, &B.rows[B.nrows], err) && row_done(err);
     }
     ok = ok && measure_effects(&base, fx, err);
     if (!opt->quiet)
         fputc('\n', stderr);
     if (ok) {
-        double t[MAX_ROWS], e[MAX_ROWS];
-        bool front[MAX_ROWS];
-        for (int i = 0; i < B.nrows; i++)
-            t[i] = B.rows[i].ms, e[i] = B.rows[i].m.rmse;
-        metrics_pareto(t, e, B.nrows, front);
-        for (int i = 0; i < B.nrows; i++)
-            B.rows[i].front = front[i];
+        mark_front();
         bench_results res = {.opt = opt, .base = &base, .w = B.w, .h = B.h, .views = VIEWS, .ref_spp = REF_SPP,
                              .view_turn_deg = VIEW_TURN_DEG, .rows = B.rows, .nrows = B.nrows, .fx = fx,
                              .conv = &conv, .ref_ms = ref_ms};

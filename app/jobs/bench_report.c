@@ -37,12 +37,8 @@ static FILE *open_out(const bench_results *r, const char *name, char *path, err_
     return f;
 }
 
-static bool write_csv(const bench_results *r, err_t *err)
+static void knob_csv(const bench_results *r, FILE *f)
 {
-    char path[PATH_MAX_LEN];
-    FILE *f = open_out(r, "knobs.csv", path, err);
-    if (!f)
-        return false;
     fprintf(f, "scene,width,height,views,knob,value,ms_per_image,rmse,psnr_db,depth_mean_fp,depth_max_fp,"
                "flip_share,iou,edge_max_px,mean_steps,out_of_steps_share,edge_rmse,pareto\n");
     for (int i = 0; i < r->nrows; i++) {
@@ -52,8 +48,30 @@ static bool write_csv(const bench_results *r, err_t *err)
                 w->m.depth_mean_fp, w->m.depth_max_fp, w->m.flip_share, w->m.iou, w->m.edge_max_px, w->m.mean_steps,
                 w->m.exhausted_share, w->m.edge_rmse, w->front);
     }
-    fclose(f);
-    f = open_out(r, "effects.csv", path, err);
+}
+
+bool bench_write_rows(const bench_results *r, err_t *err)
+{
+    char path[PATH_MAX_LEN], part[PATH_MAX_LEN + 8];
+    FILE *f = open_out(r, "knobs.csv.part", part, err);
+    if (!f)
+        return false;
+    knob_csv(r, f);
+    bool ok = fclose(f) == 0;
+    snprintf(path, sizeof path, "%s/%s-knobs.csv", r->opt->out, prefix(r));
+    if (!ok || rename(part, path) != 0) {
+        remove(part);
+        return err_set(err, "cannot write '%s': is the disk full?", path);
+    }
+    return true;
+}
+
+static bool write_csv(const bench_results *r, err_t *err)
+{
+    char path[PATH_MAX_LEN];
+    if (!bench_write_rows(r, err))
+        return false;
+    FILE *f = open_out(r, "effects.csv", path, err);
     if (!f)
         return false;
     fprintf(f, "scene,effect,in_scene,ms_compiled_out,ms_compiled_in,ms_compiled_in_switched_off\n");

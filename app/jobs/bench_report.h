@@ -36,5 +36,9 @@ typedef struct bench_results {
 
 void bench_print(const bench_results *r);
 bool bench_write(const bench_results *r, err_t *err);
+/* The knob CSV with the rows measured so far (Pareto marks among them), written to a temporary file
+ * and renamed over PREFIX-knobs.csv: a run stopped half-way keeps every row it finished, never a torn
+ * line. bench_write rewrites it whole at the end. */
+bool bench_write_rows(const bench_results *r, err_t *err);
 
 #endif
