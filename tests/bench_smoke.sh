@@ -23,6 +23,8 @@ check "silhouette IoU is in [0, 1]" \
 check "the reference preset is on the Pareto front" 'grep -q "^csg,40,24,2,preset,reference,.*,1$" "$csv"'
 check "effects CSV lists every effect" \
     '[ "$(tail -n +2 "$out/csg-effects.csv" | wc -l)" -eq "$("$fathom" --print-variant | grep -c "^#define FX_.*_BIT")" ]'
+check "each effect's three medians lie in their intervals" \
+    '[ -z "$(tail -n +2 "$out/csg-effects.csv" | awk -F, "NF != 12 || \$7 > \$4 || \$4 > \$8 || \$9 > \$5 || \$5 > \$10 || \$11 > \$6 || \$6 > \$12")" ]'
 check "plot is a PNG" '[ "$(head -c 8 "$out/csg-plot.png" | od -An -tx1 | tr -d " \n")" = "89504e470d0a1a0a" ]'
 check "summary links the plot" 'grep -q "](csg-plot.png)" "$out/csg-summary.md"'
 check "bad knob is refused" '! "$fathom" bench --knob nosuch=1 --size 8x8 2>/dev/null'

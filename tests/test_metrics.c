@@ -126,6 +126,32 @@ static void edge_rmse_counts_silhouettes_only(void **st)
     assert_near(m.edge_rmse, sqrt((3 * 0.04 + 1) / (3 * 21)), 1e-12);
 }
 
+/* The median's interval from order statistics, against the binomial tables: n = 9 gives [x(2), x(8)]
+ * (2 P(X <= 1) = 0.039), n = 20 [x(6), x(15)] (2 P(X <= 5) = 0.041, 2 P(X <= 6) = 0.115); n = 5 has no
+ * such k and gives the whole range; one value is its own interval. Order of the input does not matter. */
+static void median_interval_from_order_statistics(void **st)
+{
+    (void)st;
+    double v[20], lo, hi;
+    for (int i = 0; i < 20; i++)
+        v[i] = (double)((i * 7) % 20 + 1); /* 1 … 20, shuffled */
+    assert_near(metrics_median_interval(v, 20, &lo, &hi), 10.5, 0);
+    assert_near(lo, 6, 0);
+    assert_near(hi, 15, 0);
+    double nine[9] = {9, 1, 8, 2, 7, 3, 6, 4, 5};
+    assert_near(metrics_median_interval(nine, 9, &lo, &hi), 5, 0);
+    assert_near(lo, 2, 0);
+    assert_near(hi, 8, 0);
+    double five[5] = {30, 10, 50, 20, 40};
+    assert_near(metrics_median_interval(five, 5, &lo, &hi), 30, 0);
+    assert_near(lo, 10, 0);
+    assert_near(hi, 50, 0);
+    double one = 3;
+    assert_near(metrics_median_interval(&one, 1, &lo, &hi), 3, 0);
+    assert_near(lo, 3, 0);
+    assert_near(hi, 3, 0);
+}
+
 static void upscale_is_exact_on_flat_and_keeps_layout(void **st)
 {
     (void)st;
@@ -165,6 +191,7 @@ int main(void)
         cmocka_unit_test(known_errors),
         cmocka_unit_test(silhouette_iou_and_edge),
         cmocka_unit_test(edge_rmse_counts_silhouettes_only),
+        cmocka_unit_test(median_interval_from_order_statistics),
         cmocka_unit_test(upscale_is_exact_on_flat_and_keeps_layout),
         cmocka_unit_test(pareto_front),
     };

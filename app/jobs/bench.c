@@ -270,39 +270,49 @@ static bool make_references(const scene *base, metrics *convergence, double *ref
 
 /* ---- effects ------------------------------------------------------------------------------------ */
 
-static double effect_time(const char *set, unsigned runtime, err_t *err, bool *ok)
+/* One effect compiled out, compiled in, and compiled in but switched off at run time: the three are
+ * timed in turn, run after run (out, in, in-off, out, …), so drift in a shared machine's speed falls
+ * on all three alike; each gets its median and interval. */
+static bool effect_times(effect e, effect_row *row, err_t *err)
 {
-    const char *sets[] = {set, "quality.spp=1"};
-    scene s;
-    *ok = load(sets, 2, &s, err) && render_set_scene(&s, NULL, err);
-    if (!*ok)
-        return 0;
-    render_set_runtime_effects(runtime);
-    double *ms = util_alloc(sizeof *ms * (size_t)B.opt->runs, "bench timings");
-    image(&s, &B.views[0].cam, B.w, B.h);
-    for (int r = 0; r < B.opt->runs; r++)
-        ms[r] = image(&s, &B.views[0].cam, B.w, B.h);
-    double m = util_median(ms, B.opt->runs);
-    free(ms);
+    char off[64], on[64];
+    snprintf(off, sizeof off, "effects.%s=off", effect_name(e));
+    snprintf(on, sizeof on, "effects.%s=on", effect_name(e));
+    scene s[2];
+    if (!load((const char *const[]){off, "quality.spp=1"}, 2, &s[0], err))
+        return false;
+    if (!load((const char *const[]){on, "quality.spp=1"}, 2, &s[1], err)) {
+        scene_free(&s[0]);
+        return false;
+    }
+    int runs = B.opt->runs;
+    double *ms = util_alloc(sizeof *ms * 3 * (size_t)runs, "bench timings");
+    bool ok = true;
+    for (int r = -1; ok && r < runs; r++) /* r = -1: the warm-up of each */
+        for (int k = 0; ok && k < 3; k++) {
+            ok = render_set_scene(&s[k > 0], NULL, err);
+            render_set_runtime_effects(k == 2 ? ~(1u << e) : ~0u);
+            double t = ok ? image(&s[k > 0], &B.views[0].cam, B.w, B.h) : 0;
+            if (r >= 0)
+                ms[k * runs + r] = t;
+        }
     render_set_runtime_effects(~0u);
-    scene_free(&s);
-    return m;
+    if (ok) {
+        row->out_ms = metrics_median_interval(ms, runs, &row->out_lo, &row->out_hi);
+        row->in_ms = metrics_median_interval(ms + runs, runs, &row->in_lo, &row->in_hi);
+        row->in_off_ms = metrics_median_interval(ms + 2 * runs, runs, &row->in_off_lo, &row->in_off_hi);
+    }
+    free(ms);
+    scene_free(&s[0]);
+    scene_free(&s[1]);
+    return ok;
 }
 
 static bool measure_effects(const scene *base, effect_row *rows, err_t *err)
 {
     for (int e = 0; e < EFFECT_COUNT; e++) {
-        char off[64], on[64];
-        snprintf(off, sizeof off, "effects.%s=off", effect_name((effect)e));
-        snprintf(on, sizeof on, "effects.%s=on", effect_name((effect)e));
-        bool ok;
         rows[e] = (effect_row){.e = (effect)e, .in_scene = base->effects & (1u << e)};
-        rows[e].out_ms = effect_time(off, ~0u, err, &ok);
-        if (ok)
-            rows[e].in_ms = effect_time(on, ~0u, err, &ok);
-        if (ok)
-            rows[e].in_off_ms = effect_time(on, ~(1u << e), err, &ok);
-        if (!ok)
+        if (!effect_times((effect)e, &rows[e], err))
             return false;
         B.done++;
         progress(effect_name((effect)e));

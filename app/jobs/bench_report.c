@@ -21,9 +21,23 @@ void bench_print(const bench_results *r)
                100 * w->m.flip_share, w->m.iou, w->m.edge_max_px, w->m.mean_steps, 100 * w->m.exhausted_share,
                w->front ? "  *" : "");
     }
-    for (int i = 0; i < EFFECT_COUNT; i++)
-        printf("effect %-13s in scene %-3s  out %7.1f ms  in %7.1f ms  in, off %7.1f ms\n", effect_name(r->fx[i].e),
-               r->fx[i].in_scene ? "yes" : "no", r->fx[i].out_ms, r->fx[i].in_ms, r->fx[i].in_off_ms);
+    for (int i = 0; i < EFFECT_COUNT; i++) {
+        const effect_row *x = &r->fx[i];
+        char d[48];
+        printf("effect %-13s in scene %-3s  out %7.1f ms  in %7.1f ms  in, off %7.1f ms  in vs out: %s\n",
+               effect_name(x->e), x->in_scene ? "yes" : "no", x->out_ms, x->in_ms, x->in_off_ms,
+               bench_difference(x->out_lo, x->out_hi, x->in_lo, x->in_hi, x->out_ms, x->in_ms, d, sizeof d));
+    }
+}
+
+const char *bench_difference(double a_lo, double a_hi, double b_lo, double b_hi, double a, double b, char *buf,
+                             int size)
+{
+    if (b_lo > a_hi || b_hi < a_lo)
+        snprintf(buf, (size_t)size, "%+.1f ms", b - a);
+    else
+        snprintf(buf, (size_t)size, "not measurable");
+    return buf;
 }
 
 static const char *prefix(const bench_results *r) { return r->opt->name ? r->opt->name : r->opt->scene; }
@@ -74,10 +88,12 @@ static bool write_csv(const bench_results *r, err_t *err)
     FILE *f = open_out(r, "effects.csv", path, err);
     if (!f)
         return false;
-    fprintf(f, "scene,effect,in_scene,ms_compiled_out,ms_compiled_in,ms_compiled_in_switched_off\n");
+    fprintf(f, "scene,effect,in_scene,ms_compiled_out,ms_compiled_in,ms_compiled_in_switched_off,out_lo,out_hi,in_lo,"
+               "in_hi,in_off_lo,in_off_hi\n");
     for (int e = 0; e < EFFECT_COUNT; e++)
-        fprintf(f, "%s,%s,%d,%.3f,%.3f,%.3f\n", r->opt->scene, effect_name(r->fx[e].e), r->fx[e].in_scene,
-                r->fx[e].out_ms, r->fx[e].in_ms, r->fx[e].in_off_ms);
+        fprintf(f, "%s,%s,%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f\n", r->opt->scene, effect_name(r->fx[e].e),
+                r->fx[e].in_scene, r->fx[e].out_ms, r->fx[e].in_ms, r->fx[e].in_off_ms, r->fx[e].out_lo, r->fx[e].out_hi,
+                r->fx[e].in_lo, r->fx[e].in_hi, r->fx[e].in_off_lo, r->fx[e].in_off_hi);
     fclose(f);
     return true;
 }
@@ -192,11 +208,23 @@ static bool write_summary(const bench_results *r, err_t *err)
                 w->m.mean_steps, 100 * w->m.exhausted_share);
     }
     fprintf(f, "\n## Effects: compiled in, compiled out, compiled in but switched off\n\n"
-               "ms per 1-spp frame at the start view. *In scene*: the scene calls for it (so fathom compiles it).\n\n"
-               "| effect | in scene | compiled out | compiled in | compiled in, off at run time |\n|---|---|---|---|---|\n");
-    for (int e = 0; e < EFFECT_COUNT; e++)
-        fprintf(f, "| %s | %s | %.1f | %.1f | %.1f |\n", effect_name(r->fx[e].e), r->fx[e].in_scene ? "yes" : "no",
-                r->fx[e].out_ms, r->fx[e].in_ms, r->fx[e].in_off_ms);
+               "ms per 1-spp frame at the start view: the median of %d runs, the three timed in turn run after run, "
+               "and [the interval that holds the median with at least 95 %% confidence; the whole range below 6 "
+               "runs]. A difference is given only where the intervals part. *In scene*: the scene calls for it (so "
+               "fathom compiles it).\n\n"
+               "| effect | in scene | compiled out | compiled in | compiled in, off at run time | in vs out | "
+               "in, off vs out |\n|---|---|---|---|---|---|---|\n",
+            r->opt->runs);
+    for (int e = 0; e < EFFECT_COUNT; e++) {
+        const effect_row *x = &r->fx[e];
+        char d1[48], d2[48];
+        fprintf(f, "| %s | %s | %.1f [%.1f–%.1f] | %.1f [%.1f–%.1f] | %.1f [%.1f–%.1f] | %s | %s |\n", effect_name(x->e),
+                x->in_scene ? "yes" : "no", x->out_ms, x->out_lo, x->out_hi, x->in_ms, x->in_lo, x->in_hi, x->in_off_ms,
+                x->in_off_lo, x->in_off_hi,
+                bench_difference(x->out_lo, x->out_hi, x->in_lo, x->in_hi, x->out_ms, x->in_ms, d1, sizeof d1),
+                bench_difference(x->out_lo, x->out_hi, x->in_off_lo, x->in_off_hi, x->out_ms, x->in_off_ms, d2,
+                                 sizeof d2));
+    }
     fclose(f);
     return true;
 }

@@ -19,8 +19,13 @@ typedef struct bench_row {
 typedef struct effect_row {
     effect e;
     bool in_scene;
-    double out_ms, in_ms, in_off_ms;
+    double out_ms, in_ms, in_off_ms; /* medians of the interleaved runs */
+    double out_lo, out_hi, in_lo, in_hi, in_off_lo, in_off_hi; /* their intervals (metrics_median_interval) */
 } effect_row;
+
+/* "+3.1 ms" where b's interval lies wholly above or below a's, else "not measurable". */
+const char *bench_difference(double a_lo, double a_hi, double b_lo, double b_hi, double a, double b, char *buf,
+                             int size);
 
 typedef struct bench_results {
     const cli_options *opt;

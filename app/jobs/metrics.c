@@ -150,6 +150,36 @@ void metrics_upscale(const image_view *in, int w, int h, uint8_t **srgb, float *
         }
 }
 
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+double metrics_median_interval(const double *v, int n, double *lo, double *hi)
+{
+    assert(n > 0);
+    double *c = util_alloc(sizeof *c * (size_t)n, "timings");
+    for (int i = 0; i < n; i++)
+        c[i] = v[i];
+    qsort(c, (size_t)n, sizeof *c, cmp_double);
+    /* P(Bin(n, 1/2) <= j), accumulated term by term: C(n, i) / 2^n */
+    int k = 1;
+    double term = ldexp(1.0, -n), cdf = term; /* i = 0 */
+    for (int j = 1; j < n; j++) {
+        if (2 * cdf > 0.05) /* the tail up to j - 1 is too heavy: k = j - 1 at most */
+            break;
+        k = j;
+        term *= (double)(n - j + 1) / j;
+        cdf += term;
+    }
+    *lo = c[k - 1];
+    *hi = c[n - k];
+    double m = (n % 2) ? c[n / 2] : 0.5 * (c[n / 2 - 1] + c[n / 2]);
+    free(c);
+    return m;
+}
+
 void metrics_pareto(const double *time, const double *error, int n, bool *front)
 {
     for (int i = 0; i < n; i++) {

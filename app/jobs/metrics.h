@@ -42,6 +42,12 @@ metrics metrics_compare(const image_view *test, const image_view *ref, double pi
  * lower resolution scale. Outputs are malloc'd. */
 void metrics_upscale(const image_view *in, int w, int h, uint8_t **srgb, float **aov);
 
+/* The median of n timings and a distribution-free interval that holds the true median with at least
+ * 95 % confidence where n allows: order statistics [x(k), x(n+1-k)] for the largest k with
+ * 2 P(Bin(n, 1/2) <= k - 1) <= 0.05. Below n = 6 no k qualifies and the interval is [min, max] (94 %
+ * confidence at n = 5, 88 % at 4). Two settings differ measurably only where their intervals part. */
+double metrics_median_interval(const double *v, int n, double *lo, double *hi);
+
 /* Marks the points on the lower-left Pareto front of (time, error): none other is at most as slow
  * and at most as wrong while better in one. */
 void metrics_pareto(const double *time, const double *error, int n, bool *front);
