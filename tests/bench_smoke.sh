@@ -3,7 +3,9 @@
 # (Timings are never checked: this machine is shared and noisy.) Usage: bench_smoke.sh FATHOM
 fathom=$1
 out=$(mktemp -d)
-trap 'rm -rf "$out"' EXIT
+bench=
+trap '[ -n "$bench" ] && kill $bench 2>/dev/null; rm -rf "$out"' EXIT
+trap 'exit 130' INT TERM
 passed=0 failed=0
 check() { if eval "$2"; then passed=$((passed + 1)); else failed=$((failed + 1)); echo "FAIL $1"; fi; }
 
@@ -39,6 +41,7 @@ done
 kill -INT $bench 2>/dev/null
 wait $bench
 stopped=$?
+bench=
 check "a stopped run exits non-zero" '[ $stopped -ne 0 ]'
 check "a stopped run keeps its finished rows" '[ "$(wc -l < "$out/stopped-knobs.csv")" -ge 3 ]'
 check "... as whole lines" '[ "$(awk -F, "{print NF}" "$out/stopped-knobs.csv" | sort -u)" = "18" ]'
