@@ -240,12 +240,14 @@ static int cmp_double(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
+void util_sort(double *v, int n) { qsort(v, (size_t)n, sizeof *v, cmp_double); }
+
 double util_median(const double *v, int n)
 {
     assert(n > 0);
     double *c = util_alloc(sizeof *c * (size_t)n, "a median");
     memcpy(c, v, sizeof *c * (size_t)n);
-    qsort(c, (size_t)n, sizeof *c, cmp_double);
+    util_sort(c, n);
     double m = (n % 2) ? c[n / 2] : 0.5 * (c[n / 2 - 1] + c[n / 2]);
     free(c);
     return m;

@@ -63,6 +63,8 @@ void sb_appendn(strbuf *sb, const char *s, size_t n);
 void sb_printf(strbuf *sb, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 void sb_free(strbuf *sb);
 
+/* Sorts n doubles in place, ascending. */
+void util_sort(double *v, int n);
 /* Median of n doubles (sorts a copy). */
 double util_median(const double *v, int n);
 

@@ -299,18 +299,25 @@ static void single_droplet_follows_snell(void **st)
     scene_free(&s);
 }
 
+/* One droplet sph and nothing else in view of a camera at z = −2 looking at it (the scene's one sphere
+ * is far behind that camera), no lights, a uniform environment (0.8, 0.6, 0.4); lod: quality.droplet_lod. */
+static void lone_droplet(const double sph[4], double lod, scene *s)
+{
+    char text[512];
+    snprintf(text, sizeof text,
+             "\"objects\": [{\"shape\": \"sphere\", \"radius\": 0.1, \"position\": [0, 1, -50], \"material\": \"a\"}], "
+             "\"environment\": {\"color\": [0.8, 0.6, 0.4], \"intensity\": 1}, \"lights\": [], "
+             "\"quality\": {\"droplet_lod\": %g, \"spp\": 1},",
+             lod);
+    droplet_scene(sph, 1, text, s);
+}
+
 static void centre_pixel_is_the_closed_form(void **st)
 {
     (void)st;
     double sph[4] = {0, 1, 0, 0.25};
     scene s;
-    /* nothing but the droplet in view (the scene's one sphere is far behind the camera), no lights,
-     * a uniform environment */
-    droplet_scene(sph, 1,
-                  "\"objects\": [{\"shape\": \"sphere\", \"radius\": 0.1, \"position\": [0, 1, -50], \"material\": \"a\"}], "
-                  "\"environment\": {\"color\": [0.8, 0.6, 0.4], \"intensity\": 1}, \"lights\": [], "
-                  "\"quality\": {\"droplet_lod\": 0, \"spp\": 1},",
-                  &s);
+    lone_droplet(sph, 0, &s);
     enum { S = 33 };
     camera cam = cam_at(0, 1, -2, 0, 1, 0, 20);
     static float aov[S * S * AOV], rgba[S * S * 4];
@@ -339,11 +346,7 @@ static void centre_pixel_below_the_level_of_detail(void **st)
     (void)st;
     double sph[4] = {0, 1, 0, 0.001};
     scene s;
-    droplet_scene(sph, 1,
-                  "\"objects\": [{\"shape\": \"sphere\", \"radius\": 0.1, \"position\": [0, 1, -50], \"material\": \"a\"}], "
-                  "\"environment\": {\"color\": [0.8, 0.6, 0.4], \"intensity\": 1}, \"lights\": [], "
-                  "\"quality\": {\"droplet_lod\": 2, \"spp\": 1},",
-                  &s);
+    lone_droplet(sph, 2, &s);
     enum { S = 33 };
     camera cam = cam_at(0, 1, -2, 0, 1, 0, 1);
     assert_true(sph[3] < 2 * camera_pixel_angle(&cam, S) * 2); /* below the level of detail: not traced */

@@ -8,6 +8,17 @@
 
 #include "gpu/gpu.h"
 
+/* "+3.1 ms" where b's interval lies wholly above or below a's, else "not measurable". */
+static const char *bench_difference(double a_lo, double a_hi, double b_lo, double b_hi, double a, double b, char *buf,
+                                    int size)
+{
+    if (b_lo > a_hi || b_hi < a_lo)
+        snprintf(buf, (size_t)size, "%+.1f ms", b - a);
+    else
+        snprintf(buf, (size_t)size, "not measurable");
+    return buf;
+}
+
 void bench_print(const bench_results *r)
 {
     printf("%s, %dx%d, %s; reference converged to RMSE %.5f\n", r->opt->scene, r->w, r->h, gpu_describe(),
@@ -30,15 +41,6 @@ void bench_print(const bench_results *r)
     }
 }
 
-const char *bench_difference(double a_lo, double a_hi, double b_lo, double b_hi, double a, double b, char *buf,
-                             int size)
-{
-    if (b_lo > a_hi || b_hi < a_lo)
-        snprintf(buf, (size_t)size, "%+.1f ms", b - a);
-    else
-        snprintf(buf, (size_t)size, "not measurable");
-    return buf;
-}
 
 static const char *prefix(const bench_results *r) { return r->opt->name ? r->opt->name : r->opt->scene; }
 

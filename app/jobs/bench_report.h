@@ -23,10 +23,6 @@ typedef struct effect_row {
     double out_lo, out_hi, in_lo, in_hi, in_off_lo, in_off_hi; /* their intervals (metrics_median_interval) */
 } effect_row;
 
-/* "+3.1 ms" where b's interval lies wholly above or below a's, else "not measurable". */
-const char *bench_difference(double a_lo, double a_hi, double b_lo, double b_hi, double a, double b, char *buf,
-                             int size);
-
 typedef struct bench_results {
     const cli_options *opt;
     const scene *base; /* the scene as loaded, before any sweep */

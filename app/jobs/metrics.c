@@ -150,19 +150,13 @@ void metrics_upscale(const image_view *in, int w, int h, uint8_t **srgb, float *
         }
 }
 
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 double metrics_median_interval(const double *v, int n, double *lo, double *hi)
 {
     assert(n > 0);
     double *c = util_alloc(sizeof *c * (size_t)n, "timings");
     for (int i = 0; i < n; i++)
         c[i] = v[i];
-    qsort(c, (size_t)n, sizeof *c, cmp_double);
+    util_sort(c, n);
     /* P(Bin(n, 1/2) <= j), accumulated term by term: C(n, i) / 2^n */
     int k = 1;
     double term = ldexp(1.0, -n), cdf = term; /* i = 0 */

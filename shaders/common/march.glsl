@@ -217,7 +217,9 @@ Hit castRay(vec3 ro, vec3 rd, float tmax, float side, float pathT)
     float omega = float(OVER_RELAX);
     float t = 0.0, tPrev = 0.0, rPrev = 0.0, fPrev = 0.0; // rPrev = |fPrev|: the last ball's radius
     float floorBase = positionFloor(pathT); // float resolution at t = 0
+#ifdef MARCH_COVERAGE
     bool boundPrev = true;
+#endif
     for (int i = 0; i < MAX_STEPS; i++) {
         h.steps = i + 1;
         vec2 d = marchMap(ro + rd * t, rd * side);

@@ -386,7 +386,8 @@ vec3 pathRadiance(Path P, Ray ray)
     return radiance;
 }
 
-// The path's segments from bounce `from` on, then its way out of glass it could not leave.
+// The path's segments from bounce `from` on (none when `from` is past BOUNCES or the path has ended),
+// then its way out of glass it could not leave.
 void followPath(inout Path P, Ray ray, int from)
 {
     for (int bounce = from; bounce <= BOUNCES; bounce++) {
@@ -418,10 +419,7 @@ vec3 coveredRadiance(Path P, Ray ray, vec3 radiance)
     Q.passBy = true;
     int next = shadeHit(Q, ray, h, 0);
     Q.passBy = false;
-    if (next != SEGMENT_END)
-        followPath(Q, ray, 1);
-    else if (!Q.escaped && Q.side < 0.0)
-        Q.radiance += Q.throughput * environment(Q.rd);
+    followPath(Q, ray, next == SEGMENT_END ? BOUNCES + 1 : 1);
     return mix(radiance, pathRadiance(Q, ray), share);
 }
 #endif
