@@ -77,6 +77,9 @@ static const char USAGE_OPTIONS[] =
     "                        with --path: frames per second of the flight [30]\n"
     "  --print-variant       print the effects and #defines the scene compiles, then exit\n"
     "  --list-scenes         list the shipped scenes\n"
+    "  --backend B           auto | fragment | compute: how samples run (compute needs GL 4.3 and\n"
+    "                        reaches all of a datacenter GPU); FATHOM_BACKEND=B too [auto: compute\n"
+    "                        on a GPU, fragment on llvmpipe]\n"
     "  --quiet               no progress bar\n"
     "  --help, --version\n"
     "\n"
@@ -260,6 +263,10 @@ static bool set_output_option(const char *name, const char *val, cli_options *o,
         if (!*val || strchr(val, '/'))
             return err_set(err, "bad --view '%s': the name of a saved view (B in the window saves views 1 to 9)", val);
         o->view_name = val;
+    } else if (!strcmp(name, "--backend")) {
+        if (strcmp(val, "auto") && strcmp(val, "fragment") && strcmp(val, "compute"))
+            return err_set(err, "bad --backend '%s': use auto, fragment or compute", val);
+        o->backend = val;
     } else if (!strcmp(name, "--fps")) {
         if (!parse_int(val, 1, 1000, &o->fps))
             return err_set(err, "bad --fps '%s': expected a whole number from 1 to 1000", val);
@@ -455,7 +462,7 @@ bool cli_parse(int argc, char **argv, cli_options *o, err_t *err)
         }
         static const char *const WITH_VALUE[] = {"--scene", "--dem", "--formula", "--help-formula", "--output", "--size", "--spp", "--quality",
                                                  "--camera", "--look-at", "--fov", "--set", "--aov", "--frames",
-                                                 "--runs", "--out", "--knob", "--name", "--strip-rows", "--fps", "--view",
+                                                 "--runs", "--out", "--knob", "--name", "--strip-rows", "--fps", "--view", "--backend",
                                                  "--path", "--tile"};
         bool known = false;
         for (size_t k = 0; k < sizeof WITH_VALUE / sizeof WITH_VALUE[0]; k++)

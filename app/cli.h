@@ -51,6 +51,7 @@ typedef struct cli_options {
     const char *inputs[4096];
     int input_count;
     int fps;            /* window: frame rate to hold while moving; 0: the default (30) */
+    const char *backend; /* --backend auto|fragment|compute (NULL: FATHOM_BACKEND, else auto) */
     bool has_camera, has_look_at, has_fov;
     bool has_view;      /* --scene SHOT.png or --view NAME: the shot's exact camera (shot.h) */
     const char *view_name; /* --view NAME: a saved view of the scene (views.h) */

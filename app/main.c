@@ -143,6 +143,9 @@ int main(int argc, char **argv)
         fprintf(stderr, "fathom: %s\n", err.msg);
         return EXIT_USAGE;
     }
+    render_backend backend;
+    if (opt.backend && render_parse_backend(opt.backend, &backend))
+        render_request_backend(backend);
     if (opt.dem && !util_file_exists(opt.dem))
         return finish(err_set(&err, "--dem: file '%s' not found (a path from the folder you are in)", opt.dem), &err);
     static shot_desc shot; /* --scene SHOT.png: opt points into it */

@@ -1,3 +1,16 @@
-// Every distance-field program's image: the program (see common/contract.glsl), then the shared main().
+// Every distance-field program's image, the fragment path: a full-screen triangle whose fragments each
+// take one sample (common/sdf_main.glsl). Target 0 accumulates by additive blending; the first
+// sample of an image also writes the AOVs (app/gpu/render.c sets the draw buffers).
 #include "common/contract.glsl"
 #include "common/sdf_main.glsl"
+
+layout(location = 0) out vec4 oColor;
+layout(location = 1) out vec4 oNormalDepth;
+layout(location = 2) out vec4 oAux;
+
+void main()
+{
+    if (uAdaptive != 0 && texelFetch(uEdgeMask, ivec2(gl_FragCoord.xy), 0).r < 0.5)
+        discard; // adaptive sampling: the centre sample is this pixel's mean already
+    renderPixel(gl_FragCoord.xy, oColor, oNormalDepth, oAux);
+}

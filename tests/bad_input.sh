@@ -53,6 +53,8 @@ expect unknown-option 2 "unknown option '--colour'" 1 -- "$fathom" --colour red
 # device, or not 99 of them); a number that is not one is refused
 expect egl-device-missing 1 "FATHOM_EGL_DEVICE=99: no such hardware EGL device" 1 -- env FATHOM_EGL_DEVICE=99 "$fathom" $out
 expect egl-device-bad 1 "FATHOM_EGL_DEVICE='gpu0' is not a device number" 1 -- env FATHOM_EGL_DEVICE=gpu0 "$fathom" $out
+expect backend-env-bad 1 "FATHOM_BACKEND='vulkan' is not a backend" 1 -- env FATHOM_BACKEND=vulkan "$fathom" $out
+expect backend-bad 2 "bad --backend 'cuda': use auto, fragment or compute" 1 -- "$fathom" --backend cuda $out
 expect unknown-set-key 1 "materials.glass.iro: unknown key 'iro'" 1 -- "$fathom" --set materials.glass.iro=1.3 $out
 expect bad-set-value 1 "materials.glass.ior: expected a number from 1 to 4 (from the override materials.glass.ior=9)" 1 -- "$fathom" --set materials.glass.ior=9 $out
 expect unwritable-output 1 "folder '$tmp/no/such/dir' does not exist" 1 -- "$fathom" --output "$tmp/no/such/dir/out.png" --size 33x21 --quiet

@@ -21,7 +21,7 @@ int gl_setup(void **st)
         fprintf(stderr, "GL setup failed: %s\n", e.msg);
         return -1;
     }
-    fprintf(stderr, "GL: %s\n", gpu_describe());
+    fprintf(stderr, "GL: %s, %s backend\n", gpu_describe(), render_backend_name(render_backend_used()));
     return 0;
 }
 

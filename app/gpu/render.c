@@ -46,7 +46,77 @@ static struct {
     double origin[3]; /* a deep zoom's: the world position the shader's coordinates are relative to */
     float heat_max;   /* the steps heat map's top (0: the scene's MAX_STEPS) */
     unsigned runtime_effects; /* effects switched on at run time (bits as in effect.h) */
+    render_backend backend;   /* resolved by render_init: fragment or compute */
 } state = {.runtime_effects = ~0u};
+
+static render_backend requested = BACKEND_AUTO; /* render_request_backend */
+static bool requested_set;
+
+/* One compute dispatch covers at most this many pixels: a 4K frame's sample is 8 dispatches, each a
+ * few ms on a big GPU, so no dispatch nears a desktop driver's watchdog, and the driver can start on
+ * one while the next is queued. Samples of a window's bands are smaller still. */
+enum { COMPUTE_TILE_PIXELS = 1 << 20 };
+static int compute_tile_pixels = COMPUTE_TILE_PIXELS;
+
+void render_set_compute_tile(int pixels) { compute_tile_pixels = pixels > 0 ? pixels : COMPUTE_TILE_PIXELS; }
+
+static const char *const backend_names[] = {"auto", "fragment", "compute"};
+
+bool render_parse_backend(const char *name, render_backend *out)
+{
+    for (int i = 0; i < 3; i++)
+        if (name && !strcmp(name, backend_names[i])) {
+            *out = (render_backend)i;
+            return true;
+        }
+    return false;
+}
+
+const char *render_backend_name(render_backend b) { return backend_names[b]; }
+
+void render_request_backend(render_backend b)
+{
+    requested = b;
+    requested_set = true;
+}
+
+render_backend render_backend_used(void) { return state.backend; }
+
+bool render_has_compute(void)
+{
+    return epoxy_gl_version() >= 43 || epoxy_has_gl_extension("GL_ARB_compute_shader");
+}
+
+bool render_auto_is_compute(void)
+{
+    /* A software rasteriser runs fragments in 4x4 blocks that suit its SIMD better than compute
+     * invocations: on llvmpipe the fragment path is 1.1-1.9x faster (docs/gpu/README.md). A hardware
+     * GPU takes compute: an H100 runs fragment shaders on 2 of its TPCs and compute on all of them. */
+    const char *r = (const char *)glGetString(GL_RENDERER);
+    bool software = r && (strstr(r, "llvmpipe") || strstr(r, "softpipe") || strstr(r, "swrast"));
+    return render_has_compute() && !software;
+}
+
+bool render_switch_backend(render_backend b, err_t *err)
+{
+    if (b == BACKEND_COMPUTE && !render_has_compute())
+        return err_set(err, "the compute backend needs OpenGL 4.3 compute shaders, which this OpenGL (%s) lacks: "
+                            "use --backend fragment", gpu_describe());
+    state.backend = b == BACKEND_AUTO ? (render_auto_is_compute() ? BACKEND_COMPUTE : BACKEND_FRAGMENT) : b;
+    state.samples = 0;
+    state.band_done = 0;
+    return true;
+}
+
+/* The backend to use: the request (--backend), else FATHOM_BACKEND, else auto. */
+static bool resolve_backend(err_t *err)
+{
+    render_backend b = requested;
+    const char *env = getenv("FATHOM_BACKEND");
+    if (!requested_set && env && *env && !render_parse_backend(env, &b))
+        return err_set(err, "FATHOM_BACKEND='%s' is not a backend: use auto, fragment or compute, or unset it", env);
+    return render_switch_backend(b, err);
+}
 
 
 static GLuint build_display(err_t *err)
@@ -61,6 +131,8 @@ static GLuint build_mask(err_t *err)
 
 bool render_init(err_t *err)
 {
+    if (!resolve_backend(err))
+        return false;
     render_programs_init();
     state.display_prog = build_display(err);
     state.mask_prog = state.display_prog ? build_mask(err) : 0;
@@ -112,7 +184,7 @@ void render_preamble(const scene *s, const char *extra_defines, strbuf *out)
 
 bool render_set_scene(const scene *s, const char *extra_defines, err_t *err)
 {
-    GLuint prog = render_programs_get(s, "sdf.frag", extra_defines, err);
+    GLuint prog = render_programs_get(s, state.backend == BACKEND_COMPUTE ? "sdf.comp" : "sdf.frag", extra_defines, err);
     if (!prog || !render_scene_set(s, err))
         return false;
     state.prog = prog;
@@ -307,6 +379,50 @@ static float halton(int i, int base)
 
 static GLint loc(const char *name) { return glGetUniformLocation(state.prog, name); }
 
+/* The fragment path: a full-screen triangle over rows [y0, y1), target 0 blended additively. */
+static void draw_rows(int y0, int y1, bool first)
+{
+    static const GLenum all[NUM_TARGETS] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
+    static const GLenum colour_only[NUM_TARGETS] = {GL_COLOR_ATTACHMENT0, GL_NONE, GL_NONE};
+    glDrawBuffers(NUM_TARGETS, first ? all : colour_only);
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(0, y0, state.width, y1 - y0);
+    glEnablei(GL_BLEND, 0);
+    glBlendFunc(GL_ONE, GL_ONE);
+    glDisablei(GL_BLEND, 1);
+    glDisablei(GL_BLEND, 2);
+    glBindVertexArray(render_programs_vao());
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glDisablei(GL_BLEND, 0);
+    glDisable(GL_SCISSOR_TEST);
+}
+
+/* The compute path: rows [y0, y1) in dispatches of at most COMPUTE_TILE_PIXELS, the targets bound as
+ * images (sdf.comp adds to target 0 itself). */
+static void dispatch_rows(int y0, int y1, bool first)
+{
+    for (int i = 0; i < NUM_TARGETS; i++)
+        glBindImageTexture((GLuint)i, state.targets[i], 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+    glUniform1i(loc("uAccum"), 0);
+    glUniform1i(loc("uNormalDepth"), 1);
+    glUniform1i(loc("uAux"), 2);
+    glUniform1i(loc("uFirstSample"), first ? 1 : 0);
+    GLint group[3]; /* sdf.comp's local size */
+    glGetProgramiv(state.prog, GL_COMPUTE_WORK_GROUP_SIZE, group);
+    int rows = compute_tile_pixels / state.width;
+    rows = rows < group[1] ? group[1] : rows / group[1] * group[1];
+    for (int y = y0; y < y1; y += rows) {
+        int h = y1 - y < rows ? y1 - y : rows;
+        glUniform4i(loc("uRect"), 0, y, state.width, h);
+        glDispatchCompute((GLuint)((state.width + group[0] - 1) / group[0]), (GLuint)((h + group[1] - 1) / group[1]), 1);
+        if (y + rows < y1)
+            glFlush(); /* the GPU starts on this tile while the next is queued */
+    }
+    /* the targets are read next as textures (display, edge mask), by blits and by glReadPixels */
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT | GL_PIXEL_BUFFER_BARRIER_BIT |
+                    GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+}
+
 /* Rows [y0, y1) of the current sample (GL rows, bottom up). */
 static void sample_rows(int y0, int y1)
 {
@@ -316,20 +432,13 @@ static void sample_rows(int y0, int y1)
         build_edge_mask();
     glBindFramebuffer(GL_FRAMEBUFFER, state.fbo);
     glViewport(0, 0, state.width, state.height);
-    static const GLenum all[NUM_TARGETS] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
-    static const GLenum colour_only[NUM_TARGETS] = {GL_COLOR_ATTACHMENT0, GL_NONE, GL_NONE};
     bool first = state.samples == 0;
-    glDrawBuffers(NUM_TARGETS, first ? all : colour_only);
     if (first && state.band_done == 0) {
+        static const GLenum all[NUM_TARGETS] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
+        glDrawBuffers(NUM_TARGETS, all);
         glClearColor(0, 0, 0, 0);
         glClear(GL_COLOR_BUFFER_BIT);
     }
-    glEnable(GL_SCISSOR_TEST);
-    glScissor(0, y0, state.width, y1 - y0);
-    glEnablei(GL_BLEND, 0);
-    glBlendFunc(GL_ONE, GL_ONE);
-    glDisablei(GL_BLEND, 1);
-    glDisablei(GL_BLEND, 2);
 
     glUseProgram(state.prog);
     camera_basis b = camera_get_basis(&state.cam);
@@ -350,11 +459,10 @@ static void sample_rows(int y0, int y1)
     glActiveTexture(GL_TEXTURE0 + RENDER_UNIT_EDGE_MASK);
     glBindTexture(GL_TEXTURE_2D, state.mask_tex);
     glActiveTexture(GL_TEXTURE0);
-
-    glBindVertexArray(render_programs_vao());
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    glDisablei(GL_BLEND, 0);
-    glDisable(GL_SCISSOR_TEST);
+    if (state.backend == BACKEND_COMPUTE)
+        dispatch_rows(y0, y1, first);
+    else
+        draw_rows(y0, y1, first);
 }
 
 void render_sample(void)

@@ -18,8 +18,36 @@
 #include "scene/scene.h"
 #include "util.h"
 
+/* Backends: how an image's samples run. Both run the same GLSL (common/sdf_main.glsl's renderPixel)
+ * into the same targets; only the entry point differs.
+ *   fragment  a full-screen triangle (sdf.frag): any GL 3.3 core context
+ *   compute   compute dispatches in tiles (sdf.comp): GL 4.3; a datacenter GPU runs pixel shaders on a
+ *             small part of the chip (an H100: 2 of its TPCs) and compute shaders on all of it
+ *   auto      compute on a hardware GPU with GL 4.3, fragment on a software rasteriser (llvmpipe) or
+ *             an older GL (render_auto_is_compute; docs/gpu/README.md: the measurement) */
+typedef enum render_backend { BACKEND_AUTO, BACKEND_FRAGMENT, BACKEND_COMPUTE } render_backend;
+
+/* Parses "auto", "fragment" or "compute"; false on anything else. */
+bool render_parse_backend(const char *name, render_backend *out);
+const char *render_backend_name(render_backend b);
+/* The backend render_init takes: --backend, else the environment's FATHOM_BACKEND, else auto. Call
+ * before render_init. */
+void render_request_backend(render_backend b);
+
+/* Needs a current context. Resolves the backend (an error when compute was asked for and the GL lacks
+ * it, or FATHOM_BACKEND names none). */
 bool render_init(err_t *err);
 void render_shutdown(void);
+/* The backend render_init resolved (never auto), and whether this GL has compute shaders. */
+render_backend render_backend_used(void);
+bool render_has_compute(void);
+bool render_auto_is_compute(void);
+/* The compute path's most pixels a dispatch (0: the default, 2^20); a frame's rows go in tiles of a
+ * multiple of the work group's height. Tests make it small to cover the tiles' seams. */
+void render_set_compute_tile(int pixels);
+/* Switches the backend after render_init (auto: the rule render_init applies); the next
+ * render_set_scene takes its program (the bench compares the two in one run). */
+bool render_switch_backend(render_backend b, err_t *err);
 
 /* Makes s the scene to draw; the renderer keeps its own copy (the caller may free or change s at once).
  * extra_defines (may be NULL) is appended to the variant preamble: tests use it to switch a guard off.

@@ -10,7 +10,7 @@
 enum { MAX_PROGRAMS = 64 };
 
 typedef struct cached_program {
-    const char *frag;     /* sdf.frag (the image), probe.frag (map() at points), fogprobe.frag */
+    const char *frag;     /* sdf.frag or sdf.comp (the image), probe.frag (map() at points), fogprobe.frag */
     char *preamble, *map; /* the key */
     GLuint prog;
 } cached_program;
@@ -48,9 +48,13 @@ void render_programs_shutdown(void)
     memset(&cache, 0, sizeof cache);
 }
 
+/* frag: a fragment shader drawn over fullscreen.vert, or a compute shader (a name ending in .comp). */
 static GLuint build(const char *frag, const char *preamble, const char *map, err_t *err)
 {
     shader_virtual virt[] = {{"program.glsl", map}};
+    size_t n = strlen(frag);
+    if (n > 5 && !strcmp(frag + n - 5, ".comp"))
+        return shader_build_compute(cache.shader_root, frag, preamble, virt, 1, err);
     return shader_build(cache.shader_root, "fullscreen.vert", frag, preamble, virt, 1, err);
 }
 

@@ -120,7 +120,8 @@ static GLuint compile(GLenum type, const char *root, const char *file, const cha
 {
     strbuf src = {0};
     shader_files files = {0};
-    sb_printf(&src, "#version 330 core\n%s", preamble ? preamble : "");
+    /* compute shaders are GLSL 4.30; the rest keeps the GL 3.3 path */
+    sb_printf(&src, "#version %s core\n%s", type == GL_COMPUTE_SHADER ? "430" : "330", preamble ? preamble : "");
     if (!shader_expand(root, file, virt, nvirt, &src, &files, err)) {
         sb_free(&src);
         return 0;
@@ -149,31 +150,46 @@ static GLuint compile(GLenum type, const char *root, const char *file, const cha
     return sh;
 }
 
-GLuint shader_build(const char *root, const char *vert, const char *frag, const char *preamble,
-                    const shader_virtual *virt, int nvirt, err_t *err)
+/* Links the compiled shaders (deleting them) into a program; names say which in an error. */
+static GLuint link(const GLuint *shaders, int n, const char *names, err_t *err)
 {
-    GLuint vs = compile(GL_VERTEX_SHADER, root, vert, preamble, virt, nvirt, err);
-    if (!vs)
-        return 0;
-    GLuint fs = compile(GL_FRAGMENT_SHADER, root, frag, preamble, virt, nvirt, err);
-    if (!fs) {
-        glDeleteShader(vs);
-        return 0;
-    }
     GLuint prog = glCreateProgram();
-    glAttachShader(prog, vs);
-    glAttachShader(prog, fs);
+    for (int i = 0; i < n; i++)
+        glAttachShader(prog, shaders[i]);
     glLinkProgram(prog);
-    glDeleteShader(vs);
-    glDeleteShader(fs);
+    for (int i = 0; i < n; i++)
+        glDeleteShader(shaders[i]);
     GLint ok = 0;
     glGetProgramiv(prog, GL_LINK_STATUS, &ok);
     if (!ok) {
         char log[4096] = {0};
         glGetProgramInfoLog(prog, sizeof log - 1, NULL, log);
-        err_set_lines(err, "shader link error (%s + %s): %s", vert, frag, log);
+        err_set_lines(err, "shader link error (%s): %s", names, log);
         glDeleteProgram(prog);
         return 0;
     }
     return prog;
+}
+
+GLuint shader_build(const char *root, const char *vert, const char *frag, const char *preamble,
+                    const shader_virtual *virt, int nvirt, err_t *err)
+{
+    GLuint sh[2] = {compile(GL_VERTEX_SHADER, root, vert, preamble, virt, nvirt, err), 0};
+    if (!sh[0])
+        return 0;
+    sh[1] = compile(GL_FRAGMENT_SHADER, root, frag, preamble, virt, nvirt, err);
+    if (!sh[1]) {
+        glDeleteShader(sh[0]);
+        return 0;
+    }
+    char names[2 * SHADER_NAME_MAX];
+    snprintf(names, sizeof names, "%s + %s", vert, frag);
+    return link(sh, 2, names, err);
+}
+
+GLuint shader_build_compute(const char *root, const char *comp, const char *preamble, const shader_virtual *virt,
+                            int nvirt, err_t *err)
+{
+    GLuint cs = compile(GL_COMPUTE_SHADER, root, comp, preamble, virt, nvirt, err);
+    return cs ? link(&cs, 1, comp, err) : 0;
 }

@@ -1,7 +1,7 @@
 /* shader — GLSL assembly and compilation.
  *
  * Shader files hold no #version line. A program's source is
- *     #version 330 core
+ *     #version 330 core             (430 core for a compute shader)
  *     <preamble: the variant's #defines>
  *     #line 1 0
  *     <the file, with every #include "path" expanded in place>
@@ -42,5 +42,8 @@ void shader_translate_log(const char *log, const shader_files *files, strbuf *ou
 /* Compiles and links vert + frag with the preamble; 0 and err on failure. */
 GLuint shader_build(const char *root, const char *vert, const char *frag, const char *preamble,
                     const shader_virtual *virt, int nvirt, err_t *err);
+/* Compiles and links one compute shader (GLSL 4.30: needs GL 4.3) with the preamble; 0 and err on failure. */
+GLuint shader_build_compute(const char *root, const char *comp, const char *preamble, const shader_virtual *virt,
+                            int nvirt, err_t *err);
 
 #endif

@@ -380,14 +380,36 @@ static int count_values(const char *v)
     return n;
 }
 
-/* Each preset's frame time (one sample per pixel) at the start view: what the window costs. */
+/* One preset's frame times on each backend, taken in turn (fragment, compute, fragment, ...) after a
+ * warm-up of each, so both see the same machine load. */
+static bool time_backends(const scene *s, const camera *cam, int nb, const render_backend *backends, double *ms,
+                          int runs, err_t *err)
+{
+    for (int r = -1; r < runs; r++) /* r = -1: the warm-up (compiles) */
+        for (int b = 0; b < nb; b++) {
+            if (!render_switch_backend(backends[b], err) || !render_set_scene(s, NULL, err))
+                return false;
+            double t = image(s, cam, B.w, B.h);
+            if (r >= 0)
+                ms[b * runs + r] = t;
+        }
+    return true;
+}
+
+/* Each preset's frame time (one sample per pixel) at the start view: what the window costs, on both
+ * backends side by side where the GL has compute shaders. */
 static bool frame_times(const cli_options *opt, err_t *err)
 {
     if (!gpu_open(&(gpu_desc){.headless = true}, err))
         return false;
     bool ok = render_init(err);
-    printf("%s, %dx%d, %s: ms per frame (1 sample per pixel), median of %d after a warm-up\n", opt->scene, B.w, B.h,
-           gpu_describe(), opt->runs);
+    render_backend backends[2] = {BACKEND_FRAGMENT, BACKEND_COMPUTE};
+    int nb = render_has_compute() ? 2 : 1;
+    printf("%s, %dx%d, %s: ms per frame (1 sample per pixel), median [95 %% interval] of %d, the backends "
+           "taken in turn after a warm-up; auto takes %s\n",
+           opt->scene, B.w, B.h, gpu_describe(), opt->runs, render_backend_name(render_backend_used()));
+    printf("  %-12s %-24s %-24s %-22s %s\n", "preset", "fragment ms", nb > 1 ? "compute ms" : "(no compute)",
+           "compute / fragment", "steps per pixel");
     for (int p = 0; ok && p < PRESET_COUNT; p++) {
         char set[64];
         snprintf(set, sizeof set, "quality.preset=%s", preset_name((quality_preset)p));
@@ -405,18 +427,28 @@ static bool frame_times(const cli_options *opt, err_t *err)
             printf("  droplets     %d: read %.3f s, grid %.3f s (%dx%dx%d cells, %zu listings, %.1f MB)\n", d->count,
                    read_s, grid_s, d->dims[0], d->dims[1], d->dims[2], d->refs, (double)droplets_bytes(d) / 1e6);
         camera cam = camera_look_at_deg(s.cam_position, s.cam_look_at, s.cam_fov_deg);
-        double *ms = util_alloc(sizeof *ms * (size_t)opt->runs, "bench timings");
-        image(&s, &cam, B.w, B.h);
-        for (int r = 0; r < opt->runs; r++)
-            ms[r] = image(&s, &cam, B.w, B.h);
-        float *aov = util_alloc(sizeof(float) * (size_t)B.w * (size_t)B.h * AOV_FLOATS, "a bench image");
-        render_read_aovs(aov);
-        double steps = 0;
-        for (int i = 0; i < B.w * B.h; i++)
-            steps += fabsf(aov[(size_t)i * AOV_FLOATS + AOV_SLOT_STEPS]); /* negative: ran out of steps */
-        printf("  %-12s %8.1f ms   %6.1f steps (height samples) per pixel\n", preset_name((quality_preset)p),
-               util_median(ms, opt->runs), steps / (B.w * B.h));
-        free(aov);
+        double *ms = util_alloc(sizeof *ms * (size_t)opt->runs * 2, "bench timings");
+        ok = time_backends(&s, &cam, nb, backends, ms, opt->runs, err);
+        if (ok) {
+            float *aov = util_alloc(sizeof(float) * (size_t)B.w * (size_t)B.h * AOV_FLOATS, "a bench image");
+            render_read_aovs(aov);
+            double steps = 0;
+            for (int i = 0; i < B.w * B.h; i++)
+                steps += fabsf(aov[(size_t)i * AOV_FLOATS + AOV_SLOT_STEPS]); /* negative: ran out of steps */
+            free(aov);
+            char cell[2][64], ratio[64] = "";
+            double med[2], lo[2], hi[2];
+            for (int b = 0; b < nb; b++) {
+                med[b] = metrics_median_interval(ms + b * opt->runs, opt->runs, &lo[b], &hi[b]);
+                snprintf(cell[b], sizeof cell[b], "%.1f [%.1f-%.1f]", med[b], lo[b], hi[b]);
+            }
+            if (nb > 1 && (lo[1] > hi[0] || lo[0] > hi[1]))
+                snprintf(ratio, sizeof ratio, "%.2f", med[1] / med[0]);
+            else if (nb > 1)
+                snprintf(ratio, sizeof ratio, "not measurable");
+            printf("  %-12s %-24s %-24s %-22s %.1f\n", preset_name((quality_preset)p), cell[0], nb > 1 ? cell[1] : "",
+                   ratio, steps / (B.w * B.h));
+        }
         free(ms);
         scene_free(&s);
     }

@@ -225,7 +225,14 @@ bool offline_render_current(const offline_desc *desc, err_t *err)
         offline_tile_rows(d->height, d->tile_index, d->tile_count, &top, &rows);
         snprintf(tile, sizeof tile, "%d %d %d %d %d %u", d->tile_index, d->tile_count, d->width, d->height, top, d->aovs);
     }
-    image_writer *w = open_writer(d->output, d->width, rows, d->aovs, d->description, tile[0] ? tile : NULL, err);
+    char renderer[320];
+    snprintf(renderer, sizeof renderer, "fathom %s, %s backend, %s", FATHOM_VERSION,
+             render_backend_name(render_backend_used()), gpu_describe());
+    strbuf described = {0};
+    if (d->description)
+        shot_note_renderer(d->description, renderer, &described);
+    image_writer *w = open_writer(d->output, d->width, rows, d->aovs, described.data, tile[0] ? tile : NULL, err);
+    sb_free(&described);
     if (!w)
         return false;
     long unresolved = 0;
@@ -236,12 +243,12 @@ bool offline_render_current(const offline_desc *desc, err_t *err)
     if (!image_writer_finish(w, err))
         return false;
     if (!d->quiet && d->tile_count)
-        fprintf(stderr, "wrote %s (tile %d of %d: rows %d-%d of %dx%d, %d spp%s, %.2f s, %s)\n", d->output,
+        fprintf(stderr, "wrote %s (tile %d of %d: rows %d-%d of %dx%d, %d spp%s, %.2f s, %s, %s)\n", d->output,
                 d->tile_index, d->tile_count, top, top + rows - 1, d->width, d->height, d->spp, precision,
-                util_now() - t0, gpu_describe());
+                util_now() - t0, render_backend_name(render_backend_used()), gpu_describe());
     else if (!d->quiet)
-        fprintf(stderr, "wrote %s (%dx%d, %d spp%s, %.2f s, %s)\n", d->output, d->width, d->height, d->spp, precision,
-                util_now() - t0, gpu_describe());
+        fprintf(stderr, "wrote %s (%dx%d, %d spp%s, %.2f s, %s, %s)\n", d->output, d->width, d->height, d->spp,
+                precision, util_now() - t0, render_backend_name(render_backend_used()), gpu_describe());
     if (!d->quiet && unresolved)
         fprintf(stderr, "note: %ld pixel%s (%.3g%%) ran out of steps and are drawn as misses (the steps AOV marks them "
                         "negative); raise quality.max_steps or use --quality final\n",

@@ -70,6 +70,22 @@ void shot_describe(const char *scene_path, const char *const *sets, int set_coun
     cJSON_Delete(j);
 }
 
+void shot_note_renderer(const char *text, const char *renderer, strbuf *out)
+{
+    cJSON *j = cJSON_Parse(text);
+    if (!cJSON_IsObject(j)) {
+        sb_append(out, text);
+        cJSON_Delete(j);
+        return;
+    }
+    cJSON_DeleteItemFromObjectCaseSensitive(j, "renderer");
+    cJSON_AddStringToObject(j, "renderer", renderer);
+    char *t = cJSON_PrintUnformatted(j);
+    sb_append(out, t);
+    free(t);
+    cJSON_Delete(j);
+}
+
 static bool number_d(const cJSON *v, double lo, double hi, double *out)
 {
     if (!cJSON_IsNumber(v) || !isfinite(v->valuedouble) || v->valuedouble < lo || v->valuedouble > hi)

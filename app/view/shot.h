@@ -29,6 +29,10 @@ typedef struct shot_desc {
 void shot_describe(const char *scene_path, const char *const *sets, int set_count, const camera *cam, int width,
                    int height, strbuf *out);
 
+/* A shot text with "renderer": what rendered it (the backend and the GPU), for the record: nothing
+ * reads it back. Copies text unchanged when it is no JSON object. */
+void shot_note_renderer(const char *text, const char *renderer, strbuf *out);
+
 /* Parses a shot text read from `source` (for messages). */
 bool shot_parse(const char *text, const char *source, shot_desc *d, err_t *err);
 void shot_free(shot_desc *d);

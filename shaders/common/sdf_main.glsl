@@ -1,11 +1,13 @@
-// main() for every distance-field program: the scene program defines map() and includes this.
+// The path of one sample, shared by both entry points: sdf.frag (a full-screen triangle, the fragment
+// path) and sdf.comp (a compute dispatch). The scene program defines map(); the entry point includes
+// the contract, then this, then calls renderPixel().
 //
 // One path per sample: the primary ray, then up to BOUNCES further segments through mirrors
 // (reflection) and glass (refraction). Glass splits the path: the reflected part (Fresnel F) takes
 // the environment, the transmitted part (1 − F) goes on; inside, Beer–Lambert absorption e^(−σ l)
 // (droplets paper); total internal reflection turns the path back inside.
 //
-// Outputs (sample 0 of each frame writes the AOVs; later samples only add colour):
+// renderPixel's outputs (sample 0 of each frame writes the AOVs; later samples only add colour):
 //   0: linear RGB radiance, alpha 1 (accumulated by additive blending)
 //   1: world normal of the first hit, depth along the unit ray (−1 on a miss: C turns it into +inf)
 //   2: primary-ray march steps (negative when the ray was left unresolved: its budget and the tail ran
@@ -41,10 +43,6 @@ uniform float uGlowStrength;
 #if MARCH_COVERAGE // coverage anti-aliasing (coveredRadiance below) applies to the centre sample only
 bool coverOn() { return uJitter == vec2(0.0); }
 #endif
-
-layout(location = 0) out vec4 oColor;
-layout(location = 1) out vec4 oNormalDepth;
-layout(location = 2) out vec4 oAux;
 
 // Opaque surfaces: direct light + environment light (diffuse, and specular unless traced).
 vec3 shadeSurface(vec3 p, vec3 n, vec3 v, Material m, vec3 F0, float pathT, bool tracedMirror)
@@ -424,19 +422,12 @@ vec3 coveredRadiance(Path P, Ray ray, vec3 radiance)
 }
 #endif
 
-// The colour and the AOVs (those of the centre ray's own path).
-void writeOutputs(Path P, Ray ray, vec3 radiance)
+// One sample of the pixel whose centre is fragCoord (gl_FragCoord's convention: pixel + 0.5): its
+// colour (alpha 1: one sample) and the AOVs of the centre ray's own path. The entry points (sdf.frag,
+// sdf.comp) write them to the targets.
+void renderPixel(vec2 fragCoord, out vec4 color, out vec4 normalDepth, out vec4 aux)
 {
-    oColor = vec4(radiance, 1.0);
-    oNormalDepth = vec4(P.firstN, P.firstT);
-    oAux = vec4(P.firstExhausted ? -float(P.firstSteps) : float(P.firstSteps), P.rd); // negative: unresolved
-}
-
-void main()
-{
-    if (uAdaptive != 0 && texelFetch(uEdgeMask, ivec2(gl_FragCoord.xy), 0).r < 0.5)
-        discard; // adaptive sampling: the centre sample is this pixel's mean already
-    Ray ray = primaryRay(gl_FragCoord.xy);
+    Ray ray = primaryRay(fragCoord);
     Path P = startPath(ray);
     followPath(P, ray, 0);
     vec3 radiance = pathRadiance(P, ray);
@@ -444,5 +435,7 @@ void main()
     if (coverOn())
         radiance = coveredRadiance(P, ray, radiance);
 #endif
-    writeOutputs(P, ray, radiance);
+    color = vec4(radiance, 1.0);
+    normalDepth = vec4(P.firstN, P.firstT);
+    aux = vec4(P.firstExhausted ? -float(P.firstSteps) : float(P.firstSteps), P.rd); // negative: unresolved
 }
