@@ -1,5 +1,5 @@
 /* Image files round trip exactly; asymmetric sizes and per-channel values catch flips and swaps;
- * failed writes leave no file behind. */
+ * failed writes leave no file behind; OpenImageIO loads only when an image is read or written. */
 #include <dirent.h>
 #include <math.h>
 #include <setjmp.h>
@@ -14,6 +14,7 @@
 #include <cmocka.h>
 
 #include "data/image_io.h"
+#include "data/lazy.h"
 
 enum { W = 7, H = 5 };
 static char dir[64];
@@ -27,6 +28,24 @@ static int setup(void **st)
 
 /* A value no other pixel or channel shares, so any flip or swap shows. */
 static uint8_t u8_at(int x, int y, int c) { return (uint8_t)(y * 50 + x * 7 + c * 2 + 1); }
+
+/* Runs first: checking an output path needs no image library, the first write loads it (lazy.h). */
+static void loaded_on_first_use(void **st)
+{
+    (void)st;
+    char path[128];
+    err_t e;
+    snprintf(path, sizeof path, "%s/first.png", dir);
+    assert_false(lazy_loaded(LAZY_IMAGE));
+    assert_true(image_can_write(path, &e));
+    image_io_install_signal_cleanup();
+    assert_false(lazy_loaded(LAZY_IMAGE));
+    uint8_t px[4] = {1, 2, 3, 255};
+    assert_true(image_write_u8(path, 1, 1, 4, px, &e));
+    assert_true(lazy_loaded(LAZY_IMAGE));
+    assert_false(lazy_loaded(LAZY_DEM));
+    unlink(path);
+}
 
 static void png_round_trip(void **st)
 {
@@ -175,6 +194,7 @@ static void oversized_images_are_refused(void **st)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(loaded_on_first_use),
         cmocka_unit_test(png_round_trip),
         cmocka_unit_test(exr_round_trip),
         cmocka_unit_test(failed_writes_leave_nothing),

@@ -1,6 +1,7 @@
 #include "data/dem.h"
 
 #include <cpl_conv.h>
+#include <cpl_string.h>
 #include <cpl_error.h>
 #include <gdal.h>
 #include <gdal_alg.h>
@@ -15,16 +16,6 @@
 #include "data/gdal_net.h"
 
 #define EARTH_RADIUS 6371000.0 /* m: the IUGG mean radius */
-
-bool dem_is_image(const char *path)
-{
-    static const char *const images[] = {".png", ".jpg", ".jpeg", ".exr", ".hdr", ".pfm"};
-    const char *dot = strrchr(path, '.');
-    for (size_t i = 0; dot && i < sizeof images / sizeof *images; i++)
-        if (!strcasecmp(dot, images[i]))
-            return true;
-    return false;
-}
 
 static void gdal_init(void)
 {
@@ -295,4 +286,46 @@ void dem_geo_close(dem_geo *g)
         return;
     OCTDestroyCoordinateTransformation(g->to_wgs84);
     free(g);
+}
+
+bool dem_write_hills(const char *path, int n, err_t *err)
+{
+    gdal_init();
+    char **opts = CSLSetNameValue(NULL, "TILED", "YES");
+    opts = CSLSetNameValue(opts, "BIGTIFF", "IF_SAFER");
+    GDALDatasetH ds = GDALCreate(GDALGetDriverByName("GTiff"), path, n, n, 1, GDT_Int16, opts);
+    CSLDestroy(opts);
+    if (!ds)
+        return err_set(err, "cannot write the benchmark DEM '%s': %s", path, CPLGetLastErrorMsg());
+    double gt[6] = {500000, 30, 0, 5000000, 0, -30};
+    GDALSetGeoTransform(ds, gt);
+    OGRSpatialReferenceH srs = OSRNewSpatialReference(NULL);
+    OSRImportFromEPSG(srs, 32633);
+    GDALSetSpatialRef(ds, srs);
+    OSRDestroySpatialReference(srs);
+    enum { OCTAVES = 5 };
+    int16_t *row = util_alloc(sizeof(int16_t) * (size_t)n, "a DEM row");
+    double *col = util_alloc(sizeof(double) * OCTAVES * (size_t)n, "a DEM's columns");
+    /* h = Σ a_o sin(f_o x + o) cos(0.8 f_o z − o/2): wavelengths 60 km down to 3.75 km; separable, so
+     * the x factors are computed once */
+    for (int o = 0; o < OCTAVES; o++)
+        for (int i = 0; i < n; i++)
+            col[(size_t)o * (size_t)n + (size_t)i] = 900.0 / (1 << o) * sin(2 * M_PI / (60000.0 / (1 << o)) * i * 30.0 + o);
+    bool ok = true;
+    for (int j = 0; ok && j < n; j++) {
+        double zf[OCTAVES];
+        for (int o = 0; o < OCTAVES; o++)
+            zf[o] = cos(2 * M_PI / (60000.0 / (1 << o)) * 0.8 * j * 30.0 - 0.5 * o);
+        for (int i = 0; i < n; i++) {
+            double hgt = 1200;
+            for (int o = 0; o < OCTAVES; o++)
+                hgt += col[(size_t)o * (size_t)n + (size_t)i] * zf[o];
+            row[i] = (int16_t)lround(fmax(hgt, 0));
+        }
+        ok = GDALRasterIO(GDALGetRasterBand(ds, 1), GF_Write, 0, j, n, 1, row, n, 1, GDT_Int16, 0, 0) == CE_None;
+    }
+    free(row);
+    free(col);
+    GDALClose(ds);
+    return ok || err_set(err, "writing the benchmark DEM '%s' failed (disk full?)", path);
 }

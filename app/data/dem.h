@@ -55,4 +55,8 @@ void dem_geo_close(dem_geo *g);
  * (GDALFillNodata); false with a message if it cannot. */
 bool dem_fill_holes(float *heights, int w, int h, err_t *err);
 
+/* Writes an n × n Int16 GeoTIFF in metres (SRTM-like: 30 m texels in UTM 33N, rolling hills of
+ * wavelengths 60 km down to 3.75 km): bench --terrain-scale's DEMs. */
+bool dem_write_hills(const char *path, int n, err_t *err);
+
 #endif

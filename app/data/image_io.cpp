@@ -373,26 +373,6 @@ extern "C" bool image_write_f32(const char *path, int width, int height, int cha
     return write_whole(path, width, height, channels, true, names, pixels, err);
 }
 
-extern "C" bool image_can_write(const char *path, err_t *err)
-{
-    std::string p(path);
-    size_t slash = p.find_last_of('/');
-    std::string dir = slash == std::string::npos ? "." : (slash == 0 ? "/" : p.substr(0, slash));
-    if (access(dir.c_str(), W_OK) != 0)
-        return err_set(err, "cannot write '%s': folder '%s' %s; choose another --output path", path, dir.c_str(),
-                       errno == ENOENT ? "does not exist" : "is not writable");
-    struct stat st;
-    if (stat(path, &st) == 0) {
-        if (!S_ISREG(st.st_mode))
-            return err_set(err, "cannot write '%s': it exists and is not a regular file; choose another --output path",
-                           path);
-        if (!(st.st_mode & (S_IWUSR | S_IWGRP | S_IWOTH)))
-            return err_set(err, "cannot write '%s': the file is read-only; make it writable (chmod u+w) or choose "
-                                "another --output path", path);
-    }
-    return true;
-}
-
 /* ---- reading ------------------------------------------------------------------------------------ */
 
 extern "C" bool image_read_text(const char *path, const char *key, char **value, err_t *err)

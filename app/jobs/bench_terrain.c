@@ -4,10 +4,7 @@
  * max pyramid and uploading the tiles; the peak memory that adds (VmHWM, reset before each load);
  * then frames at --size with the camera framed from the DEM's extent, for maxmip and linear: the
  * median of --runs frames (1 sample per pixel, interactive preset) and the height samples per pixel. */
-#include <cpl_string.h>
-#include <gdal.h>
 #include <math.h>
-#include <ogr_srs_api.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -20,6 +17,7 @@
 #include "jobs/bench.h"
 #include "gpu/gpu.h"
 #include "gpu/render.h"
+#include "data/dem.h"
 #include "data/terrain.h"
 
 /* kB of the process's current (VmRSS) or peak (VmHWM) resident memory */
@@ -46,48 +44,6 @@ static void reset_peak(void)
     }
 }
 
-static bool write_dem(const char *path, int n, err_t *err)
-{
-    GDALAllRegister();
-    char **opts = CSLSetNameValue(NULL, "TILED", "YES");
-    opts = CSLSetNameValue(opts, "BIGTIFF", "IF_SAFER");
-    GDALDatasetH ds = GDALCreate(GDALGetDriverByName("GTiff"), path, n, n, 1, GDT_Int16, opts);
-    CSLDestroy(opts);
-    if (!ds)
-        return err_set(err, "cannot write the benchmark DEM '%s': %s", path, CPLGetLastErrorMsg());
-    double gt[6] = {500000, 30, 0, 5000000, 0, -30};
-    GDALSetGeoTransform(ds, gt);
-    OGRSpatialReferenceH srs = OSRNewSpatialReference(NULL);
-    OSRImportFromEPSG(srs, 32633);
-    GDALSetSpatialRef(ds, srs);
-    OSRDestroySpatialReference(srs);
-    enum { OCTAVES = 5 };
-    int16_t *row = util_alloc(sizeof(int16_t) * (size_t)n, "a DEM row");
-    double *col = util_alloc(sizeof(double) * OCTAVES * (size_t)n, "a DEM's columns");
-    /* h = Σ a_o sin(f_o x + o) cos(0.8 f_o z − o/2): wavelengths 60 km down to 3.75 km; separable, so
-     * the x factors are computed once */
-    for (int o = 0; o < OCTAVES; o++)
-        for (int i = 0; i < n; i++)
-            col[(size_t)o * (size_t)n + (size_t)i] = 900.0 / (1 << o) * sin(2 * M_PI / (60000.0 / (1 << o)) * i * 30.0 + o);
-    bool ok = true;
-    for (int j = 0; ok && j < n; j++) {
-        double zf[OCTAVES];
-        for (int o = 0; o < OCTAVES; o++)
-            zf[o] = cos(2 * M_PI / (60000.0 / (1 << o)) * 0.8 * j * 30.0 - 0.5 * o);
-        for (int i = 0; i < n; i++) {
-            double hgt = 1200;
-            for (int o = 0; o < OCTAVES; o++)
-                hgt += col[(size_t)o * (size_t)n + (size_t)i] * zf[o];
-            row[i] = (int16_t)lround(fmax(hgt, 0));
-        }
-        ok = GDALRasterIO(GDALGetRasterBand(ds, 1), GF_Write, 0, j, n, 1, row, n, 1, GDT_Int16, 0, 0) == CE_None;
-    }
-    free(row);
-    free(col);
-    GDALClose(ds);
-    return ok || err_set(err, "writing the benchmark DEM '%s' failed (disk full?)", path);
-}
-
 static double frame_ms(int w, int h, const camera *cam)
 {
     render_resize(w, h);
@@ -105,7 +61,7 @@ static bool one_side(int n, const char *dir, int w, int h, int runs, const char 
 {
     char file[PATH_MAX_LEN], json[PATH_MAX_LEN * 2];
     snprintf(file, sizeof file, "%s/dem%d.tif", dir, n);
-    if (!write_dem(file, n, err))
+    if (!dem_write_hills(file, n, err))
         return false;
     FILE *f = fopen(file, "rb");
     double file_mb = 0;

@@ -1,0 +1,32 @@
+/* lazy — the libraries that cost start-up time, loaded when a run first needs them.
+ *
+ * OpenImageIO pulls in some 260 shared libraries (ffmpeg, OpenCV, DCMTK, ...): mapping them took
+ * 0.2-0.34 s of every start, `fathom --version` included. GDAL adds more. So image_io.cpp and dem.c
+ * are built as modules (fathom_image.so, fathom_dem.so, beside the binary or in <prefix>/lib/fathom)
+ * and their public functions (image_io.h, dem.h) are stubs here that load the module on first call.
+ *
+ * Loading one on a background thread while the GL starts was measured and dropped: dlopen holds the
+ * dynamic loader's lock while it maps OpenImageIO's libraries, and the GL driver's own loading and
+ * libepoxy's first dlsym of each GL function wait for it (a 64x36 shot took 0.60 s with it, 0.55 s
+ * without, on 2 cores).
+ */
+#ifndef FATHOM_LAZY_H
+#define FATHOM_LAZY_H
+
+#include "util.h"
+
+typedef enum lazy_module { LAZY_IMAGE, LAZY_DEM, LAZY_COUNT } lazy_module;
+
+/* The address of `name` in module m, loading it on first use;
+ * NULL with one line in err (may be NULL) when the module cannot be loaded or lacks the name. */
+void *lazy_symbol(lazy_module m, const char *name, err_t *err);
+/* Whether m is loaded (tests: a run that needs no images never loads OpenImageIO). */
+bool lazy_loaded(lazy_module m);
+
+/* Declares the function pointer `decl` (e.g. bool (*f)(const char *)) and sets it from `lookup`, a
+ * void * from lazy_symbol (dlsym's idiom: ISO C has no cast from an object pointer to a function's). */
+#define LAZY_FN(decl, lookup) \
+    decl;                     \
+    *(void **)&f = (lookup)
+
+#endif
