@@ -7,7 +7,10 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <fcntl.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include "gpu/aov.h"
 #include "jobs/bench_report.h"
@@ -396,10 +399,63 @@ static bool time_backends(const scene *s, const camera *cam, int nb, const rende
     return true;
 }
 
+/* The wall time of one whole fathom process (this binary) with these arguments, its output to
+ * /dev/null; negative when it could not run or failed. */
+static double process_ms(char *const *argv)
+{
+    double t0 = util_now();
+    pid_t pid = fork();
+    if (pid == 0) {
+        int null = open("/dev/null", O_WRONLY);
+        if (null >= 0) {
+            dup2(null, 1);
+            dup2(null, 2);
+        }
+        execv("/proc/self/exe", argv);
+        _exit(127);
+    }
+    int status = 0;
+    if (pid < 0 || waitpid(pid, &status, 0) != pid || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
+        return -1;
+    return (util_now() - t0) * 1000.0;
+}
+
+/* Start-up as a user meets it: whole-process times of `fathom --version` and of a 64x36 shot of the
+ * scene, taken in turn (the image and DEM libraries load only when a run needs them: data/lazy.h). */
+static void startup_times(const cli_options *opt)
+{
+    char dir[] = "/tmp/fathom-bench-startup-XXXXXX", shot[sizeof dir + 16];
+    if (!mkdtemp(dir))
+        return;
+    snprintf(shot, sizeof shot, "%s/shot.png", dir);
+    char *version[] = {"fathom", "--version", NULL};
+    char *image[] = {"fathom", "--scene", (char *)opt->scene, "--size", "64x36", "--quiet", "--output", shot, NULL};
+    double *ms = util_alloc(sizeof *ms * 2 * (size_t)opt->runs, "bench timings");
+    bool ok = process_ms(image) >= 0; /* a warm-up: the shader cache and the page cache */
+    for (int r = 0; ok && r < opt->runs; r++) {
+        ms[r] = process_ms(version);
+        ms[opt->runs + r] = process_ms(image);
+        ok = ms[r] >= 0 && ms[opt->runs + r] >= 0;
+    }
+    unlink(shot);
+    rmdir(dir);
+    double lo[2], hi[2], med[2];
+    for (int k = 0; ok && k < 2; k++)
+        med[k] = metrics_median_interval(ms + k * opt->runs, opt->runs, &lo[k], &hi[k]);
+    if (ok)
+        printf("start-up (whole process, median [95 %% interval] of %d): fathom --version %.0f ms [%.0f-%.0f], "
+               "a 64x36 shot of %s %.0f ms [%.0f-%.0f]\n",
+               opt->runs, med[0], lo[0], hi[0], opt->scene, med[1], lo[1], hi[1]);
+    else
+        printf("start-up: a whole fathom process failed to run\n");
+    free(ms);
+}
+
 /* Each preset's frame time (one sample per pixel) at the start view: what the window costs, on both
  * backends side by side where the GL has compute shaders. */
 static bool frame_times(const cli_options *opt, err_t *err)
 {
+    startup_times(opt);
     if (!gpu_open(&(gpu_desc){.headless = true}, err))
         return false;
     bool ok = render_init(err);

@@ -1101,9 +1101,9 @@ static void frame_summary(int w, int h)
     double sp = median_of(app.stat_panel_ms, app.stat_moving, false, app.stat_count, tmp, &still);
     double ms = median_of(app.stat_swap_ms, app.stat_moving, true, app.stat_count, tmp, &moving);
     fprintf(stderr, "fathom: %d frames at %dx%d (%s): %d moving, median %.1f ms (%.1f fps), the panel %.2f ms of it, "
-                    "the swap %.1f ms; %d still, median %.1f ms, the panel %.2f ms; %s\n",
+                    "the swap %.1f ms; %d still, median %.1f ms, the panel %.2f ms; %s backend, %s\n",
             app.stat_count, w, h, app.panel ? "panel open" : "panel closed", moving, mf, mf > 0 ? 1000.0 / mf : 0.0, mp,
-            ms, still, sf, sp, gpu_describe());
+            ms, still, sf, sp, render_backend_name(render_backend_used()), gpu_describe());
     free(tmp);
 }
 
@@ -1142,7 +1142,7 @@ bool explore_run(const cli_options *opt, err_t *err)
     bool ok = render_init(err) && hud_init(err) && panel_init(win, err) && load_scene(opt->scene, true, err);
     render_set_adaptive(true); /* still images: samples after the first only on edges */
     if (ok) {
-        fprintf(stderr, "fathom: %s\n", gpu_describe());
+        fprintf(stderr, "fathom: %s, %s backend\n", gpu_describe(), render_backend_name(render_backend_used()));
         loop(win);
         int w, h;
         glfwGetFramebufferSize(win, &w, &h);
