@@ -29,22 +29,27 @@ static int setup(void **st)
 /* A value no other pixel or channel shares, so any flip or swap shows. */
 static uint8_t u8_at(int x, int y, int c) { return (uint8_t)(y * 50 + x * 7 + c * 2 + 1); }
 
-/* Runs first: checking an output path needs no image library, the first write loads it (lazy.h). */
+/* Runs first: checking an output path and writing a PNG need no OpenImageIO (libpng writes it); the
+ * first EXR loads it (lazy.h). */
 static void loaded_on_first_use(void **st)
 {
     (void)st;
-    char path[128];
+    char png[128], exr[128];
     err_t e;
-    snprintf(path, sizeof path, "%s/first.png", dir);
+    snprintf(png, sizeof png, "%s/first.png", dir);
+    snprintf(exr, sizeof exr, "%s/first.exr", dir);
     assert_false(lazy_loaded(LAZY_IMAGE));
-    assert_true(image_can_write(path, &e));
+    assert_true(image_can_write(png, &e));
     image_io_install_signal_cleanup();
-    assert_false(lazy_loaded(LAZY_IMAGE));
     uint8_t px[4] = {1, 2, 3, 255};
-    assert_true(image_write_u8(path, 1, 1, 4, px, &e));
+    assert_true(image_write_u8(png, 1, 1, 4, px, &e));
+    assert_false(lazy_loaded(LAZY_IMAGE));
+    float fx[4] = {0.5f, 1, 2, 1};
+    assert_true(image_write_f32(exr, 1, 1, 4, NULL, fx, &e));
     assert_true(lazy_loaded(LAZY_IMAGE));
     assert_false(lazy_loaded(LAZY_DEM));
-    unlink(path);
+    unlink(png);
+    unlink(exr);
 }
 
 static void png_round_trip(void **st)

@@ -1,60 +1,21 @@
-/* image_io — see image_io.h. Every extern "C" function catches what OpenImageIO or the standard
- * library may throw (std::bad_alloc above all) and turns it into an err_t. */
-#include "data/image_io.h"
+/* image_io.cpp — fathom_image.so: OpenImageIO behind data/image_oiio.h (image_io.c loads it on first
+ * use). Every extern "C" function catches what OpenImageIO or the standard library may throw
+ * (std::bad_alloc above all) and turns it into an err_t. */
+#include "data/image_oiio.h"
 
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
 #include <cerrno>
-#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <dirent.h>
-#include <fcntl.h>
 #include <memory>
 #include <string>
-#include <sys/stat.h>
 #include <unistd.h>
 #include <vector>
 
 using namespace OIIO;
-
-/* ---- the temporary file of the write in progress, for the signal handler ------------------------- */
-
-static char g_temp[PATH_MAX_LEN];         /* written only while no signal can see it half done: */
-static volatile sig_atomic_t g_temp_live; /* the handler reads g_temp only when this is 1 */
-
-static void set_temp(const std::string &path)
-{
-    g_temp_live = 0;
-    std::snprintf(g_temp, sizeof g_temp, "%s", path.c_str());
-    g_temp_live = 1;
-}
-
-static void clear_temp(void) { g_temp_live = 0; }
-
-extern "C" void on_fatal_signal(int sig)
-{
-    if (g_temp_live)
-        unlink(g_temp); /* async-signal-safe */
-    std::signal(sig, SIG_DFL);
-    raise(sig);
-}
-
-static void at_exit(void)
-{
-    if (g_temp_live)
-        unlink(g_temp);
-}
-
-extern "C" void image_io_install_signal_cleanup(void)
-{
-    std::atexit(at_exit); /* util_alloc's exit on out-of-memory */
-    for (int sig : {SIGINT, SIGTERM, SIGHUP, SIGQUIT})
-        std::signal(sig, on_fatal_signal);
-    std::signal(SIGXFSZ, SIG_IGN); /* over a file-size limit, write() fails with EFBIG instead */
-}
 
 /* ---- decoders write to stderr (libpng: "libpng error: …"): catch it and fold it into our line ---- */
 
@@ -122,63 +83,14 @@ static std::string with_noise(std::string msg, StderrCapture &noise)
     return msg.empty() ? "unknown error" : msg;
 }
 
-/* ---- writing ------------------------------------------------------------------------------------ */
+/* ---- writing (to the temporary file image_io.c names) ------------------------------------------ */
 
-struct image_writer {
-    std::string path, tmp;
+struct oiio_writer {
+    std::string path;
     std::unique_ptr<ImageOutput> out;
     ImageSpec spec;
     TypeDesc type;
-    int next_row = 0;
 };
-
-static std::string temp_path_for(const std::string &path)
-{
-    /* Same folder (rename stays atomic), same extension (OpenImageIO picks the format from it). */
-    size_t slash = path.find_last_of('/');
-    std::string dir = slash == std::string::npos ? "" : path.substr(0, slash + 1);
-    std::string base = slash == std::string::npos ? path : path.substr(slash + 1);
-    size_t dot = base.find_last_of('.');
-    std::string ext = dot == std::string::npos ? "" : base.substr(dot);
-    return dir + "." + base + ".tmp" + std::to_string(getpid()) + ext;
-}
-
-extern "C" int image_remove_stale_temps(const char *path)
-{
-    const char *slash = std::strrchr(path, '/');
-    std::string dir = slash ? std::string(path, (size_t)(slash - path) + 1) : std::string("./");
-    DIR *d = opendir(dir.c_str());
-    if (!d)
-        return 0;
-    int removed = 0;
-    while (struct dirent *e = readdir(d)) {
-        /* ".NAME.tmpPID.EXT", as temp_path_for makes it, whose writer is gone */
-        const char *n = e->d_name, *t = n[0] == '.' ? std::strstr(n, ".tmp") : nullptr;
-        while (t && std::strstr(t + 1, ".tmp"))
-            t = std::strstr(t + 1, ".tmp");
-        if (!t || t == n)
-            continue;
-        char *end;
-        long pid = std::strtol(t + 4, &end, 10);
-        if (end == t + 4 || *end != '.' || pid <= 0 || std::strchr(end + 1, '.') || pid == (long)getpid())
-            continue;
-        if (kill((pid_t)pid, 0) == 0 || errno != ESRCH)
-            continue; /* its writer is alive (or not ours to ask): leave it */
-        if (std::remove((dir + n).c_str()) == 0)
-            removed++;
-    }
-    closedir(d);
-    return removed;
-}
-
-static void discard(image_writer *w)
-{
-    if (w->out)
-        w->out->close();
-    std::remove(w->tmp.c_str());
-    clear_temp();
-    delete w;
-}
 
 static ImageSpec make_spec(int width, int height, int channels, bool f32, const char *const *names)
 {
@@ -206,20 +118,13 @@ static ImageSpec make_spec(int width, int height, int channels, bool f32, const 
     return spec;
 }
 
-extern "C" image_writer *image_writer_open(const char *path, int width, int height, int channels, bool f32,
-                                           const char *const *names, err_t *err)
+extern "C" oiio_writer *oiio_writer_open(const char *path, const char *tmp, int width, int height, int channels,
+                                         bool f32, const char *const *names, const char *const *texts, err_t *err)
 {
-    return image_writer_open_text(path, width, height, channels, f32, names, nullptr, err);
-}
-
-extern "C" image_writer *image_writer_open_text(const char *path, int width, int height, int channels, bool f32,
-                                                const char *const *names, const char *const *texts, err_t *err)
-{
-    image_writer *w = nullptr;
+    oiio_writer *w = nullptr;
     try {
-        w = new image_writer;
+        w = new oiio_writer;
         w->path = path;
-        w->tmp = temp_path_for(path);
         w->type = f32 ? TypeDesc::FLOAT : TypeDesc::UINT8;
         w->spec = make_spec(width, height, channels, f32, names);
         for (int i = 0; texts && texts[i]; i += 2)
@@ -231,151 +136,69 @@ extern "C" image_writer *image_writer_open_text(const char *path, int width, int
             delete w;
             return nullptr;
         }
-        set_temp(w->tmp);
-        if (!w->out->open(w->tmp, w->spec)) {
+        if (!w->out->open(tmp, w->spec)) {
             err_set(err, "cannot write '%s': %s", path, one_line(w->out->geterror()).c_str());
-            w->out.reset();
-            discard(w);
+            delete w;
             return nullptr;
         }
         return w;
     } catch (const std::exception &e) {
         err_set(err, "cannot write '%s': %s", path, e.what());
-        if (w)
-            discard(w);
+        delete w;
         return nullptr;
     }
 }
 
-extern "C" bool image_writer_rows(image_writer *w, int rows, const void *pixels, err_t *err)
+extern "C" bool oiio_writer_rows(oiio_writer *w, int first_row, int rows, const void *pixels, err_t *err)
 {
     try {
-        if (w->next_row + rows > w->spec.height)
-            return err_set(err, "cannot write '%s': %d rows past the image's %d", w->path.c_str(),
-                           w->next_row + rows - w->spec.height, w->spec.height);
-        if (!w->out->write_scanlines(w->next_row, w->next_row + rows, 0, w->type, pixels))
+        if (!w->out->write_scanlines(first_row, first_row + rows, 0, w->type, pixels))
             return err_set(err, "cannot write '%s': %s", w->path.c_str(), one_line(w->out->geterror()).c_str());
-        w->next_row += rows;
         return true;
     } catch (const std::exception &e) {
         return err_set(err, "cannot write '%s': %s", w->path.c_str(), e.what());
     }
 }
 
-/* The bytes on the disk, not in a cache: a failure here (EIO, ENOSPC on some file systems) is the last
- * chance to hear of it. */
-static bool sync_file(const std::string &path, int flags)
+extern "C" bool oiio_writer_close(oiio_writer *w, err_t *err)
 {
-    int fd = open(path.c_str(), flags);
-    if (fd < 0)
-        return false;
-    bool ok = fsync(fd) == 0 || errno == EINVAL; /* EINVAL: a folder on a file system without fsync */
-    close(fd);
+    bool ok = false;
+    try {
+        ok = w->out->close() || err_set(err, "%s", one_line(w->out->geterror()).c_str());
+    } catch (const std::exception &e) {
+        err_set(err, "%s", e.what());
+    }
+    delete w;
     return ok;
 }
 
-/* Decodes every row of the written file in bands: a truncated or corrupt file fails here. */
-static bool verify(const image_writer *w, std::string *why)
-{
-    StderrCapture noise;
-    auto in = ImageInput::open(w->tmp);
-    if (!in) {
-        *why = with_noise(OIIO::geterror(), noise);
-        return false;
-    }
-    const ImageSpec &s = in->spec();
-    if (s.width != w->spec.width || s.height != w->spec.height || s.nchannels != w->spec.nchannels) {
-        *why = "it reads back as " + std::to_string(s.width) + "x" + std::to_string(s.height) + " with " +
-               std::to_string(s.nchannels) + " channels";
-        return false;
-    }
-    const int band = std::max(1, (int)(((size_t)16 << 20) / ((size_t)s.width * (size_t)s.nchannels * 4)));
-    std::vector<float> buf((size_t)band * (size_t)s.width * (size_t)s.nchannels);
-    for (int y = 0; y < s.height; y += band) {
-        int y1 = std::min(s.height, y + band);
-        if (!in->read_scanlines(0, 0, y, y1, 0, 0, s.nchannels, TypeDesc::FLOAT, buf.data())) {
-            *why = with_noise(in->geterror(), noise);
-            return false;
-        }
-    }
-    return true;
-}
-
-extern "C" bool image_writer_finish(image_writer *w, err_t *err)
+/* Decodes every row in bands: a truncated or corrupt file fails here. */
+extern "C" bool oiio_verify(const char *file, int width, int height, int channels, err_t *err)
 {
     try {
-        const char *path = w->path.c_str();
-        if (w->next_row != w->spec.height) {
-            err_set(err, "cannot write '%s': only %d of %d rows were rendered", path, w->next_row, w->spec.height);
-            discard(w);
-            return false;
+        StderrCapture noise;
+        auto in = ImageInput::open(file);
+        if (!in)
+            return err_set(err, "%s", with_noise(OIIO::geterror(), noise).c_str());
+        const ImageSpec &s = in->spec();
+        if (s.width != width || s.height != height || s.nchannels != channels)
+            return err_set(err, "it reads back as %dx%d with %d channels", s.width, s.height, s.nchannels);
+        const int band = std::max(1, (int)(((size_t)16 << 20) / ((size_t)s.width * (size_t)s.nchannels * 4)));
+        std::vector<float> buf((size_t)band * (size_t)s.width * (size_t)s.nchannels);
+        for (int y = 0; y < s.height; y += band) {
+            int y1 = std::min(s.height, y + band);
+            if (!in->read_scanlines(0, 0, y, y1, 0, 0, s.nchannels, TypeDesc::FLOAT, buf.data()))
+                return err_set(err, "%s", with_noise(in->geterror(), noise).c_str());
         }
-        bool closed = w->out->close();
-        std::string why = closed ? "" : one_line(w->out->geterror());
-        w->out.reset();
-        errno = 0;
-        if (closed && !sync_file(w->tmp, O_RDONLY))
-            closed = false, why = std::strerror(errno);
-        if (!closed || !verify(w, &why)) {
-            err_set(err, "cannot write '%s': %s%s", path,
-                    closed ? "the file did not read back after writing (disk full or file too large?): " : "",
-                    why.empty() ? "write failed" : why.c_str());
-            discard(w);
-            return false;
-        }
-        if (std::rename(w->tmp.c_str(), path) != 0) {
-            err_set(err, "cannot write '%s': %s", path, std::strerror(errno));
-            discard(w);
-            return false;
-        }
-        clear_temp();
-        size_t slash = w->path.find_last_of('/');
-        sync_file(slash == std::string::npos ? "." : w->path.substr(0, slash + 1), O_RDONLY | O_DIRECTORY);
-        delete w;
         return true;
     } catch (const std::exception &e) {
-        err_set(err, "cannot write '%s': %s", w->path.c_str(), e.what());
-        discard(w);
-        return false;
+        return err_set(err, "%s", e.what());
     }
-}
-
-extern "C" void image_writer_abort(image_writer *w)
-{
-    try {
-        discard(w);
-    } catch (const std::exception &) {
-    }
-}
-
-static bool write_whole(const char *path, int width, int height, int channels, bool f32, const char *const *names,
-                        const void *pixels, err_t *err)
-{
-    image_writer *w = image_writer_open(path, width, height, channels, f32, names, err);
-    if (!w)
-        return false;
-    if (!image_writer_rows(w, height, pixels, err)) {
-        image_writer_abort(w);
-        return false;
-    }
-    return image_writer_finish(w, err);
-}
-
-extern "C" bool image_write_u8(const char *path, int width, int height, int channels, const uint8_t *pixels,
-                               err_t *err)
-{
-    return write_whole(path, width, height, channels, false, nullptr, pixels, err);
-}
-
-extern "C" bool image_write_f32(const char *path, int width, int height, int channels, const char *const *names,
-                                const float *pixels, err_t *err)
-{
-    return write_whole(path, width, height, channels, true, names, pixels, err);
 }
 
 /* ---- reading ------------------------------------------------------------------------------------ */
 
-extern "C" bool image_read_text(const char *path, const char *key, char **value, err_t *err)
+extern "C" bool oiio_read_text(const char *path, const char *key, char **value, err_t *err)
 {
     try {
         StderrCapture noise;
@@ -476,13 +299,13 @@ static bool read_caught(const char *path, int want, int max_side, int *width, in
     }
 }
 
-extern "C" bool image_read_u8(const char *path, int channels, int max_side, int *width, int *height,
+extern "C" bool oiio_read_u8(const char *path, int channels, int max_side, int *width, int *height,
                               uint8_t **pixels, err_t *err)
 {
     return read_caught<uint8_t>(path, channels, max_side, width, height, nullptr, pixels, TypeDesc::UINT8, err);
 }
 
-extern "C" bool image_read_f32(const char *path, int channels, int max_side, int *width, int *height,
+extern "C" bool oiio_read_f32(const char *path, int channels, int max_side, int *width, int *height,
                                int *channels_out, float **pixels, err_t *err)
 {
     return read_caught<float>(path, channels, max_side, width, height, channels_out, pixels, TypeDesc::FLOAT, err);

@@ -14,8 +14,8 @@ typedef struct module {
 } module;
 
 static module modules[LAZY_COUNT] = {
-    [LAZY_IMAGE] = {"fathom_image.so", "image reading and writing (OpenImageIO)"},
-    [LAZY_DEM] = {"fathom_dem.so", "DEM reading (GDAL)"},
+    [LAZY_IMAGE] = {.file = "fathom_image.so", .what = "image reading and writing (OpenImageIO)"},
+    [LAZY_DEM] = {.file = "fathom_dem.so", .what = "DEM reading (GDAL)"},
 };
 
 /* Beside the binary (a build folder), one folder up (the tests' binaries in build/tests), or the

@@ -1,9 +1,10 @@
 /* lazy — the libraries that cost start-up time, loaded when a run first needs them.
  *
  * OpenImageIO pulls in some 260 shared libraries (ffmpeg, OpenCV, DCMTK, ...): mapping them took
- * 0.2-0.34 s of every start, `fathom --version` included. GDAL adds more. So image_io.cpp and dem.c
- * are built as modules (fathom_image.so, fathom_dem.so, beside the binary or in <prefix>/lib/fathom)
- * and their public functions (image_io.h, dem.h) are stubs here that load the module on first call.
+ * 0.2-0.34 s of every start, `fathom --version` included. GDAL adds more. So OpenImageIO's side of
+ * image_io (image_io.cpp: reading, and writing all but PNG) and dem.c are built as modules
+ * (fathom_image.so, fathom_dem.so, beside the binary or in <prefix>/lib/fathom), reached through
+ * lazy_symbol by image_io.c and dem_lazy.c, which load the module on first call.
  *
  * Loading one on a background thread while the GL starts was measured and dropped: dlopen holds the
  * dynamic loader's lock while it maps OpenImageIO's libraries, and the GL driver's own loading and
@@ -23,10 +24,12 @@ void *lazy_symbol(lazy_module m, const char *name, err_t *err);
 /* Whether m is loaded (tests: a run that needs no images never loads OpenImageIO). */
 bool lazy_loaded(lazy_module m);
 
-/* Declares the function pointer `decl` (e.g. bool (*f)(const char *)) and sets it from `lookup`, a
- * void * from lazy_symbol (dlsym's idiom: ISO C has no cast from an object pointer to a function's). */
-#define LAZY_FN(decl, lookup) \
-    decl;                     \
-    *(void **)&f = (lookup)
+/* Declares the function pointer `decl` (e.g. bool (*f)(const char *)), named f unless name says, and
+ * sets it from `lookup`, a void * from lazy_symbol (dlsym's idiom: ISO C has no cast from an object
+ * pointer to a function's). */
+#define LAZY_FN(decl, lookup) LAZY_FN_NAMED(f, decl, lookup)
+#define LAZY_FN_NAMED(name, decl, lookup) \
+    decl;                                 \
+    *(void **)&name = (lookup)
 
 #endif
