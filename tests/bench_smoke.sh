@@ -1,5 +1,6 @@
 #!/bin/sh
-# fathom bench on a tiny image: it must finish and write a well-formed CSV, a PNG plot and a summary.
+# fathom bench on a tiny image: it must finish and write a well-formed CSV, PNG plots, a summary and a
+# self-contained HTML report.
 # (Timings are never checked: this machine is shared and noisy.) Usage: bench_smoke.sh FATHOM
 fathom=$1
 out=$(mktemp -d)
@@ -14,21 +15,32 @@ check() { if eval "$2"; then passed=$((passed + 1)); else failed=$((failed + 1))
 check "bench exits 0" '[ $? -eq 0 ]'
 csv="$out/csg-knobs.csv"
 check "knob CSV written" '[ -s "$csv" ]'
-check "knob CSV has 18 columns on every line" \
-    '[ "$(awk -F, "{print NF}" "$csv" | sort -u)" = "18" ]'
+check "knob CSV has 20 columns on every line" \
+    '[ "$(awk -F, "{print NF}" "$csv" | sort -u)" = "20" ]'
+check "every knob row's time lies in its interval" \
+    '[ -z "$(tail -n +2 "$csv" | awk -F, "\$19 > \$7 || \$7 > \$20")" ]'
 # 2 + 2 + 1 knob rows and 4 presets, plus the header
 check "knob CSV has 10 lines" '[ "$(wc -l < "$csv")" -eq 10 ]'
 check "times and errors are numbers >= 0" \
     '[ -z "$(tail -n +2 "$csv" | awk -F, "\$7 !~ /^[0-9.]+\$/ || \$8 !~ /^[0-9.]+\$/ || \$15 !~ /^[0-9.]+\$/")" ]'
 check "silhouette IoU is in [0, 1]" \
     '[ -z "$(tail -n +2 "$csv" | awk -F, "\$13 < 0 || \$13 > 1")" ]'
-check "the reference preset is on the Pareto front" 'grep -q "^csg,40,24,2,preset,reference,.*,1$" "$csv"'
+check "the reference preset is on the Pareto front" \
+    '[ "$(awk -F, "\$5 == \"preset\" && \$6 == \"reference\" {print \$18}" "$csv")" = 1 ]'
 check "effects CSV lists every effect" \
     '[ "$(tail -n +2 "$out/csg-effects.csv" | wc -l)" -eq "$("$fathom" --print-variant | grep -c "^#define FX_.*_BIT")" ]'
 check "each effect's three medians lie in their intervals" \
     '[ -z "$(tail -n +2 "$out/csg-effects.csv" | awk -F, "NF != 12 || \$7 > \$4 || \$4 > \$8 || \$9 > \$5 || \$5 > \$10 || \$11 > \$6 || \$6 > \$12")" ]'
 check "plot is a PNG" '[ "$(head -c 8 "$out/csg-plot.png" | od -An -tx1 | tr -d " \n")" = "89504e470d0a1a0a" ]'
-check "summary links the plot" 'grep -q "](csg-plot.png)" "$out/csg-summary.md"'
+check "overview is a PNG" '[ "$(head -c 8 "$out/csg-overview.png" | od -An -tx1 | tr -d " \n")" = "89504e470d0a1a0a" ]'
+check "summary links both plots" 'grep -q "](csg-plot.png)" "$out/csg-summary.md" && grep -q "](csg-overview.png)" "$out/csg-summary.md"'
+html="$out/csg-report.html"
+check "the HTML report holds its two plots inline, and no other file" \
+    '[ "$(grep -o "src=\"data:image/png;base64," "$html" | wc -l)" -eq 2 ] && [ "$(grep -o "src=\"" "$html" | wc -l)" -eq 2 ]'
+check "... the plot it inlines is the plot written, byte for byte" \
+    'grep -o "data:image/png;base64,[^\"]*" "$html" | sed -n 2p | cut -d, -f2 | base64 -d | cmp -s - "$out/csg-plot.png"'
+check "... and a row for every knob setting, preset and effect" \
+    '[ "$(grep -o "<tr[^>]*><td>" "$html" | wc -l)" -eq $((9 + $(tail -n +2 "$out/csg-effects.csv" | wc -l))) ]'
 check "bad knob is refused" '! "$fathom" bench --knob nosuch=1 --size 8x8 2>/dev/null'
 # stopped half-way (as a user's Ctrl+C), a run keeps the rows it finished, whole lines, no temporary file
 "$fathom" bench --scene csg --size 40x24 --runs 2 --knob max_steps=8,16,32,64,128,256,512 --knob spp=1,2,4,8 \
@@ -44,7 +56,7 @@ stopped=$?
 bench=
 check "a stopped run exits non-zero" '[ $stopped -ne 0 ]'
 check "a stopped run keeps its finished rows" '[ "$(wc -l < "$out/stopped-knobs.csv")" -ge 3 ]'
-check "... as whole lines" '[ "$(awk -F, "{print NF}" "$out/stopped-knobs.csv" | sort -u)" = "18" ]'
+check "... as whole lines" '[ "$(awk -F, "{print NF}" "$out/stopped-knobs.csv" | sort -u)" = "20" ]'
 check "... and leaves no temporary file" '[ ! -e "$out/stopped-knobs.csv.part" ]'
 check "... nor a summary of a run not done" '[ ! -e "$out/stopped-summary.md" ]'
 [ "$failed" -eq 0 ] || cat "$out/stderr"

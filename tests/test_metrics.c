@@ -180,8 +180,13 @@ static void pareto_front(void **st)
     /* (time, error): B dominates C; A and B and D are on the front; E ties D's time but is worse */
     double t[] = {1, 2, 3, 5, 5}, e[] = {10, 4, 6, 1, 2};
     bool f[5];
-    metrics_pareto(t, e, 5, f);
+    metrics_pareto(t, t, e, 5, f);
     assert_true(f[0] && f[1] && !f[2] && f[3] && !f[4]);
+    /* with intervals: B's median is faster than A's but not measurably, and B is worse: off the front
+     * (issue 26: shadow_steps 64 came out "faster" than 32 by noise); C is measurably faster: on it */
+    double lo[] = {9, 8, 4.5}, hi[] = {11, 10.5, 5.5}, err[] = {5, 6, 7};
+    metrics_pareto(lo, hi, err, 3, f);
+    assert_true(f[0] && !f[1] && f[2]);
 }
 
 int main(void)

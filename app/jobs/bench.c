@@ -177,7 +177,10 @@ static bool measure(const char *knob_name, const char *value, const char *const 
             image(&s, &B.views[v].cam, w, h); /* warm-up: compiles and caches */
         for (int r = 0; r < runs; r++)
             ms[r] = image(&s, &B.views[v].cam, w, h);
-        out->ms += util_median(ms, runs) / VIEWS;
+        double lo, hi;
+        out->ms += metrics_median_interval(ms, runs, &lo, &hi) / VIEWS;
+        out->ms_lo += lo / VIEWS; /* the views' intervals, averaged as their medians are */
+        out->ms_hi += hi / VIEWS;
         uint8_t *srgb;
         float *aov;
         read_back(w, h, &srgb, &aov);
@@ -328,11 +331,11 @@ static bool measure_effects(const scene *base, effect_row *rows, err_t *err)
 /* Marks the Pareto front among the rows measured so far. */
 static void mark_front(void)
 {
-    double t[MAX_ROWS], e[MAX_ROWS];
+    double lo[MAX_ROWS], hi[MAX_ROWS], e[MAX_ROWS];
     bool front[MAX_ROWS];
     for (int i = 0; i < B.nrows; i++)
-        t[i] = B.rows[i].ms, e[i] = B.rows[i].m.rmse;
-    metrics_pareto(t, e, B.nrows, front);
+        lo[i] = B.rows[i].ms_lo, hi[i] = B.rows[i].ms_hi, e[i] = B.rows[i].m.rmse;
+    metrics_pareto(lo, hi, e, B.nrows, front);
     for (int i = 0; i < B.nrows; i++)
         B.rows[i].front = front[i];
 }

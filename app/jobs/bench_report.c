@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "gpu/gpu.h"
+#include "scene/quality.h"
 
 /* "+3.1 ms" where b's interval lies wholly above or below a's, else "not measurable". */
 static const char *bench_difference(double a_lo, double a_hi, double b_lo, double b_hi, double a, double b, char *buf,
@@ -56,13 +57,14 @@ static FILE *open_out(const bench_results *r, const char *name, char *path, err_
 static void knob_csv(const bench_results *r, FILE *f)
 {
     fprintf(f, "scene,width,height,views,knob,value,ms_per_image,rmse,psnr_db,depth_mean_fp,depth_max_fp,"
-               "flip_share,iou,edge_max_px,mean_steps,out_of_steps_share,edge_rmse,pareto\n");
+               "flip_share,iou,edge_max_px,mean_steps,out_of_steps_share,edge_rmse,pareto,ms_lo,ms_hi\n");
     for (int i = 0; i < r->nrows; i++) {
         const bench_row *w = &r->rows[i];
-        fprintf(f, "%s,%d,%d,%d,%s,%s,%.3f,%.6f,%.3f,%.4f,%.4f,%.6f,%.6f,%.2f,%.3f,%.6f,%.6f,%d\n", r->opt->scene,
-                r->w, r->h, r->views, w->knob, w->value, w->ms, w->m.rmse, isinf(w->m.psnr_db) ? 999.0 : w->m.psnr_db,
-                w->m.depth_mean_fp, w->m.depth_max_fp, w->m.flip_share, w->m.iou, w->m.edge_max_px, w->m.mean_steps,
-                w->m.exhausted_share, w->m.edge_rmse, w->front);
+        fprintf(f, "%s,%d,%d,%d,%s,%s,%.3f,%.6f,%.3f,%.4f,%.4f,%.6f,%.6f,%.2f,%.3f,%.6f,%.6f,%d,%.3f,%.3f\n",
+                r->opt->scene, r->w, r->h, r->views, w->knob, w->value, w->ms, w->m.rmse,
+                isinf(w->m.psnr_db) ? 999.0 : w->m.psnr_db, w->m.depth_mean_fp, w->m.depth_max_fp, w->m.flip_share,
+                w->m.iou, w->m.edge_max_px, w->m.mean_steps, w->m.exhausted_share, w->m.edge_rmse, w->front, w->ms_lo,
+                w->ms_hi);
     }
 }
 
@@ -106,17 +108,43 @@ static int by_time(const void *a, const void *b)
     return (ta > tb) - (ta < tb);
 }
 
-/* gnuplot data: one block per knob, the Pareto front (sorted by time) last. Returns the knob count. */
+/* The value the scene's own preset gives a sweep ("" when the bench does not know it): the operating
+ * point each small multiple marks. */
+static void base_value(const bench_results *r, const char *knob, char *out, size_t n)
+{
+    knob_id k;
+    out[0] = '\0';
+    if (!strcmp(knob, "preset"))
+        snprintf(out, n, "%s", preset_name(r->base->preset));
+    else if (!strcmp(knob, "resolution_scale"))
+        snprintf(out, n, "1");
+    else if (knob_from_name(knob, &k))
+        snprintf(out, n, "%g", knob_value(&r->base->quality, k));
+}
+
+static bool same_value(const char *a, const char *b)
+{
+    char *ea, *eb;
+    double x = strtod(a, &ea), y = strtod(b, &eb);
+    return *a && *b && (!strcmp(a, b) || (!*ea && !*eb && ea != a && eb != b && x == y));
+}
+
+/* gnuplot data: one block per knob (ms, RMSE, value, ms_lo, ms_hi, 1 at the preset's value), then the
+ * Pareto front sorted by time (ms, RMSE, knob=value). Returns the knob count. */
 static int write_plot_data(const bench_results *r, FILE *f, char (*knobs)[32], int max_knobs)
 {
     int nk = 0;
+    char base[64] = "";
     for (int i = 0; i < r->nrows; i++) {
-        if ((nk == 0 || strcmp(knobs[nk - 1], r->rows[i].knob)) && nk < max_knobs) {
+        const bench_row *w = &r->rows[i];
+        if ((nk == 0 || strcmp(knobs[nk - 1], w->knob)) && nk < max_knobs) {
             if (nk)
                 fprintf(f, "\n\n");
-            snprintf(knobs[nk++], 32, "%s", r->rows[i].knob);
+            snprintf(knobs[nk++], 32, "%s", w->knob);
+            base_value(r, w->knob, base, sizeof base);
         }
-        fprintf(f, "%.4f %.6f %s\n", r->rows[i].ms, fmax(r->rows[i].m.rmse, 1e-5), r->rows[i].value);
+        fprintf(f, "%.4f %.6f %s %.4f %.4f %d\n", w->ms, fmax(w->m.rmse, 1e-5), w->value, w->ms_lo, w->ms_hi,
+                same_value(w->value, base));
     }
     fprintf(f, "\n\n");
     const bench_row **front = util_alloc(sizeof *front * (size_t)(r->nrows + 1), "the bench report");
@@ -125,16 +153,109 @@ static int write_plot_data(const bench_results *r, FILE *f, char (*knobs)[32], i
         if (r->rows[i].front)
             front[n++] = &r->rows[i];
     qsort(front, (size_t)n, sizeof *front, by_time);
-    for (int i = 0; i < n; i++)
-        fprintf(f, "%.4f %.6f %s=%s\n", front[i]->ms, fmax(front[i]->m.rmse, 1e-5), front[i]->knob, front[i]->value);
+    for (int i = 0; i < n; i++) /* a preset on the front is labelled as a preset already: "-" */
+        fprintf(f, "%.4f %.6f %s%s%s\n", front[i]->ms, fmax(front[i]->m.rmse, 1e-5),
+                strcmp(front[i]->knob, "preset") ? front[i]->knob : "-", strcmp(front[i]->knob, "preset") ? "=" : "",
+                strcmp(front[i]->knob, "preset") ? front[i]->value : "");
     free(front);
     return nk;
+}
+
+static bool run_gnuplot(const char *gp, err_t *err)
+{
+    char cmd[PATH_MAX_LEN * 2];
+    snprintf(cmd, sizeof cmd, "gnuplot '%s' 2>&1", gp);
+    if (system(cmd) != 0)
+        return err_set(err, "gnuplot failed on '%s' (is gnuplot installed? apt-get install gnuplot-nox); the CSV "
+                            "files are written", gp);
+    return true;
+}
+
+/* Small multiples: one panel a knob, each point labelled with its value, the time's interval as a bar,
+ * the scene's preset value ringed; lower left is better in every panel. */
+static void small_multiples(const bench_results *r, FILE *f, const char *dat, const char *png, char (*knobs)[32],
+                            int nk)
+{
+    static const char *const COLOURS[] = {"#1b9e77", "#d95f02", "#7570b3", "#e7298a", "#66a61e", "#e6ab02",
+                                          "#a6761d", "#666666"};
+    int cols = nk < 3 ? nk : 3, rows = (nk + cols - 1) / cols;
+    fprintf(f, "set terminal pngcairo size %d,%d font ',9'\nset output '%s'\n", 380 * cols, 300 * rows + 40, png);
+    fprintf(f, "set multiplot layout %d,%d title \"%s, %dx%d, %.40s: colour error against time, each knob swept "
+               "alone from the %s preset\\nBetter: down and left. Ring: the preset's value. Bars: the time's 95 %% "
+               "interval.\" noenhanced font ',10'\n",
+            rows, cols, r->opt->scene, r->w, r->h, (const char *)glGetString(GL_RENDERER), preset_name(r->base->preset));
+    /* each panel spans its own points (not whole decades), with room for the labels */
+    fprintf(f, "set autoscale fix\nset grid\nunset key\nset xlabel 'ms per image' offset 0,0.5\n"
+               "set ylabel 'RMSE' offset 1.5,0\nset offsets graph 0.15, graph 0.2, graph 0.25, graph 0.25\n"
+               "set format y '%%g'\nset format x '%%g'\n");
+    for (int k = 0; k < nk; k++) {
+        const char *c = COLOURS[k % (int)(sizeof COLOURS / sizeof COLOURS[0])];
+        fprintf(f, "set title '%s' noenhanced font ',11'\n", knobs[k]);
+        /* a log axis only where the panel's values span more than a decade: within one, a log axis has
+         * no labelled tic */
+        double lo[2] = {INFINITY, INFINITY}, hi[2] = {0, 0};
+        for (int i = 0; i < r->nrows; i++)
+            if (!strcmp(r->rows[i].knob, knobs[k])) {
+                double v[2] = {r->rows[i].ms, fmax(r->rows[i].m.rmse, 1e-5)};
+                for (int a = 0; a < 2; a++)
+                    lo[a] = fmin(lo[a], v[a]), hi[a] = fmax(hi[a], v[a]);
+            }
+        for (int a = 0; a < 2; a++) {
+            const char *axis = a ? "y" : "x";
+            if (hi[a] > 10 * lo[a]) {
+                fprintf(f, "set logscale %s\nset autoscale %s\nset autoscale %sfix\n", axis, axis, axis);
+            } else if (hi[a] - lo[a] < 0.1 * hi[a]) { /* flat: drawn flat, not blown up to fill the panel */
+                double mid = 0.5 * (lo[a] + hi[a]);
+                fprintf(f, "unset logscale %s\nset %srange [%g:%g]\n", axis, axis, mid - 0.08 * hi[a],
+                        mid + 0.08 * hi[a]);
+            } else {
+                fprintf(f, "unset logscale %s\nset autoscale %s\nset autoscale %sfix\n", axis, axis, axis);
+            }
+        }
+        /* values alternate above and below their points, so neighbours' labels do not collide */
+        fprintf(f, "plot '%s' index %d using 1:2 with lines lw 1.5 lc rgb '%s', "
+                   "'' index %d using 1:2:4:5 with xerrorbars pt 7 ps 0.7 lc rgb '%s', "
+                   "'' index %d using ($6 > 0 ? $1 : 1/0):2 with points pt 6 ps 2.4 lw 1.5 lc rgb 'black', "
+                   "'' index %d using 1:2:(int($0) %% 2 ? '' : stringcolumn(3)) with labels offset char 0,1 "
+                   "font ',8' noenhanced, "
+                   "'' index %d using 1:2:(int($0) %% 2 ? stringcolumn(3) : '') with labels offset char 0,-1 "
+                   "font ',8' noenhanced\n",
+                dat, k, c, k, c, k, k, k);
+    }
+    fprintf(f, "unset multiplot\n");
+}
+
+/* The overview: every setting in grey, the presets labelled, the Pareto front as a staircase. */
+static void overview(const bench_results *r, FILE *f, const char *dat, const char *png, char (*knobs)[32], int nk)
+{
+    int presets = -1;
+    for (int k = 0; k < nk; k++)
+        if (!strcmp(knobs[k], "preset"))
+            presets = k;
+    fprintf(f, "reset\nset terminal pngcairo size 900,600 font ',10'\nset output '%s'\n", png);
+    fprintf(f, "set title \"%s, %dx%d: every setting the bench tried (grey), the presets (blue) and the Pareto "
+               "front\\n(black: no setting is measurably faster and no worse, or better and not measurably slower). "
+               "Better: down and left.\" noenhanced\n",
+            r->opt->scene, r->w, r->h);
+    fprintf(f, "set logscale xy\nset autoscale fix\nset grid\nunset key\nset xlabel 'ms per image (median)'\n"
+               "set ylabel 'colour RMSE against the reference'\nset offsets graph 0.05, graph 0.25, graph 0.1, graph 0.25\n"
+               "set format y '%%g'\nset format x '%%g'\n");
+    fprintf(f, "plot for [k=0:%d] '%s' index k using 1:2 with points pt 7 ps 0.6 lc rgb '#bbbbbb', "
+               "'%s' index %d using 1:2 with steps lw 2 lc rgb 'black', "
+               "'' index %d using 1:2:(strcol(3) eq '-' ? '' : strcol(3)) with labels offset char 0.4,-0.4 left "
+               "rotate by -35 font ',8' noenhanced",
+            nk - 1, dat, dat, nk, nk);
+    if (presets >= 0)
+        fprintf(f, ", '' index %d using 1:2:4:5 with xerrorbars pt 5 ps 1.3 lc rgb '#1f5fbf', "
+                   "'' index %d using 1:2:3 with labels offset char 0.8,0.8 left font ',10' tc rgb '#1f5fbf' noenhanced",
+                presets, presets);
+    fprintf(f, "\n");
 }
 
 static bool write_plot(const bench_results *r, err_t *err)
 {
     enum { MAX_KNOBS = 64 };
-    char dat[PATH_MAX_LEN], gp[PATH_MAX_LEN], png[PATH_MAX_LEN], knobs[MAX_KNOBS][32];
+    char dat[PATH_MAX_LEN], gp[PATH_MAX_LEN], png[PATH_MAX_LEN], over[PATH_MAX_LEN], knobs[MAX_KNOBS][32];
     FILE *f = open_out(r, "plot.dat", dat, err);
     if (!f)
         return false;
@@ -144,22 +265,11 @@ static bool write_plot(const bench_results *r, err_t *err)
     if (!f)
         return false;
     snprintf(png, sizeof png, "%s/%s-plot.png", r->opt->out, prefix(r));
-    fprintf(f, "set terminal pngcairo size 960,620 font ',10'\nset output '%s'\n", png);
-    fprintf(f, "set title \"%s: error against time, each knob swept alone (%dx%d, %.40s)\" noenhanced\n",
-            r->opt->scene, r->w, r->h, (const char *)glGetString(GL_RENDERER));
-    fprintf(f, "set logscale xy\nset xlabel 'ms per image (median)'\nset ylabel 'colour RMSE against the reference'\n"
-               "set key outside right top noenhanced\nset grid\n");
-    fprintf(f, "plot ");
-    for (int k = 0; k < nk; k++)
-        fprintf(f, "'%s' index %d using 1:2 with linespoints pt 7 ps 0.8 title '%s', ", dat, k, knobs[k]);
-    fprintf(f, "'%s' index %d using 1:2 with steps lw 2 lc rgb 'black' title 'Pareto front'\n", dat, nk);
+    snprintf(over, sizeof over, "%s/%s-overview.png", r->opt->out, prefix(r));
+    small_multiples(r, f, dat, png, knobs, nk);
+    overview(r, f, dat, over, knobs, nk);
     fclose(f);
-    char cmd[PATH_MAX_LEN * 2];
-    snprintf(cmd, sizeof cmd, "gnuplot '%s' 2>&1", gp);
-    if (system(cmd) != 0)
-        return err_set(err, "gnuplot failed on '%s' (is gnuplot installed? apt-get install gnuplot-nox); the CSV "
-                            "files are written", gp);
-    return true;
+    return run_gnuplot(gp, err);
 }
 
 static void summary_header(const bench_results *r, FILE *f)
@@ -187,8 +297,9 @@ static void summary_header(const bench_results *r, FILE *f)
                "shows); flips: pixels that hit in one and miss in the other; IoU: of the two hit masks (worst "
                "view); edge px: how far the farthest flipped pixel lies from the reference's silhouette; out of "
                "steps: pixels whose primary ray was left unresolved (its steps and their tail ran out; drawn as a miss). Every knob row starts from "
-               "the scene's `%s` preset. `*` marks the Pareto front (no setting is both faster and closer). Settings "
-               "of 64 spp or more are timed once per view.\n\n",
+               "the scene's `%s` preset. ms/image: the median [and its 95 %% interval]. `*` marks the Pareto front, "
+               "built from the intervals: a setting leaves it for one measurably faster and no worse, or better and "
+               "not measurably slower. Settings of 64 spp or more are timed once per view.\n\n",
             preset_name(r->base->preset));
 }
 
@@ -199,13 +310,14 @@ static bool write_summary(const bench_results *r, err_t *err)
     if (!f)
         return false;
     summary_header(r, f);
-    fprintf(f, "![error against time](%s-plot.png)\n\n", prefix(r));
+    fprintf(f, "![the presets and the Pareto front](%s-overview.png)\n\n![each knob alone](%s-plot.png)\n\n",
+            prefix(r), prefix(r));
     fprintf(f, "| knob | value | ms/image | RMSE | edge RMSE | PSNR dB | depth mean (fp) | depth max (fp) | flips %% | "
                "IoU | edge px | steps/px | out of steps %% |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (int i = 0; i < r->nrows; i++) {
         const bench_row *w = &r->rows[i];
-        fprintf(f, "| %s | %s%s | %.1f | %.4f | %.4f | %.1f | %.3f | %.2f | %.2f | %.4f | %.1f | %.1f | %.2f |\n",
-                w->knob, w->value, w->front ? " *" : "", w->ms, w->m.rmse, w->m.edge_rmse, w->m.psnr_db,
+        fprintf(f, "| %s | %s%s | %.1f [%.1f–%.1f] | %.4f | %.4f | %.1f | %.3f | %.2f | %.2f | %.4f | %.1f | %.1f | %.2f |\n",
+                w->knob, w->value, w->front ? " *" : "", w->ms, w->ms_lo, w->ms_hi, w->m.rmse, w->m.edge_rmse, w->m.psnr_db,
                 w->m.depth_mean_fp, w->m.depth_max_fp, 100 * w->m.flip_share, w->m.iou, w->m.edge_max_px,
                 w->m.mean_steps, 100 * w->m.exhausted_share);
     }
@@ -231,7 +343,107 @@ static bool write_summary(const bench_results *r, err_t *err)
     return true;
 }
 
+/* ---- the HTML report: one self-contained page (its plots inline) --------------------------------- */
+
+/* The file at path as an <img> with a base64 data URI (RFC 4648); nothing when it cannot be read. */
+static void inline_png(FILE *f, const char *path, const char *alt)
+{
+    static const char B64[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    char *data = NULL;
+    size_t n = 0;
+    err_t e;
+    if (!util_read_file(path, &data, &n, &e))
+        return;
+    fprintf(f, "<img alt=\"%s\" src=\"data:image/png;base64,", alt);
+    const unsigned char *b = (const unsigned char *)data;
+    for (size_t i = 0; i < n; i += 3) {
+        unsigned v = (unsigned)b[i] << 16 | (i + 1 < n ? (unsigned)b[i + 1] << 8 : 0) | (i + 2 < n ? b[i + 2] : 0);
+        fputc(B64[v >> 18 & 63], f);
+        fputc(B64[v >> 12 & 63], f);
+        fputc(i + 1 < n ? B64[v >> 6 & 63] : '=', f);
+        fputc(i + 2 < n ? B64[v & 63] : '=', f);
+    }
+    fprintf(f, "\">\n");
+    free(data);
+}
+
+/* Text into HTML: & < > escaped. */
+static void html_text(FILE *f, const char *s)
+{
+    for (; *s; s++)
+        fputs(*s == '&' ? "&amp;" : *s == '<' ? "&lt;" : *s == '>' ? "&gt;" : (char[]){*s, 0}, f);
+}
+
+static void html_tables(const bench_results *r, FILE *f)
+{
+    fprintf(f, "<h2>Each knob alone, and the presets</h2>\n<p>Time: the median [and its 95 %% interval] of %d "
+               "images. &#9733;: on the Pareto front (no setting measurably faster and no worse, or better and not "
+               "measurably slower).</p>\n<table>\n<tr><th>knob</th><th>value</th><th>ms per image</th><th>RMSE</th>"
+               "<th>edge RMSE</th><th>PSNR dB</th><th>depth mean / max (fp)</th><th>flips %%</th><th>IoU</th>"
+               "<th>steps/px</th><th>out of steps %%</th></tr>\n",
+            r->opt->runs);
+    for (int i = 0; i < r->nrows; i++) {
+        const bench_row *w = &r->rows[i];
+        fprintf(f, "<tr%s><td>", w->front ? " class=\"front\"" : "");
+        html_text(f, w->knob);
+        fprintf(f, "</td><td>");
+        html_text(f, w->value);
+        fprintf(f, "%s</td><td>%.1f [%.1f&ndash;%.1f]</td><td>%.4f</td><td>%.4f</td><td>%.1f</td><td>%.3f / %.2f</td>"
+                   "<td>%.2f</td><td>%.4f</td><td>%.1f</td><td>%.2f</td></tr>\n",
+                w->front ? " &#9733;" : "", w->ms, w->ms_lo, w->ms_hi, w->m.rmse, w->m.edge_rmse, w->m.psnr_db,
+                w->m.depth_mean_fp, w->m.depth_max_fp, 100 * w->m.flip_share, w->m.iou, w->m.mean_steps,
+                100 * w->m.exhausted_share);
+    }
+    fprintf(f, "</table>\n<h2>Effects: compiled out, compiled in, compiled in but off</h2>\n<p>ms per 1-spp frame, "
+               "median [95 %% interval] of %d runs taken in turn; a difference only where the intervals part.</p>\n"
+               "<table>\n<tr><th>effect</th><th>in scene</th><th>out</th><th>in</th><th>in, off</th>"
+               "<th>in vs out</th></tr>\n",
+            r->opt->runs);
+    for (int e = 0; e < EFFECT_COUNT; e++) {
+        const effect_row *x = &r->fx[e];
+        char d[48];
+        fprintf(f, "<tr><td>%s</td><td>%s</td><td>%.1f [%.1f&ndash;%.1f]</td><td>%.1f [%.1f&ndash;%.1f]</td>"
+                   "<td>%.1f [%.1f&ndash;%.1f]</td><td>%s</td></tr>\n",
+                effect_name(x->e), x->in_scene ? "yes" : "no", x->out_ms, x->out_lo, x->out_hi, x->in_ms, x->in_lo,
+                x->in_hi, x->in_off_ms, x->in_off_lo, x->in_off_hi,
+                bench_difference(x->out_lo, x->out_hi, x->in_lo, x->in_hi, x->out_ms, x->in_ms, d, sizeof d));
+    }
+    fprintf(f, "</table>\n");
+}
+
+static bool write_html(const bench_results *r, err_t *err)
+{
+    char path[PATH_MAX_LEN], png[PATH_MAX_LEN];
+    FILE *f = open_out(r, "report.html", path, err);
+    if (!f)
+        return false;
+    fprintf(f, "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>What accuracy costs: ");
+    html_text(f, prefix(r));
+    fprintf(f, "</title>\n<style>body{font:14px sans-serif;margin:2em;max-width:1200px}"
+               "table{border-collapse:collapse;margin:1em 0}td,th{border:1px solid #ccc;padding:2px 8px;"
+               "text-align:right}td:first-child,th:first-child{text-align:left}tr.front{background:#eef5e9}"
+               "img{max-width:100%%;display:block;margin:1em 0}</style></head><body>\n<h1>What accuracy costs: ");
+    html_text(f, prefix(r));
+    fprintf(f, "</h1>\n<p>");
+    html_text(f, r->base->title);
+    fprintf(f, ". %dx%d, %d views, fathom %s, ", r->w, r->h, r->views, FATHOM_VERSION);
+    html_text(f, gpu_describe());
+    fprintf(f, ". Error against the <code>reference</code> preset at %d spp (%.0f ms per image), which a render "
+               "four times stricter matches to RMSE %.5f. Every knob starts from the scene's <code>%s</code> "
+               "preset.</p>\n",
+            r->ref_spp, r->ref_ms, r->conv->rmse, preset_name(r->base->preset));
+    snprintf(png, sizeof png, "%s/%s-overview.png", r->opt->out, prefix(r));
+    inline_png(f, png, "the presets and the Pareto front");
+    snprintf(png, sizeof png, "%s/%s-plot.png", r->opt->out, prefix(r));
+    inline_png(f, png, "each knob alone");
+    html_tables(r, f);
+    fprintf(f, "</body></html>\n");
+    if (fclose(f) != 0)
+        return err_set(err, "cannot write '%s': is the disk full?", path);
+    return true;
+}
+
 bool bench_write(const bench_results *r, err_t *err)
 {
-    return write_csv(r, err) && write_plot(r, err) && write_summary(r, err);
+    return write_csv(r, err) && write_plot(r, err) && write_summary(r, err) && write_html(r, err);
 }

@@ -12,6 +12,7 @@
 typedef struct bench_row {
     char knob[32], value[32];
     double ms;  /* median time of one image (all its samples), mean over views */
+    double ms_lo, ms_hi; /* its interval (metrics_median_interval), mean over views */
     metrics m;  /* mean over views (max depth: max) */
     bool front;
 } bench_row;

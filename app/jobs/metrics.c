@@ -174,12 +174,15 @@ double metrics_median_interval(const double *v, int n, double *lo, double *hi)
     return m;
 }
 
-void metrics_pareto(const double *time, const double *error, int n, bool *front)
+void metrics_pareto(const double *lo, const double *hi, const double *error, int n, bool *front)
 {
     for (int i = 0; i < n; i++) {
         front[i] = true;
-        for (int j = 0; j < n && front[i]; j++)
-            if (j != i && time[j] <= time[i] && error[j] <= error[i] && (time[j] < time[i] || error[j] < error[i]))
+        for (int j = 0; j < n && front[i]; j++) {
+            bool faster = hi[j] < lo[i];      /* measurably */
+            bool not_slower = lo[j] <= hi[i]; /* faster, or not measurably slower */
+            if (j != i && ((faster && error[j] <= error[i]) || (not_slower && error[j] < error[i])))
                 front[i] = false;
+        }
     }
 }

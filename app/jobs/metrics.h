@@ -48,8 +48,10 @@ void metrics_upscale(const image_view *in, int w, int h, uint8_t **srgb, float *
  * confidence at n = 5, 88 % at 4). Two settings differ measurably only where their intervals part. */
 double metrics_median_interval(const double *v, int n, double *lo, double *hi);
 
-/* Marks the points on the lower-left Pareto front of (time, error): none other is at most as slow
- * and at most as wrong while better in one. */
-void metrics_pareto(const double *time, const double *error, int n, bool *front);
+/* Marks the points on the lower-left Pareto front of (time, error), each time an interval [lo, hi]
+ * (metrics_median_interval): a point leaves the front for another that is measurably faster (its hi
+ * below this lo) and no worse, or better and not measurably slower (its lo at most this hi). Noise
+ * alone never puts a worse setting on the front: with point times (lo = hi) it is the usual front. */
+void metrics_pareto(const double *lo, const double *hi, const double *error, int n, bool *front);
 
 #endif

@@ -40,7 +40,9 @@ def main():
         if not converged:
             unconverged.append(name)
         size = "%sx%s" % (r[0]["width"], r[0]["height"])
+        report = os.path.exists(os.path.join(HERE, name + "-report.html"))
         out += ["## %s" % name, "",
+                ("[report (HTML)](%s-report.html) · [overview](%s-overview.png) · " % (name, name) if report else "") +
                 "[summary, every knob](%s-summary.md) · [plot](%s-plot.png) · [CSV](%s-knobs.csv) · "
                 "[effects](%s-effects.csv), %s. Reference against a stricter render: RMSE %.4f, %.2f %% flipped "
                 "pixels%s." % (name, name, name, name, size, conv_rmse, conv_flips,
