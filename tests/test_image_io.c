@@ -29,8 +29,8 @@ static int setup(void **st)
 /* A value no other pixel or channel shares, so any flip or swap shows. */
 static uint8_t u8_at(int x, int y, int c) { return (uint8_t)(y * 50 + x * 7 + c * 2 + 1); }
 
-/* Runs first: checking an output path and writing a PNG need no OpenImageIO (libpng writes it); the
- * first EXR loads it (lazy.h). */
+/* Runs first: checking an output path, writing a PNG and reading the shipped JPEG and PNG files need
+ * no OpenImageIO (libpng and libjpeg-turbo do); the first EXR loads it (lazy.h). */
 static void loaded_on_first_use(void **st)
 {
     (void)st;
@@ -43,6 +43,18 @@ static void loaded_on_first_use(void **st)
     image_io_install_signal_cleanup();
     uint8_t px[4] = {1, 2, 3, 255};
     assert_true(image_write_u8(png, 1, 1, 4, px, &e));
+    assert_false(lazy_loaded(LAZY_IMAGE));
+    /* the shipped scenes' textures and heightmaps read without it too */
+    char tex[PATH_MAX_LEN], dem[PATH_MAX_LEN];
+    snprintf(tex, sizeof tex, "%s/textures/ground_rock.jpg", FATHOM_SOURCE_DIR);
+    snprintf(dem, sizeof dem, "%s/terrains/jacksboro.png", FATHOM_SOURCE_DIR);
+    int w, h, c;
+    uint8_t *t = NULL;
+    float *d = NULL;
+    assert_true(image_read_u8(tex, 4, IMAGE_MAX_SIDE, &w, &h, &t, &e));
+    assert_true(image_read_f32(dem, 1, IMAGE_MAX_SIDE, &w, &h, &c, &d, &e));
+    free(t);
+    free(d);
     assert_false(lazy_loaded(LAZY_IMAGE));
     float fx[4] = {0.5f, 1, 2, 1};
     assert_true(image_write_f32(exr, 1, 1, 4, NULL, fx, &e));
@@ -196,6 +208,46 @@ static void oversized_images_are_refused(void **st)
     unlink(path);
 }
 
+/* The shipped PNG and JPEG files, read here (libpng, libjpeg-turbo), equal what OpenImageIO reads from
+ * them, value for value, as 8-bit and as float, in every channel count fathom asks for. */
+static void fast_reads_equal_openimageio(void **st)
+{
+    (void)st;
+    static const char *const files[] = {"textures/ground_rock.jpg", "textures/skybox/irrlicht2_up.jpg",
+                                        "terrains/jacksboro.png"};
+    LAZY_FN_NAMED(ref_u8, bool (*ref_u8)(const char *, int, int, int *, int *, uint8_t **, err_t *),
+                  lazy_symbol(LAZY_IMAGE, "oiio_read_u8", NULL));
+    LAZY_FN_NAMED(ref_f32, bool (*ref_f32)(const char *, int, int, int *, int *, int *, float **, err_t *),
+                  lazy_symbol(LAZY_IMAGE, "oiio_read_f32", NULL));
+    assert_non_null(ref_u8);
+    assert_non_null(ref_f32);
+    for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
+        char path[PATH_MAX_LEN];
+        snprintf(path, sizeof path, "%s/%s", FATHOM_SOURCE_DIR, files[i]);
+        bool sixteen = strstr(path, ".png") != NULL; /* jacksboro.png: 16-bit grey, read as float only */
+        for (int ch = 0; ch <= 4; ch++) {
+            err_t e;
+            int w, h, w2, h2, c, c2;
+            float *f = NULL, *f2 = NULL;
+            assert_true(image_read_f32(path, ch, IMAGE_MAX_SIDE, &w, &h, &c, &f, &e));
+            assert_true(ref_f32(path, ch, IMAGE_MAX_SIDE, &w2, &h2, &c2, &f2, &e));
+            assert_true(w == w2 && h == h2 && c == c2);
+            assert_memory_equal(f, f2, sizeof(float) * (size_t)w * (size_t)h * (size_t)c);
+            free(f);
+            free(f2);
+            if (sixteen || ch == 0)
+                continue;
+            uint8_t *u = NULL, *u2 = NULL;
+            assert_true(image_read_u8(path, ch, IMAGE_MAX_SIDE, &w, &h, &u, &e));
+            assert_true(ref_u8(path, ch, IMAGE_MAX_SIDE, &w2, &h2, &u2, &e));
+            assert_true(w == w2 && h == h2);
+            assert_memory_equal(u, u2, (size_t)w * (size_t)h * (size_t)ch);
+            free(u);
+            free(u2);
+        }
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -205,6 +257,7 @@ int main(void)
         cmocka_unit_test(failed_writes_leave_nothing),
         cmocka_unit_test(banded_writes),
         cmocka_unit_test(oversized_images_are_refused),
+        cmocka_unit_test(fast_reads_equal_openimageio),
     };
     return cmocka_run_group_tests(tests, setup, NULL);
 }

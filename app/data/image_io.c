@@ -1,8 +1,9 @@
 /* image_io — see image_io.h. The atomic-write protocol (a temporary file beside the target, removed on
- * a fatal signal; close, fsync, decode it all again, rename) is here for every format. A PNG is
- * encoded and checked here with libpng; anything else, and every read, goes to OpenImageIO in
- * fathom_image.so, loaded on first use (data/lazy.h, data/image_oiio.h): its ~260 libraries cost
- * 0.2 s, which a run that writes only PNG files never pays. */
+ * a fatal signal; close, fsync, decode it all again, rename) is here for every format. PNG files are
+ * written and checked here with libpng, and clean PNG and JPEG files read with libpng and
+ * libjpeg-turbo; everything else goes to OpenImageIO in fathom_image.so, loaded on first use
+ * (data/lazy.h, data/image_oiio.h): its ~260 libraries cost 0.2 s, which a run of the shipped scenes
+ * writing PNG files never pays. */
 #include "data/image_io.h"
 
 #include <dirent.h>
@@ -17,6 +18,8 @@
 #include <strings.h>
 #include <sys/stat.h>
 #include <unistd.h>
+
+#include <jpeglib.h> /* after stdio.h: it uses FILE */
 
 #include "data/image_oiio.h"
 #include "data/lazy.h"
@@ -274,9 +277,10 @@ image_writer *image_writer_open_text(const char *path, int width, int height, in
         err_set(err, "cannot write '%s': a PNG of %dx%d with %d channels", path, width, height, channels);
         return NULL;
     }
-    LAZY_FN_NAMED(open_fn, oiio_writer * (*open_fn)(const char *, const char *, int, int, int, bool, const char *const *,
-                                  const char *const *, err_t *),
-            png ? NULL : lazy_symbol(LAZY_IMAGE, "oiio_writer_open", err));
+    LAZY_FN_NAMED(open_fn,
+                  oiio_writer * (*open_fn)(const char *, const char *, int, int, int, bool, const char *const *,
+                                           const char *const *, err_t *),
+                  png ? NULL : lazy_symbol(LAZY_IMAGE, "oiio_writer_open", err));
     if (!png && !open_fn)
         return NULL;
     image_writer *w = util_calloc(1, sizeof *w, "an image writer");
@@ -432,11 +436,182 @@ bool image_can_write(const char *path, err_t *err)
     return true;
 }
 
-/* ---- reading: OpenImageIO ------------------------------------------------------------------------------ */
+/* ---- reading: clean PNG and JPEG files here, anything else (or anything odd) through OpenImageIO ---- */
+
+/* A decoded image: c channels of 8- or 16-bit values (native order), rows top first. */
+typedef struct decoded {
+    int w, h, c, bits;
+    void *px;
+} decoded;
+
+/* Taken here only while small: anything larger goes to OpenImageIO, whose reader checks it against the
+ * machine's memory first. */
+enum { FAST_MAX_PIXELS = 1 << 26 };
+
+static bool fast_size_ok(int w, int h, int max_side)
+{
+    return w > 0 && h > 0 && w <= max_side && h <= max_side && (long)w * h <= FAST_MAX_PIXELS;
+}
+
+/* An 8- or 16-bit grey, grey+alpha, RGB or RGBA PNG without a transparency chunk; false leaves it to
+ * OpenImageIO (which also words the errors). u8 takes 8-bit files only. */
+static bool png_decode(const char *path, int max_side, bool u8, decoded *d)
+{
+    png_io io = {0};
+    io.f = fopen(path, "rb");
+    io.png = io.f ? png_create_read_struct(PNG_LIBPNG_VER_STRING, &io, png_fail, png_quiet) : NULL;
+    io.info = io.png ? png_create_info_struct(io.png) : NULL;
+    png_bytep *volatile rows = NULL; /* volatile: read again after libpng's longjmp */
+    d->px = NULL;
+    volatile bool ok = io.info != NULL;
+    if (ok && setjmp(png_jmpbuf(io.png))) {
+        ok = false;
+    } else if (ok) {
+        png_init_io(io.png, io.f);
+        png_read_info(io.png, io.info);
+        int type = png_get_color_type(io.png, io.info), bits = png_get_bit_depth(io.png, io.info);
+        d->w = (int)png_get_image_width(io.png, io.info);
+        d->h = (int)png_get_image_height(io.png, io.info);
+        ok = (bits == 8 || (bits == 16 && !u8)) && !(type & PNG_COLOR_MASK_PALETTE) &&
+             !png_get_valid(io.png, io.info, PNG_INFO_tRNS) && fast_size_ok(d->w, d->h, max_side) &&
+             png_get_interlace_type(io.png, io.info) == PNG_INTERLACE_NONE;
+        if (ok) {
+            if (bits == 16)
+                png_set_swap(io.png); /* PNG is big-endian */
+            d->c = png_get_channels(io.png, io.info);
+            d->bits = bits;
+            size_t row = (size_t)d->w * (size_t)d->c * (size_t)(bits / 8);
+            d->px = malloc(row * (size_t)d->h);
+            rows = malloc(sizeof *rows * (size_t)d->h);
+            ok = d->px && rows;
+            for (int y = 0; ok && y < d->h; y++)
+                rows[y] = (png_bytep)d->px + row * (size_t)y;
+            if (ok) {
+                png_read_image(io.png, rows);
+                png_read_end(io.png, NULL);
+            }
+        }
+    }
+    if (io.png)
+        png_destroy_read_struct(&io.png, &io.info, NULL);
+    if (io.f)
+        fclose(io.f);
+    free(rows);
+    if (!ok) {
+        free(d->px);
+        d->px = NULL;
+    }
+    return ok;
+}
+
+typedef struct jpeg_fail {
+    struct jpeg_error_mgr mgr;
+    jmp_buf jump;
+    bool warned; /* a corrupt stream libjpeg decodes on regardless: left to OpenImageIO */
+} jpeg_fail;
+
+static void jpeg_on_error(j_common_ptr c) { longjmp(((jpeg_fail *)c->err)->jump, 1); }
+
+static void jpeg_on_message(j_common_ptr c, int level)
+{
+    if (level < 0)
+        ((jpeg_fail *)c->err)->warned = true;
+}
+
+/* A grey or colour (YCbCr, RGB) baseline or progressive JPEG, as libjpeg-turbo decodes it by default
+ * (what OpenImageIO's reader asks of it too); false leaves it to OpenImageIO. */
+static bool jpeg_decode(const char *path, int max_side, decoded *d)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return false;
+    struct jpeg_decompress_struct j;
+    jpeg_fail fail = {0};
+    j.err = jpeg_std_error(&fail.mgr);
+    fail.mgr.error_exit = jpeg_on_error;
+    fail.mgr.emit_message = jpeg_on_message;
+    d->px = NULL;
+    volatile bool ok = false;
+    if (!setjmp(fail.jump)) {
+        jpeg_create_decompress(&j);
+        jpeg_stdio_src(&j, f);
+        jpeg_read_header(&j, TRUE);
+        bool colour = j.jpeg_color_space == JCS_YCbCr || j.jpeg_color_space == JCS_RGB;
+        if ((colour || j.jpeg_color_space == JCS_GRAYSCALE) &&
+            fast_size_ok((int)j.image_width, (int)j.image_height, max_side)) {
+            j.out_color_space = colour ? JCS_RGB : JCS_GRAYSCALE;
+            jpeg_start_decompress(&j);
+            d->w = (int)j.output_width, d->h = (int)j.output_height, d->c = j.output_components, d->bits = 8;
+            size_t row = (size_t)d->w * (size_t)d->c;
+            d->px = malloc(row * (size_t)d->h);
+            while (d->px && j.output_scanline < j.output_height) {
+                JSAMPROW r = (JSAMPROW)d->px + row * j.output_scanline;
+                jpeg_read_scanlines(&j, &r, 1);
+            }
+            if (d->px)
+                jpeg_finish_decompress(&j);
+            ok = d->px && !fail.warned;
+        }
+    }
+    jpeg_destroy_decompress(&j);
+    fclose(f);
+    if (!ok) {
+        free(d->px);
+        d->px = NULL;
+    }
+    return ok;
+}
+
+static bool fast_decode(const char *path, int max_side, bool u8, decoded *d)
+{
+    const char *dot = strrchr(path, '.');
+    if (!dot)
+        return false;
+    if (!strcasecmp(dot, ".png"))
+        return png_decode(path, max_side, u8, d);
+    if (!strcasecmp(dot, ".jpg") || !strcasecmp(dot, ".jpeg"))
+        return jpeg_decode(path, max_side, d);
+    return false;
+}
+
+/* The file's channels as `want` channels (0: as many as the file has), as image_io.cpp's reader maps
+ * them: grey fills colour, a missing alpha is one, a grey file's second channel is alpha. Floats are
+ * OpenImageIO's conversion, v · (1 / max). Frees d->px. */
+static void *convert(decoded *d, int want, bool f32, int *channels_out)
+{
+    int nc = want > 0 ? want : d->c, nread = nc < d->c ? nc : d->c;
+    if (d->c == 2 && nc >= 3)
+        nread = 2;
+    size_t n = (size_t)d->w * (size_t)d->h;
+    void *out = util_alloc((f32 ? sizeof(float) : 1) * n * (size_t)nc, "an image");
+    float scale = d->bits == 16 ? 1.0f / 65535.0f : 1.0f / 255.0f;
+    for (size_t i = 0; i < n; i++)
+        for (int c = 0; c < nc; c++) {
+            int k = d->c <= 2 ? (c < 3 ? 0 : (nread == 2 ? 1 : -1)) : (c < nread ? c : (c == 3 ? -1 : 0));
+            size_t at = i * (size_t)d->c + (size_t)k;
+            unsigned v = k < 0 ? (d->bits == 16 ? 65535u : 255u)
+                               : d->bits == 16 ? ((uint16_t *)d->px)[at] : ((uint8_t *)d->px)[at];
+            if (f32)
+                ((float *)out)[i * (size_t)nc + (size_t)c] = (float)v * scale;
+            else
+                ((uint8_t *)out)[i * (size_t)nc + (size_t)c] = (uint8_t)v;
+        }
+    free(d->px);
+    d->px = NULL;
+    if (channels_out)
+        *channels_out = nc;
+    return out;
+}
 
 bool image_read_u8(const char *path, int channels, int max_side, int *width, int *height, uint8_t **pixels,
                    err_t *err)
 {
+    decoded d;
+    if (fast_decode(path, max_side, true, &d)) {
+        *width = d.w, *height = d.h;
+        *pixels = convert(&d, channels, false, NULL);
+        return true;
+    }
     LAZY_FN(bool (*f)(const char *, int, int, int *, int *, uint8_t **, err_t *),
             lazy_symbol(LAZY_IMAGE, "oiio_read_u8", err));
     return f && f(path, channels, max_side, width, height, pixels, err);
@@ -451,6 +626,12 @@ bool image_read_text(const char *path, const char *key, char **value, err_t *err
 bool image_read_f32(const char *path, int channels, int max_side, int *width, int *height, int *channels_out,
                     float **pixels, err_t *err)
 {
+    decoded d;
+    if (fast_decode(path, max_side, false, &d)) {
+        *width = d.w, *height = d.h;
+        *pixels = convert(&d, channels, true, channels_out);
+        return true;
+    }
     LAZY_FN(bool (*f)(const char *, int, int, int *, int *, int *, float **, err_t *),
             lazy_symbol(LAZY_IMAGE, "oiio_read_f32", err));
     return f && f(path, channels, max_side, width, height, channels_out, pixels, err);

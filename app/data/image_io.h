@@ -1,6 +1,6 @@
-/* image_io — reading and writing images: PNG files are written with libpng (image_io.c), everything
- * else goes through OpenImageIO (image_io.cpp behind extern "C", no exception crossing it), loaded on
- * first use (data/lazy.h).
+/* image_io — reading and writing images: PNG files are written, and clean PNG and JPEG files read,
+ * with libpng and libjpeg-turbo (image_io.c); everything else goes through OpenImageIO (image_io.cpp
+ * behind extern "C", no exception crossing it), loaded on first use (data/lazy.h).
  *
  * Rows are stored top row first in memory, as image files are.
  *

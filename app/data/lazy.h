@@ -2,8 +2,8 @@
  *
  * OpenImageIO pulls in some 260 shared libraries (ffmpeg, OpenCV, DCMTK, ...): mapping them took
  * 0.2-0.34 s of every start, `fathom --version` included. GDAL adds more. So OpenImageIO's side of
- * image_io (image_io.cpp: reading, and writing all but PNG) and dem.c are built as modules
- * (fathom_image.so, fathom_dem.so, beside the binary or in <prefix>/lib/fathom), reached through
+ * image_io (image_io.cpp: all but PNG writes and clean PNG and JPEG reads) and dem.c are built as
+ * modules (fathom_image.so, fathom_dem.so, beside the binary or in <prefix>/lib/fathom), reached through
  * lazy_symbol by image_io.c and dem_lazy.c, which load the module on first call.
  *
  * Loading one on a background thread while the GL starts was measured and dropped: dlopen holds the
