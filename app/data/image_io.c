@@ -172,8 +172,10 @@ static bool png_rows(png_io *io, int rows, int width, int channels, const uint8_
 /* Ends the image and closes the file (write errors surface at the flush); false with io->why. */
 static bool png_end(png_io *io)
 {
-    bool ok = !setjmp(png_jmpbuf(io->png));
-    if (ok)
+    volatile bool ok = true;
+    if (setjmp(png_jmpbuf(io->png)))
+        ok = false;
+    else
         png_write_end(io->png, NULL);
     png_destroy_write_struct(&io->png, &io->info);
     ok = ok && fflush(io->f) == 0;
@@ -204,10 +206,12 @@ static bool png_verify(const char *file, int width, int height, int channels, ch
     io.png = io.f ? png_create_read_struct(PNG_LIBPNG_VER_STRING, &io, png_fail, png_quiet) : NULL;
     io.info = io.png ? png_create_info_struct(io.png) : NULL;
     uint8_t *row = malloc((size_t)width * (size_t)channels);
-    bool ok = io.info && row;
-    if (ok && setjmp(png_jmpbuf(io.png)))
+    volatile bool ok = io.info && row;
+    if (!ok) {
+        /* nothing to read with */
+    } else if (setjmp(png_jmpbuf(io.png))) {
         ok = false;
-    else if (ok) {
+    } else {
         png_init_io(io.png, io.f);
         png_read_info(io.png, io.info);
         if (png_get_image_width(io.png, io.info) != (png_uint_32)width ||
@@ -464,9 +468,11 @@ static bool png_decode(const char *path, int max_side, bool u8, decoded *d)
     png_bytep *volatile rows = NULL; /* volatile: read again after libpng's longjmp */
     d->px = NULL;
     volatile bool ok = io.info != NULL;
-    if (ok && setjmp(png_jmpbuf(io.png))) {
+    if (!ok) {
+        /* nothing to read with */
+    } else if (setjmp(png_jmpbuf(io.png))) {
         ok = false;
-    } else if (ok) {
+    } else {
         png_init_io(io.png, io.f);
         png_read_info(io.png, io.info);
         int type = png_get_color_type(io.png, io.info), bits = png_get_bit_depth(io.png, io.info);
