@@ -53,6 +53,11 @@ expect unknown-option 2 "unknown option '--colour'" 1 -- "$fathom" --colour red
 # device, or not 99 of them); a number that is not one is refused
 expect egl-device-missing 1 "FATHOM_EGL_DEVICE=99: no such hardware EGL device" 1 -- env FATHOM_EGL_DEVICE=99 "$fathom" $out
 expect egl-device-bad 1 "FATHOM_EGL_DEVICE='gpu0' is not a device number" 1 -- env FATHOM_EGL_DEVICE=gpu0 "$fathom" $out
+# a binary without its modules (copied alone): the image library it needs for an EXR is named, the
+# PNG it writes itself still works (data/lazy.h)
+mkdir "$tmp/lonely" && cp "$fathom" "$tmp/lonely/fathom"
+expect module-missing 1 "fathom_image.so, which reads and writes images through OpenImageIO, is not beside" 1 -- \
+    "$tmp/lonely/fathom" --output "$tmp/out.exr" --size 33x21 --spp 1 --quiet
 expect backend-env-bad 1 "FATHOM_BACKEND='vulkan' is not a backend" 1 -- env FATHOM_BACKEND=vulkan "$fathom" $out
 expect backend-bad 2 "bad --backend 'cuda': use auto, fragment or compute" 1 -- "$fathom" --backend cuda $out
 expect unknown-set-key 1 "materials.glass.iro: unknown key 'iro'" 1 -- "$fathom" --set materials.glass.iro=1.3 $out

@@ -14,8 +14,8 @@ typedef struct module {
 } module;
 
 static module modules[LAZY_COUNT] = {
-    [LAZY_IMAGE] = {.file = "fathom_image.so", .what = "image reading and writing (OpenImageIO)"},
-    [LAZY_DEM] = {.file = "fathom_dem.so", .what = "DEM reading (GDAL)"},
+    [LAZY_IMAGE] = {.file = "fathom_image.so", .what = "which reads and writes images through OpenImageIO"},
+    [LAZY_DEM] = {.file = "fathom_dem.so", .what = "which reads DEMs through GDAL"},
 };
 
 /* Beside the binary (a build folder), one folder up (the tests' binaries in build/tests), or the
@@ -38,11 +38,11 @@ static void load(module *m)
             continue;
         m->handle = dlopen(path, RTLD_NOW | RTLD_LOCAL);
         if (!m->handle)
-            err_set(&m->why, "cannot load %s (%s): %s", path, m->what, dlerror());
+            err_set(&m->why, "cannot load %s, %s: %s", path, m->what, dlerror());
         return;
     }
-    err_set(&m->why, "%s (%s) is not beside %s nor in ../lib/fathom: reinstall fathom (make install)", m->file,
-            m->what, exe);
+    err_set(&m->why, "%s, %s, is not beside %s nor in ../lib/fathom: reinstall fathom (cmake --install BUILD)",
+            m->file, m->what, exe);
 }
 
 void *lazy_symbol(lazy_module id, const char *name, err_t *err)
