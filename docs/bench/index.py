@@ -19,14 +19,17 @@ def main():
     runs = sorted(os.path.basename(p)[: -len("-knobs.csv")] for p in glob.glob(os.path.join(HERE, "*-knobs.csv")))
     out = ["# What accuracy costs", "",
            "Made by `fathom bench` on this repository's scenes: every accuracy knob swept on its own, the presets,",
-           "and every effect compiled out / in / in but switched off, each measured for time (median of 5 images",
+           "and every effect compiled out / in / in but switched off, each measured for time (median of 3 images",
            "after a warm-up, wall clock around glFinish) and for error against a reference render of the same two",
            "views (colour RMSE and PSNR of the 8-bit image, depth error in pixel footprints, hit/miss flips, the",
            "IoU of the hit masks and how far the farthest flipped pixel lies from the reference's silhouette, steps).",
            "The reference is the `reference` preset at 64 spp with every hit located at float resolution",
            "(`quality.refine=64`): it does not share the near-miss bias of the hit threshold it judges. Fractals",
            "are the exception by definition: the footprint rule defines their surface at a level of detail.",
-           "Each run's summary says how its reference was checked for convergence. Remake with",
+           "Each run's summary says how its reference was checked for convergence. Runs made since the bench",
+           "learned them also have an HTML report (one self-contained page: the overview of the presets and the",
+           "Pareto front, one small plot a knob, the tables, the machine), times with their 95 % intervals and a",
+           "Pareto front built from them (mandelbulb and menger so far; the other scenes' runs are older). Remake with",
            "`for s in $(build/fathom --list-scenes); do build/fathom bench --scene $s --size 240x135 --runs 3 --out docs/bench; done`",
            "then `python3 docs/bench/index.py`.", ""]
     worst = {p: {"rmse": 0.0, "depth": 0.0, "depth_max": 0.0, "flips": 0.0, "iou": 1.0, "edge": 0.0} for p in PRESETS}
