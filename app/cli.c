@@ -23,7 +23,8 @@ static const float MAX_FOV_DEG = 179.0f; /* vertical field of view; 180 degrees 
 
 static const char USAGE[] =
     "usage: fathom [options]\n"
-    "       fathom bench [--scene S] [--size WxH] [--runs N] [--knob NAME=v1,v2,...]... [--out DIR] [--name N]\n"
+    "       fathom bench [--scene S] [--size WxH] [--runs N] [--knob NAME=v1,v2,...]... [--truth model|path]\n"
+    "                    [--out DIR] [--name N]\n"
     "       fathom render --path FLIGHT.json [--frames A-B] [--fps N] --output DIR/frame_%04d.png [options]\n"
     "       fathom stitch --output POSTER.png POSTER.tile-*.png\n"
     "       fathom check-formula NAME|FILE [--set fractal.KEY=VALUE]...\n"
@@ -33,6 +34,8 @@ static const char USAGE[] =
     "  around glFinish); error against a reference render. --out writes CSVs, plots (one panel a knob;\n"
     "  an overview of the presets and the Pareto front), a summary and an HTML report [320x180];\n"
     "  the knob CSV grows row by row, so a run stopped half-way keeps the rows it finished.\n"
+    "  bench --truth path: the error against the path tracer (quality.integrator=1, 256 spp) instead\n"
+    "  of the reference preset, and the model's approximations (AO, soft shadows) swept too.\n"
     "  bench --frame-times: only each preset's frame time (one sample per pixel), median of N.\n"
     "  bench --interactive [--fps N]: a scripted 100-frame flight as the window flies it (lower\n"
     "  internal resolution for N fps [30]): frame times, internal size, error, time to converge [1280x720].\n"
@@ -264,10 +267,6 @@ static bool set_output_option(const char *name, const char *val, cli_options *o,
         if (!*val || strchr(val, '/'))
             return err_set(err, "bad --view '%s': the name of a saved view (B in the window saves views 1 to 9)", val);
         o->view_name = val;
-    } else if (!strcmp(name, "--backend")) {
-        if (strcmp(val, "auto") && strcmp(val, "fragment") && strcmp(val, "compute"))
-            return err_set(err, "bad --backend '%s': use auto, fragment or compute", val);
-        o->backend = val;
     } else if (!strcmp(name, "--fps")) {
         if (!parse_int(val, 1, 1000, &o->fps))
             return err_set(err, "bad --fps '%s': expected a whole number from 1 to 1000", val);
@@ -309,7 +308,7 @@ static bool add_quality(const char *val, cli_options *o, err_t *err)
     return true;
 }
 
-/* Options that take a value, second half: the view and the scene's parameters. */
+/* Options that take a value, second half: the view, the scene's parameters and how it is rendered. */
 static bool set_view_option(const char *name, const char *val, cli_options *o, err_t *err)
 {
     if (!strcmp(name, "--fov")) {
@@ -335,6 +334,14 @@ static bool set_view_option(const char *name, const char *val, cli_options *o, e
     } else if (!strcmp(name, "--aov")) {
         if (!parse_aovs(val, &o->aovs))
             return err_set(err, "bad --aov '%s': expected a comma list of depth, normal, steps, exit", val);
+    } else if (!strcmp(name, "--truth")) {
+        if (strcmp(val, "model") && strcmp(val, "path"))
+            return err_set(err, "bad --truth '%s': use model (the reference preset) or path (the path tracer)", val);
+        o->path_truth = !strcmp(val, "path");
+    } else if (!strcmp(name, "--backend")) {
+        if (strcmp(val, "auto") && strcmp(val, "fragment") && strcmp(val, "compute"))
+            return err_set(err, "bad --backend '%s': use auto, fragment or compute", val);
+        o->backend = val;
     } else {
         return err_set(err, "unknown option '%s' (see fathom --help)", name);
     }
@@ -388,8 +395,8 @@ static bool check_combinations(const cli_options *o, err_t *err)
     }
     if (o->bench && (o->output || o->aovs || o->frames || o->print_variant))
         return err_set(err, "fathom bench takes --scene, --size, --runs, --knob, --out, --name, --set and --quiet only");
-    if (!o->bench && (o->out || o->name || o->knob_count || o->frame_times || o->runs != DEFAULT_RUNS))
-        return err_set(err, "--runs, --knob, --out and --name belong to fathom bench");
+    if (!o->bench && (o->out || o->name || o->knob_count || o->frame_times || o->runs != DEFAULT_RUNS || o->path_truth))
+        return err_set(err, "--runs, --knob, --out, --name and --truth belong to fathom bench");
     if (o->aovs && !o->output)
         return err_set(err, "--aov needs an offline shot: add --output FILE.exr");
     if (o->fps && ((o->output && !o->path) || (o->bench && !o->interactive)))
@@ -463,7 +470,7 @@ bool cli_parse(int argc, char **argv, cli_options *o, err_t *err)
         }
         static const char *const WITH_VALUE[] = {"--scene", "--dem", "--formula", "--help-formula", "--output", "--size", "--spp", "--quality",
                                                  "--camera", "--look-at", "--fov", "--set", "--aov", "--frames",
-                                                 "--runs", "--out", "--knob", "--name", "--strip-rows", "--fps", "--view", "--backend",
+                                                 "--runs", "--out", "--knob", "--name", "--strip-rows", "--fps", "--view", "--backend", "--truth",
                                                  "--path", "--tile"};
         bool known = false;
         for (size_t k = 0; k < sizeof WITH_VALUE / sizeof WITH_VALUE[0]; k++)

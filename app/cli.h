@@ -70,6 +70,7 @@ typedef struct cli_options {
     const char *out;   /* bench: folder for CSV, plot and summary (NULL: print only) */
     const char *name;  /* bench: file name prefix in that folder (NULL: the scene's name) */
     bool frame_times;  /* bench: only the presets' frame times (1 sample per pixel), no error */
+    bool path_truth;   /* bench --truth path: errors against the path tracer, not the reference preset */
     bool interactive;  /* bench: a scripted flight as the window flies it */
     bool terrain_scale; /* bench: generated DEMs from 256² up: load time, memory, frame time */
     const char *knobs[CLI_MAX_SETS]; /* bench: "NAME=v1,v2,..." sweeps (none: every knob, default values) */

@@ -42,6 +42,11 @@ check "... the plot it inlines is the plot written, byte for byte" \
 check "... and a row for every knob setting, preset and effect" \
     '[ "$(grep -o "<tr[^>]*><td>" "$html" | wc -l)" -eq $((9 + $(tail -n +2 "$out/csg-effects.csv" | wc -l))) ]'
 check "bad knob is refused" '! "$fathom" bench --knob nosuch=1 --size 8x8 2>/dev/null'
+# against the path tracer: the model's approximations get rows, and the summary names the truth
+"$fathom" bench --scene csg --size 24x16 --runs 1 --knob fx_ao=off,on --truth path --out "$out" --name truth \
+    --quiet >/dev/null 2>&1
+check "bench --truth path prices AO off and on" '[ "$(grep -c "^csg,24,16,2,fx_ao," "$out/truth-knobs.csv")" -eq 2 ]'
+check "... against the path tracer" 'grep -q "the truth.*the path tracer" "$out/truth-summary.md"'
 # stopped half-way (as a user's Ctrl+C), a run keeps the rows it finished, whole lines, no temporary file
 "$fathom" bench --scene csg --size 40x24 --runs 2 --knob max_steps=8,16,32,64,128,256,512 --knob spp=1,2,4,8 \
     --out "$out" --name stopped --quiet >/dev/null 2>&1 &

@@ -68,6 +68,7 @@ static void bad_values(void **st)
     expect_error(ARGC("--size", "99999x10"), ARGV("--size", "99999x10"), "--size");
     expect_error(ARGC("--spp", "-1"), ARGV("--spp", "-1"), "--spp");
     expect_error(ARGC("--backend", "vulkan"), ARGV("--backend", "vulkan"), "use auto, fragment or compute");
+    expect_error(ARGC("--truth", "path"), ARGV("--truth", "path"), "belong to fathom bench");
     expect_error(ARGC("--spp", "3.5"), ARGV("--spp", "3.5"), "--spp");
     expect_error(ARGC("--fov", "400"), ARGV("--fov", "400"), "--fov");
     expect_error(ARGC("--fov", "0"), ARGV("--fov", "0"), "--fov");

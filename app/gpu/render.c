@@ -427,7 +427,8 @@ static void dispatch_rows(int y0, int y1, bool first)
 static void sample_rows(int y0, int y1)
 {
     assert(state.fbo && state.prog);
-    bool adaptive = state.adaptive && state.samples > 0;
+    /* the path tracer's noise is everywhere, not only on edges: every pixel takes every sample */
+    bool adaptive = state.adaptive && state.samples > 0 && !render_scene_current()->quality.integrator;
     if (adaptive && state.samples == 1 && state.band_done == 0)
         build_edge_mask();
     glBindFramebuffer(GL_FRAMEBUFFER, state.fbo);
@@ -450,6 +451,7 @@ static void sample_rows(int y0, int y1)
     glUniform3fv(loc("uCamUp"), 1, b.up);
     glUniform1f(loc("uTanHalfFov"), tanf(0.5f * state.cam.fov_y));
     glUniform1ui(loc("uFxRuntime"), state.runtime_effects);
+    glUniform1i(loc("uSampleIndex"), state.samples); /* the path tracer's random numbers */
     glUniform1i(loc("uAdaptive"), adaptive ? 1 : 0);
     glUniform1i(loc("uEdgeMask"), RENDER_UNIT_EDGE_MASK);
     int k = first ? state.first_jitter : state.samples; /* Halton point k; 0 is the pixel centre */

@@ -21,7 +21,7 @@
 #include "scene/scene.h"
 
 enum { DEFAULT_WIDTH = 320, DEFAULT_HEIGHT = 180, VIEWS = 2, REF_SPP = 64, STRICT_SPP = 128, LONG_SPP = 64,
-       MAX_ROWS = 512 };
+       PATH_REF_SPP = 256, PATH_STRICT_SPP = 512, MAX_ROWS = 512 };
 static const float VIEW_TURN_DEG = 40.0f;
 #define REF_REFINE "quality.refine=64" /* the knob's maximum: regula falsi to float resolution */
 
@@ -86,6 +86,16 @@ static int list_sweeps(const scene *s, sweep *out, bool *applies)
     }
     if (program_is_fractal(s->program) && n < MAX_SWEEPS - 1)
         fractal_iterations_sweep(&s->fractal.formula, &out[n]), applies[n++] = true;
+    /* the model's approximations of light transport, off and on (each priced against the path
+     * tracer by bench --truth path): only those the scene uses */
+    static const effect MODEL[] = {EFFECT_AO, EFFECT_SOFT_SHADOWS};
+    for (size_t i = 0; i < sizeof MODEL / sizeof MODEL[0] && n < MAX_SWEEPS - 1; i++) {
+        out[n] = (sweep){0};
+        snprintf(out[n].name, sizeof out[n].name, "fx_%s", effect_name(MODEL[i]));
+        snprintf(out[n].key, sizeof out[n].key, "effects.%s", effect_name(MODEL[i]));
+        snprintf(out[n].values, sizeof out[n].values, "off,on");
+        applies[n++] = (s->effects & (1u << MODEL[i])) != 0;
+    }
     out[n] = (sweep){.name = "resolution_scale", .values = "0.25,0.5,0.75,1", .own = true};
     applies[n++] = true;
     return n;
@@ -224,12 +234,15 @@ static bool measure(const char *knob_name, const char *value, const char *const 
 static bool make_references(const scene *base, metrics *convergence, double *ref_ms, err_t *err)
 {
     char spp[32];
-    snprintf(spp, sizeof spp, "quality.spp=%d", REF_SPP);
+    snprintf(spp, sizeof spp, "quality.spp=%d", B.opt->path_truth ? PATH_REF_SPP : REF_SPP);
     /* The reference must not share the bias of what it judges: hits located at float resolution
-     * (refine at its maximum, where the program refines), a long step budget, many samples. */
-    const char *ref_sets[] = {"quality.preset=reference", spp, "quality.max_steps=4096", REF_REFINE};
+     * (refine at its maximum, where the program refines), a long step budget, many samples. With
+     * --truth path it is the path tracer, with a tight hit threshold (a secondary ray's threshold
+     * grows with its path: hit_k 1 grew a lamp's light 10 %, test_pathtrace) and deep paths. */
+    const char *ref_sets[] = {"quality.preset=reference", spp, "quality.max_steps=4096", REF_REFINE,
+                              "quality.integrator=1", "quality.hit_k=0.0625", "quality.bounces=16"};
     scene ref;
-    if (!load(ref_sets, 4, &ref, err) || !render_set_scene(&ref, NULL, err))
+    if (!load(ref_sets, B.opt->path_truth ? 7 : 4, &ref, err) || !render_set_scene(&ref, NULL, err))
         return false;
     camera start = camera_look_at_deg(base->cam_position, base->cam_look_at, base->cam_fov_deg);
     for (int v = 0; v < VIEWS; v++) {
@@ -253,12 +266,13 @@ static bool make_references(const scene *base, metrics *convergence, double *ref
     /* Has the reference converged? Compare it with a render four times stricter in threshold and
      * twice in samples, steps and bounces: its error must be far below what the knobs show. */
     char strict_spp[32];
-    snprintf(strict_spp, sizeof strict_spp, "quality.spp=%d", STRICT_SPP);
+    snprintf(strict_spp, sizeof strict_spp, "quality.spp=%d", B.opt->path_truth ? PATH_STRICT_SPP : STRICT_SPP);
     /* (AO samples stay: the AO estimate is a different function of its sample count, not a converging sum) */
     const char *strict_sets[] = {"quality.preset=reference", strict_spp, REF_REFINE, "quality.hit_k=0.0625",
-                                 "quality.max_steps=8192", "quality.shadow_steps=512", "quality.bounces=16"};
+                                 "quality.max_steps=8192", "quality.shadow_steps=512", "quality.bounces=16",
+                                 "quality.integrator=1", "quality.hit_k=0.03125", "quality.bounces=32"};
     scene strict;
-    if (!load(strict_sets, 7, &strict, err) || !render_set_scene(&strict, NULL, err))
+    if (!load(strict_sets, B.opt->path_truth ? 10 : 7, &strict, err) || !render_set_scene(&strict, NULL, err))
         return false;
     image(&strict, &B.views[0].cam, B.w, B.h);
     uint8_t *srgb;
@@ -599,7 +613,8 @@ bool bench_run(const cli_options *opt, err_t *err)
         fputc('\n', stderr);
     if (ok) {
         mark_front();
-        bench_results res = {.opt = opt, .base = &base, .w = B.w, .h = B.h, .views = VIEWS, .ref_spp = REF_SPP,
+        bench_results res = {.opt = opt, .base = &base, .w = B.w, .h = B.h, .views = VIEWS,
+                             .ref_spp = opt->path_truth ? PATH_REF_SPP : REF_SPP,
                              .view_turn_deg = VIEW_TURN_DEG, .rows = B.rows, .nrows = B.nrows, .fx = fx,
                              .conv = &conv, .ref_ms = ref_ms};
         bench_print(&res);

@@ -34,6 +34,9 @@
 #if FX_DROPLETS
 #include "common/droplets.glsl"
 #endif
+#if INTEGRATOR // quality.integrator = 1: the path tracer instead of the model's path below
+#include "common/pathtrace.glsl"
+#endif
 
 #if FX_GLOW
 uniform vec3 uGlowColor;
@@ -428,6 +431,13 @@ vec3 coveredRadiance(Path P, Ray ray, vec3 radiance)
 void renderPixel(vec2 fragCoord, out vec4 color, out vec4 normalDepth, out vec4 aux)
 {
     Ray ray = primaryRay(fragCoord);
+#if INTEGRATOR
+    PathSample S = tracePathSample(ray, fragCoord + uTileOffset); // seeded by the whole image's pixel
+    color = vec4(S.radiance, 1.0);
+    normalDepth = vec4(S.firstN, S.firstT);
+    aux = vec4(S.exhausted ? -float(S.steps) : float(S.steps), S.exitDir);
+    return;
+#endif
     Path P = startPath(ray);
     followPath(P, ray, 0);
     vec3 radiance = pathRadiance(P, ray);

@@ -1,0 +1,204 @@
+// A path tracer through the same map(), marcher, normals and materials as the shading model
+// (quality.integrator = 1): the Monte Carlo truth the model's approximations are priced against.
+// Unbiased for what it covers:
+//   - opaque surfaces: the model's BRDF (Cook–Torrance GGX + Lambert, common/brdf.glsl) with the
+//     exact dielectric Fresnel in place of Schlick's (a surface of ior 1 reflects nothing), sampled
+//     by a one-sample mixture of a cosine-weighted diffuse lobe and GGX's distribution of normals
+//     (Walter et al. 2007, "Microfacet models for refraction through rough surfaces", eq. 33–38);
+//   - light: next-event estimation to every point and directional light (delta lights: a shadow ray
+//     by the primary marcher, never a penumbra rule), the environment and emission met by the
+//     sampled paths (nothing samples them directly, so no multiple importance weights are needed);
+//   - glass: reflect or refract with the probability of the exact Fresnel split, total internal
+//     reflection, Beer–Lambert absorption inside;
+//   - Russian roulette after three bounces, at most BOUNCES + 1 segments.
+// Not covered yet: fog as a participating medium and droplets (a path tracer scene leaves them out:
+// the image shows none), soft-shadow light sizes (lights are points and directions).
+// The first segment's hit gives the AOVs, as in the model's path.
+
+uniform int uSampleIndex; // the image's sample number: seeds each sample's random numbers
+
+// PCG hash (M. O'Neill; the "pcg" of Jarzynski and Olano, "Hash functions for GPU rendering", JCGT 2020).
+uint pcgHash(uint v)
+{
+    uint state = v * 747796405u + 2891336453u;
+    uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+    return (word >> 22u) ^ word;
+}
+
+struct Rng {
+    uint state;
+};
+
+float rand01(inout Rng r)
+{
+    r.state = pcgHash(r.state);
+    return float(r.state >> 8) * (1.0 / 16777216.0); // 24 bits: [0, 1)
+}
+
+// A unit vector about n: (t, b, n) orthonormal (Duff et al., "Building an orthonormal basis, revisited", JCGT 2017).
+vec3 aboutNormal(vec3 n, vec3 local)
+{
+    float s = n.z >= 0.0 ? 1.0 : -1.0;
+    float a = -1.0 / (s + n.z), b = n.x * n.y * a;
+    vec3 t = vec3(1.0 + s * n.x * n.x * a, s * b, -s * n.x);
+    vec3 bt = vec3(b, s + n.y * n.y * a, -n.y);
+    return local.x * t + local.y * bt + local.z * n;
+}
+
+// The BRDF × cos θ_l of common/brdf.glsl's model, with the exact Fresnel for a dielectric.
+vec3 pathBrdf(vec3 n, vec3 v, vec3 l, Material m)
+{
+    float NdotL = dot(n, l), NdotV = dot(n, v);
+    if (NdotL <= 0.0 || NdotV <= 0.0)
+        return vec3(0.0);
+    vec3 h = normalize(v + l);
+    float r = max(m.roughness, MIN_ROUGHNESS);
+    float k = (r + 1.0) * (r + 1.0) / 8.0;
+    float D = ggxD(max(dot(n, h), 0.0), r * r);
+    float G = schlickG1(NdotV, k) * schlickG1(NdotL, k);
+    float VdotH = max(dot(v, h), 0.0);
+    vec3 F = mix(vec3(fresnelDielectric(VdotH, 1.0 / max(m.ior, 1.0))), fresnelSchlick(VdotH, m.albedo), m.metallic);
+    vec3 specular = D * G * F / (4.0 * NdotV * NdotL);
+    vec3 kd = (1.0 - F) * (1.0 - m.metallic);
+    return (kd * m.albedo / PI + specular) * NdotL;
+}
+
+// How often the specular lobe is sampled: its share of the reflectance at normal view, kept in
+// [0.1, 0.9] so neither lobe is starved; 0 where there is no specular (ior 1, not metal).
+float specularChance(vec3 n, vec3 v, Material m)
+{
+    if (m.ior <= 1.0 && m.metallic <= 0.0) // no interface: no specular at all (Fd would round to ~1e-16)
+        return 0.0;
+    float Fd = fresnelDielectric(max(dot(n, v), 0.0), 1.0 / max(m.ior, 1.0));
+    float spec = mix(Fd, 1.0, m.metallic), diff = (1.0 - Fd) * (1.0 - m.metallic) * dot(m.albedo, vec3(1.0 / 3.0));
+    return spec <= 0.0 ? 0.0 : clamp(spec / max(spec + diff, 1e-6), 0.1, 0.9);
+}
+
+// The density of the mixture's directions.
+float pathPdf(vec3 n, vec3 v, vec3 l, Material m, float pSpec)
+{
+    float NdotL = dot(n, l);
+    if (NdotL <= 0.0)
+        return 0.0;
+    vec3 h = normalize(v + l);
+    float r = max(m.roughness, MIN_ROUGHNESS);
+    float specPdf = ggxD(max(dot(n, h), 0.0), r * r) * max(dot(n, h), 0.0) / (4.0 * max(dot(v, h), 1e-6));
+    return (1.0 - pSpec) * NdotL / PI + pSpec * specPdf;
+}
+
+// A direction from the mixture: Malley's cosine-weighted hemisphere, or a GGX normal reflected.
+vec3 sampleDirection(vec3 n, vec3 v, Material m, float pSpec, inout Rng rng)
+{
+    float u1 = rand01(rng), u2 = rand01(rng);
+    if (rand01(rng) >= pSpec) {
+        float rr = sqrt(u1), phi = 2.0 * PI * u2;
+        return aboutNormal(n, vec3(rr * cos(phi), rr * sin(phi), sqrt(max(0.0, 1.0 - u1))));
+    }
+    float a = max(m.roughness, MIN_ROUGHNESS);
+    a *= a;
+    float cosT = sqrt((1.0 - u1) / (1.0 + (a * a - 1.0) * u1)), sinT = sqrt(max(0.0, 1.0 - cosT * cosT));
+    float phi = 2.0 * PI * u2;
+    vec3 h = aboutNormal(n, vec3(sinT * cos(phi), sinT * sin(phi), cosT));
+    return reflect(-v, h);
+}
+
+// Light arriving at p from the point and directional lights, each seen or not by a shadow ray.
+vec3 nextEvent(vec3 p, vec3 n, vec3 v, Material m, float pathT)
+{
+    vec3 sum = vec3(0.0);
+#if NUM_LIGHTS > 0
+    float offset = SURFACE_OFFSET_K * hitEps(pathT);
+    for (int i = 0; i < NUM_LIGHTS; i++) {
+        vec3 l = uLightVec[i], radiance = uLightColor[i];
+        float dist = float(MAX_DIST);
+        if (!uLightDirectional[i]) {
+            vec3 toLight = uLightVec[i] - worldApprox(p);
+            float d2 = max(dot(toLight, toLight), 1e-8);
+            dist = sqrt(d2);
+            l = toLight / dist;
+            radiance /= d2;
+        }
+        vec3 f = pathBrdf(n, v, l, m);
+        if (all(lessThanEqual(f, vec3(0.0))))
+            continue;
+        Hit s = castRay(p + n * offset, l, dist - offset, 1.0, pathT);
+        if (!s.hit)
+            sum += f * radiance;
+    }
+#endif
+    return sum;
+}
+
+struct PathSample {
+    vec3 radiance, firstN, exitDir;
+    float firstT;
+    int steps;
+    bool exhausted;
+};
+
+PathSample tracePathSample(Ray ray, vec2 pixel)
+{
+    Rng rng = Rng(pcgHash(uint(pixel.x) ^ pcgHash(uint(pixel.y) ^ pcgHash(uint(uSampleIndex) * 9781u + 1u))));
+    PathSample S = PathSample(vec3(0.0), vec3(0.0), ray.d, -1.0, 0, false);
+    vec3 ro = ray.o, rd = ray.d, throughput = vec3(1.0);
+    vec3 from = ray.o; // where the segment left a surface (ro is pushed off it): Beer's length runs from here
+    float side = 1.0, pathT = 0.0;
+    for (int bounce = 0; bounce <= BOUNCES; bounce++) {
+        Hit h = castRay(ro, rd, float(MAX_DIST) - pathT, side, pathT);
+        if (bounce == 0) {
+            S.steps = h.steps;
+            S.exhausted = h.exhausted;
+        }
+        S.exitDir = rd;
+        if (!h.hit) {
+            S.radiance += throughput * environment(rd);
+            break;
+        }
+        vec3 p = ro + rd * h.t;
+        pathT += h.t;
+        float eps = hitEps(pathT);
+        vec3 n = calcNormal(p, normalEps(eps, pathT), -rd); // outward
+        if (bounce == 0) {
+            S.firstT = h.t;
+            S.firstN = n;
+        }
+        Material m = getMaterial(h.mat, p, n, vec3(0.0), vec3(0.0));
+        if (side < 0.0) // the segment ran inside glass, from surface to surface: the offsets off each
+            throughput *= exp(-m.absorption * distance(from, p)); // would cut a thin slab's length
+        S.radiance += throughput * m.emission;
+        if (m.transmission > 0.0 && rand01(rng) < m.transmission) { // glass: the Fresnel split, chosen at random
+            bool entering = dot(rd, n) < 0.0;
+            vec3 nf = entering ? n : -n;
+            float eta = entering ? 1.0 / m.ior : m.ior;
+            if (rand01(rng) < fresnelDielectric(-dot(rd, nf), eta)) {
+                rd = reflect(rd, nf);
+                ro = p + nf * (SURFACE_OFFSET_K * eps);
+                from = p;
+            } else {
+                rd = refract(rd, nf, eta);
+                ro = p - nf * (SURFACE_OFFSET_K * eps);
+                from = p;
+                side = -side;
+            }
+        } else {
+            vec3 v = -rd, nf = dot(n, v) < 0.0 ? -n : n; // the side the path sees
+            S.radiance += throughput * nextEvent(p, nf, v, m, pathT);
+            float pSpec = specularChance(nf, v, m);
+            vec3 l = sampleDirection(nf, v, m, pSpec, rng);
+            float pdf = pathPdf(nf, v, l, m, pSpec);
+            if (pdf <= 0.0)
+                break;
+            throughput *= pathBrdf(nf, v, l, m) / pdf;
+            rd = l;
+            ro = p + nf * (SURFACE_OFFSET_K * eps);
+            from = p;
+        }
+        if (bounce >= 3) { // Russian roulette: paths that carry little end, the rest carry more
+            float q = clamp(max(throughput.r, max(throughput.g, throughput.b)), 0.05, 1.0);
+            if (rand01(rng) >= q)
+                break;
+            throughput /= q;
+        }
+    }
+    return S;
+}

@@ -1,0 +1,239 @@
+/* The path tracer (quality.integrator = 1, shaders/common/pathtrace.glsl) against closed forms:
+ *   - the white furnace: a diffuse sphere of albedo ρ (ior 1: no specular) under a uniform sky of
+ *     radiance L is ρL at every pixel, exactly, however it is sampled;
+ *   - Lambert: the same sphere under a sun of irradiance E in a black sky is ρ/π · E · max(0, n·l);
+ *   - a point light of intensity I at distance d: ρ/π · I/d² · max(0, n·l);
+ *   - a glass slab (ior 1.5, Beer absorption e^(−σ d) = 1/2) seen at normal incidence under a uniform
+ *     sky: R + (1−R)² R a² / (1 − R² a²) + (1−R)² a / (1 − R² a²), all its internal reflections;
+ *   - the slab's Monte Carlo error falls as 1/√spp (16 against 256 samples: 4×);
+ *   - a diffuse floor under an emissive sphere: ρ · Le · (r/d)² · cos θ, reached only by sampling.
+ * Each fails when its physics is wrong: no Beer, no Fresnel split, a 1/d falloff, a BRDF without 1/π. */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "gltest.h"
+
+enum { PW = 48, PH = 27 };
+
+static const double RHO = 0.6;
+
+/* a sphere of albedo RHO and ior 1 (no specular) at the origin, with the given sky and lights */
+static void sphere_scene(const char *env, const char *lights, int spp, scene *s)
+{
+    char json[1024];
+    snprintf(json, sizeof json,
+             "{\"program\": \"csg\", \"environment\": {\"color\": [%s], \"intensity\": 1}, \"lights\": [%s],"
+             " \"quality\": {\"preset\": \"final\", \"spp\": %d, \"integrator\": 1, \"bounces\": 8},"
+             " \"materials\": {\"white\": {\"base_color\": [%g, %g, %g], \"roughness\": 0.5, \"ior\": 1.0}},"
+             " \"objects\": [{\"shape\": \"sphere\", \"radius\": 1, \"material\": \"white\"}]}",
+             env, lights, spp, RHO, RHO, RHO);
+    load_text(json, NULL, 0, s);
+}
+
+/* Pixels whose 3x3 block all hit: their centre sample's normal is the whole pixel's. */
+static bool inside(const float *aov, int x, int y)
+{
+    for (int dy = -1; dy <= 1; dy++)
+        for (int dx = -1; dx <= 1; dx++) {
+            int xx = x + dx, yy = y + dy;
+            if (xx < 0 || yy < 0 || xx >= PW || yy >= PH || !isfinite(aov[(yy * PW + xx) * AOV + AOV_SLOT_DEPTH]))
+                return false;
+        }
+    return true;
+}
+
+static void white_furnace(void **st)
+{
+    (void)st;
+    scene s;
+    sphere_scene("1, 1, 1", "", 4, &s);
+    camera cam = cam_at(0, 0, 4, 0, 0, 0, 40);
+    static float aov[PW * PH * AOV], rgba[PW * PH * 4];
+    draw(&s, &cam, PW, PH, 4, NULL, aov, rgba);
+    int n = 0;
+    double worst = 0;
+    for (int y = 0; y < PH; y++)
+        for (int x = 0; x < PW; x++)
+            if (inside(aov, x, y)) {
+                for (int c = 0; c < 3; c++)
+                    worst = fmax(worst, fabs(rgba[(y * PW + x) * 4 + c] - RHO));
+                n++;
+            }
+    fprintf(stderr, "white furnace: %d pixels, worst |L - rho L| %.2g\n", n, worst);
+    assert_true(n > 200);
+    assert_true(worst < 1e-5);
+    scene_free(&s);
+}
+
+/* Every lit pixel against its closed form, from its own normal (and position, for a point light). */
+static void lambert_check(const char *lights, const double *light, bool point, double power)
+{
+    scene s;
+    sphere_scene("0, 0, 0", lights, 1, &s);
+    camera cam = cam_at(0.5, 0.8, 4, 0, 0, 0, 40);
+    static float aov[PW * PH * AOV], rgba[PW * PH * 4];
+    draw(&s, &cam, PW, PH, 1, NULL, aov, rgba);
+    int n = 0;
+    double worst = 0;
+    for (int y = 0; y < PH; y++)
+        for (int x = 0; x < PW; x++) {
+            const float *a = &aov[(y * PW + x) * AOV];
+            if (!isfinite(a[AOV_SLOT_DEPTH]))
+                continue;
+            dray r = pixel_ray(&cam, x, y, PW, PH);
+            double p[3], l[3], d2 = 1, len = 0;
+            for (int i = 0; i < 3; i++) {
+                p[i] = r.o[i] + r.d[i] * a[AOV_SLOT_DEPTH];
+                l[i] = point ? light[i] - p[i] : light[i];
+                len += l[i] * l[i];
+            }
+            if (point)
+                d2 = len;
+            len = sqrt(len);
+            double cosl = (a[0] * l[0] + a[1] * l[1] + a[2] * l[2]) / len;
+            if (cosl < 0.1) /* the terminator: shadow rays start off the surface there */
+                continue;
+            double expect = RHO / GLM_PI * power / d2 * cosl, got = rgba[(y * PW + x) * 4];
+            worst = fmax(worst, fabs(got - expect) / expect);
+            n++;
+        }
+    fprintf(stderr, "%s: %d lit pixels, worst relative error %.2g\n", point ? "point light" : "sun", n, worst);
+    assert_true(n > 100);
+    assert_true(worst < 2e-3);
+    scene_free(&s);
+}
+
+static void lambert_sun(void **st)
+{
+    (void)st;
+    double d[3] = {0.3, 0.8, 0.52}, len = sqrt(0.09 + 0.64 + 0.2704);
+    for (int i = 0; i < 3; i++)
+        d[i] /= len;
+    char lights[256];
+    snprintf(lights, sizeof lights,
+             "{\"type\": \"directional\", \"direction\": [%.17g, %.17g, %.17g], \"color\": [1, 1, 1], "
+             "\"intensity\": 3, \"shadow\": \"hard\"}", d[0], d[1], d[2]);
+    lambert_check(lights, d, false, 3);
+}
+
+static void point_light_falloff(void **st)
+{
+    (void)st;
+    const double q[3] = {1.5, 2.0, 2.5};
+    lambert_check("{\"type\": \"point\", \"position\": [1.5, 2.0, 2.5], \"color\": [1, 1, 1], \"intensity\": 20, "
+                  "\"shadow\": \"hard\"}", q, true, 20);
+}
+
+/* The slab's pixels at spp samples: their mean and their RMSE against the closed form. */
+static void slab(int spp, double expect, double *mean, double *rmse)
+{
+    const double thick = 0.1, sigma = log(2.0) / thick;
+    char json[1024];
+    snprintf(json, sizeof json,
+             "{\"program\": \"csg\", \"environment\": {\"color\": [1, 1, 1], \"intensity\": 1}, \"lights\": [],"
+             " \"quality\": {\"preset\": \"final\", \"spp\": %d, \"integrator\": 1, \"bounces\": 16},"
+             " \"materials\": {\"glass\": {\"transmission\": 1, \"ior\": 1.5, \"roughness\": 0,"
+             " \"absorption\": [%.17g, %.17g, %.17g]}},"
+             " \"objects\": [{\"shape\": \"box\", \"size\": [20, 20, %g], \"material\": \"glass\"}]}",
+             spp, sigma, sigma, sigma, thick);
+    scene s;
+    load_text(json, NULL, 0, &s);
+    camera cam = cam_at(0, 0, 3, 0, 0, 0, 4); /* a narrow view: every ray within 2.3° of the normal */
+    static float rgba[PW * PH * 4];
+    draw(&s, &cam, PW, PH, spp, NULL, NULL, rgba);
+    double sum = 0, sq = 0;
+    for (int i = 0; i < PW * PH; i++) {
+        sum += rgba[i * 4];
+        sq += (rgba[i * 4] - expect) * (rgba[i * 4] - expect);
+    }
+    *mean = sum / (PW * PH);
+    *rmse = sqrt(sq / (PW * PH));
+    scene_free(&s);
+}
+
+static void glass_slab_and_convergence(void **st)
+{
+    (void)st;
+    const double R = 0.04, a = 0.5, k = 1 - R * R * a * a; /* ((1.5 - 1) / (1.5 + 1))² */
+    const double expect = R + (1 - R) * (1 - R) * R * a * a / k + (1 - R) * (1 - R) * a / k;
+    double m16, e16, m256, e256;
+    slab(16, expect, &m16, &e16);
+    slab(256, expect, &m256, &e256);
+    /* a path's value is 1, a, a^3...: its standard deviation is below 0.5, and 1296 pixels average */
+    double se = 0.5 / sqrt(256.0 * PW * PH);
+    fprintf(stderr, "glass slab: expected %.5f, mean %.5f at 256 spp (standard error < %.5f); pixel RMSE %.4f at 16 "
+            "spp, %.4f at 256: ratio %.2f (1/sqrt(spp): 4)\n", expect, m256, se, e16, e256, e16 / e256);
+    assert_true(fabs(m256 - expect) < 5 * se);
+    assert_true(e16 / e256 > 3.0 && e16 / e256 < 5.3);
+}
+
+/* A diffuse floor below an emissive sphere (radiance Le, radius r, centre c) in a black sky: the
+ * floor's light comes only through the sampled directions, so this checks the sampling's density, which
+ * the furnace cannot (there every direction weighs the same). A sphere subtends a cap of sin²α = r²/d²
+ * of the projected hemisphere: L = ρ · Le · (r/d)² · cos θ, θ the centre's angle from the normal. */
+static void emitter_through_sampling(void **st)
+{
+    (void)st;
+    const double Le = 4, r = 0.5, c[3] = {0, 1.2, 0};
+    /* a secondary ray hits within hit_k footprints of its whole path's length, which grows the lamp
+     * (hit_k 1 at 4 m: 5 cm on a 50 cm radius, 10 % more light): a tight threshold keeps that small */
+    const double hit_k = 0.01;
+    char json[1024];
+    snprintf(json, sizeof json,
+             "{\"program\": \"csg\", \"environment\": {\"color\": [0, 0, 0], \"intensity\": 1}, \"lights\": [],"
+             " \"quality\": {\"preset\": \"reference\", \"spp\": 1, \"integrator\": 1, \"bounces\": 4, \"hit_k\": %g},"
+             " \"materials\": {\"floor\": {\"base_color\": [%g, %g, %g], \"roughness\": 0.5, \"ior\": 1.0},"
+             " \"lamp\": {\"base_color\": [0, 0, 0], \"ior\": 1.0, \"emission\": [%g, %g, %g]}},"
+             " \"objects\": [{\"shape\": \"box\", \"size\": [40, 0.2, 40], \"position\": [0, -0.1, 0], \"material\": \"floor\"},"
+             " {\"shape\": \"sphere\", \"radius\": %g, \"position\": [%g, %g, %g], \"material\": \"lamp\"}]}",
+             hit_k, RHO, RHO, RHO, Le, Le, Le, r, c[0], c[1], c[2]);
+    scene s;
+    load_text(json, NULL, 0, &s);
+    camera cam = cam_at(0, 2.5, 3.5, 0, 0, 0.3, 40);
+    enum { SPP = 256 };
+    static float aov[PW * PH * AOV], rgba[PW * PH * 4];
+    draw(&s, &cam, PW, PH, SPP, NULL, aov, rgba);
+    double got = 0, expect = 0;
+    int n = 0;
+    for (int y = 0; y < PH; y++)
+        for (int x = 0; x < PW; x++) {
+            const float *a = &aov[(y * PW + x) * AOV];
+            if (!inside(aov, x, y) || a[1] < 0.999) /* the floor's pixels, away from the lamp's outline */
+                continue;
+            dray ray = pixel_ray(&cam, x, y, PW, PH);
+            double p[3], d2 = 0;
+            for (int i = 0; i < 3; i++) {
+                p[i] = ray.o[i] + ray.d[i] * a[AOV_SLOT_DEPTH];
+                d2 += (c[i] - p[i]) * (c[i] - p[i]);
+            }
+            expect += RHO * Le * r * r / d2 * (c[1] - p[1]) / sqrt(d2);
+            got += rgba[(y * PW + x) * 4];
+            n++;
+        }
+    /* each sample is 0 or ρ·Le: a Bernoulli of mean expect/(ρ Le); the sum's standard error */
+    double q = expect / n / (RHO * Le), se = RHO * Le * sqrt(q * (1 - q) / ((double)SPP * n));
+    fprintf(stderr, "lamp over a floor: %d pixels, mean %.5f, expected %.5f (standard error %.5f)\n", n, got / n,
+            expect / n, se);
+    assert_true(n > 300);
+    assert_true(fabs(got / n - expect / n) < 5 * se);
+    scene_free(&s);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(white_furnace),
+        cmocka_unit_test(lambert_sun),
+        cmocka_unit_test(point_light_falloff),
+        cmocka_unit_test(glass_slab_and_convergence),
+        cmocka_unit_test(emitter_through_sampling),
+    };
+    return cmocka_run_group_tests(tests, gl_setup, gl_teardown);
+}
