@@ -67,6 +67,7 @@ vec3 shadeSurface(vec3 p, vec3 n, vec3 v, Material m, vec3 F0, float pathT, bool
 // The state of one sample's path: where it is, what it carries, and what its first hit gives the AOVs.
 struct Path {
     vec3 ro, rd;            // the current segment's origin and direction
+    vec3 from;              // the surface point it left (ro is pushed off it): Beer's length runs from here
     vec3 radiance, throughput;
     float pathT;            // path length so far: sets thresholds and texture footprints
     float side;             // +1 outside solids, −1 inside glass
@@ -96,6 +97,7 @@ Path startPath(Ray ray)
 {
     Path P;
     P.ro = ray.o;
+    P.from = ray.o;
     P.rd = ray.d;
     P.radiance = vec3(0.0);
     P.throughput = vec3(1.0);
@@ -156,6 +158,7 @@ bool insideDroplet(inout Path P, inout Hit h)
     P.throughput *= exp(-uDropletAbsorption * tOut);
     P.pathT += tOut;
     P.ro = p;
+    P.from = p;
     P.dropEvents++;
     int next = dropletAt(p, P.dropIn);
     if (next >= 0) { // overlapping droplets are one body of liquid: no surface here
@@ -189,6 +192,7 @@ void enterDroplet(inout Path P, int id, float tDrop)
     P.radiance += P.throughput * directLight(p, nOut, v, liquid, F0, T);
     P.throughput *= 1.0 - F;
     P.ro = p;
+    P.from = p;
     P.pathT = T;
     P.dropIn = id;
     P.dropSkip = -1;
@@ -252,6 +256,7 @@ void refractThrough(inout Path P, Material m, vec3 p, vec3 nOut, float T, float 
     if (F >= 1.0) { // total internal reflection: stay on this side
         P.rd = refl;
         P.ro = p + n * (SURFACE_OFFSET_K * eps);
+        P.from = p;
         return;
     }
     if (entering) // reflected part: the environment (one level; the path follows the light inside)
@@ -262,6 +267,7 @@ void refractThrough(inout Path P, Material m, vec3 p, vec3 nOut, float T, float 
     P.throughput *= (1.0 - F) * m.transmission;
     P.rd = refract(P.rd, n, eta);
     P.ro = p - n * (SURFACE_OFFSET_K * eps);
+    P.from = p;
     P.side = -P.side;
 }
 #endif
@@ -295,6 +301,7 @@ bool opaqueSurface(inout Path P, Material m, vec3 p, vec3 pSurface, vec3 nOut, f
     P.throughput *= fresnelSchlick(max(dot(n, v), MIN_COSINE), F0);
     P.rd = reflect(P.rd, n);
     P.ro = p + n * (SURFACE_OFFSET_K * eps);
+    P.from = p;
     P.pathT = T;
     return true;
 }
@@ -318,8 +325,8 @@ int shadeHit(inout Path P, Ray ray, Hit h, int bounce)
     reliefSurface(P, h, firstHit, pSurface, p, nOut);
 #endif
     Material m = getMaterial(h.mat, p, nOut, dpdx, dpdy);
-    if (P.side < 0.0) // the segment just travelled was inside glass
-        P.throughput *= exp(-m.absorption * h.t);
+    if (P.side < 0.0) // the segment just travelled was inside glass: surface to surface (the offsets
+        P.throughput *= exp(-m.absorption * distance(P.from, p)); // off each face cut a thin slab's length by 20 %)
 #if FX_REFRACTION
     if (m.transmission > 0.0 && fxOn(FX_REFRACTION_BIT)) {
         refractThrough(P, m, p, nOut, T, eps);
