@@ -2,6 +2,7 @@
 #include "data/droplets.h"
 
 #include <assert.h>
+#include <errno.h>
 #include <epoxy/gl.h>
 #include <math.h>
 #include <stdio.h>
@@ -571,10 +572,13 @@ bool bench_run(const cli_options *opt, err_t *err)
     if (opt->interactive)
         return bench_interactive(opt, opt->width ? opt->width : GPU_DEFAULT_WIDTH,
                                  opt->height ? opt->height : GPU_DEFAULT_HEIGHT, err);
-    if (opt->out) {
+    if (opt->out) { /* a new folder is made (its parent must exist); anything else there is refused */
         struct stat st;
+        if (stat(opt->out, &st) != 0 && mkdir(opt->out, 0777) != 0)
+            return err_set(err, "--out '%s': cannot make the folder (%s): does its parent exist?", opt->out,
+                           strerror(errno));
         if (stat(opt->out, &st) != 0 || !S_ISDIR(st.st_mode))
-            return err_set(err, "--out '%s' is not a folder: create it first", opt->out);
+            return err_set(err, "--out '%s' is not a folder: name a folder for the results", opt->out);
     }
     scene base;
     if (!load(NULL, 0, &base, err))
