@@ -153,10 +153,17 @@ static int write_plot_data(const bench_results *r, FILE *f, char (*knobs)[32], i
         if (r->rows[i].front)
             front[n++] = &r->rows[i];
     qsort(front, (size_t)n, sizeof *front, by_time);
-    for (int i = 0; i < n; i++) /* a preset on the front is labelled as a preset already: "-" */
-        fprintf(f, "%.4f %.6f %s%s%s\n", front[i]->ms, fmax(front[i]->m.rmse, 1e-5),
-                strcmp(front[i]->knob, "preset") ? front[i]->knob : "-", strcmp(front[i]->knob, "preset") ? "=" : "",
-                strcmp(front[i]->knob, "preset") ? front[i]->value : "");
+    /* A preset on the front is labelled as a preset already, and a point within a tenth of a decade of
+     * the last labelled one (on both axes) would print over it: both "-" (no label). */
+    double last_x = -1e9, last_y = -1e9;
+    for (int i = 0; i < n; i++) {
+        double x = log10(front[i]->ms), y = log10(fmax(front[i]->m.rmse, 1e-5));
+        bool label = strcmp(front[i]->knob, "preset") && (fabs(x - last_x) > 0.1 || fabs(y - last_y) > 0.1);
+        if (label)
+            last_x = x, last_y = y;
+        fprintf(f, "%.4f %.6f %s%s%s\n", front[i]->ms, fmax(front[i]->m.rmse, 1e-5), label ? front[i]->knob : "-",
+                label ? "=" : "", label ? front[i]->value : "");
+    }
     free(front);
     return nk;
 }
