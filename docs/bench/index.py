@@ -29,7 +29,7 @@ def main():
            "Each run's summary says how its reference was checked for convergence. Runs made since the bench",
            "learned them also have an HTML report (one self-contained page: the overview of the presets and the",
            "Pareto front, one small plot a knob, the tables, the machine), times with their 95 % intervals and a",
-           "Pareto front built from them (mandelbulb and menger so far; the other scenes' runs are older). Remake with",
+           "Pareto front built from them. Remake with",
            "`for s in $(build/fathom --list-scenes); do build/fathom bench --scene $s --size 240x135 --runs 3 --out docs/bench; done`",
            "then `python3 docs/bench/index.py`.", ""]
     worst = {p: {"rmse": 0.0, "depth": 0.0, "depth_max": 0.0, "flips": 0.0, "iou": 1.0, "edge": 0.0} for p in PRESETS}
