@@ -198,15 +198,31 @@ static void png_drop(png_io *io)
     io->f = NULL;
 }
 
+/* Opens path for libpng to read; false (io holding what it made) when it cannot. */
+static bool png_open_read(const char *path, png_io *io)
+{
+    io->f = fopen(path, "rb");
+    io->png = io->f ? png_create_read_struct(PNG_LIBPNG_VER_STRING, io, png_fail, png_quiet) : NULL;
+    io->info = io->png ? png_create_info_struct(io->png) : NULL;
+    return io->info != NULL;
+}
+
+static void png_close_read(png_io *io)
+{
+    if (io->png)
+        png_destroy_read_struct(&io->png, &io->info, NULL);
+    if (io->f)
+        fclose(io->f);
+    io->f = NULL;
+}
+
 /* Decodes every row: a truncated or corrupt file fails here. */
 static bool png_verify(const char *file, int width, int height, int channels, char *why, size_t n)
 {
     png_io io = {0};
-    io.f = fopen(file, "rb");
-    io.png = io.f ? png_create_read_struct(PNG_LIBPNG_VER_STRING, &io, png_fail, png_quiet) : NULL;
-    io.info = io.png ? png_create_info_struct(io.png) : NULL;
+    bool opened = png_open_read(file, &io);
     uint8_t *row = malloc((size_t)width * (size_t)channels);
-    volatile bool ok = io.info && row;
+    volatile bool ok = opened && row;
     if (!ok) {
         /* nothing to read with */
     } else if (setjmp(png_jmpbuf(io.png))) {
@@ -228,10 +244,7 @@ static bool png_verify(const char *file, int width, int height, int channels, ch
             png_read_end(io.png, NULL);
     }
     snprintf(why, n, "%s", io.why[0] ? io.why : !io.f ? strerror(errno) : "out of memory");
-    if (io.png)
-        png_destroy_read_struct(&io.png, &io.info, NULL);
-    if (io.f)
-        fclose(io.f);
+    png_close_read(&io);
     free(row);
     return ok;
 }
@@ -462,12 +475,10 @@ static bool fast_size_ok(int w, int h, int max_side)
 static bool png_decode(const char *path, int max_side, bool u8, decoded *d)
 {
     png_io io = {0};
-    io.f = fopen(path, "rb");
-    io.png = io.f ? png_create_read_struct(PNG_LIBPNG_VER_STRING, &io, png_fail, png_quiet) : NULL;
-    io.info = io.png ? png_create_info_struct(io.png) : NULL;
+    bool opened = png_open_read(path, &io);
     png_bytep *volatile rows = NULL; /* volatile: read again after libpng's longjmp */
     d->px = NULL;
-    volatile bool ok = io.info != NULL;
+    volatile bool ok = opened;
     if (!ok) {
         /* nothing to read with */
     } else if (setjmp(png_jmpbuf(io.png))) {
@@ -498,10 +509,7 @@ static bool png_decode(const char *path, int max_side, bool u8, decoded *d)
             }
         }
     }
-    if (io.png)
-        png_destroy_read_struct(&io.png, &io.info, NULL);
-    if (io.f)
-        fclose(io.f);
+    png_close_read(&io);
     free(rows);
     if (!ok) {
         free(d->px);

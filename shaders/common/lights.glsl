@@ -22,6 +22,22 @@ float shadowOffset(vec3 p, vec3 n, float pathT)
     return off;
 }
 
+// The radiance light i sends to p, its unit direction l from p and its distance (MAX_DIST for a
+// directional light): the model and the path tracer (common/pathtrace.glsl) both light by it.
+vec3 lightArriving(int i, vec3 p, out vec3 l, out float dist)
+{
+    if (uLightDirectional[i]) {
+        l = uLightVec[i];
+        dist = float(MAX_DIST);
+        return uLightColor[i];
+    }
+    vec3 toLight = uLightVec[i] - worldApprox(p);
+    float d2 = max(dot(toLight, toLight), 1e-8);
+    dist = sqrt(d2);
+    l = toLight / dist;
+    return uLightColor[i] / d2;
+}
+
 vec3 directLight(vec3 p, vec3 n, vec3 v, Material m, vec3 F0, float pathT)
 {
     vec3 sum = vec3(0.0);
@@ -31,17 +47,7 @@ vec3 directLight(vec3 p, vec3 n, vec3 v, Material m, vec3 F0, float pathT)
     for (int i = 0; i < NUM_LIGHTS; i++) {
         vec3 l;
         float dist;
-        vec3 radiance = uLightColor[i];
-        if (!uLightDirectional[i]) {
-            vec3 toLight = uLightVec[i] - worldApprox(p);
-            float d2 = max(dot(toLight, toLight), 1e-8);
-            dist = sqrt(d2);
-            l = toLight / dist;
-            radiance /= d2;
-        } else {
-            l = uLightVec[i];
-            dist = float(MAX_DIST);
-        }
+        vec3 radiance = lightArriving(i, p, l, dist);
         vec3 f = cookTorrance(n, v, l, m.albedo, m.metallic, m.roughness, F0);
         if (all(lessThanEqual(f, vec3(0.0))))
             continue;

@@ -109,15 +109,9 @@ vec3 nextEvent(vec3 p, vec3 n, vec3 v, Material m, float pathT)
 #if NUM_LIGHTS > 0
     float offset = SURFACE_OFFSET_K * hitEps(pathT);
     for (int i = 0; i < NUM_LIGHTS; i++) {
-        vec3 l = uLightVec[i], radiance = uLightColor[i];
-        float dist = float(MAX_DIST);
-        if (!uLightDirectional[i]) {
-            vec3 toLight = uLightVec[i] - worldApprox(p);
-            float d2 = max(dot(toLight, toLight), 1e-8);
-            dist = sqrt(d2);
-            l = toLight / dist;
-            radiance /= d2;
-        }
+        vec3 l;
+        float dist;
+        vec3 radiance = lightArriving(i, p, l, dist);
         vec3 f = pathBrdf(n, v, l, m);
         if (all(lessThanEqual(f, vec3(0.0))))
             continue;
