@@ -10,9 +10,21 @@
 //     sampled paths (nothing samples them directly, so no multiple importance weights are needed);
 //   - glass: reflect or refract with the probability of the exact Fresnel split, total internal
 //     reflection, Beer–Lambert absorption inside;
-//   - Russian roulette after three bounces, at most BOUNCES + 1 segments.
-// Not covered yet: fog as a participating medium and droplets (a path tracer scene leaves them out:
-// the image shows none), soft-shadow light sizes (lights are points and directions).
+//   - lights whose shadow is "soft" are discs of angular radius 1/(2k) seen from the shaded point
+//     (k the light's softness: the model's penumbra rule ramps from dark to lit over h/t in [0, 1/k],
+//     and a disc of that radius has a penumbra as wide), their irradiance unchanged; sampled
+//     uniformly over the disc's cone by next-event estimation; the other lights are points or
+//     directions. Lights are not geometry (the model draws none), so a sampled path never meets
+//     one and next-event estimation is the only estimator: no multiple importance weights needed;
+//   - fog (effects.fog) as a participating medium: the model's height density σ(y) is the
+//     extinction, the fog colour the single-scattering albedo, the phase isotropic; free flights
+//     sampled exactly from the closed-form optical depth (fogFreeFlight), each scattering event
+//     lit by next-event estimation through the fog (its transmittance to the light) and by the
+//     paths it scatters on (multiple scattering). The model's fog is its cheap stand-in: a constant
+//     colour, unshadowed, on the primary ray only;
+//   - Russian roulette after three bounces, at most BOUNCES + 1 segments (a scattering event in fog
+//     counts as one).
+// Not covered: droplets (a path tracer scene leaves them out: the image shows none).
 // The first segment's hit gives the AOVs, as in the model's path.
 
 uniform int uSampleIndex; // the image's sample number: seeds each sample's random numbers
@@ -102,25 +114,70 @@ vec3 sampleDirection(vec3 n, vec3 v, Material m, float pSpec, inout Rng rng)
     return reflect(-v, h);
 }
 
-// Light arriving at p from the point and directional lights, each seen or not by a shadow ray.
-vec3 nextEvent(vec3 p, vec3 n, vec3 v, Material m, float pathT)
+#if FX_FOG
+bool fogOnPath() { return fxOn(FX_FOG_BIT) && uFogDensity > 0.0; }
+
+// The transmittance of the fog along a segment of length s from world height oy, direction dy.
+float fogTransmittance(float oy, float dy, float s) { return fogOnPath() ? exp(-fogOpticalDepth(oy, dy, s)) : 1.0; }
+
+// Where a photon leaving world height oy with vertical direction dy is first scattered: the distance
+// t at which the optical depth τ(t) = σ0 e^(−b(oy−y0)) (1 − e^(−b dy t)) / (b dy) (common/fog.glsl)
+// reaches tau, a sample of the unit exponential; −1 when the whole ray's depth is less (it goes
+// up out of the fog, or past MAX_DIST). Inverting: t = −ln(1 − tau·c/A) / c with A = σ0 e^(−b(oy−y0)),
+// c = b dy; t = tau / A for a level ray.
+float fogFreeFlight(float oy, float dy, float tau)
+{
+    float A = uFogDensity * exp(min(-uFogFalloff * (oy - uFogHeight), FOG_MAX_EXPONENT));
+    float c = uFogFalloff * dy, x = tau * c / A;
+    if (x >= 1.0)
+        return -1.0;
+    float t = abs(x) < FOG_SERIES_BELOW ? tau / A * (1.0 + x * (0.5 + x / 3.0)) : -log(1.0 - x) / c;
+    return t;
+}
+#else
+float fogTransmittance(float oy, float dy, float s) { return 1.0; }
+#endif
+
+// Light arriving at p from every light (a direction within a soft light's disc), each seen or not
+// by a shadow ray and dimmed by the fog on its way; n = vec3(0) is a point in the fog (isotropic
+// phase 1/4π in place of the BRDF).
+vec3 nextEvent(vec3 p, vec3 n, vec3 v, Material m, float pathT, inout Rng rng)
 {
     vec3 sum = vec3(0.0);
 #if NUM_LIGHTS > 0
-    float offset = SURFACE_OFFSET_K * hitEps(pathT);
+    bool medium = n == vec3(0.0);
+    float offset = medium ? 0.0 : SURFACE_OFFSET_K * hitEps(pathT);
     for (int i = 0; i < NUM_LIGHTS; i++) {
         vec3 l;
         float dist;
         vec3 radiance = lightArriving(i, p, l, dist);
-        vec3 f = pathBrdf(n, v, l, m);
+        float u1 = rand01(rng), u2 = rand01(rng); // drawn for every light: the sequence stays in step
+        if (uLightShadow[i] == 2) { // a disc of angular radius 1/(2k): a direction uniform in its cone
+            float cosA = cos(0.5 / uLightSoftness[i]);
+            float cosT = 1.0 - u1 * (1.0 - cosA), sinT = sqrt(max(0.0, 1.0 - cosT * cosT)), phi = 2.0 * PI * u2;
+            l = aboutNormal(l, vec3(sinT * cos(phi), sinT * sin(phi), cosT));
+        }
+        vec3 f = medium ? vec3(1.0 / (4.0 * PI)) : pathBrdf(n, v, l, m);
         if (all(lessThanEqual(f, vec3(0.0))))
             continue;
         Hit s = castRay(p + n * offset, l, dist - offset, 1.0, pathT);
         if (!s.hit)
-            sum += f * radiance;
+            sum += f * radiance * fogTransmittance(worldApprox(p).y, l.y, min(dist, float(MAX_DIST)));
     }
 #endif
     return sum;
+}
+
+// Russian roulette from the fourth segment on: paths that carry little end, the rest carry more.
+bool roulette(inout vec3 throughput, int bounce, inout Rng rng)
+{
+    if (bounce < 3)
+        return true;
+    float q = clamp(max(throughput.r, max(throughput.g, throughput.b)), 0.05, 1.0);
+    if (rand01(rng) >= q)
+        return false;
+    throughput /= q;
+    return true;
 }
 
 struct PathSample {
@@ -142,8 +199,31 @@ PathSample tracePathSample(Ray ray, vec2 pixel)
         if (bounce == 0) {
             S.steps = h.steps;
             S.exhausted = h.exhausted;
+            if (h.hit) { // the AOVs are the primary ray's, whether or not fog scatters it first
+                S.firstT = h.t;
+                S.firstN = calcNormal(ro + rd * h.t, normalEps(hitEps(h.t), h.t), -rd);
+            }
         }
         S.exitDir = rd;
+#if FX_FOG
+        if (side > 0.0 && fogOnPath()) { // does the fog scatter the photon before it gets there?
+            float tf = fogFreeFlight(worldApprox(ro).y, rd.y, -log(1.0 - rand01(rng)));
+            if (tf >= 0.0 && (!h.hit && tf < float(MAX_DIST) - pathT || h.hit && tf < h.t)) {
+                vec3 q = ro + rd * tf;
+                pathT += tf;
+                throughput *= uFogColor; // the albedo: what is not absorbed
+                S.radiance += throughput * nextEvent(q, vec3(0.0), -rd, Material(vec3(0.0), 0.0, 1.0, 0.0, 1.0, vec3(0.0), vec3(0.0)), pathT, rng);
+                float u1 = rand01(rng), u2 = rand01(rng); // isotropic: phase / pdf = 1
+                float z = 1.0 - 2.0 * u1, r = sqrt(max(0.0, 1.0 - z * z)), phi = 2.0 * PI * u2;
+                rd = vec3(r * cos(phi), r * sin(phi), z);
+                ro = q;
+                from = q;
+                if (!roulette(throughput, bounce, rng))
+                    break;
+                continue;
+            }
+        }
+#endif
         if (!h.hit) {
             S.radiance += throughput * environment(rd);
             break;
@@ -151,11 +231,7 @@ PathSample tracePathSample(Ray ray, vec2 pixel)
         vec3 p = ro + rd * h.t;
         pathT += h.t;
         float eps = hitEps(pathT);
-        vec3 n = calcNormal(p, normalEps(eps, pathT), -rd); // outward
-        if (bounce == 0) {
-            S.firstT = h.t;
-            S.firstN = n;
-        }
+        vec3 n = bounce == 0 ? S.firstN : calcNormal(p, normalEps(eps, pathT), -rd); // outward
         Material m = getMaterial(h.mat, p, n, vec3(0.0), vec3(0.0));
         if (side < 0.0) // the segment ran inside glass, from surface to surface: the offsets off each
             throughput *= exp(-m.absorption * distance(from, p)); // would cut a thin slab's length
@@ -176,7 +252,7 @@ PathSample tracePathSample(Ray ray, vec2 pixel)
             }
         } else {
             vec3 v = -rd, nf = dot(n, v) < 0.0 ? -n : n; // the side the path sees
-            S.radiance += throughput * nextEvent(p, nf, v, m, pathT);
+            S.radiance += throughput * nextEvent(p, nf, v, m, pathT, rng);
             float pSpec = specularChance(nf, v, m);
             vec3 l = sampleDirection(nf, v, m, pSpec, rng);
             float pdf = pathPdf(nf, v, l, m, pSpec);
@@ -187,12 +263,8 @@ PathSample tracePathSample(Ray ray, vec2 pixel)
             ro = p + nf * (SURFACE_OFFSET_K * eps);
             from = p;
         }
-        if (bounce >= 3) { // Russian roulette: paths that carry little end, the rest carry more
-            float q = clamp(max(throughput.r, max(throughput.g, throughput.b)), 0.05, 1.0);
-            if (rand01(rng) >= q)
-                break;
-            throughput /= q;
-        }
+        if (!roulette(throughput, bounce, rng))
+            break;
     }
     return S;
 }
