@@ -24,7 +24,7 @@ static const float MAX_FOV_DEG = 179.0f; /* vertical field of view; 180 degrees 
 static const char USAGE[] =
     "usage: fathom [options]\n"
     "       fathom bench [--scene S] [--size WxH] [--runs N] [--knob NAME=v1,v2,...]... [--truth model|path]\n"
-    "                    [--out DIR] [--name N]\n"
+    "                    [--quick|--full] [--out DIR] [--name N]\n"
     "       fathom render --path FLIGHT.json [--frames A-B] [--fps N] --output DIR/frame_%04d.png [options]\n"
     "       fathom stitch --output POSTER.png POSTER.tile-*.png\n"
     "       fathom check-formula NAME|FILE [--set fractal.KEY=VALUE]...\n"
@@ -34,8 +34,11 @@ static const char USAGE[] =
     "  around glFinish); error against a reference render. --out writes CSVs, plots (one panel a knob;\n"
     "  an overview of the presets and the Pareto front), a summary and an HTML report [320x180];\n"
     "  the knob CSV grows row by row, so a run stopped half-way keeps the rows it finished.\n"
+    "  --quick: 160x90, 3 runs, 3 values a knob (a first look in a minute or two); --full: 640x360,\n"
+    "  9 runs (--size, --runs and --knob still win).\n"
     "  bench --truth path: the error against the path tracer (quality.integrator=1, 256 spp) instead\n"
-    "  of the reference preset, and the model's approximations (AO, soft shadows) swept too.\n"
+    "  of the reference preset, and the model's approximations (AO, soft shadows, fog) swept too;\n"
+    "  with --out, difference images of the presets and approximations against it (in the report).\n"
     "  bench --frame-times: only each preset's frame time (one sample per pixel), median of N.\n"
     "  bench --interactive [--fps N]: a scripted 100-frame flight as the window flies it (lower\n"
     "  internal resolution for N fps [30]): frame times, internal size, error, time to converge [1280x720].\n"
@@ -71,7 +74,8 @@ static const char USAGE_OPTIONS[] =
     "  --view NAME           start from a view saved with B in the window (1-9), with its overrides\n"
     "  --set KEY=VALUE       override any scene parameter, e.g. --set materials.glass.ior=1.33,\n"
     "                        --set effects.fog=off, --set lights.0.intensity=40 (repeatable)\n"
-    "  --aov LIST            extra EXR channels: depth,normal,steps,exit (needs .exr output)\n"
+    "  --aov LIST            extra EXR channels: depth,normal,steps,exit,variance,samples (needs .exr\n"
+    "                        output)\n"
     "  --frames N            window mode: render N frames, then exit (and say what they cost); with\n"
     "                        --path: frames A-B or N\n"
     "  --panel               window: start with the parameter panel open (F1 toggles it)\n"
@@ -169,7 +173,8 @@ bool cli_parse_vec3(const char *s, double v[3])
 static bool parse_aovs(const char *s, unsigned *mask)
 {
     static const struct { const char *name; aov_flag flag; } names[] = {
-        {"depth", AOV_DEPTH}, {"normal", AOV_NORMAL}, {"steps", AOV_STEPS}, {"exit", AOV_EXIT}};
+        {"depth", AOV_DEPTH}, {"normal", AOV_NORMAL}, {"steps", AOV_STEPS}, {"exit", AOV_EXIT},
+        {"variance", AOV_VARIANCE}, {"samples", AOV_SAMPLES}};
     *mask = 0;
     const char *p = s;
     while (*p) {
@@ -251,6 +256,7 @@ static bool set_output_option(const char *name, const char *val, cli_options *o,
     } else if (!strcmp(name, "--runs")) {
         if (!parse_int(val, 1, MAX_RUNS, &o->runs))
             return err_set(err, "bad --runs '%s': expected a whole number from 1 to %d", val, MAX_RUNS);
+        o->runs_given = true;
     } else if (!strcmp(name, "--out")) {
         o->out = val;
     } else if (!strcmp(name, "--name")) {
@@ -333,7 +339,7 @@ static bool set_view_option(const char *name, const char *val, cli_options *o, e
         o->sets[o->set_count++] = val;
     } else if (!strcmp(name, "--aov")) {
         if (!parse_aovs(val, &o->aovs))
-            return err_set(err, "bad --aov '%s': expected a comma list of depth, normal, steps, exit", val);
+            return err_set(err, "bad --aov '%s': expected a comma list of depth, normal, steps, exit, variance, samples", val);
     } else if (!strcmp(name, "--truth")) {
         if (strcmp(val, "model") && strcmp(val, "path"))
             return err_set(err, "bad --truth '%s': use model (the reference preset) or path (the path tracer)", val);
@@ -357,6 +363,7 @@ static bool set_flag(const char *a, cli_options *o)
         {"--list-scenes", offsetof(cli_options, list_scenes)}, {"--quiet", offsetof(cli_options, quiet)},
         {"--list-formulas", offsetof(cli_options, list_formulas)},
         {"--frame-times", offsetof(cli_options, frame_times)},
+        {"--quick", offsetof(cli_options, quick)},         {"--full", offsetof(cli_options, full)},
         {"--interactive", offsetof(cli_options, interactive)},
         {"--terrain-scale", offsetof(cli_options, terrain_scale)},
         {"--panel", offsetof(cli_options, panel)},
@@ -394,9 +401,12 @@ static bool check_combinations(const cli_options *o, err_t *err)
             return false;
     }
     if (o->bench && (o->output || o->aovs || o->frames || o->print_variant))
-        return err_set(err, "fathom bench takes --scene, --size, --runs, --knob, --out, --name, --set and --quiet only");
-    if (!o->bench && (o->out || o->name || o->knob_count || o->frame_times || o->runs != DEFAULT_RUNS || o->path_truth))
-        return err_set(err, "--runs, --knob, --out, --name and --truth belong to fathom bench");
+        return err_set(err, "fathom bench takes --scene, --size, --runs, --knob, --truth, --quick, --full, --out, --name, --set and --quiet only");
+    if (!o->bench && (o->out || o->name || o->knob_count || o->frame_times || o->runs_given || o->path_truth ||
+                      o->quick || o->full))
+        return err_set(err, "--runs, --knob, --out, --name, --truth, --quick and --full belong to fathom bench");
+    if (o->quick && o->full)
+        return err_set(err, "bench --quick and --full: pick one (a short run or a long one)");
     if (o->aovs && !o->output)
         return err_set(err, "--aov needs an offline shot: add --output FILE.exr");
     if (o->fps && ((o->output && !o->path) || (o->bench && !o->interactive)))
@@ -491,6 +501,8 @@ bool cli_parse(int argc, char **argv, cli_options *o, err_t *err)
         return err_set(err, "bad --frames '%s': expected a whole number >= 1 (a range A-B needs --path)", o->frames_arg);
     if (o->formula && !o->scene_given)
         o->scene = "fractal"; /* framed from the formula's bound */
+    if ((o->quick || o->full) && !o->runs_given)
+        o->runs = o->quick ? 3 : 9;
     return check_combinations(o, err);
 }
 

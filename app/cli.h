@@ -25,7 +25,9 @@ typedef enum aov_flag {
     AOV_NORMAL = 1u << 1, /* world-space unit normal at the first hit, 0 on a miss */
     AOV_STEPS = 1u << 2,  /* march steps of the primary ray */
     AOV_EXIT = 1u << 3,   /* direction in which the main path left the scene (debug for refraction) */
-    AOV_ALL = AOV_DEPTH | AOV_NORMAL | AOV_STEPS | AOV_EXIT,
+    AOV_VARIANCE = 1u << 4, /* per channel, the variance of the pixel's mean over its samples */
+    AOV_SAMPLES = 1u << 5,  /* how many samples the pixel took */
+    AOV_ALL = AOV_DEPTH | AOV_NORMAL | AOV_STEPS | AOV_EXIT | AOV_VARIANCE | AOV_SAMPLES,
 } aov_flag;
 
 typedef struct cli_options {
@@ -67,10 +69,12 @@ typedef struct cli_options {
     bool bench;        /* `fathom bench ...` */
     bool check_formula; /* `fathom check-formula NAME|FILE ...` (jobs/check.h) */
     int runs;          /* bench: timed images per setting (median reported) */
+    bool runs_given;   /* --runs was on the command line */
     const char *out;   /* bench: folder for CSV, plot and summary (NULL: print only) */
     const char *name;  /* bench: file name prefix in that folder (NULL: the scene's name) */
     bool frame_times;  /* bench: only the presets' frame times (1 sample per pixel), no error */
     bool path_truth;   /* bench --truth path: errors against the path tracer, not the reference preset */
+    bool quick, full;  /* bench: a short run (160x90, 3 runs, 3 values a knob) or a long one (640x360, 9 runs) */
     bool interactive;  /* bench: a scripted flight as the window flies it */
     bool terrain_scale; /* bench: generated DEMs from 256² up: load time, memory, frame time */
     const char *knobs[CLI_MAX_SETS]; /* bench: "NAME=v1,v2,..." sweeps (none: every knob, default values) */

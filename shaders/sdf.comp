@@ -11,6 +11,7 @@ layout(local_size_x = 8, local_size_y = 8) in; // 64 invocations: two NVIDIA war
 layout(rgba32f) uniform image2D uAccum;       // target 0: accumulated radiance, alpha counts samples
 layout(rgba32f) uniform image2D uNormalDepth; // target 1
 layout(rgba32f) uniform image2D uAux;         // target 2
+layout(rgba32f) uniform image2D uSquares;     // target 3: the radiance squared, summed (the variance AOV)
 uniform ivec4 uRect;       // the pixels of this dispatch: x, y (GL rows, from the bottom), width, height
 uniform int uFirstSample;  // 1: the image's first sample, which also writes the AOVs
 
@@ -28,7 +29,9 @@ void main()
         imageStore(uAccum, px, color);
         imageStore(uNormalDepth, px, normalDepth);
         imageStore(uAux, px, aux);
+        imageStore(uSquares, px, vec4(color.rgb * color.rgb, 0.0));
     } else {
         imageStore(uAccum, px, imageLoad(uAccum, px) + color);
+        imageStore(uSquares, px, imageLoad(uSquares, px) + vec4(color.rgb * color.rgb, 0.0));
     }
 }

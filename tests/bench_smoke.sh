@@ -35,8 +35,11 @@ check "plot is a PNG" '[ "$(head -c 8 "$out/csg-plot.png" | od -An -tx1 | tr -d 
 check "overview is a PNG" '[ "$(head -c 8 "$out/csg-overview.png" | od -An -tx1 | tr -d " \n")" = "89504e470d0a1a0a" ]'
 check "summary links both plots" 'grep -q "](csg-plot.png)" "$out/csg-summary.md" && grep -q "](csg-overview.png)" "$out/csg-summary.md"'
 html="$out/csg-report.html"
-check "the HTML report holds its two plots inline, and no other file" \
-    '[ "$(grep -o "src=\"data:image/png;base64," "$html" | wc -l)" -eq 2 ] && [ "$(grep -o "src=\"" "$html" | wc -l)" -eq 2 ]'
+# the overview, the plot, the reference and a difference image a preset
+check "the HTML report holds its seven images inline, and no other file" \
+    '[ "$(grep -o "src=\"data:image/png;base64," "$html" | wc -l)" -eq 7 ] && [ "$(grep -o "src=\"" "$html" | wc -l)" -eq 7 ]'
+check "... a difference image a preset, each a PNG of the image's size" \
+    '(for p in draft interactive final reference; do f="$out/csg-diff-preset-$p.png"; [ "$(head -c 8 "$f" | od -An -tx1 | tr -d " \n")" = "89504e470d0a1a0a" ] && [ "$(od -An -tu1 -j16 -N8 "$f" | tr -s " " | sed "s/^ //")" = "0 0 0 40 0 0 0 24" ] || exit 1; done)'
 check "... the plot it inlines is the plot written, byte for byte" \
     'grep -o "data:image/png;base64,[^\"]*" "$html" | sed -n 2p | cut -d, -f2 | base64 -d | cmp -s - "$out/csg-plot.png"'
 check "... and a row for every knob setting, preset and effect" \
@@ -47,6 +50,8 @@ check "bad knob is refused" '! "$fathom" bench --knob nosuch=1 --size 8x8 2>/dev
     --quiet >/dev/null 2>&1
 check "bench --truth path prices AO off and on" '[ "$(grep -c "^csg,24,16,2,fx_ao," "$out/truth-knobs.csv")" -eq 2 ]'
 check "... against the path tracer" 'grep -q "the truth.*the path tracer" "$out/truth-summary.md"'
+check "... with a difference image each, in the summary and the report" \
+    '[ -s "$out/truth-diff-fx_ao-off.png" ] && [ -s "$out/truth-diff-fx_ao-on.png" ] && grep -q "truth-diff-fx_ao-on.png" "$out/truth-summary.md" && [ "$(grep -o "src=\"data:image/png" "$out/truth-report.html" | wc -l)" -eq 9 ]'
 # stopped half-way (as a user's Ctrl+C), a run keeps the rows it finished, whole lines, no temporary file
 "$fathom" bench --scene csg --size 40x24 --runs 2 --knob max_steps=8,16,32,64,128,256,512 --knob spp=1,2,4,8 \
     --out "$out" --name stopped --quiet >/dev/null 2>&1 &

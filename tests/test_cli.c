@@ -33,7 +33,7 @@ static void full_offline_line(void **st)
     cli_options o;
     err_t e;
     assert_true(PARSE(&o, &e, "--scene", "csg", "--output", "shot.exr", "--size", "1920x1080", "--spp", "64",
-                      "--camera", "1,2.5,-3", "--look-at=0,0,0", "--fov", "40", "--aov", "depth,normal,steps",
+                      "--camera", "1,2.5,-3", "--look-at=0,0,0", "--fov", "40", "--aov", "depth,normal,steps,variance,samples",
                       "--set", "camera.fov=30", "--quality", "final"));
     assert_string_equal(o.output, "shot.exr");
     assert_int_equal(o.width, 1920);
@@ -44,10 +44,27 @@ static void full_offline_line(void **st)
     assert_near(o.camera[2], -3.0f, 0);
     assert_true(o.has_look_at);
     assert_near(o.fov_deg, 40.0f, 0);
-    assert_int_equal(o.aovs, AOV_DEPTH | AOV_NORMAL | AOV_STEPS);
+    assert_int_equal(o.aovs, AOV_DEPTH | AOV_NORMAL | AOV_STEPS | AOV_VARIANCE | AOV_SAMPLES);
     assert_int_equal(o.set_count, 2);
     assert_string_equal(o.sets[0], "camera.fov=30");
     assert_string_equal(o.sets[1], "quality.preset=final");
+}
+
+/* --quick and --full set the runs unless --runs says otherwise */
+static void bench_depths(void **st)
+{
+    (void)st;
+    cli_options o;
+    err_t e;
+    assert_true(PARSE(&o, &e, "bench", "--quick"));
+    assert_true(o.bench && o.quick && !o.full);
+    assert_int_equal(o.runs, 3);
+    assert_true(PARSE(&o, &e, "bench", "--full"));
+    assert_int_equal(o.runs, 9);
+    assert_true(PARSE(&o, &e, "bench", "--quick", "--runs", "7"));
+    assert_int_equal(o.runs, 7);
+    assert_true(PARSE(&o, &e, "bench"));
+    assert_int_equal(o.runs, 5);
 }
 
 static void expect_error(int argc, char **argv, const char *needle)
@@ -69,6 +86,8 @@ static void bad_values(void **st)
     expect_error(ARGC("--spp", "-1"), ARGV("--spp", "-1"), "--spp");
     expect_error(ARGC("--backend", "vulkan"), ARGV("--backend", "vulkan"), "use auto, fragment or compute");
     expect_error(ARGC("--truth", "path"), ARGV("--truth", "path"), "belong to fathom bench");
+    expect_error(ARGC("--quick"), ARGV("--quick"), "belong to fathom bench");
+    expect_error(ARGC("bench", "--quick", "--full"), ARGV("bench", "--quick", "--full"), "pick one");
     expect_error(ARGC("--spp", "3.5"), ARGV("--spp", "3.5"), "--spp");
     expect_error(ARGC("--fov", "400"), ARGV("--fov", "400"), "--fov");
     expect_error(ARGC("--fov", "0"), ARGV("--fov", "0"), "--fov");
@@ -112,6 +131,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(defaults),
         cmocka_unit_test(full_offline_line),
+        cmocka_unit_test(bench_depths),
         cmocka_unit_test(bad_values),
         cmocka_unit_test(size_and_vec_parsers),
     };

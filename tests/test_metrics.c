@@ -11,6 +11,7 @@
 
 #include "check.h"
 #include "jobs/metrics.h"
+#include "gpu/aov.h"
 
 enum { W = 5, H = 3, N = W * H };
 
@@ -19,10 +20,10 @@ static void fill(uint8_t *srgb, float *aov, uint8_t grey, float depth)
     for (int i = 0; i < N; i++) {
         srgb[i * 4] = srgb[i * 4 + 1] = srgb[i * 4 + 2] = grey;
         srgb[i * 4 + 3] = 255;
-        for (int k = 0; k < 8; k++)
-            aov[i * 8 + k] = 0;
-        aov[i * 8 + 3] = depth;
-        aov[i * 8 + 4] = 10;
+        for (int k = 0; k < AOV_FLOATS; k++)
+            aov[i * AOV_FLOATS + k] = 0;
+        aov[i * AOV_FLOATS + 3] = depth;
+        aov[i * AOV_FLOATS + 4] = 10;
     }
 }
 
@@ -30,7 +31,7 @@ static void identical_images(void **st)
 {
     (void)st;
     uint8_t a[N * 4];
-    float aov[N * 8];
+    float aov[N * AOV_FLOATS];
     fill(a, aov, 100, 2.0f);
     image_view v = {W, H, a, aov};
     metrics m = metrics_compare(&v, &v, 0.01);
@@ -46,18 +47,18 @@ static void known_errors(void **st)
 {
     (void)st;
     uint8_t a[N * 4], b[N * 4];
-    float aa[N * 8], ab[N * 8];
+    float aa[N * AOV_FLOATS], ab[N * AOV_FLOATS];
     fill(a, aa, 0, 2.0f);
     fill(b, ab, 0, 2.0f);
     /* one pixel's red channel off by 255: squared error 1 over 3N channel values */
     a[7 * 4] = 255;
     /* depth: one pixel 0.01 m further at t = 2 with pixel angle 0.005 → 1 footprint; another 3 */
-    aa[2 * 8 + 3] = 2.01f;
-    aa[4 * 8 + 3] = 2.03f;
+    aa[2 * AOV_FLOATS + 3] = 2.01f;
+    aa[4 * AOV_FLOATS + 3] = 2.03f;
     /* two pixels flip: a hit that misses, a miss that hits */
-    aa[9 * 8 + 3] = INFINITY;
-    ab[11 * 8 + 3] = INFINITY;
-    aa[0 * 8 + 4] = 25; /* steps: one pixel 25, the rest 10 */
+    aa[9 * AOV_FLOATS + 3] = INFINITY;
+    ab[11 * AOV_FLOATS + 3] = INFINITY;
+    aa[0 * AOV_FLOATS + 4] = 25; /* steps: one pixel 25, the rest 10 */
     image_view va = {W, H, a, aa}, vb = {W, H, b, ab};
     metrics m = metrics_compare(&va, &vb, 0.005);
     assert_near(m.rmse, sqrt(1.0 / (3.0 * N)), 1e-12);
@@ -78,18 +79,18 @@ static void silhouette_iou_and_edge(void **st)
     (void)st;
     enum { SW = 9, SH = 5 };
     uint8_t a[SW * SH * 4] = {0}, b[SW * SH * 4] = {0};
-    float aa[SW * SH * 8], ab[SW * SH * 8];
+    float aa[SW * SH * AOV_FLOATS], ab[SW * SH * AOV_FLOATS];
     for (int i = 0; i < SW * SH; i++) {
         int x = i % SW, y = i / SW;
-        for (int k = 0; k < 8; k++)
-            aa[i * 8 + k] = ab[i * 8 + k] = 0;
-        aa[i * 8 + 4] = ab[i * 8 + 4] = 1;
+        for (int k = 0; k < AOV_FLOATS; k++)
+            aa[i * AOV_FLOATS + k] = ab[i * AOV_FLOATS + k] = 0;
+        aa[i * AOV_FLOATS + 4] = ab[i * AOV_FLOATS + 4] = 1;
         bool ref = x >= 3 && x <= 5 && y >= 1 && y <= 3;
         bool test = (x >= 3 && x <= 6 && y >= 1 && y <= 3) || (x == 0 && y == 4);
-        ab[i * 8 + 3] = ref ? 2.0f : INFINITY;
-        aa[i * 8 + 3] = test ? 2.0f : INFINITY;
+        ab[i * AOV_FLOATS + 3] = ref ? 2.0f : INFINITY;
+        aa[i * AOV_FLOATS + 3] = test ? 2.0f : INFINITY;
     }
-    aa[(1 * SW + 4) * 8 + 4] = -7; /* ran out of steps */
+    aa[(1 * SW + 4) * AOV_FLOATS + 4] = -7; /* ran out of steps */
     image_view va = {SW, SH, a, aa}, vb = {SW, SH, b, ab};
     metrics m = metrics_compare(&va, &vb, 0.01);
     assert_near(m.iou, 9.0 / 13.0, 1e-12);
@@ -109,10 +110,10 @@ static void edge_rmse_counts_silhouettes_only(void **st)
     (void)st;
     enum { SW = 9, SH = 5 };
     uint8_t a[SW * SH * 4] = {0}, b[SW * SH * 4] = {0};
-    float aa[SW * SH * 8] = {0}, ab[SW * SH * 8] = {0};
+    float aa[SW * SH * AOV_FLOATS] = {0}, ab[SW * SH * AOV_FLOATS] = {0};
     for (int i = 0; i < SW * SH; i++) {
         int x = i % SW, y = i / SW;
-        aa[i * 8 + 3] = ab[i * 8 + 3] = x >= 3 && x <= 5 && y >= 1 && y <= 3 ? 2.0f : INFINITY;
+        aa[i * AOV_FLOATS + 3] = ab[i * AOV_FLOATS + 3] = x >= 3 && x <= 5 && y >= 1 && y <= 3 ? 2.0f : INFINITY;
     }
     a[(2 * SW + 4) * 4] = 255;                                           /* the centre: red off by 1 */
     a[(2 * SW + 2) * 4] = a[(2 * SW + 2) * 4 + 1] = a[(2 * SW + 2) * 4 + 2] = 51; /* beside: 0.2 each */
@@ -120,7 +121,7 @@ static void edge_rmse_counts_silhouettes_only(void **st)
     metrics m = metrics_compare(&va, &vb, 0.01);
     assert_int_equal(m.edge_pixels, 20);
     assert_near(m.edge_rmse, sqrt(3 * 0.04 / (3 * 20)), 1e-12);
-    ab[(2 * SW + 4) * 8 + 3] = 2.2f;
+    ab[(2 * SW + 4) * AOV_FLOATS + 3] = 2.2f;
     m = metrics_compare(&va, &vb, 0.01);
     assert_int_equal(m.edge_pixels, 21);
     assert_near(m.edge_rmse, sqrt((3 * 0.04 + 1) / (3 * 21)), 1e-12);
@@ -157,7 +158,9 @@ static void upscale_is_exact_on_flat_and_keeps_layout(void **st)
     (void)st;
     /* 2×1 → 4×2: left half red, right half blue; depth left 1, right 5 */
     uint8_t in[2 * 4] = {255, 0, 0, 255, 0, 0, 255, 255};
-    float aov[2 * 8] = {0, 0, 0, 1, 7, 0, 0, 0, 0, 0, 0, 5, 9, 0, 0, 0};
+    float aov[2 * AOV_FLOATS] = {0};
+    aov[AOV_SLOT_DEPTH] = 1, aov[AOV_SLOT_STEPS] = 7;
+    aov[AOV_FLOATS + AOV_SLOT_DEPTH] = 5, aov[AOV_FLOATS + AOV_SLOT_STEPS] = 9;
     image_view v = {2, 1, in, aov};
     uint8_t *out;
     float *oa;
@@ -167,9 +170,9 @@ static void upscale_is_exact_on_flat_and_keeps_layout(void **st)
     assert_int_equal(out[3 * 4 + 2], 255);   /* far right: pure blue */
     assert_int_equal(out[(4 + 3) * 4 + 2], 255);
     assert_true(out[1 * 4] > out[2 * 4]);    /* red fades toward the right */
-    assert_near(oa[0 * 8 + 3], 1, 0);
-    assert_near(oa[3 * 8 + 3], 5, 0);
-    assert_near(oa[(4 + 3) * 8 + 4], 9, 0);
+    assert_near(oa[0 * AOV_FLOATS + 3], 1, 0);
+    assert_near(oa[3 * AOV_FLOATS + 3], 5, 0);
+    assert_near(oa[(4 + 3) * AOV_FLOATS + 4], 9, 0);
     free(out);
     free(oa);
 }

@@ -5,7 +5,8 @@
  *   - a point light of intensity I at distance d: ρ/π · I/d² · max(0, n·l);
  *   - a glass slab (ior 1.5, Beer absorption e^(−σ d) = 1/2) seen at normal incidence under a uniform
  *     sky: R + (1−R)² R a² / (1 − R² a²) + (1−R)² a / (1 − R² a²), all its internal reflections;
- *   - the slab's Monte Carlo error falls as 1/√spp (16 against 256 samples: 4×);
+ *   - the slab's Monte Carlo error falls as 1/√spp (16 against 256 samples: 4×), and the variance AOV
+ *     predicts it (its mean over the image against the measured squared error);
  *   - a diffuse floor under an emissive sphere: ρ · Le · (r/d)² · cos θ, reached only by sampling.
  *   - a soft sun (a disc of angular radius α = 1/(2k)) on the sphere, where all the disc is above the
  *     horizon: ρ/π · E · cos θ · (1 + cos α)/2 (the mean of n·ω over the disc's cone);
@@ -161,7 +162,7 @@ static void point_light_falloff(void **st)
 }
 
 /* The slab's pixels at spp samples: their mean and their RMSE against the closed form. */
-static void slab(int spp, double expect, double *mean, double *rmse)
+static void slab(int spp, double expect, double *mean, double *rmse, double *variance)
 {
     const double thick = 0.1, sigma = log(2.0) / thick;
     char json[1024];
@@ -175,15 +176,18 @@ static void slab(int spp, double expect, double *mean, double *rmse)
     scene s;
     load_text(json, NULL, 0, &s);
     camera cam = cam_at(0, 0, 3, 0, 0, 0, 4); /* a narrow view: every ray within 2.3° of the normal */
-    static float rgba[PW * PH * 4];
-    draw(&s, &cam, PW, PH, spp, NULL, NULL, rgba);
-    double sum = 0, sq = 0;
+    static float rgba[PW * PH * 4], aov[PW * PH * AOV];
+    draw(&s, &cam, PW, PH, spp, NULL, aov, rgba);
+    double sum = 0, sq = 0, var = 0;
     for (int i = 0; i < PW * PH; i++) {
         sum += rgba[i * 4];
         sq += (rgba[i * 4] - expect) * (rgba[i * 4] - expect);
+        var += aov[i * AOV + AOV_SLOT_VARIANCE];
+        assert_int_equal((int)aov[i * AOV + AOV_SLOT_SAMPLES], spp);
     }
     *mean = sum / (PW * PH);
     *rmse = sqrt(sq / (PW * PH));
+    *variance = var / (PW * PH);
     scene_free(&s);
 }
 
@@ -192,15 +196,21 @@ static void glass_slab_and_convergence(void **st)
     (void)st;
     const double R = 0.04, a = 0.5, k = 1 - R * R * a * a; /* ((1.5 - 1) / (1.5 + 1))² */
     const double expect = R + (1 - R) * (1 - R) * R * a * a / k + (1 - R) * (1 - R) * a / k;
-    double m16, e16, m256, e256;
-    slab(16, expect, &m16, &e16);
-    slab(256, expect, &m256, &e256);
+    double m16, e16, m256, e256, v16, v256;
+    slab(16, expect, &m16, &e16, &v16);
+    slab(256, expect, &m256, &e256, &v256);
     /* a path's value is 1, a, a^3...: its standard deviation is below 0.5, and 1296 pixels average */
     double se = 0.5 / sqrt(256.0 * PW * PH);
     fprintf(stderr, "glass slab: expected %.5f, mean %.5f at 256 spp (standard error < %.5f); pixel RMSE %.4f at 16 "
             "spp, %.4f at 256: ratio %.2f (1/sqrt(spp): 4)\n", expect, m256, se, e16, e256, e16 / e256);
     assert_true(fabs(m256 - expect) < 5 * se);
     assert_true(e16 / e256 > 3.0 && e16 / e256 < 5.3);
+    /* the variance AOV is each pixel's own estimate of its mean's squared error: over the image it
+     * must agree with the error measured against the closed form (the estimate is unbiased) */
+    fprintf(stderr, "variance AOV: mean %.3g at 16 spp (measured squared error %.3g), %.3g at 256 (%.3g)\n", v16,
+            e16 * e16, v256, e256 * e256);
+    assert_true(v16 / (e16 * e16) > 0.85 && v16 / (e16 * e16) < 1.15);
+    assert_true(v256 / (e256 * e256) > 0.85 && v256 / (e256 * e256) < 1.15);
 }
 
 /* A diffuse floor below an emissive sphere (radiance Le, radius r, centre c) in a black sky: the

@@ -2,16 +2,20 @@
  * pixel, rows top first. Depth is the distance along the unit ray to the first hit, +inf on a miss;
  * steps counts the primary ray's march steps (height samples on terrain), negated when the ray was
  * left unresolved (its budget and the tail after it ran out: common/march.glsl; drawn as a miss);
- * exit is the direction in which the main path left the scene. */
+ * exit is the direction in which the main path left the scene; variance is, per colour channel, the
+ * variance of the pixel's mean over its samples (the sample variance / n: the square of its standard
+ * error; −1 where the pixel took one sample and nothing is known); samples is n. */
 #ifndef FATHOM_AOV_H
 #define FATHOM_AOV_H
 
 enum {
-    AOV_FLOATS = 8,
+    AOV_FLOATS = 12,
     AOV_SLOT_NORMAL = 0, /* x, y, z */
     AOV_SLOT_DEPTH = 3,
     AOV_SLOT_STEPS = 4,
     AOV_SLOT_EXIT = 5, /* x, y, z */
+    AOV_SLOT_VARIANCE = 8, /* r, g, b */
+    AOV_SLOT_SAMPLES = 11,
 };
 
 #endif

@@ -19,7 +19,7 @@
 #include "gpu/gpu.h"
 #include "gpu/shader.h"
 
-enum { NUM_TARGETS = 3 };
+enum { NUM_TARGETS = 4 };
 
 static struct {
     GLuint display_prog;
@@ -382,18 +382,21 @@ static GLint loc(const char *name) { return glGetUniformLocation(state.prog, nam
 /* The fragment path: a full-screen triangle over rows [y0, y1), target 0 blended additively. */
 static void draw_rows(int y0, int y1, bool first)
 {
-    static const GLenum all[NUM_TARGETS] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
-    static const GLenum colour_only[NUM_TARGETS] = {GL_COLOR_ATTACHMENT0, GL_NONE, GL_NONE};
-    glDrawBuffers(NUM_TARGETS, first ? all : colour_only);
+    static const GLenum all[NUM_TARGETS] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
+                                            GL_COLOR_ATTACHMENT3};
+    static const GLenum sums_only[NUM_TARGETS] = {GL_COLOR_ATTACHMENT0, GL_NONE, GL_NONE, GL_COLOR_ATTACHMENT3};
+    glDrawBuffers(NUM_TARGETS, first ? all : sums_only);
     glEnable(GL_SCISSOR_TEST);
     glScissor(0, y0, state.width, y1 - y0);
-    glEnablei(GL_BLEND, 0);
+    glEnablei(GL_BLEND, 0); /* the sums: radiance and its square */
+    glEnablei(GL_BLEND, 3);
     glBlendFunc(GL_ONE, GL_ONE);
     glDisablei(GL_BLEND, 1);
     glDisablei(GL_BLEND, 2);
     glBindVertexArray(render_programs_vao());
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glDisablei(GL_BLEND, 0);
+    glDisablei(GL_BLEND, 3);
     glDisable(GL_SCISSOR_TEST);
 }
 
@@ -406,6 +409,7 @@ static void dispatch_rows(int y0, int y1, bool first)
     glUniform1i(loc("uAccum"), 0);
     glUniform1i(loc("uNormalDepth"), 1);
     glUniform1i(loc("uAux"), 2);
+    glUniform1i(loc("uSquares"), 3);
     glUniform1i(loc("uFirstSample"), first ? 1 : 0);
     GLint group[3]; /* sdf.comp's local size */
     glGetProgramiv(state.prog, GL_COMPUTE_WORK_GROUP_SIZE, group);
@@ -435,7 +439,8 @@ static void sample_rows(int y0, int y1)
     glViewport(0, 0, state.width, state.height);
     bool first = state.samples == 0;
     if (first && state.band_done == 0) {
-        static const GLenum all[NUM_TARGETS] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
+        static const GLenum all[NUM_TARGETS] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
+                                                GL_COLOR_ATTACHMENT3};
         glDrawBuffers(NUM_TARGETS, all);
         glClearColor(0, 0, 0, 0);
         glClear(GL_COLOR_BUFFER_BIT);
@@ -637,17 +642,29 @@ void render_read_linear(float *rgba)
 void render_read_aovs(float *aov8)
 {
     size_t n = (size_t)state.width * (size_t)state.height;
-    float *a = util_alloc(sizeof(float) * 4 * n, "the AOV readback"), *b = util_alloc(sizeof(float) * 4 * n, "the AOV readback");
-    read_target(state.fbo, GL_COLOR_ATTACHMENT1, GL_FLOAT, a);
-    read_target(state.fbo, GL_COLOR_ATTACHMENT2, GL_FLOAT, b);
-    for (size_t i = 0; i < n; i++) {
-        memcpy(aov8 + i * AOV_FLOATS, a + i * 4, sizeof(float) * 4);
-        memcpy(aov8 + i * AOV_FLOATS + 4, b + i * 4, sizeof(float) * 4);
-        if (aov8[i * AOV_FLOATS + AOV_SLOT_DEPTH] < 0.0f) /* the shader marks a miss with depth −1 */
-            aov8[i * AOV_FLOATS + AOV_SLOT_DEPTH] = INFINITY;
+    float *t[NUM_TARGETS];
+    for (int k = 0; k < NUM_TARGETS; k++) {
+        t[k] = util_alloc(sizeof(float) * 4 * n, "the AOV readback");
+        read_target(state.fbo, GL_COLOR_ATTACHMENT0 + (GLenum)k, GL_FLOAT, t[k]);
     }
-    free(a);
-    free(b);
+    for (size_t i = 0; i < n; i++) {
+        float *o = aov8 + i * AOV_FLOATS;
+        memcpy(o, t[1] + i * 4, sizeof(float) * 4);
+        memcpy(o + 4, t[2] + i * 4, sizeof(float) * 4);
+        if (o[AOV_SLOT_DEPTH] < 0.0f) /* the shader marks a miss with depth −1 */
+            o[AOV_SLOT_DEPTH] = INFINITY;
+        /* the variance of the mean from the sums of x and x² over n samples (in double: the two sums
+         * are close, and float would cancel): (Σx² − (Σx)²/n) / (n (n − 1)) */
+        double samples = t[0][i * 4 + 3];
+        o[AOV_SLOT_SAMPLES] = (float)samples;
+        for (int c = 0; c < 3; c++) {
+            double sum = t[0][i * 4 + (size_t)c], sq = t[3][i * 4 + (size_t)c];
+            double var = samples >= 2 ? (sq - sum * sum / samples) / (samples * (samples - 1)) : -1.0;
+            o[AOV_SLOT_VARIANCE + c] = (float)(samples >= 2 && var < 0 ? 0 : var); /* rounding */
+        }
+    }
+    for (int k = 0; k < NUM_TARGETS; k++)
+        free(t[k]);
     flip_rows(aov8, state.height, (size_t)state.width * AOV_FLOATS * sizeof(float));
 }
 
@@ -686,6 +703,8 @@ bool render_read_pixel(int x, int y_from_top, float out[AOV_FLOATS])
     glReadBuffer(GL_COLOR_ATTACHMENT2);
     glReadPixels(x, y, 1, 1, GL_RGBA, GL_FLOAT, out + 4);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    for (int i = 8; i < AOV_FLOATS; i++) /* the variance and sample count: not read for a cursor */
+        out[i] = 0.0f;
     if (out[AOV_SLOT_DEPTH] < 0.0f)
         out[AOV_SLOT_DEPTH] = INFINITY;
     return true;

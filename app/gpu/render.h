@@ -14,6 +14,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "gpu/aov.h"
 #include "view/camera.h"
 #include "scene/scene.h"
 #include "util.h"
@@ -117,9 +118,9 @@ double render_reference_rmse(void);
 /* The steps heat map's top (VIEW_STEPS: blue 0 … red at this many steps); 0: the scene's MAX_STEPS. */
 void render_set_heat_max(float steps);
 float render_heat_max(void);
-/* The AOVs of one pixel of the active image (row 0 at the top): what is under the cursor. False
- * before the first sample or outside the image. */
-bool render_read_pixel(int x, int y_from_top, float out[8]);
+/* The AOVs of one pixel of the active image (row 0 at the top; variance and samples left 0): what is
+ * under the cursor. False before the first sample or outside the image. */
+bool render_read_pixel(int x, int y_from_top, float out[AOV_FLOATS]);
 
 /* Tone-mapped sRGB colour (or the steps heat map) into framebuffer `fbo` (0 = window), the active image
  * stretched to width × height (bilinear; texel for texel when the sizes are equal). */

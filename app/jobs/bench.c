@@ -89,7 +89,7 @@ static int list_sweeps(const scene *s, sweep *out, bool *applies)
         fractal_iterations_sweep(&s->fractal.formula, &out[n]), applies[n++] = true;
     /* the model's approximations of light transport, off and on (each priced against the path
      * tracer by bench --truth path): only those the scene uses */
-    static const effect MODEL[] = {EFFECT_AO, EFFECT_SOFT_SHADOWS};
+    static const effect MODEL[] = {EFFECT_AO, EFFECT_SOFT_SHADOWS, EFFECT_FOG};
     for (size_t i = 0; i < sizeof MODEL / sizeof MODEL[0] && n < MAX_SWEEPS - 1; i++) {
         out[n] = (sweep){0};
         snprintf(out[n].name, sizeof out[n].name, "fx_%s", effect_name(MODEL[i]));
@@ -155,6 +155,55 @@ static double image(const scene *s, const camera *cam, int w, int h)
     return (util_now() - t0) * 1000.0;
 }
 
+/* A difference image's colour for an error e of full scale (0–1 of the 8-bit display): black at 0,
+ * through purple, red and orange to yellow at BENCH_DIFF_YELLOW and white past it; a ramp that darkens
+ * nowhere, so more error is always brighter. */
+static void diff_colour(double e, uint8_t out[3])
+{
+    static const double STOPS[][3] = {{0, 0, 0}, {0.35, 0.05, 0.45}, {0.85, 0.15, 0.2}, {1, 0.55, 0}, {1, 0.95, 0.3},
+                                      {1, 1, 1}};
+    enum { N = sizeof STOPS / sizeof STOPS[0] };
+    double x = e / BENCH_DIFF_YELLOW * (N - 2);
+    x = x < 0 ? 0 : x > N - 1 ? N - 1 : x;
+    int i = (int)x < N - 1 ? (int)x : N - 2;
+    double f = x - i;
+    for (int c = 0; c < 3; c++)
+        out[c] = (uint8_t)lround(255 * (STOPS[i][c] + f * (STOPS[i + 1][c] - STOPS[i][c])));
+}
+
+/* With --out, where a setting's image differs from the reference (view 1): OUT/PREFIX-diff-KNOB-VALUE.png,
+ * the largest channel's difference per pixel; its file name into name (empty when not written). */
+static void write_difference(const char *knob, const char *value, const uint8_t *test, const uint8_t *ref, char *name,
+                             size_t n)
+{
+    const char *prefix = B.opt->name ? B.opt->name : B.opt->scene;
+    char path[PATH_MAX_LEN];
+    snprintf(name, n, "%s-diff-%s-%s.png", prefix, knob, value);
+    snprintf(path, sizeof path, "%s/%s", B.opt->out, name);
+    size_t px = (size_t)B.w * (size_t)B.h;
+    uint8_t *img = util_alloc(px * 3, "a difference image");
+    for (size_t i = 0; i < px; i++) {
+        int e = 0;
+        for (int c = 0; c < 3; c++) {
+            int d = abs((int)test[i * 4 + (size_t)c] - (int)ref[i * 4 + (size_t)c]);
+            e = d > e ? d : e;
+        }
+        diff_colour(e / 255.0, img + i * 3);
+    }
+    err_t err;
+    if (!image_write_u8(path, B.w, B.h, 3, img, &err)) {
+        fprintf(stderr, "\nfathom bench: %s (the report goes on without it)\n", err.msg);
+        name[0] = 0;
+    }
+    free(img);
+}
+
+/* Which rows get a difference image: the presets, and the model's approximations against the truth. */
+static bool wants_difference(const char *knob)
+{
+    return B.opt->out && (!strcmp(knob, "preset") || (B.opt->path_truth && !strncmp(knob, "fx_", 3)));
+}
+
 static void read_back(int w, int h, uint8_t **srgb, float **aov)
 {
     *srgb = util_alloc((size_t)w * (size_t)h * 4, "a bench image");
@@ -207,6 +256,8 @@ static bool measure(const char *knob_name, const char *value, const char *const 
             test = (image_view){B.w, B.h, srgb, aov};
         }
         metrics m = metrics_compare(&test, &ref, camera_pixel_angle(&B.views[v].cam, B.h));
+        if (v == 0 && wants_difference(knob_name))
+            write_difference(knob_name, value, srgb, B.views[v].srgb, out->diff, sizeof out->diff);
         if (scale != 1.0) /* steps were counted at the smaller size: per output pixel they are fewer */
             m.mean_steps *= scale * scale;
         out->m.rmse += m.rmse * m.rmse / VIEWS; /* mean square, rooted below */
@@ -260,6 +311,12 @@ static bool make_references(const scene *base, metrics *convergence, double *ref
         if (v == 0)
             *ref_ms = ms;
         read_back(B.w, B.h, &B.views[v].srgb, &B.views[v].aov);
+        if (v == 0 && B.opt->out) { /* what the difference images are against */
+            char path[PATH_MAX_LEN];
+            snprintf(path, sizeof path, "%s/%s-reference.png", B.opt->out, B.opt->name ? B.opt->name : B.opt->scene);
+            if (!image_write_u8(path, B.w, B.h, 4, B.views[v].srgb, err))
+                return false;
+        }
         B.done++;
         progress("reference");
     }
@@ -391,6 +448,23 @@ static bool add_sweep_rows(const sweep *k, const char *values, err_t *err)
             return false;
     }
     return true;
+}
+
+/* --quick: a sweep's first, middle and last values ("a,b,c,d,e" -> "a,c,e"), into out. */
+static const char *three_values(const char *v, char *out, size_t n)
+{
+    char list[512];
+    snprintf(list, sizeof list, "%s", v);
+    const char *vals[64];
+    int k = 0;
+    char *save = NULL;
+    for (char *t = strtok_r(list, ",", &save); t && k < 64; t = strtok_r(NULL, ",", &save))
+        vals[k++] = t;
+    if (k <= 3)
+        snprintf(out, n, "%s", v);
+    else
+        snprintf(out, n, "%s,%s,%s", vals[0], vals[k / 2], vals[k - 1]);
+    return out;
 }
 
 static int count_values(const char *v)
@@ -536,8 +610,10 @@ static bool pick_sweeps(const scene *base, sweep *sweeps, const char **values, i
 {
     bool applies[MAX_SWEEPS];
     *n = list_sweeps(base, sweeps, applies);
+    static char quick[MAX_SWEEPS][256];
     for (int k = 0; k < *n && !B.opt->knob_count; k++)
-        values[k] = applies[k] ? sweeps[k].values : NULL;
+        values[k] = !applies[k] ? NULL : B.opt->quick ? three_values(sweeps[k].values, quick[k], sizeof quick[k])
+                                                       : sweeps[k].values;
     for (int i = 0; i < B.opt->knob_count; i++) {
         const char *arg = B.opt->knobs[i], *eq = strchr(arg, '=');
         bool found = false;
@@ -563,8 +639,8 @@ bool bench_run(const cli_options *opt, err_t *err)
 {
     memset(&B, 0, sizeof B);
     B.opt = opt;
-    B.w = opt->width ? opt->width : DEFAULT_WIDTH;
-    B.h = opt->height ? opt->height : DEFAULT_HEIGHT;
+    B.w = opt->width ? opt->width : opt->quick ? DEFAULT_WIDTH / 2 : opt->full ? DEFAULT_WIDTH * 2 : DEFAULT_WIDTH;
+    B.h = opt->height ? opt->height : opt->quick ? DEFAULT_HEIGHT / 2 : opt->full ? DEFAULT_HEIGHT * 2 : DEFAULT_HEIGHT;
     if (opt->frame_times)
         return frame_times(opt, err);
     if (opt->terrain_scale)

@@ -326,6 +326,67 @@ static void summary_header(const bench_results *r, FILE *f)
             preset_name(r->base->preset));
 }
 
+/* The difference images' scale in words (bench.c's diff_colour) */
+#define DIFF_LEGEND                                                                                                    \
+    "black 0, purple 0.06, red 0.12, orange 0.19, yellow 0.25 of the display's full scale, white 0.31 and more"
+
+/* The rows of a model approximation's sweep (fx_NAME): its off and on settings, or NULL. */
+static void approximation_rows(const bench_results *r, const char *knob, const bench_row **off, const bench_row **on)
+{
+    *off = *on = NULL;
+    for (int i = 0; i < r->nrows; i++)
+        if (!strcmp(r->rows[i].knob, knob)) {
+            if (!strcmp(r->rows[i].value, "off"))
+                *off = &r->rows[i];
+            else if (!strcmp(r->rows[i].value, "on"))
+                *on = &r->rows[i];
+        }
+}
+
+/* One sentence per model approximation the run priced: what switching it on costs in time and what it
+ * does to the error against the reference (the truth with --truth path). */
+static void approximation_sentence(const bench_results *r, const bench_row *off, const bench_row *on,
+                                   const char *name, char *buf, size_t n)
+{
+    char d[48], cost[64];
+    bench_difference(off->ms_lo, off->ms_hi, on->ms_lo, on->ms_hi, off->ms, on->ms, d, sizeof d);
+    if (strcmp(d, "not measurable"))
+        snprintf(cost, sizeof cost, "costs %s an image", d);
+    else
+        snprintf(cost, sizeof cost, "costs no measurable time");
+    double change = off->m.rmse > 0 ? 100 * (on->m.rmse - off->m.rmse) / off->m.rmse : 0;
+    snprintf(buf, n, "%s on %s (%.1f ms [%.1f–%.1f] against %.1f [%.1f–%.1f] off); its image is RMSE %.4f from %s, "
+                     "off %.4f: on is %.0f %% %s",
+             name, cost, on->ms, on->ms_lo, on->ms_hi, off->ms, off->ms_lo, off->ms_hi, on->m.rmse,
+             r->opt->path_truth ? "the truth" : "the reference", off->m.rmse, fabs(change),
+             change <= 0 ? "nearer" : "further");
+}
+
+static void approximations_md(const bench_results *r, FILE *f)
+{
+    static const char *const FX[] = {"fx_ao", "fx_soft_shadows", "fx_fog"};
+    bool any = false;
+    for (size_t k = 0; k < sizeof FX / sizeof FX[0]; k++) {
+        const bench_row *off, *on;
+        approximation_rows(r, FX[k], &off, &on);
+        if (!off || !on)
+            continue;
+        if (!any)
+            fprintf(f, "## The model's approximations against %s\n\n",
+                    r->opt->path_truth ? "the truth (the path tracer)" : "the reference");
+        any = true;
+        char s[512];
+        approximation_sentence(r, off, on, FX[k] + 3, s, sizeof s);
+        fprintf(f, "- %s.", s);
+        if (on->diff[0] && off->diff[0])
+            fprintf(f, " Where it differs, off and on: ![off](%s) ![on](%s)", off->diff, on->diff);
+        fprintf(f, "\n");
+    }
+    if (any)
+        fprintf(f, "\nDifference images: the largest channel's difference per pixel of the first view, %s; against "
+                   "![the reference](%s-reference.png).\n\n", DIFF_LEGEND, prefix(r));
+}
+
 static bool write_summary(const bench_results *r, err_t *err)
 {
     char path[PATH_MAX_LEN];
@@ -335,6 +396,7 @@ static bool write_summary(const bench_results *r, err_t *err)
     summary_header(r, f);
     fprintf(f, "![the presets and the Pareto front](%s-overview.png)\n\n![each knob alone](%s-plot.png)\n\n",
             prefix(r), prefix(r));
+    approximations_md(r, f);
     fprintf(f, "| knob | value | ms/image | RMSE | edge RMSE | PSNR dB | depth mean (fp) | depth max (fp) | flips %% | "
                "IoU | edge px | steps/px | out of steps %% |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (int i = 0; i < r->nrows; i++) {
@@ -434,6 +496,56 @@ static void html_tables(const bench_results *r, FILE *f)
     fprintf(f, "</table>\n");
 }
 
+/* The model's approximations in sentences, then the reference beside every difference image. */
+static void html_differences(const bench_results *r, FILE *f)
+{
+    static const char *const FX[] = {"fx_ao", "fx_soft_shadows", "fx_fog"};
+    bool any = false;
+    for (size_t k = 0; k < sizeof FX / sizeof FX[0]; k++) {
+        const bench_row *off, *on;
+        approximation_rows(r, FX[k], &off, &on);
+        if (!off || !on)
+            continue;
+        if (!any)
+            fprintf(f, "<h2>The model's approximations against %s</h2>\n<ul>\n",
+                    r->opt->path_truth ? "the truth (the path tracer)" : "the reference");
+        any = true;
+        char s[512];
+        approximation_sentence(r, off, on, FX[k] + 3, s, sizeof s);
+        fprintf(f, "<li>");
+        html_text(f, s);
+        fprintf(f, ".</li>\n");
+    }
+    if (any)
+        fprintf(f, "</ul>\n");
+    bool diffs = false;
+    for (int i = 0; i < r->nrows && !diffs; i++)
+        diffs = r->rows[i].diff[0] != 0;
+    if (!diffs)
+        return;
+    char png[PATH_MAX_LEN];
+    fprintf(f, "<h2>Where the error goes</h2>\n<p>The first view: the reference, then per setting the largest "
+               "channel's difference from it per pixel (%s) and its RMSE.</p>\n<div class=\"grid\"><figure>",
+            DIFF_LEGEND);
+    snprintf(png, sizeof png, "%s/%s-reference.png", r->opt->out, prefix(r));
+    inline_png(f, png, "the reference");
+    fprintf(f, "<figcaption>the reference</figcaption></figure>\n");
+    for (int i = 0; i < r->nrows; i++) {
+        const bench_row *w = &r->rows[i];
+        if (!w->diff[0])
+            continue;
+        fprintf(f, "<figure>");
+        snprintf(png, sizeof png, "%s/%s", r->opt->out, w->diff);
+        inline_png(f, png, w->diff);
+        fprintf(f, "<figcaption>");
+        html_text(f, w->knob);
+        fprintf(f, " = ");
+        html_text(f, w->value);
+        fprintf(f, ": RMSE %.4f, %.1f ms</figcaption></figure>\n", w->m.rmse, w->ms);
+    }
+    fprintf(f, "</div>\n");
+}
+
 static bool write_html(const bench_results *r, err_t *err)
 {
     char path[PATH_MAX_LEN], png[PATH_MAX_LEN];
@@ -445,7 +557,9 @@ static bool write_html(const bench_results *r, err_t *err)
     fprintf(f, "</title>\n<style>body{font:14px sans-serif;margin:2em;max-width:1200px}"
                "table{border-collapse:collapse;margin:1em 0}td,th{border:1px solid #ccc;padding:2px 8px;"
                "text-align:right}td:first-child,th:first-child{text-align:left}tr.front{background:#eef5e9}"
-               "img{max-width:100%%;display:block;margin:1em 0}</style></head><body>\n<h1>What accuracy costs: ");
+               "img{max-width:100%%;display:block;margin:1em 0}.grid{display:flex;flex-wrap:wrap;gap:12px}"
+               ".grid figure{margin:0;width:320px}.grid img{margin:0;width:100%%;image-rendering:pixelated}"
+               "figcaption{font-size:12px}</style></head><body>\n<h1>What accuracy costs: ");
     html_text(f, prefix(r));
     fprintf(f, "</h1>\n<p>");
     html_text(f, r->base->title);
@@ -460,6 +574,7 @@ static bool write_html(const bench_results *r, err_t *err)
     inline_png(f, png, "the presets and the Pareto front");
     snprintf(png, sizeof png, "%s/%s-plot.png", r->opt->out, prefix(r));
     inline_png(f, png, "each knob alone");
+    html_differences(r, f);
     html_tables(r, f);
     fprintf(f, "</body></html>\n");
     if (fclose(f) != 0)

@@ -15,7 +15,11 @@ typedef struct bench_row {
     double ms_lo, ms_hi; /* its interval (metrics_median_interval), mean over views */
     metrics m;  /* mean over views (max depth: max) */
     bool front;
+    char diff[160]; /* the difference image's file name in the --out folder (view 1), or empty */
 } bench_row;
+
+/* Difference images: yellow at this difference (of the display's full scale), white from 1.25× it. */
+#define BENCH_DIFF_YELLOW 0.25
 
 typedef struct effect_row {
     effect e;

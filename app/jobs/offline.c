@@ -15,7 +15,7 @@
 
 /* A band: about 2 Mpixel by default; at most 16 Mpixel whatever --strip-rows asks (GPU targets 52 bytes
  * a pixel, the readback about 140), so 16384 columns always render. */
-enum { BAR_WIDTH = 30, MAX_CHANNELS = 12, STRIP_PIXELS = 1 << 21, BAND_MAX_PIXELS = 1 << 24 };
+enum { BAR_WIDTH = 30, MAX_CHANNELS = 16, STRIP_PIXELS = 1 << 21, BAND_MAX_PIXELS = 1 << 24 };
 static const float EXPOSURE = 1.0f;
 
 static void progress(int done, int total, double elapsed)
@@ -51,6 +51,12 @@ static int exr_channels(unsigned aovs, const char *names[MAX_CHANNELS], int src[
         names[nc] = "exit.Y", src[nc++] = AOV_SLOT_EXIT + 1;
         names[nc] = "exit.Z", src[nc++] = AOV_SLOT_EXIT + 2;
     }
+    if (aovs & AOV_VARIANCE) {
+        names[nc] = "variance.R", src[nc++] = AOV_SLOT_VARIANCE;
+        names[nc] = "variance.G", src[nc++] = AOV_SLOT_VARIANCE + 1;
+        names[nc] = "variance.B", src[nc++] = AOV_SLOT_VARIANCE + 2;
+    }
+    if (aovs & AOV_SAMPLES) names[nc] = "samples", src[nc++] = AOV_SLOT_SAMPLES;
     return nc;
 }
 
