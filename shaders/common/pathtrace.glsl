@@ -5,17 +5,23 @@
 //     exact dielectric Fresnel in place of Schlick's (a surface of ior 1 reflects nothing), sampled
 //     by a one-sample mixture of a cosine-weighted diffuse lobe and GGX's distribution of normals
 //     (Walter et al. 2007, "Microfacet models for refraction through rough surfaces", eq. 33–38);
-//   - light: next-event estimation to every point and directional light (delta lights: a shadow ray
-//     by the primary marcher, never a penumbra rule), the environment and emission met by the
-//     sampled paths (nothing samples them directly, so no multiple importance weights are needed);
+//   - light: next-event estimation to every light (a shadow ray by the primary marcher, never a
+//     penumbra rule); the environment and emission met by the sampled paths;
 //   - glass: reflect or refract with the probability of the exact Fresnel split, total internal
 //     reflection, Beer–Lambert absorption inside;
 //   - lights whose shadow is "soft" are discs of angular radius 1/(2k) seen from the shaded point
 //     (k the light's softness: the model's penumbra rule ramps from dark to lit over h/t in [0, 1/k],
-//     and a disc of that radius has a penumbra as wide), their irradiance unchanged; sampled
-//     uniformly over the disc's cone by next-event estimation; the other lights are points or
-//     directions. Lights are not geometry (the model draws none), so a sampled path never meets
-//     one and next-event estimation is the only estimator: no multiple importance weights needed;
+//     and a disc of that radius has a penumbra as wide), their irradiance unchanged: radiance
+//     Le = E/Ω over the cone's solid angle Ω. Two strategies find them, weighted by the power
+//     heuristic (multiple importance sampling: Veach & Guibas 1995, "Optimally combining sampling
+//     techniques for Monte Carlo rendering"): next-event estimation, uniform over the cone, and the
+//     path's own sampled direction when it runs into the disc (no surface before the light). A
+//     near-mirror reflecting a disc is found by the second, a rough surface under a small disc by
+//     the first; each alone is unbiased but one of them is noisy by orders of magnitude. The other
+//     lights are points or directions (deltas): next-event estimation only. Lights are not
+//     geometry: the camera does not see them, nor through glass; a path meets them only after it
+//     has scattered off a surface or in fog (then through glass too: a caustic, weight 1, as no
+//     shadow ray passes glass);
 //   - fog (effects.fog) as a participating medium: the model's height density σ(y) is the
 //     extinction, the fog colour the single-scattering albedo, the phase isotropic; free flights
 //     sampled exactly from the closed-form optical depth (fogFreeFlight), each scattering event
@@ -138,10 +144,25 @@ float fogFreeFlight(float oy, float dy, float tau)
 float fogTransmittance(float oy, float dy, float s) { return 1.0; }
 #endif
 
+// The power heuristic's weight of a strategy of density a against one of density b (Veach 1997, §9.2.1).
+float powerWeight(float a, float b) { return a * a / max(a * a + b * b, 1e-30); }
+
+#if NUM_LIGHTS > 0
+// A soft light (uLightShadow 2) is a disc of angular radius α = 1/(2k): 1 − cos α, as 2 sin²(α/2) (no
+// cancellation for a small disc). Its solid angle is Ω = 2π(1 − cos α), its radiance E/Ω.
+float discOneMinusCos(int i)
+{
+    float s = sin(0.25 / uLightSoftness[i]);
+    return 2.0 * s * s;
+}
+#endif
+
 // Light arriving at p from every light (a direction within a soft light's disc), each seen or not
 // by a shadow ray and dimmed by the fog on its way; n = vec3(0) is a point in the fog (isotropic
-// phase 1/4π in place of the BRDF).
-vec3 nextEvent(vec3 p, vec3 n, vec3 v, Material m, float pathT, inout Rng rng)
+// phase 1/4π in place of the BRDF). A disc's share is weighted against the path's own sampling
+// (density pathPdf with pSpec; the phase's 1/4π in fog), except at the path's last vertex (last),
+// whose sampled direction is never traced.
+vec3 nextEvent(vec3 p, vec3 n, vec3 v, Material m, float pSpec, bool last, float pathT, inout Rng rng)
 {
     vec3 sum = vec3(0.0);
 #if NUM_LIGHTS > 0
@@ -149,20 +170,49 @@ vec3 nextEvent(vec3 p, vec3 n, vec3 v, Material m, float pathT, inout Rng rng)
     float offset = medium ? 0.0 : SURFACE_OFFSET_K * hitEps(pathT);
     for (int i = 0; i < NUM_LIGHTS; i++) {
         vec3 l;
-        float dist;
+        float dist, oneMinusCos = discOneMinusCos(i);
         vec3 radiance = lightArriving(i, p, l, dist);
+        bool disc = uLightShadow[i] == 2;
         float u1 = rand01(rng), u2 = rand01(rng); // drawn for every light: the sequence stays in step
-        if (uLightShadow[i] == 2) { // a disc of angular radius 1/(2k): a direction uniform in its cone
-            float cosA = cos(0.5 / uLightSoftness[i]);
-            float cosT = 1.0 - u1 * (1.0 - cosA), sinT = sqrt(max(0.0, 1.0 - cosT * cosT)), phi = 2.0 * PI * u2;
+        if (disc) { // a direction uniform in the cone: cos θ uniform in [cos α, 1]
+            float cosT = 1.0 - u1 * oneMinusCos, sinT = sqrt(max(0.0, 1.0 - cosT * cosT)), phi = 2.0 * PI * u2;
             l = aboutNormal(l, vec3(sinT * cos(phi), sinT * sin(phi), cosT));
         }
         vec3 f = medium ? vec3(1.0 / (4.0 * PI)) : pathBrdf(n, v, l, m);
         if (all(lessThanEqual(f, vec3(0.0))))
             continue;
+        if (disc && !last) // Le / (1/Ω) = E, weighted against the path's own sampling of l
+            radiance *= powerWeight(1.0 / (2.0 * PI * oneMinusCos), medium ? 1.0 / (4.0 * PI) : pathPdf(n, v, l, m, pSpec));
         Hit s = castRay(p + n * offset, l, dist - offset, 1.0, pathT);
         if (!s.hit)
             sum += f * radiance * fogTransmittance(worldApprox(p).y, l.y, min(dist, float(MAX_DIST)));
+    }
+#endif
+    return sum;
+}
+
+// What the path's segment from o along d meets of the soft lights' discs before `reach` (its
+// surface, its scattering point in fog, or 1e30): each disc whose cone holds d and whose light is
+// nearer. pdf: the density the direction was sampled with at a surface or in fog (weighted against
+// next-event estimation there); −1 after glass (no shadow ray passes it: weight 1); 0 before
+// anything scattered the path (lights unseen).
+vec3 discsMet(vec3 o, vec3 d, float reach, float pdf)
+{
+    vec3 sum = vec3(0.0);
+#if NUM_LIGHTS > 0
+    if (pdf == 0.0)
+        return sum;
+    for (int i = 0; i < NUM_LIGHTS; i++) {
+        if (uLightShadow[i] != 2)
+            continue;
+        vec3 c;
+        float dist, oneMinusCos = discOneMinusCos(i);
+        vec3 E = lightArriving(i, o, c, dist);
+        // within the cone: the chord |d − c|² = 2(1 − cos θ) against 2(1 − cos α), exact for small discs
+        if (dist >= reach || dot(d - c, d - c) > 2.0 * oneMinusCos)
+            continue;
+        float pdfLight = 1.0 / (2.0 * PI * oneMinusCos);
+        sum += E * pdfLight * (pdf > 0.0 ? powerWeight(pdf, pdfLight) : 1.0); // Le = E/Ω
     }
 #endif
     return sum;
@@ -194,8 +244,10 @@ PathSample tracePathSample(Ray ray, vec2 pixel)
     vec3 ro = ray.o, rd = ray.d, throughput = vec3(1.0);
     vec3 from = ray.o; // where the segment left a surface (ro is pushed off it): Beer's length runs from here
     float side = 1.0, pathT = 0.0;
+    float dirPdf = 0.0; // how this segment's direction was drawn (discsMet): nothing scattered it yet
     for (int bounce = 0; bounce <= BOUNCES; bounce++) {
         Hit h = castRay(ro, rd, float(MAX_DIST) - pathT, side, pathT);
+        float reach = h.hit ? h.t : 1e30; // how far the segment goes: to its surface, or scattered in fog
         if (bounce == 0) {
             S.steps = h.steps;
             S.exhausted = h.exhausted;
@@ -209,13 +261,15 @@ PathSample tracePathSample(Ray ray, vec2 pixel)
         if (side > 0.0 && fogOnPath()) { // does the fog scatter the photon before it gets there?
             float tf = fogFreeFlight(worldApprox(ro).y, rd.y, -log(1.0 - rand01(rng)));
             if (tf >= 0.0 && (!h.hit && tf < float(MAX_DIST) - pathT || h.hit && tf < h.t)) {
+                S.radiance += throughput * discsMet(ro, rd, tf, dirPdf);
                 vec3 q = ro + rd * tf;
                 pathT += tf;
                 throughput *= uFogColor; // the albedo: what is not absorbed
-                S.radiance += throughput * nextEvent(q, vec3(0.0), -rd, Material(vec3(0.0), 0.0, 1.0, 0.0, 1.0, vec3(0.0), vec3(0.0)), pathT, rng);
+                S.radiance += throughput * nextEvent(q, vec3(0.0), -rd, Material(vec3(0.0), 0.0, 1.0, 0.0, 1.0, vec3(0.0), vec3(0.0)), 0.0, bounce == BOUNCES, pathT, rng);
                 float u1 = rand01(rng), u2 = rand01(rng); // isotropic: phase / pdf = 1
                 float z = 1.0 - 2.0 * u1, r = sqrt(max(0.0, 1.0 - z * z)), phi = 2.0 * PI * u2;
                 rd = vec3(r * cos(phi), r * sin(phi), z);
+                dirPdf = 1.0 / (4.0 * PI);
                 ro = q;
                 from = q;
                 if (!roulette(throughput, bounce, rng))
@@ -224,6 +278,7 @@ PathSample tracePathSample(Ray ray, vec2 pixel)
             }
         }
 #endif
+        S.radiance += throughput * discsMet(ro, rd, reach, dirPdf);
         if (!h.hit) {
             S.radiance += throughput * environment(rd);
             break;
@@ -237,6 +292,7 @@ PathSample tracePathSample(Ray ray, vec2 pixel)
             throughput *= exp(-m.absorption * distance(from, p)); // would cut a thin slab's length
         S.radiance += throughput * m.emission;
         if (m.transmission > 0.0 && rand01(rng) < m.transmission) { // glass: the Fresnel split, chosen at random
+            dirPdf = dirPdf == 0.0 ? 0.0 : -1.0; // a delta: lights met after it are weighted 1
             bool entering = dot(rd, n) < 0.0;
             vec3 nf = entering ? n : -n;
             float eta = entering ? 1.0 / m.ior : m.ior;
@@ -252,13 +308,14 @@ PathSample tracePathSample(Ray ray, vec2 pixel)
             }
         } else {
             vec3 v = -rd, nf = dot(n, v) < 0.0 ? -n : n; // the side the path sees
-            S.radiance += throughput * nextEvent(p, nf, v, m, pathT, rng);
             float pSpec = specularChance(nf, v, m);
+            S.radiance += throughput * nextEvent(p, nf, v, m, pSpec, bounce == BOUNCES, pathT, rng);
             vec3 l = sampleDirection(nf, v, m, pSpec, rng);
             float pdf = pathPdf(nf, v, l, m, pSpec);
             if (pdf <= 0.0)
                 break;
             throughput *= pathBrdf(nf, v, l, m) / pdf;
+            dirPdf = pdf;
             rd = l;
             ro = p + nf * (SURFACE_OFFSET_K * eps);
             from = p;
