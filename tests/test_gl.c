@@ -1361,11 +1361,78 @@ static void specular_against_the_lecture(void **st)
     }
 }
 
+/* ---- the ambient term: the sky around the normal, or its mean ------------------------------------------
+ * A white diffuse sphere (roughness 1, ior 1: no Fresnel, so the shade is albedo × ambient alone; no
+ * lights, no AO) under a cube map whose six faces are each one colour. With quality.ambient 0 the
+ * ambient is the mean of the six faces (equal solid angles), the same at every pixel: ρ · Σ c_f / 6 in
+ * linear terms. With 1 it follows the normal: the top of the sphere sees the bright top face more. */
+static void constant_ambient_is_the_sky_mean(void **st)
+{
+    (void)st;
+    enum { FACE = 16 };
+    static const uint8_t GREY[6] = {40, 80, 250, 10, 120, 160}; /* +X −X +Y −Y +Z −Z, sRGB */
+    char dir[] = "/tmp/fathom-ambient-XXXXXX", faces[6][96];
+    assert_non_null(mkdtemp(dir));
+    double mean = 0;
+    for (int f = 0; f < 6; f++) {
+        static uint8_t px[FACE * FACE * 3];
+        memset(px, GREY[f], sizeof px);
+        snprintf(faces[f], sizeof faces[f], "%s/%d.png", dir, f);
+        err_t e;
+        if (!image_write_u8(faces[f], FACE, FACE, 3, px, &e))
+            fail_msg("%s", e.msg);
+        double c = GREY[f] / 255.0;
+        mean += (c <= 0.04045 ? c / 12.92 : pow((c + 0.055) / 1.055, 2.4)) / 6;
+    }
+    double rho = 0.5, top = 0, bottom = 0;
+    for (int ambient = 0; ambient <= 1; ambient++) {
+        char json[1024];
+        snprintf(json, sizeof json,
+                 "{\"program\": \"csg\", \"environment\": {\"color\": [1, 1, 1], \"intensity\": 1, \"cubemap\": "
+                 "[\"%s\", \"%s\", \"%s\", \"%s\", \"%s\", \"%s\"]}, \"lights\": [],"
+                 " \"materials\": {\"white\": {\"base_color\": [%g, %g, %g], \"roughness\": 1, \"ior\": 1}},"
+                 " \"objects\": [{\"shape\": \"sphere\", \"radius\": 1, \"material\": \"white\"}],"
+                 " \"effects\": {\"ao\": \"off\"}, \"quality\": {\"preset\": \"final\", \"spp\": 1, \"ambient\": %d}}",
+                 faces[0], faces[1], faces[2], faces[3], faces[4], faces[5], rho, rho, rho, ambient);
+        scene s;
+        load_text(json, NULL, 0, &s);
+        static float rgba[W * H * 4], aov[W * H * AOV];
+        camera cam = cam_at(0, 0, 4, 0, 0, 0, 40);
+        draw(&s, &cam, W, H, 1, NULL, aov, rgba);
+        scene_free(&s);
+        double worst = 0;
+        int n = 0;
+        for (int i = 0; i < W * H; i++) {
+            if (isinf(aov[i * AOV + AOV_SLOT_DEPTH]))
+                continue;
+            n++;
+            worst = fmax(worst, fabs(rgba[i * 4] - rho * mean));
+            if (aov[i * AOV + 1] > 0.9) /* the normal's y: the top of the sphere */
+                top = rgba[i * 4];
+            if (aov[i * AOV + 1] < -0.9)
+                bottom = rgba[i * 4];
+        }
+        if (ambient == 0) {
+            fprintf(stderr, "  constant ambient: %d sphere pixels, worst |L - rho * mean| %.2g (rho * mean %.5f)\n", n,
+                    worst, rho * mean);
+            assert_true(n > 1000);
+            assert_true(worst < 2e-3 * rho * mean); /* the 1x1 levels are 8-bit sRGB */
+        } else {
+            fprintf(stderr, "  sky ambient: top of the sphere %.4f, bottom %.4f\n", top, bottom);
+            assert_true(top > 2 * rho * mean && bottom < rho * mean); /* the bright top face, the dark bottom one */
+        }
+    }
+    for (int f = 0; f < 6; f++)
+        unlink(faces[f]);
+    rmdir(dir);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(point_light_radiometry),
         cmocka_unit_test(specular_against_the_lecture),
+        cmocka_unit_test(constant_ambient_is_the_sky_mean),
         cmocka_unit_test(variants_compile),
         cmocka_unit_test(depth_and_normal_probes),
         cmocka_unit_test(glass_sphere_snell),

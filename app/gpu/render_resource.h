@@ -19,6 +19,7 @@
 
 enum {
     RENDER_UNIT_ENVMAP = SCENE_MAX_TEXTURES,
+    RENDER_UNIT_ENV_CDF, /* the path tracer's sky distribution (res_envmap.c) */
     RENDER_UNIT_HEIGHT,
     RENDER_UNIT_HEIGHT_MAX,
     RENDER_UNIT_CSG_LIST,

@@ -7,6 +7,8 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "gpu/texture.h"
+
 static struct {
     droplets drops;
     char file[PATH_MAX_LEN];
@@ -24,22 +26,6 @@ static void release(void)
     }
     droplets_free(&state.drops);
     memset(&state, 0, sizeof state);
-}
-
-/* A texture buffer over `bytes` of data (shaders read it with texelFetch). */
-static bool buffer_texture(GLenum format, const void *data, size_t bytes, GLuint *buf, GLuint *tex)
-{
-    glGenBuffers(1, buf);
-    glBindBuffer(GL_TEXTURE_BUFFER, *buf);
-    glBufferData(GL_TEXTURE_BUFFER, (GLsizeiptr)bytes, data, GL_STATIC_DRAW);
-    glBindBuffer(GL_TEXTURE_BUFFER, 0);
-    if (glGetError() == GL_OUT_OF_MEMORY)
-        return false;
-    glGenTextures(1, tex);
-    glBindTexture(GL_TEXTURE_BUFFER, *tex);
-    glTexBuffer(GL_TEXTURE_BUFFER, format, *buf);
-    glBindTexture(GL_TEXTURE_BUFFER, 0);
-    return true;
 }
 
 /* Texels of the second buffer: the grid's cell offsets, or the BVH's nodes (2 texels each). */
@@ -81,10 +67,10 @@ static bool set(const scene *s, err_t *err)
         return false;
     }
     const droplets *d = &state.drops;
-    if (!buffer_texture(GL_RGBA32F, d->spheres, sizeof(float) * 4 * (size_t)d->count, &state.buf[0], &state.tex[0]) ||
-        !(d->nodes ? buffer_texture(GL_RGBA32UI, d->nodes, sizeof(uint32_t) * 4 * cells, &state.buf[1], &state.tex[1])
-                   : buffer_texture(GL_R32UI, d->cells, sizeof(uint32_t) * cells, &state.buf[1], &state.tex[1])) ||
-        !buffer_texture(GL_R32UI, d->index, sizeof(uint32_t) * (d->refs ? d->refs : 1), &state.buf[2], &state.tex[2])) {
+    if (!texture_buffer(GL_RGBA32F, d->spheres, sizeof(float) * 4 * (size_t)d->count, &state.buf[0], &state.tex[0]) ||
+        !(d->nodes ? texture_buffer(GL_RGBA32UI, d->nodes, sizeof(uint32_t) * 4 * cells, &state.buf[1], &state.tex[1])
+                   : texture_buffer(GL_R32UI, d->cells, sizeof(uint32_t) * cells, &state.buf[1], &state.tex[1])) ||
+        !texture_buffer(GL_R32UI, d->index, sizeof(uint32_t) * (d->refs ? d->refs : 1), &state.buf[2], &state.tex[2])) {
         err_set(err, "droplets file '%s': the GPU has no room for %d droplets (%.0f MB)", s->droplets.file, d->count,
                 (double)droplets_bytes(d) / 1e6);
         release();

@@ -100,3 +100,21 @@ GLuint texture_load_cube(const char (*faces)[PATH_MAX_LEN], int *size, err_t *er
     *size = first;
     return tex;
 }
+
+bool texture_buffer(GLenum format, const void *data, size_t bytes, GLuint *buf, GLuint *tex)
+{
+    glGenBuffers(1, buf);
+    glBindBuffer(GL_TEXTURE_BUFFER, *buf);
+    glBufferData(GL_TEXTURE_BUFFER, (GLsizeiptr)bytes, data, GL_STATIC_DRAW);
+    glBindBuffer(GL_TEXTURE_BUFFER, 0);
+    if (glGetError() == GL_OUT_OF_MEMORY) {
+        glDeleteBuffers(1, buf);
+        *buf = 0;
+        return false;
+    }
+    glGenTextures(1, tex);
+    glBindTexture(GL_TEXTURE_BUFFER, *tex);
+    glTexBuffer(GL_TEXTURE_BUFFER, format, *buf);
+    glBindTexture(GL_TEXTURE_BUFFER, 0);
+    return true;
+}

@@ -87,15 +87,22 @@ static int list_sweeps(const scene *s, sweep *out, bool *applies)
     }
     if (program_is_fractal(s->program) && n < MAX_SWEEPS - 1)
         fractal_iterations_sweep(&s->fractal.formula, &out[n]), applies[n++] = true;
-    /* the model's approximations of light transport, off and on (each priced against the path
-     * tracer by bench --truth path): only those the scene uses */
-    static const effect MODEL[] = {EFFECT_AO, EFFECT_SOFT_SHADOWS, EFFECT_FOG};
+    /* the model's approximations of light transport that are effects (fx_NAME), off and on (each
+     * priced against the path tracer by bench --truth path): only those the scene uses */
+    static const bench_approximation MODEL[] = {
+#define X(knob, off, on, what) {knob, off, on, what},
+        BENCH_APPROXIMATIONS(X)
+#undef X
+    };
     for (size_t i = 0; i < sizeof MODEL / sizeof MODEL[0] && n < MAX_SWEEPS - 1; i++) {
+        effect e;
+        if (strncmp(MODEL[i].knob, "fx_", 3) || !effect_from_name(MODEL[i].knob + 3, &e))
+            continue; /* a quality knob: swept with the others */
         out[n] = (sweep){0};
-        snprintf(out[n].name, sizeof out[n].name, "fx_%s", effect_name(MODEL[i]));
-        snprintf(out[n].key, sizeof out[n].key, "effects.%s", effect_name(MODEL[i]));
-        snprintf(out[n].values, sizeof out[n].values, "off,on");
-        applies[n++] = (s->effects & (1u << MODEL[i])) != 0;
+        snprintf(out[n].name, sizeof out[n].name, "%s", MODEL[i].knob);
+        snprintf(out[n].key, sizeof out[n].key, "effects.%s", effect_name(e));
+        snprintf(out[n].values, sizeof out[n].values, "%s,%s", MODEL[i].off, MODEL[i].on);
+        applies[n++] = (s->effects & (1u << e)) != 0;
     }
     out[n] = (sweep){.name = "resolution_scale", .values = "0.25,0.5,0.75,1", .own = true};
     applies[n++] = true;
@@ -201,7 +208,7 @@ static void write_difference(const char *knob, const char *value, const uint8_t 
 /* Which rows get a difference image: the presets, and the model's approximations against the truth. */
 static bool wants_difference(const char *knob)
 {
-    return B.opt->out && (!strcmp(knob, "preset") || (B.opt->path_truth && !strncmp(knob, "fx_", 3)));
+    return B.opt->out && (!strcmp(knob, "preset") || (B.opt->path_truth && bench_approximation_of(knob)));
 }
 
 static void read_back(int w, int h, uint8_t **srgb, float **aov)
@@ -233,8 +240,8 @@ static bool measure(const char *knob_name, const char *value, const char *const 
     int runs = s.quality.spp >= LONG_SPP ? 1 : B.opt->runs;
     double *ms = util_alloc(sizeof *ms * (size_t)B.opt->runs, "bench timings");
     for (int v = 0; v < VIEWS; v++) {
-        if (runs > 1)
-            image(&s, &B.views[v].cam, w, h); /* warm-up: compiles and caches */
+        if (s.quality.spp < LONG_SPP)
+            image(&s, &B.views[v].cam, w, h); /* warm-up: compiles and caches (with --runs 1 too) */
         for (int r = 0; r < runs; r++)
             ms[r] = image(&s, &B.views[v].cam, w, h);
         double lo, hi;

@@ -330,61 +330,84 @@ static void summary_header(const bench_results *r, FILE *f)
 #define DIFF_LEGEND                                                                                                    \
     "black 0, purple 0.06, red 0.12, orange 0.19, yellow 0.25 of the display's full scale, white 0.31 and more"
 
-/* The rows of a model approximation's sweep (fx_NAME): its off and on settings, or NULL. */
-static void approximation_rows(const bench_results *r, const char *knob, const bench_row **off, const bench_row **on)
+static const bench_approximation APPROXIMATIONS[] = {
+#define X(knob, off, on, what) {knob, off, on, what},
+    BENCH_APPROXIMATIONS(X)
+#undef X
+};
+enum { APPROXIMATION_COUNT = sizeof APPROXIMATIONS / sizeof APPROXIMATIONS[0] };
+
+const bench_approximation *bench_approximation_of(const char *knob)
+{
+    for (int k = 0; k < APPROXIMATION_COUNT; k++)
+        if (!strcmp(APPROXIMATIONS[k].knob, knob))
+            return &APPROXIMATIONS[k];
+    return NULL;
+}
+
+/* The rows of approximation a's sweep: its off and on settings, or NULL. */
+static void approximation_rows(const bench_results *r, const bench_approximation *a, const bench_row **off,
+                               const bench_row **on)
 {
     *off = *on = NULL;
     for (int i = 0; i < r->nrows; i++)
-        if (!strcmp(r->rows[i].knob, knob)) {
-            if (!strcmp(r->rows[i].value, "off"))
+        if (!strcmp(r->rows[i].knob, a->knob)) {
+            if (!strcmp(r->rows[i].value, a->off))
                 *off = &r->rows[i];
-            else if (!strcmp(r->rows[i].value, "on"))
+            else if (!strcmp(r->rows[i].value, a->on))
                 *on = &r->rows[i];
         }
 }
 
-/* One sentence per model approximation the run priced: what switching it on costs in time and what it
- * does to the error against the reference (the truth with --truth path). */
-static void approximation_sentence(const bench_results *r, const bench_row *off, const bench_row *on,
-                                   const char *name, char *buf, size_t n)
+/* One sentence per model approximation the run priced (those with both rows), into s[k]: what switching
+ * it on costs in time and what it does to the error against the reference (the truth with --truth
+ * path); off[k] and on[k] get its rows. Returns how many. */
+typedef char sentence[512];
+static int approximation_sentences(const bench_results *r, sentence *s, const bench_row **offs, const bench_row **ons)
 {
-    char d[48], cost[64];
-    bench_difference(off->ms_lo, off->ms_hi, on->ms_lo, on->ms_hi, off->ms, on->ms, d, sizeof d);
-    if (strcmp(d, "not measurable"))
-        snprintf(cost, sizeof cost, "costs %s an image", d);
-    else
-        snprintf(cost, sizeof cost, "costs no measurable time");
-    double change = off->m.rmse > 0 ? 100 * (on->m.rmse - off->m.rmse) / off->m.rmse : 0;
-    snprintf(buf, n, "%s on %s (%.1f ms [%.1f–%.1f] against %.1f [%.1f–%.1f] off); its image is RMSE %.4f from %s, "
-                     "off %.4f: on is %.0f %% %s",
-             name, cost, on->ms, on->ms_lo, on->ms_hi, off->ms, off->ms_lo, off->ms_hi, on->m.rmse,
-             r->opt->path_truth ? "the truth" : "the reference", off->m.rmse, fabs(change),
-             change <= 0 ? "nearer" : "further");
+    int n = 0;
+    for (int k = 0; k < APPROXIMATION_COUNT; k++) {
+        const bench_row *off, *on;
+        approximation_rows(r, &APPROXIMATIONS[k], &off, &on);
+        if (!off || !on)
+            continue;
+        char d[48], cost[64];
+        bench_difference(off->ms_lo, off->ms_hi, on->ms_lo, on->ms_hi, off->ms, on->ms, d, sizeof d);
+        if (strcmp(d, "not measurable"))
+            snprintf(cost, sizeof cost, "costs %s an image", d);
+        else
+            snprintf(cost, sizeof cost, "costs no measurable time");
+        double change = off->m.rmse > 0 ? 100 * (on->m.rmse - off->m.rmse) / off->m.rmse : 0;
+        snprintf(s[n], sizeof s[n],
+                 "%s (%s=%s) %s (%.1f ms [%.1f–%.1f] against %.1f [%.1f–%.1f] without); its image is RMSE %.4f "
+                 "from %s, without %.4f: with it %.0f %% %s",
+                 APPROXIMATIONS[k].what, APPROXIMATIONS[k].knob, APPROXIMATIONS[k].on, cost, on->ms, on->ms_lo,
+                 on->ms_hi, off->ms, off->ms_lo, off->ms_hi, on->m.rmse,
+                 r->opt->path_truth ? "the truth" : "the reference", off->m.rmse, fabs(change),
+                 change <= 0 ? "nearer" : "further");
+        offs[n] = off;
+        ons[n++] = on;
+    }
+    return n;
 }
 
 static void approximations_md(const bench_results *r, FILE *f)
 {
-    static const char *const FX[] = {"fx_ao", "fx_soft_shadows", "fx_fog"};
-    bool any = false;
-    for (size_t k = 0; k < sizeof FX / sizeof FX[0]; k++) {
-        const bench_row *off, *on;
-        approximation_rows(r, FX[k], &off, &on);
-        if (!off || !on)
-            continue;
-        if (!any)
-            fprintf(f, "## The model's approximations against %s\n\n",
-                    r->opt->path_truth ? "the truth (the path tracer)" : "the reference");
-        any = true;
-        char s[512];
-        approximation_sentence(r, off, on, FX[k] + 3, s, sizeof s);
-        fprintf(f, "- %s.", s);
-        if (on->diff[0] && off->diff[0])
-            fprintf(f, " Where it differs, off and on: ![off](%s) ![on](%s)", off->diff, on->diff);
+    sentence s[APPROXIMATION_COUNT];
+    const bench_row *off[APPROXIMATION_COUNT], *on[APPROXIMATION_COUNT];
+    int n = approximation_sentences(r, s, off, on);
+    if (n == 0)
+        return;
+    fprintf(f, "## The model's approximations against %s\n\n",
+            r->opt->path_truth ? "the truth (the path tracer)" : "the reference");
+    for (int k = 0; k < n; k++) {
+        fprintf(f, "- %s.", s[k]);
+        if (on[k]->diff[0] && off[k]->diff[0])
+            fprintf(f, " Where it differs, without and with: ![without](%s) ![with](%s)", off[k]->diff, on[k]->diff);
         fprintf(f, "\n");
     }
-    if (any)
-        fprintf(f, "\nDifference images: the largest channel's difference per pixel of the first view, %s; against "
-                   "![the reference](%s-reference.png).\n\n", DIFF_LEGEND, prefix(r));
+    fprintf(f, "\nDifference images: the largest channel's difference per pixel of the first view, %s; against "
+               "![the reference](%s-reference.png).\n\n", DIFF_LEGEND, prefix(r));
 }
 
 static bool write_summary(const bench_results *r, err_t *err)
@@ -499,24 +522,18 @@ static void html_tables(const bench_results *r, FILE *f)
 /* The model's approximations in sentences, then the reference beside every difference image. */
 static void html_differences(const bench_results *r, FILE *f)
 {
-    static const char *const FX[] = {"fx_ao", "fx_soft_shadows", "fx_fog"};
-    bool any = false;
-    for (size_t k = 0; k < sizeof FX / sizeof FX[0]; k++) {
-        const bench_row *off, *on;
-        approximation_rows(r, FX[k], &off, &on);
-        if (!off || !on)
-            continue;
-        if (!any)
-            fprintf(f, "<h2>The model's approximations against %s</h2>\n<ul>\n",
-                    r->opt->path_truth ? "the truth (the path tracer)" : "the reference");
-        any = true;
-        char s[512];
-        approximation_sentence(r, off, on, FX[k] + 3, s, sizeof s);
+    sentence s[APPROXIMATION_COUNT];
+    const bench_row *off[APPROXIMATION_COUNT], *on[APPROXIMATION_COUNT];
+    int n = approximation_sentences(r, s, off, on);
+    if (n > 0)
+        fprintf(f, "<h2>The model's approximations against %s</h2>\n<ul>\n",
+                r->opt->path_truth ? "the truth (the path tracer)" : "the reference");
+    for (int k = 0; k < n; k++) {
         fprintf(f, "<li>");
-        html_text(f, s);
+        html_text(f, s[k]);
         fprintf(f, ".</li>\n");
     }
-    if (any)
+    if (n > 0)
         fprintf(f, "</ul>\n");
     bool diffs = false;
     for (int i = 0; i < r->nrows && !diffs; i++)

@@ -21,6 +21,19 @@ typedef struct bench_row {
 /* Difference images: yellow at this difference (of the display's full scale), white from 1.25× it. */
 #define BENCH_DIFF_YELLOW 0.25
 
+/* The model's approximations of light transport a bench prices (against the path tracer with --truth
+ * path): a knob, its values without and with the approximation, and what to call it. */
+typedef struct bench_approximation {
+    const char *knob, *off, *on, *what;
+} bench_approximation;
+#define BENCH_APPROXIMATIONS(X)                                                                                        \
+    X("fx_ao", "off", "on", "ambient occlusion")                                                                       \
+    X("fx_soft_shadows", "off", "on", "the soft-shadow rule")                                                          \
+    X("fx_fog", "off", "on", "the fog approximation")                                                                  \
+    X("ambient", "0", "1", "sky ambient (against one constant, the sky's mean)")
+/* The approximation knob names, or NULL. */
+const bench_approximation *bench_approximation_of(const char *knob);
+
 typedef struct effect_row {
     effect e;
     bool in_scene;

@@ -44,6 +44,7 @@ typedef enum knob_scope {
     SCOPE_REFINES,  /* sphere-traced programs whose distance is exact or a bound (not fractals' level-of-detail surfaces) */
     SCOPE_DROPLETS, /* scenes with droplets */
     SCOPE_EXACT,    /* programs whose distance is exact or a tight bound (csg): a cone's coverage needs it */
+    SCOPE_ENVMAP,   /* scenes lit by a cube map */
 } knob_scope;
 
 /* clang-format off */
@@ -83,6 +84,8 @@ typedef enum knob_scope {
       "1: the droplets' grid walk stops at the scene's surface, so droplets behind it cost nothing; 0: it walks on (the same image, to measure the saving)") \
     X(coverage,     INT,   "COVERAGE",     0,     1,      0,    0,       0,     0,    0,   0,    "0,1",                   SCOPE_EXACT,    \
       "1: cone coverage anti-aliasing (csg): a surface the centre ray passes within half a pixel gets its share of the pixel [docs/bench/coverage]") \
+    X(ambient,      INT,   "AMBIENT",      0,     1,      1,    1,       1,     1,    0,   0,    "0,1",                   SCOPE_ENVMAP,   \
+      "diffuse ambient light under a cube map: 1 the sky around the normal (the map blurred over a hemisphere), 0 one constant, the sky's mean (as a renderer without image-based light has it)") \
     X(integrator,   INT,   "INTEGRATOR",   0,     1,      0,    0,       0,     0,    0,   0,    NULL,                    SCOPE_ANY,      \
       "0: the shading model (direct light, AO, one-level glass); 1: a path tracer through the same map() and materials, the Monte Carlo truth the model is priced against (common/pathtrace.glsl)") \
     X(spp,          INT,   NULL,         1,     65536,  1,    4,       16,    256,  2,   0,    "1,2,4,8,16",            SCOPE_ANY,      \

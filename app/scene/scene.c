@@ -249,6 +249,7 @@ bool scene_knob_applies(const scene *s, knob_id k)
         return (s->terrain.heightmap[0] && !s->terrain.maxmip) || (s->effects & (1u << EFFECT_RELIEF));
     case SCOPE_DROPLETS: return s->effects & (1u << EFFECT_DROPLETS);
     case SCOPE_EXACT: return program_get(s->program)->family == FAMILY_CSG;
+    case SCOPE_ENVMAP: return s->has_cubemap && (s->effects & (1u << EFFECT_ENVMAP));
     }
     return false;
 }

@@ -31,3 +31,31 @@ vec3 environmentBlurred(vec3 dir, float roughness)
     return uEnvColor;
 #endif
 }
+
+// The sky's mean radiance over all directions: the mean of the six faces' 1 × 1 levels (faces subtend
+// equal solid angles). The diffuse ambient of a renderer without image-based light (quality.ambient 0).
+vec3 environmentMean()
+{
+#if FX_ENVMAP
+    if (!fxOn(FX_ENVMAP_BIT))
+        return uEnvColor;
+    vec3 sum = vec3(0.0);
+    for (int i = 0; i < 3; i++) {
+        vec3 axis = vec3(i == 0, i == 1, i == 2);
+        sum += textureLod(uEnvMap, axis, uEnvMaxLod).rgb + textureLod(uEnvMap, -axis, uEnvMaxLod).rgb;
+    }
+    return sum / 6.0 * uEnvColor;
+#else
+    return uEnvColor;
+#endif
+}
+
+// The diffuse ambient light at normal n (quality.ambient: the sky around n, or its mean).
+vec3 ambientLight(vec3 n)
+{
+#if AMBIENT
+    return environmentBlurred(n, 1.0);
+#else
+    return environmentMean();
+#endif
+}

@@ -5,8 +5,8 @@
 //     exact dielectric Fresnel in place of Schlick's (a surface of ior 1 reflects nothing), sampled
 //     by a one-sample mixture of a cosine-weighted diffuse lobe and GGX's distribution of normals
 //     (Walter et al. 2007, "Microfacet models for refraction through rough surfaces", eq. 33–38);
-//   - light: next-event estimation to every light (a shadow ray by the primary marcher, never a
-//     penumbra rule); the environment and emission met by the sampled paths;
+//   - light: next-event estimation to every light and to a cube map's sky (a shadow ray by the
+//     primary marcher, never a penumbra rule); the sky and emission met by the sampled paths;
 //   - glass: reflect or refract with the probability of the exact Fresnel split, total internal
 //     reflection, Beer–Lambert absorption inside;
 //   - lights whose shadow is "soft" are discs of angular radius 1/(2k) seen from the shaded point
@@ -157,16 +157,93 @@ float discOneMinusCos(int i)
 }
 #endif
 
-// Light arriving at p from every light (a direction within a soft light's disc), each seen or not
-// by a shadow ray and dimmed by the fog on its way; n = vec3(0) is a point in the fog (isotropic
-// phase 1/4π in place of the BRDF). A disc's share is weighted against the path's own sampling
-// (density pathPdf with pSpec; the phase's 1/4π in fog), except at the path's last vertex (last),
-// whose sampled direction is never traced.
+#if FX_ENVMAP
+// The sky's own distribution (app/gpu/res_envmap.c): a cumulative table over the cube map's cells,
+// uEnvCells across a face (0: none, a black sky), each cell as likely as the light it sends (its mean
+// luminance times its solid angle), cells in the order face, row, column. A cube map's sky is found
+// by next-event estimation from it as well as by the path's own samples, weighted as for discs: a
+// small bright patch (a sun in the map) is found by the first, a glossy reflection by the second.
+// A constant sky is found by the path's samples alone: they are already drawn as the surface
+// reflects (cosine or GGX), which is all a uniform sky asks.
+uniform samplerBuffer uEnvCdf;
+uniform int uEnvCells;
+
+bool skySampled() { return fxOn(FX_ENVMAP_BIT) && uEnvCells > 0; }
+
+// The face of direction c in the cube map's own axes (envDir) and its point q in [−1, 1]² on that
+// face: (sc, tc) / |ma| in the GL specification's table of cube-map faces (+X, −X, +Y, −Y, +Z, −Z).
+int cubeFace(vec3 c, out vec2 q)
+{
+    vec3 a = abs(c);
+    if (a.x >= a.y && a.x >= a.z) {
+        q = (c.x > 0.0 ? vec2(-c.z, -c.y) : vec2(c.z, -c.y)) / a.x;
+        return c.x > 0.0 ? 0 : 1;
+    }
+    if (a.y >= a.z) {
+        q = (c.y > 0.0 ? vec2(c.x, c.z) : vec2(c.x, -c.z)) / a.y;
+        return c.y > 0.0 ? 2 : 3;
+    }
+    q = (c.z > 0.0 ? vec2(c.x, -c.y) : vec2(-c.x, -c.y)) / a.z;
+    return c.z > 0.0 ? 4 : 5;
+}
+
+// The inverse: the (unnormalized) direction through point q of face f.
+vec3 cubeDirection(int f, vec2 q)
+{
+    if (f == 0) return vec3(1.0, -q.y, -q.x);
+    if (f == 1) return vec3(-1.0, -q.y, q.x);
+    if (f == 2) return vec3(q.x, 1.0, q.y);
+    if (f == 3) return vec3(q.x, -1.0, -q.y);
+    if (f == 4) return vec3(q.x, -q.y, 1.0);
+    return vec3(-q.x, -q.y, -1.0);
+}
+
+// Density per steradian of cell k's uniform points at face point q: the cell's probability over its
+// area (2/n)², times the area a steradian covers there, (1 + |q|²)^(3/2) on a face at distance 1.
+float envCellPdf(int k, vec2 q)
+{
+    float p = texelFetch(uEnvCdf, k + 1).r - texelFetch(uEnvCdf, k).r, r2 = 1.0 + dot(q, q);
+    return p * float(uEnvCells * uEnvCells) * 0.25 * r2 * sqrt(r2);
+}
+
+// The density with which envSample draws world direction d.
+float envPdf(vec3 d)
+{
+    vec2 q;
+    int f = cubeFace(envDir(d), q), n = uEnvCells;
+    ivec2 ij = clamp(ivec2((q * 0.5 + 0.5) * float(n)), ivec2(0), ivec2(n - 1));
+    return envCellPdf((f * n + ij.y) * n + ij.x, q);
+}
+
+// A world direction from the sky's distribution: a cell by its cumulative table, a uniform point in it.
+vec3 envSample(inout Rng rng, out float pdf)
+{
+    int n = uEnvCells, lo = 0, hi = 6 * n * n;
+    float u = rand01(rng);
+    while (hi - lo > 1) { // the cell k with cdf[k] <= u < cdf[k + 1]
+        int mid = (lo + hi) / 2;
+        if (texelFetch(uEnvCdf, mid).r <= u)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    int f = lo / (n * n), ij = lo - f * n * n;
+    vec2 q = (vec2(float(ij % n) + rand01(rng), float(ij / n) + rand01(rng)) / float(n)) * 2.0 - 1.0;
+    pdf = envCellPdf(lo, q);
+    return envDir(normalize(cubeDirection(f, q))); // envDir is its own inverse
+}
+#endif
+
+// Light arriving at p from every light (a direction within a soft light's disc) and from a cube
+// map's sky, each seen or not by a shadow ray and dimmed by the fog on its way; n = vec3(0) is a point
+// in the fog (isotropic phase 1/4π in place of the BRDF). A disc's and the sky's shares are weighted
+// against the path's own sampling (density pathPdf with pSpec; the phase's 1/4π in fog), except at
+// the path's last vertex (last), whose sampled direction is never traced.
 vec3 nextEvent(vec3 p, vec3 n, vec3 v, Material m, float pSpec, bool last, float pathT, inout Rng rng)
 {
     vec3 sum = vec3(0.0);
-#if NUM_LIGHTS > 0
     bool medium = n == vec3(0.0);
+#if NUM_LIGHTS > 0
     float offset = medium ? 0.0 : SURFACE_OFFSET_K * hitEps(pathT);
     for (int i = 0; i < NUM_LIGHTS; i++) {
         vec3 l;
@@ -186,6 +263,18 @@ vec3 nextEvent(vec3 p, vec3 n, vec3 v, Material m, float pSpec, bool last, float
         Hit s = castRay(p + n * offset, l, dist - offset, 1.0, pathT);
         if (!s.hit)
             sum += f * radiance * fogTransmittance(worldApprox(p).y, l.y, min(dist, float(MAX_DIST)));
+    }
+#endif
+#if FX_ENVMAP
+    if (skySampled()) { // the sky, to where the path's own rays meet it (MAX_DIST from the eye)
+        float pdf, reach = float(MAX_DIST) - pathT;
+        vec3 l = envSample(rng, pdf);
+        vec3 f = medium ? vec3(1.0 / (4.0 * PI)) : pathBrdf(n, v, l, m);
+        float offset = medium ? 0.0 : SURFACE_OFFSET_K * hitEps(pathT);
+        if (pdf > 0.0 && any(greaterThan(f, vec3(0.0))) && !castRay(p + n * offset, l, reach, 1.0, pathT).hit) {
+            float w = last ? 1.0 : powerWeight(pdf, medium ? 1.0 / (4.0 * PI) : pathPdf(n, v, l, m, pSpec));
+            sum += f * environment(l) * (w / pdf) * fogTransmittance(worldApprox(p).y, l.y, reach);
+        }
     }
 #endif
     return sum;
@@ -237,91 +326,134 @@ struct PathSample {
     bool exhausted;
 };
 
+// A path on its way: the segment it is on, what it carries and has gathered.
+struct Walk {
+    vec3 ro, rd;      // the segment's origin and direction
+    vec3 from;        // where the segment left a surface (ro is pushed off it): Beer's length runs from here
+    vec3 throughput, radiance;
+    float side;       // +1 outside solids, −1 inside glass
+    float pathT;      // path length so far: thresholds grow with it
+    float dirPdf;     // how the segment's direction was drawn (discsMet): 0 nothing scattered it yet
+    Rng rng;
+};
+
+// The segment goes on from p in direction d, pushed `push` off the surface along nf.
+void turn(inout Walk W, vec3 p, vec3 d, vec3 push)
+{
+    W.rd = d;
+    W.ro = p + push;
+    W.from = p;
+}
+
+#if FX_FOG
+// Does the fog scatter the photon before the segment's end (h)? Then: the discs it passed, the light
+// at the scattering point, and a new direction (isotropic: phase / pdf = 1); true.
+bool scatterInFog(inout Walk W, Hit h, bool last)
+{
+    if (W.side < 0.0 || !fogOnPath())
+        return false;
+    float tf = fogFreeFlight(worldApprox(W.ro).y, W.rd.y, -log(1.0 - rand01(W.rng)));
+    if (tf < 0.0 || (h.hit ? tf >= h.t : tf >= float(MAX_DIST) - W.pathT))
+        return false;
+    W.radiance += W.throughput * discsMet(W.ro, W.rd, tf, W.dirPdf);
+    vec3 q = W.ro + W.rd * tf;
+    W.pathT += tf;
+    W.throughput *= uFogColor; // the albedo: what is not absorbed
+    Material none = Material(vec3(0.0), 0.0, 1.0, 0.0, 1.0, vec3(0.0), vec3(0.0));
+    W.radiance += W.throughput * nextEvent(q, vec3(0.0), -W.rd, none, 0.0, last, W.pathT, W.rng);
+    float z = 1.0 - 2.0 * rand01(W.rng), r = sqrt(max(0.0, 1.0 - z * z)), phi = 2.0 * PI * rand01(W.rng);
+    turn(W, q, vec3(r * cos(phi), r * sin(phi), z), vec3(0.0));
+    W.dirPdf = 1.0 / (4.0 * PI);
+    return true;
+}
+#endif
+
+// The segment left the scene: the sky, weighted against its own sampling where it had a share.
+void meetSky(inout Walk W)
+{
+    float w = 1.0; // the camera's view, or after glass (no shadow ray passes it)
+#if FX_ENVMAP
+    if (W.dirPdf > 0.0 && skySampled())
+        w = powerWeight(W.dirPdf, envPdf(W.rd));
+#endif
+    W.radiance += W.throughput * environment(W.rd) * w;
+}
+
+// Glass at p (outward normal n): reflect or refract with the probability of the exact Fresnel split.
+void crossGlass(inout Walk W, vec3 p, vec3 n, Material m, float eps)
+{
+    W.dirPdf = W.dirPdf == 0.0 ? 0.0 : -1.0; // a delta: lights met after it are weighted 1
+    bool entering = dot(W.rd, n) < 0.0;
+    vec3 nf = entering ? n : -n;
+    float eta = entering ? 1.0 / m.ior : m.ior;
+    if (rand01(W.rng) < fresnelDielectric(-dot(W.rd, nf), eta)) {
+        turn(W, p, reflect(W.rd, nf), nf * (SURFACE_OFFSET_K * eps));
+    } else {
+        turn(W, p, refract(W.rd, nf, eta), -nf * (SURFACE_OFFSET_K * eps));
+        W.side = -W.side;
+    }
+}
+
+// An opaque surface at p: the light it gets by next-event estimation, then a direction of its own
+// sampling; false when that direction has no density (the path ends).
+bool reflectOff(inout Walk W, vec3 p, vec3 n, Material m, float eps, bool last)
+{
+    vec3 v = -W.rd, nf = dot(n, v) < 0.0 ? -n : n; // the side the path sees
+    float pSpec = specularChance(nf, v, m);
+    W.radiance += W.throughput * nextEvent(p, nf, v, m, pSpec, last, W.pathT, W.rng);
+    vec3 l = sampleDirection(nf, v, m, pSpec, W.rng);
+    float pdf = pathPdf(nf, v, l, m, pSpec);
+    if (pdf <= 0.0)
+        return false;
+    W.throughput *= pathBrdf(nf, v, l, m) / pdf;
+    W.dirPdf = pdf;
+    turn(W, p, l, nf * (SURFACE_OFFSET_K * eps));
+    return true;
+}
+
 PathSample tracePathSample(Ray ray, vec2 pixel)
 {
     Rng rng = Rng(pcgHash(uint(pixel.x) ^ pcgHash(uint(pixel.y) ^ pcgHash(uint(uSampleIndex) * 9781u + 1u))));
     PathSample S = PathSample(vec3(0.0), vec3(0.0), ray.d, -1.0, 0, false);
-    vec3 ro = ray.o, rd = ray.d, throughput = vec3(1.0);
-    vec3 from = ray.o; // where the segment left a surface (ro is pushed off it): Beer's length runs from here
-    float side = 1.0, pathT = 0.0;
-    float dirPdf = 0.0; // how this segment's direction was drawn (discsMet): nothing scattered it yet
+    Walk W = Walk(ray.o, ray.d, ray.o, vec3(1.0), vec3(0.0), 1.0, 0.0, 0.0, rng);
     for (int bounce = 0; bounce <= BOUNCES; bounce++) {
-        Hit h = castRay(ro, rd, float(MAX_DIST) - pathT, side, pathT);
-        float reach = h.hit ? h.t : 1e30; // how far the segment goes: to its surface, or scattered in fog
+        Hit h = castRay(W.ro, W.rd, float(MAX_DIST) - W.pathT, W.side, W.pathT);
         if (bounce == 0) {
             S.steps = h.steps;
             S.exhausted = h.exhausted;
             if (h.hit) { // the AOVs are the primary ray's, whether or not fog scatters it first
                 S.firstT = h.t;
-                S.firstN = calcNormal(ro + rd * h.t, normalEps(hitEps(h.t), h.t), -rd);
+                S.firstN = calcNormal(W.ro + W.rd * h.t, normalEps(hitEps(h.t), h.t), -W.rd);
             }
         }
-        S.exitDir = rd;
+        S.exitDir = W.rd;
 #if FX_FOG
-        if (side > 0.0 && fogOnPath()) { // does the fog scatter the photon before it gets there?
-            float tf = fogFreeFlight(worldApprox(ro).y, rd.y, -log(1.0 - rand01(rng)));
-            if (tf >= 0.0 && (!h.hit && tf < float(MAX_DIST) - pathT || h.hit && tf < h.t)) {
-                S.radiance += throughput * discsMet(ro, rd, tf, dirPdf);
-                vec3 q = ro + rd * tf;
-                pathT += tf;
-                throughput *= uFogColor; // the albedo: what is not absorbed
-                S.radiance += throughput * nextEvent(q, vec3(0.0), -rd, Material(vec3(0.0), 0.0, 1.0, 0.0, 1.0, vec3(0.0), vec3(0.0)), 0.0, bounce == BOUNCES, pathT, rng);
-                float u1 = rand01(rng), u2 = rand01(rng); // isotropic: phase / pdf = 1
-                float z = 1.0 - 2.0 * u1, r = sqrt(max(0.0, 1.0 - z * z)), phi = 2.0 * PI * u2;
-                rd = vec3(r * cos(phi), r * sin(phi), z);
-                dirPdf = 1.0 / (4.0 * PI);
-                ro = q;
-                from = q;
-                if (!roulette(throughput, bounce, rng))
-                    break;
-                continue;
-            }
+        if (scatterInFog(W, h, bounce == BOUNCES)) {
+            if (!roulette(W.throughput, bounce, W.rng))
+                break;
+            continue;
         }
 #endif
-        S.radiance += throughput * discsMet(ro, rd, reach, dirPdf);
+        W.radiance += W.throughput * discsMet(W.ro, W.rd, h.hit ? h.t : 1e30, W.dirPdf);
         if (!h.hit) {
-            S.radiance += throughput * environment(rd);
+            meetSky(W);
             break;
         }
-        vec3 p = ro + rd * h.t;
-        pathT += h.t;
-        float eps = hitEps(pathT);
-        vec3 n = bounce == 0 ? S.firstN : calcNormal(p, normalEps(eps, pathT), -rd); // outward
+        vec3 p = W.ro + W.rd * h.t;
+        W.pathT += h.t;
+        float eps = hitEps(W.pathT);
+        vec3 n = bounce == 0 ? S.firstN : calcNormal(p, normalEps(eps, W.pathT), -W.rd); // outward
         Material m = getMaterial(h.mat, p, n, vec3(0.0), vec3(0.0));
-        if (side < 0.0) // the segment ran inside glass, from surface to surface: the offsets off each
-            throughput *= exp(-m.absorption * distance(from, p)); // would cut a thin slab's length
-        S.radiance += throughput * m.emission;
-        if (m.transmission > 0.0 && rand01(rng) < m.transmission) { // glass: the Fresnel split, chosen at random
-            dirPdf = dirPdf == 0.0 ? 0.0 : -1.0; // a delta: lights met after it are weighted 1
-            bool entering = dot(rd, n) < 0.0;
-            vec3 nf = entering ? n : -n;
-            float eta = entering ? 1.0 / m.ior : m.ior;
-            if (rand01(rng) < fresnelDielectric(-dot(rd, nf), eta)) {
-                rd = reflect(rd, nf);
-                ro = p + nf * (SURFACE_OFFSET_K * eps);
-                from = p;
-            } else {
-                rd = refract(rd, nf, eta);
-                ro = p - nf * (SURFACE_OFFSET_K * eps);
-                from = p;
-                side = -side;
-            }
-        } else {
-            vec3 v = -rd, nf = dot(n, v) < 0.0 ? -n : n; // the side the path sees
-            float pSpec = specularChance(nf, v, m);
-            S.radiance += throughput * nextEvent(p, nf, v, m, pSpec, bounce == BOUNCES, pathT, rng);
-            vec3 l = sampleDirection(nf, v, m, pSpec, rng);
-            float pdf = pathPdf(nf, v, l, m, pSpec);
-            if (pdf <= 0.0)
-                break;
-            throughput *= pathBrdf(nf, v, l, m) / pdf;
-            dirPdf = pdf;
-            rd = l;
-            ro = p + nf * (SURFACE_OFFSET_K * eps);
-            from = p;
-        }
-        if (!roulette(throughput, bounce, rng))
+        if (W.side < 0.0) // the segment ran inside glass, from surface to surface: the offsets off each
+            W.throughput *= exp(-m.absorption * distance(W.from, p)); // would cut a thin slab's length
+        W.radiance += W.throughput * m.emission;
+        if (m.transmission > 0.0 && rand01(W.rng) < m.transmission)
+            crossGlass(W, p, n, m, eps);
+        else if (!reflectOff(W, p, n, m, eps, bounce == BOUNCES))
+            break;
+        if (!roulette(W.throughput, bounce, W.rng))
             break;
     }
+    S.radiance = W.radiance;
     return S;
 }

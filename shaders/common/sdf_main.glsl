@@ -58,7 +58,7 @@ vec3 shadeSurface(vec3 p, vec3 n, vec3 v, Material m, vec3 F0, float pathT, bool
 #endif
     float NdotV = max(dot(n, v), MIN_COSINE);
     vec3 F = fresnelSchlickRoughness(NdotV, F0, m.roughness);
-    col += (1.0 - F) * (1.0 - m.metallic) * m.albedo * environmentBlurred(n, 1.0) * ao;
+    col += (1.0 - F) * (1.0 - m.metallic) * m.albedo * ambientLight(n) * ao;
     if (!tracedMirror)
         col += F * environmentBlurred(reflect(-v, n), m.roughness) * ao;
     return col;
