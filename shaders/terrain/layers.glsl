@@ -43,9 +43,15 @@ vec3 programAlbedo(vec3 p, vec3 n, vec3 dpdx, vec3 dpdy, vec3 base)
     float snow = smoothstep(uSnowLine - BLEND * range, uSnowLine + BLEND * range, p.y) *
                  smoothstep(0.5, 0.7, n.y);
     float sand = 1.0 - smoothstep(uSandLine - 0.02 * range, uSandLine + 0.02 * range, p.y);
-    vec3 c = mix(layerColor(uLayerRock, p, n, dpdx, dpdy), layerColor(uLayerGrass, p, n, dpdx, dpdy), grass);
-    c = mix(c, layerColor(uLayerSand, p, n, dpdx, dpdy), sand);
-    c = mix(c, layerColor(uLayerSnow, p, n, dpdx, dpdy), snow);
+    // a layer is sampled only where it shows (three triplanar textures of up to 16 taps each were 18 % of
+    // the noise terrain's final frame): mix(c, x, 1) is x and mix(c, x, 0) is c, bit for bit
+    vec3 c = grass < 1.0 ? layerColor(uLayerRock, p, n, dpdx, dpdy) : vec3(0.0);
+    if (grass > 0.0)
+        c = mix(c, layerColor(uLayerGrass, p, n, dpdx, dpdy), grass);
+    if (sand > 0.0)
+        c = mix(c, layerColor(uLayerSand, p, n, dpdx, dpdy), sand);
+    if (snow > 0.0)
+        c = mix(c, layerColor(uLayerSnow, p, n, dpdx, dpdy), snow);
     // the ramp keeps the layers' light and shade (their luminance about its mean), not their colour
     float shade = dot(c, vec3(0.299, 0.587, 0.114));
     return uElevationRamp != 0 ? elevationRamp(p.y / uExaggeration) * (0.65 + 0.5 * shade) : c;
