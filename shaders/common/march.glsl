@@ -215,6 +215,7 @@ Hit castRay(vec3 ro, vec3 rd, float tmax, float side, float pathT)
 {
     Hit h = Hit(false, 0.0, -1.0, 0, false, 0);
     float omega = float(OVER_RELAX);
+    bool relaxedPrev = false; // the last step was ω times its bound (over-relaxation): check it
     float t = 0.0, tPrev = 0.0, rPrev = 0.0, fPrev = 0.0; // rPrev = |fPrev|: the last ball's radius
     float floorBase = positionFloor(pathT); // float resolution at t = 0
 #ifdef MARCH_COVERAGE
@@ -237,12 +238,13 @@ Hit castRay(vec3 ro, vec3 rd, float tmax, float side, float pathT)
         }
         boundPrev = bound;
 #endif
-        if (omega > 1.0 && i > 0 && (abs(dist) + rPrev < t - tPrev || (MARCH_REFINES == 1 && dist < 0.0))) {
+        if (relaxedPrev && (abs(dist) + rPrev < t - tPrev || (MARCH_REFINES == 1 && dist < 0.0))) {
             t = tPrev + rPrev * float(STEP_FACTOR);
-            omega = 1.0;
+            relaxedPrev = false;
             continue;
         }
         float step = omega * dist * float(STEP_FACTOR);
+        bool relaxed = omega > 1.0;
 #if MARCH_REFINES
         // on the surface, or inside at the start (a camera inside a solid); a negative distance later
         // is a crossing and is refined (a "dist <= floor" test here took an overshoot as the hit, up to
@@ -256,9 +258,12 @@ Hit castRay(vec3 ro, vec3 rd, float tmax, float side, float pathT)
         } else if (!bound && dist < eps) {
             bool approaching = i == 0 || dist < fPrev;
             step = approaching ? max(dist * float(STEP_FACTOR), NEAR_MIN_STEP * eps) : max(dist, eps);
+            relaxed = false;
         }
 #else
-        if (!bound && (omega > 1.0 ? abs(dist) < eps : dist < eps)) // relaxed: a step may land just inside
+        // (a relaxed step that lands inside fails the balls' check above: an outside ball and an inside
+        // one never overlap; inside at the start is a camera in a solid, a hit as with plain steps)
+        if (!bound && dist < eps)
             h.hit = true;
 #endif
         if (h.hit) {
@@ -268,6 +273,7 @@ Hit castRay(vec3 ro, vec3 rd, float tmax, float side, float pathT)
         tPrev = t;
         fPrev = dist;
         rPrev = abs(dist);
+        relaxedPrev = relaxed;
         t += step;
         if (t > tmax)
             break;
