@@ -26,6 +26,9 @@ uniform float uNoiseSlope; // the steepest slope of one octave along an axis, pe
 const float OCTAVE_FADE_FULL = 4.0, OCTAVE_FADE_GONE = 2.0;
 // Steps stay within this share of the distance to the eye (the footprints the bound assumes)
 const float BOUND_REACH = 0.5;
+// A rising ray's step is cut this share of the amplitude past the top plane (base + A, which the fbm
+// never reaches: nothing lies above it), so it lands clear of the plane, not on it by rounding
+const float PLANE_MARGIN = 1e-3;
 
 #define PROGRAM_NORMAL 1
 // map() is |∇f|-scaled by a global bound (about 20× below the distance on the shipped scene): plain
@@ -34,8 +37,7 @@ const float BOUND_REACH = 0.5;
 #define PROGRAM_SLOW_BOUND 1
 #define PROGRAM_ALBEDO 1
 
-// An integer mixer ("lowbias32", C. Wellons, 2018: the constants are his published search result),
-// chained over the three coordinates so neighbouring lattice points are uncorrelated.
+// An integer mixer ("lowbias32", C. Wellons, 2018: the constants are his published search result).
 uint mix32(uint x)
 {
     x ^= x >> 16;
@@ -46,11 +48,12 @@ uint mix32(uint x)
     return x;
 }
 
-float hash3(ivec3 c)
-{
-    uint h = mix32(uint(c.x) + mix32(uint(c.y) + mix32(uint(c.z))));
-    return float(h) * (1.0 / 4294967295.0);
-}
+// A lattice point's value in [0, 1]: its coordinates times three large odd constants, combined by XOR
+// (the spatial hash of Teschner et al. 2003, "Optimized spatial hashing for collision detection of
+// deformable objects", their constants), then mixed. The products of a cell's eight corners come from
+// two per axis, so a corner costs one mix (three chained mixes a corner were a third of the march).
+const uvec3 LATTICE_PRIMES = uvec3(73856093u, 19349663u, 83492791u);
+float latticeValue(uint x, uint y, uint z) { return float(mix32(x ^ y ^ z)) * (1.0 / 4294967295.0); }
 
 // value noise in [0, 1] and its gradient (xyz)
 vec4 valueNoise(vec3 p)
@@ -59,8 +62,10 @@ vec4 valueNoise(vec3 p)
     vec3 f = fract(p);
     vec3 u = f * f * f * (f * (f * 6.0 - 15.0) + 10.0);
     vec3 du = 30.0 * f * f * (f * (f - 2.0) + 1.0);
-    float a = hash3(i), b = hash3(i + ivec3(1, 0, 0)), c = hash3(i + ivec3(0, 1, 0)), d = hash3(i + ivec3(1, 1, 0));
-    float e = hash3(i + ivec3(0, 0, 1)), g = hash3(i + ivec3(1, 0, 1)), h = hash3(i + ivec3(0, 1, 1)), k = hash3(i + ivec3(1, 1, 1));
+    uvec3 lo = uvec3(i) * LATTICE_PRIMES, hi = lo + LATTICE_PRIMES;
+    float a = latticeValue(lo.x, lo.y, lo.z), b = latticeValue(hi.x, lo.y, lo.z), c = latticeValue(lo.x, hi.y, lo.z);
+    float d = latticeValue(hi.x, hi.y, lo.z), e = latticeValue(lo.x, lo.y, hi.z), g = latticeValue(hi.x, lo.y, hi.z);
+    float h = latticeValue(lo.x, hi.y, hi.z), k = latticeValue(hi.x, hi.y, hi.z);
     float k1 = b - a, k2 = c - a, k3 = e - a, k4 = a - b - c + d, k5 = a - c - e + h, k6 = a - b - e + g;
     float k7 = -a + b + c - d + e - g - h + k;
     float v = a + k1 * u.x + k2 * u.y + k3 * u.z + k4 * u.x * u.y + k5 * u.y * u.z + k6 * u.z * u.x + k7 * u.x * u.y * u.z;
@@ -149,14 +154,20 @@ float fieldBound(vec3 p, vec3 dir, out bool filtered)
 
 // The bound, then kept within the ball its weights hold for, and above base + A (the fbm stays below 1)
 // the height over that plane (along dir: how far dir goes before it reaches the plane; never, upward).
+// Along dir the field's bound holds backward as far as forward (its slopes are |dir.y| and Σ|dirᵢ|,
+// the same for −dir), which over-relaxation's check of overlapping balls needs (common/march.glsl);
+// the plane's does not: rising from below it, a bound reaching past the plane is cut there, so a
+// relaxed step that overshoots lands above it, where nothing is, and the check stays true.
 vec2 boundAt(vec3 p, vec3 dir)
 {
     bool filtered;
     float field = fieldBound(p, dir, filtered), above = p.y - (uNoiseBase + uNoiseAmplitude);
     if (filtered && field > 0.0) // within the ball the weights are bounded for
         field = min(field, BOUND_REACH * length(p - uCamPos));
-    if (above > 0.0 && dir != vec3(0.0))
+    if (above >= 0.0 && dir != vec3(0.0))
         above = dir.y < 0.0 ? above / -dir.y : 1e30;
+    else if (dir.y > 0.0 && field > (-above + PLANE_MARGIN * uNoiseAmplitude) / dir.y)
+        return vec2((-above + PLANE_MARGIN * uNoiseAmplitude) / dir.y, MATERIAL_BOUND); // rising: just past the plane
     return above > field ? vec2(above, MATERIAL_BOUND) : vec2(field, 0.0);
 }
 
