@@ -24,7 +24,10 @@
  *   - a diffuse floor under a black cube-map sky with one bright square overhead, of radiance L:
  *     ρ/π · L · ∫ cos θ dω over the square, with the noise of a sky drawn from its own distribution;
  *     and a near-mirror reflecting such a square, against a quadrature of the BRDF over the filtered
- *     face, with the noise of the path's own samples.
+ *     face, with the noise of the path's own samples;
+ *   - droplets: a clear droplet under a uniform sky loses and gains nothing (every pixel is the sky,
+ *     however its paths split), and an absorbing one seen through its centre is C (R + (1−R)² a / (1 − R a)
+ *     ...) with a = e^(−σ 2r), all its internal reflections, as the slab.
  * Each fails when its physics is wrong: no Beer, no Fresnel split, a 1/d falloff, a BRDF without 1/π,
  * a point sun for a soft one, a free flight that ignores the fog's height (c = 0), an unshadowed or
  * 1/(2π) phase, next-event estimation alone or the sampled paths alone for a disc, weights that do
@@ -745,6 +748,84 @@ static void sky_square_in_a_glossy_metal(void **st)
     assert_true(rel < 0.1);
 }
 
+/* One droplet (x, y, z, r) in a csg scene under a uniform sky of colour sky, the liquid absorbing
+ * `absorption` per metre; an object past max_dist (100 m: a csg scene needs one, no path may meet it). */
+static char drop_csv[64];
+static void droplet_under_sky(const double drop[4], const char *absorption, const char *sky, int spp, scene *s)
+{
+    snprintf(drop_csv, sizeof drop_csv, "/tmp/fathom-pt-drop-XXXXXX");
+    int fd = mkstemp(drop_csv);
+    assert_true(fd >= 0);
+    FILE *f = fdopen(fd, "w");
+    fprintf(f, "x,y,z,r\n%.9g,%.9g,%.9g,%.9g\n", drop[0], drop[1], drop[2], drop[3]);
+    fclose(f);
+    char json[1024];
+    snprintf(json, sizeof json,
+             "{\"program\": \"csg\", \"environment\": {\"color\": [%s], \"intensity\": 1}, \"lights\": [],"
+             " \"quality\": {\"preset\": \"reference\", \"spp\": %d, \"integrator\": 1, \"bounces\": 8},"
+             " \"materials\": {\"a\": {}}, \"objects\": [{\"shape\": \"sphere\", \"radius\": 0.1, \"position\": [0, 500, 0],"
+             " \"material\": \"a\"}], \"droplets\": {\"file\": \"%s\", \"absorption\": [%s]}}",
+             sky, spp, drop_csv, absorption);
+    load_text(json, NULL, 0, s);
+}
+
+/* A clear droplet under a white sky: every path ends in the sky with its weight whole (reflect or
+ * refract is drawn by the Fresnel split, not weighted by it), so every pixel is 1, droplet or not. */
+static void clear_droplet_under_a_white_sky(void **st)
+{
+    (void)st;
+    const double drop[4] = {0, 1, 0, 0.25};
+    scene s;
+    droplet_under_sky(drop, "0, 0, 0", "1, 1, 1", 8, &s);
+    camera cam = cam_at(0, 1, -0.6, 0, 1, 0, 50);
+    static float aov[PW * PH * AOV], rgba[PW * PH * 4];
+    draw(&s, &cam, PW, PH, 8, NULL, aov, rgba);
+    unlink(drop_csv);
+    int on = 0;
+    double worst = 0;
+    for (int i = 0; i < PW * PH; i++) {
+        on += isfinite(aov[i * AOV + AOV_SLOT_DEPTH]);
+        for (int c = 0; c < 3; c++)
+            worst = fmax(worst, fabs(rgba[i * 4 + c] - 1));
+    }
+    fprintf(stderr, "clear droplet under a white sky: %d of %d pixels on the droplet, worst |L - 1| %.2g\n", on,
+            PW * PH, worst);
+    assert_true(on > PW * PH / 4);
+    assert_true(worst < 1e-5);
+    scene_free(&s);
+}
+
+/* An absorbing droplet (radius r, σ per metre) under a sky of colour C, through its centre at normal
+ * incidence: every internal reflection runs along the diameter, so as for the slab
+ * L = C (R + (1−R)² R a² / (1 − R² a²) + (1−R)² a / (1 − R² a²)), a = e^(−σ 2r), R = ((n−1)/(n+1))². */
+static void droplet_centre_against_the_closed_form(void **st)
+{
+    (void)st;
+    enum { SPP = 1024, S = 9 };
+    const double drop[4] = {0, 1, 0, 0.25}, sigma[3] = {0.5, 2, 8}, C[3] = {0.8, 0.6, 0.4};
+    scene s;
+    droplet_under_sky(drop, "0.5, 2, 8", "0.8, 0.6, 0.4", SPP, &s);
+    camera cam = cam_at(0, 1, -2, 0, 1, 0, 0.5); /* a narrow view: every ray within 0.25° of the axis */
+    static float aov[S * S * AOV], rgba[S * S * 4];
+    draw(&s, &cam, S, S, SPP, NULL, aov, rgba);
+    unlink(drop_csv);
+    double n = s.droplets.ior, R = (n - 1) * (n - 1) / ((n + 1) * (n + 1));
+    for (int c = 0; c < 3; c++) {
+        double a = exp(-sigma[c] * 2 * drop[3]), k = 1 - R * R * a * a;
+        double want = C[c] * (R + (1 - R) * (1 - R) * R * a * a / k + (1 - R) * (1 - R) * a / k), got = 0, var = 0;
+        for (int i = 0; i < S * S; i++) {
+            got += rgba[i * 4 + c];
+            var += aov[i * AOV + AOV_SLOT_VARIANCE + c];
+        }
+        got /= S * S;
+        double se = sqrt(var) / (S * S);
+        fprintf(stderr, "droplet centre, channel %d: %.5f, closed form %.5f (standard error %.5f)\n", c, got, want, se);
+        assert_true(fabs(got - want) < 5 * se + 1e-4);
+    }
+    assert_true(fabs(aov[(S / 2 * S + S / 2) * AOV + AOV_SLOT_DEPTH] - (2 - drop[3])) < 1e-4); /* the droplet's front */
+    scene_free(&s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -762,6 +843,8 @@ int main(void)
         cmocka_unit_test(glass_pane_lets_the_sun_through),
         cmocka_unit_test(sky_square_over_a_diffuse_floor),
         cmocka_unit_test(sky_square_in_a_glossy_metal),
+        cmocka_unit_test(clear_droplet_under_a_white_sky),
+        cmocka_unit_test(droplet_centre_against_the_closed_form),
     };
     if (getenv("FATHOM_TEST_FILTER")) /* one test while working on it: FATHOM_TEST_FILTER='glass*' */
         cmocka_set_test_filter(getenv("FATHOM_TEST_FILTER"));

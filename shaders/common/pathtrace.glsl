@@ -30,7 +30,13 @@
 //     colour, unshadowed, on the primary ray only;
 //   - Russian roulette after three bounces, at most BOUNCES + 1 segments (a scattering event in fog
 //     counts as one).
-// Not covered: droplets (a path tracer scene leaves them out: the image shows none).
+//   - droplets (common/droplets.glsl, a layer over any program): smooth liquid spheres, each surface
+//     reflecting or refracting with the probability of its exact Fresnel split (total internal
+//     reflection included), Beer–Lambert over the chord inside; overlapping droplets one body of
+//     liquid. Their events spend their own budget, DROPLET_EVENTS, not bounces (as in the model); once
+//     it is spent the path goes on straight. Droplets below the level of detail (droplet_lod > 0) are
+//     the model's stand-in here too, dimmed by their mean transmittance, their mean reflectance of the
+//     blurred sky: none at the reference preset, which traces every droplet.
 // The first segment's hit gives the AOVs, as in the model's path.
 
 uniform int uSampleIndex; // the image's sample number: seeds each sample's random numbers
@@ -335,7 +341,30 @@ struct Walk {
     float pathT;      // path length so far: thresholds grow with it
     float dirPdf;     // how the segment's direction was drawn (discsMet): 0 nothing scattered it yet
     Rng rng;
+#if FX_DROPLETS
+    int dropIn;       // the droplet the path is in (−1: air)
+    int dropSkip;     // the droplet whose surface the segment starts on (it is not met again at once)
+    int dropEvents;   // droplet surfaces crossed or reflected at, against DROPLET_EVENTS
+#endif
 };
+
+Walk startWalk(Ray ray, Rng rng)
+{
+    Walk W;
+    W.ro = W.from = ray.o;
+    W.rd = ray.d;
+    W.throughput = vec3(1.0);
+    W.radiance = vec3(0.0);
+    W.side = 1.0;
+    W.pathT = W.dirPdf = 0.0;
+    W.rng = rng;
+#if FX_DROPLETS
+    W.dropIn = fxOn(FX_DROPLETS_BIT) ? dropletAt(ray.o, -1) : -1;
+    W.dropSkip = -1;
+    W.dropEvents = 0;
+#endif
+    return W;
+}
 
 // The segment goes on from p in direction d, pushed `push` off the surface along nf.
 void turn(inout Walk W, vec3 p, vec3 d, vec3 push)
@@ -346,14 +375,14 @@ void turn(inout Walk W, vec3 p, vec3 d, vec3 push)
 }
 
 #if FX_FOG
-// Does the fog scatter the photon before the segment's end (h)? Then: the discs it passed, the light
-// at the scattering point, and a new direction (isotropic: phase / pdf = 1); true.
-bool scatterInFog(inout Walk W, Hit h, bool last)
+// Does the fog scatter the photon before the segment's end (reach)? Then: the discs it passed, the
+// light at the scattering point, and a new direction (isotropic: phase / pdf = 1); true.
+bool scatterInFog(inout Walk W, float reach, bool last)
 {
     if (W.side < 0.0 || !fogOnPath())
         return false;
     float tf = fogFreeFlight(worldApprox(W.ro).y, W.rd.y, -log(1.0 - rand01(W.rng)));
-    if (tf < 0.0 || (h.hit ? tf >= h.t : tf >= float(MAX_DIST) - W.pathT))
+    if (tf < 0.0 || tf >= reach)
         return false;
     W.radiance += W.throughput * discsMet(W.ro, W.rd, tf, W.dirPdf);
     vec3 q = W.ro + W.rd * tf;
@@ -411,30 +440,129 @@ bool reflectOff(inout Walk W, vec3 p, vec3 n, Material m, float eps, bool last)
     return true;
 }
 
+#if FX_DROPLETS
+// A droplet's surface at p (outward normal nOut) from the air (entering) or the liquid: the path
+// reflects or refracts by the exact Fresnel split, drawn at random.
+void dropletSurface(inout Walk W, int id, vec3 p, vec3 nOut, bool entering)
+{
+    W.dropEvents++;
+    W.dirPdf = W.dirPdf == 0.0 ? 0.0 : -1.0; // a delta, as glass
+    vec3 n = entering ? nOut : -nOut;        // faces the coming ray
+    float eta = entering ? 1.0 / uDropletIor : uDropletIor;
+    if (rand01(W.rng) < fresnelDielectric(max(-dot(W.rd, n), 0.0), eta)) {
+        turn(W, p, reflect(W.rd, n), vec3(0.0));
+        W.dropSkip = entering ? id : -1;
+    } else {
+        turn(W, p, refract(W.rd, n, eta), vec3(0.0));
+        W.dropIn = entering ? id : -1;
+        W.dropSkip = entering ? -1 : id;
+    }
+}
+
+// Inside droplet W.dropIn: Beer over the chord to its surface, then its surface; true (with h) when
+// the scene's surface comes first (a droplet the scene cuts: the path leaves the liquid there).
+bool throughLiquid(inout Walk W, out Hit h)
+{
+    vec4 s = droplet(W.dropIn);
+    float t0, tOut;
+    sphereRoots(W.ro, W.rd, s, t0, tOut);
+    tOut = max(tOut, 0.0);
+    h = Hit(false, 0.0, -1.0, 0, false, 0);
+    if (map(s.xyz).x < s.w)
+        h = castRay(W.ro, W.rd, tOut, W.side, W.pathT);
+    W.throughput *= exp(-uDropletAbsorption * (h.hit ? h.t : tOut));
+    if (h.hit) {
+        W.dropIn = -1;
+        return true;
+    }
+    vec3 p = W.ro + W.rd * tOut;
+    W.pathT += tOut;
+    int next = dropletAt(p, W.dropIn);
+    if (next >= 0) { // overlapping droplets are one body of liquid: no surface here
+        W.dropEvents++;
+        W.dropIn = next;
+        turn(W, p, W.rd, vec3(0.0));
+        return false;
+    }
+    dropletSurface(W, W.dropIn, p, normalize(p - s.xyz), false);
+    return false;
+}
+
+// The nearest droplet the air segment meets before `end` (its surface, or the march's end): its
+// number and distance, or −1; droplets below the level of detail on the way dim the path.
+int dropletAhead(inout Walk W, float end, out float tDrop)
+{
+    tDrop = 1e30;
+    if (W.dropIn >= 0 || W.dropEvents >= DROPLET_EVENTS || !fxOn(FX_DROPLETS_BIT))
+        return -1;
+    vec3 reflected = vec3(0.0);
+    int cells;
+    int id = dropletsWalk(W.ro, W.rd, 0.0, DROPLET_CULL != 0 ? end : float(MAX_DIST) - W.pathT, end, W.dropSkip,
+                          W.pathT, W.throughput, reflected, tDrop, cells);
+    W.radiance += reflected * environmentBlurred(W.rd, 1.0);
+    W.dropSkip = -1;
+    if (id < 0 || tDrop >= end)
+        tDrop = 1e30;
+    return tDrop < 1e30 ? id : -1;
+}
+#endif
+
 PathSample tracePathSample(Ray ray, vec2 pixel)
 {
     Rng rng = Rng(pcgHash(uint(pixel.x) ^ pcgHash(uint(pixel.y) ^ pcgHash(uint(uSampleIndex) * 9781u + 1u))));
     PathSample S = PathSample(vec3(0.0), vec3(0.0), ray.d, -1.0, 0, false);
-    Walk W = Walk(ray.o, ray.d, ray.o, vec3(1.0), vec3(0.0), 1.0, 0.0, 0.0, rng);
-    for (int bounce = 0; bounce <= BOUNCES; bounce++) {
-        Hit h = castRay(W.ro, W.rd, float(MAX_DIST) - W.pathT, W.side, W.pathT);
-        if (bounce == 0) {
+    Walk W = startWalk(ray, rng);
+    bool primary = true; // the next segment is the camera's: it gives the AOVs
+    // a bounce is spent at a surface or in fog; droplet events spend DROPLET_EVENTS, which ends the loop
+    for (int bounce = 0; bounce <= BOUNCES;) {
+        Hit h;
+        bool liquidHit = false;
+#if FX_DROPLETS
+        if (W.dropIn >= 0 && W.dropEvents >= DROPLET_EVENTS)
+            W.dropIn = -1; // out of droplet events: the path leaves the liquid unbent
+        if (W.dropIn >= 0 && !(liquidHit = throughLiquid(W, h)))
+            continue;
+#endif
+        if (!liquidHit)
+            h = castRay(W.ro, W.rd, float(MAX_DIST) - W.pathT, W.side, W.pathT);
+        float end = h.hit ? h.t : float(MAX_DIST) - W.pathT, tDrop = 1e30;
+#if FX_DROPLETS
+        int drop = liquidHit ? -1 : dropletAhead(W, end, tDrop);
+#endif
+        bool firstHit = primary && h.hit && tDrop >= end;
+        if (primary) {
             S.steps = h.steps;
             S.exhausted = h.exhausted;
-            if (h.hit) { // the AOVs are the primary ray's, whether or not fog scatters it first
+            if (firstHit) { // the AOVs are the primary ray's, whether or not fog scatters it first
                 S.firstT = h.t;
                 S.firstN = calcNormal(W.ro + W.rd * h.t, normalEps(hitEps(h.t), h.t), -W.rd);
             }
         }
         S.exitDir = W.rd;
 #if FX_FOG
-        if (scatterInFog(W, h, bounce == BOUNCES)) {
+        if (scatterInFog(W, min(end, tDrop), bounce == BOUNCES)) {
+            primary = false;
             if (!roulette(W.throughput, bounce, W.rng))
                 break;
+            bounce++;
             continue;
         }
 #endif
-        W.radiance += W.throughput * discsMet(W.ro, W.rd, h.hit ? h.t : 1e30, W.dirPdf);
+        W.radiance += W.throughput * discsMet(W.ro, W.rd, min(h.hit ? h.t : 1e30, tDrop), W.dirPdf);
+#if FX_DROPLETS
+        if (tDrop < end) { // a droplet before the scene's surface
+            vec3 p = W.ro + W.rd * tDrop, nOut = normalize(p - droplet(drop).xyz);
+            if (primary) {
+                S.firstT = tDrop;
+                S.firstN = nOut;
+            }
+            primary = false;
+            W.pathT += tDrop;
+            dropletSurface(W, drop, p, nOut, true);
+            continue;
+        }
+#endif
+        primary = false;
         if (!h.hit) {
             meetSky(W);
             break;
@@ -442,7 +570,7 @@ PathSample tracePathSample(Ray ray, vec2 pixel)
         vec3 p = W.ro + W.rd * h.t;
         W.pathT += h.t;
         float eps = hitEps(W.pathT);
-        vec3 n = bounce == 0 ? S.firstN : calcNormal(p, normalEps(eps, W.pathT), -W.rd); // outward
+        vec3 n = firstHit ? S.firstN : calcNormal(p, normalEps(eps, W.pathT), -W.rd); // outward
         Material m = getMaterial(h.mat, p, n, vec3(0.0), vec3(0.0));
         if (W.side < 0.0) // the segment ran inside glass, from surface to surface: the offsets off each
             W.throughput *= exp(-m.absorption * distance(W.from, p)); // would cut a thin slab's length
@@ -453,6 +581,7 @@ PathSample tracePathSample(Ray ray, vec2 pixel)
             break;
         if (!roulette(W.throughput, bounce, W.rng))
             break;
+        bounce++;
     }
     S.radiance = W.radiance;
     return S;
