@@ -821,28 +821,18 @@ static void out_of_steps_is_not_a_miss(void **st)
 
 /* ---- the noise terrain against a double-precision reference of the same filtered surface ----------------
  * shaders/terrain/noise.glsl's surface written again in double: f(p) = y − base − A Σ wᵢ aᵢ nᵢ(p fᵢ + 17.31 i),
- * value noise on Teschner's spatial hash of the lattice mixed by Wellons's lowbias32, with the quintic fade, each octave's weight wᵢ fading
+ * value noise on Teschner's spatial hash of the lattice and one multiply-xorshift round, with the quintic fade, each octave's weight wᵢ fading
  * from 1 at 4 pixel footprints a wavelength to 0 at 2 (the footprint at p: its distance to the eye times
  * the pixel's angle). The reference marches it with one global Lipschitz bound, safe everywhere:
  * |∇f| ≤ 1 + A Σ aᵢ fᵢ (S √3 + 8 α), S = 30/16 the quintic's steepest slope, 8 α fᵢ the steepest a
  * weight changes with the distance (α the pixel angle), so its first root is the true first crossing
  * (to 1e-6 m), found in as many steps as it takes. Against it the shader's local bounds, filtered
  * octaves and tail, at the shipped view and a low one across the valleys. */
-static uint32_t ref_mix32(uint32_t x)
-{
-    x ^= x >> 16;
-    x *= 0x7feb352du;
-    x ^= x >> 15;
-    x *= 0x846ca68bu;
-    x ^= x >> 16;
-    return x;
-}
-
 static double ref_hash3(int x, int y, int z)
 {
-    /* Teschner et al.'s spatial hash of the lattice point, then the mixer */
-    uint32_t h = (uint32_t)x * 73856093u ^ (uint32_t)y * 19349663u ^ (uint32_t)z * 83492791u;
-    return ref_mix32(h) * (1.0 / 4294967295.0);
+    /* Teschner et al.'s spatial hash of the lattice point, then one multiply-xorshift round */
+    uint32_t h = ((uint32_t)x * 73856093u ^ (uint32_t)y * 19349663u ^ (uint32_t)z * 83492791u) * 0x27d4eb2du;
+    return (h ^ (h >> 15)) * (1.0 / 4294967295.0);
 }
 
 static double ref_value_noise(const double q[3])
