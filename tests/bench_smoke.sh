@@ -52,6 +52,17 @@ check "bench --truth path prices AO off and on" '[ "$(grep -c "^csg,24,16,2,fx_a
 check "... against the path tracer" 'grep -q "the truth.*the path tracer" "$out/truth-summary.md"'
 check "... with a difference image each, in the summary and the report" \
     '[ -s "$out/truth-diff-fx_ao-off.png" ] && [ -s "$out/truth-diff-fx_ao-on.png" ] && grep -q "truth-diff-fx_ao-on.png" "$out/truth-summary.md" && [ "$(grep -o "src=\"data:image/png" "$out/truth-report.html" | wc -l)" -eq 9 ]'
+# a default sweep holds the scene's own value (the Apollonian's step_factor 0.3 is not among
+# 0.6,0.8,0.9,1), --quick keeps it among its three values (hit_k 1 is not the middle of 8,4,2,1,0.5),
+# and every panel rings it
+"$fathom" bench --scene apollonian --quick --size 16x9 --runs 1 --out "$out" --quiet >/dev/null 2>&1
+qcsv="$out/apollonian-knobs.csv"
+check "a sweep holds the scene's own value: step_factor 0.3, 0.8, 1" \
+    '[ "$(awk -F, "\$5 == \"step_factor\" {printf \"%s \", \$6}" "$qcsv")" = "0.3 0.8 1 " ]'
+check "... --quick keeps it among its three: hit_k 8, 1, 0.5" \
+    '[ "$(awk -F, "\$5 == \"hit_k\" {printf \"%s \", \$6}" "$qcsv")" = "8 1 0.5 " ]'
+check "... and every panel rings it" \
+    '[ "$(grep -c "point pt 6" "$out/apollonian-plot.gp")" -eq "$(tail -n +2 "$qcsv" | cut -d, -f5 | sort -u | wc -l)" ]'
 # stopped half-way (as a user's Ctrl+C), a run keeps the rows it finished, whole lines, no temporary file
 "$fathom" bench --scene csg --size 40x24 --runs 2 --knob max_steps=8,16,32,64,128,256,512 --knob spp=1,2,4,8 \
     --out "$out" --name stopped --quiet >/dev/null 2>&1 &

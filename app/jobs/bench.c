@@ -21,8 +21,11 @@
 #include "gpu/render.h"
 #include "scene/scene.h"
 
-enum { DEFAULT_WIDTH = 320, DEFAULT_HEIGHT = 180, VIEWS = 2, REF_SPP = 64, STRICT_SPP = 128, LONG_SPP = 64,
-       PATH_REF_SPP = 256, PATH_STRICT_SPP = 512, MAX_ROWS = 512 };
+/* Image sizes: the default run takes 3–5 minutes on 2 llvmpipe cores (csg 4.3, himalaya 3.3, the
+ * reference renders most of it), --quick one or two, --full about seven times the default. */
+enum { DEFAULT_WIDTH = 240, DEFAULT_HEIGHT = 135, QUICK_WIDTH = 160, QUICK_HEIGHT = 90, FULL_WIDTH = 640,
+       FULL_HEIGHT = 360, VIEWS = 2, REF_SPP = 64, STRICT_SPP = 128, LONG_SPP = 64, PATH_REF_SPP = 256,
+       PATH_STRICT_SPP = 512, MAX_ROWS = 512 };
 static const float VIEW_TURN_DEG = 40.0f;
 #define REF_REFINE "quality.refine=64" /* the knob's maximum: regula falsi to float resolution */
 
@@ -457,20 +460,49 @@ static bool add_sweep_rows(const sweep *k, const char *values, err_t *err)
     return true;
 }
 
-/* --quick: a sweep's first, middle and last values ("a,b,c,d,e" -> "a,c,e"), into out. */
-static const char *three_values(const char *v, char *out, size_t n)
+/* A default sweep's values with the scene's own value among them, so each panel rings its operating
+ * point: v as it is where it holds keep (or keep is ""), else keep put where it falls in v's order
+ * (appended where v is not numbers in order). With quick, three of them: the first, keep (or the
+ * middle) and the last. Into out. */
+static const char *sweep_values(const char *v, const char *keep, bool quick, char *out, size_t n)
 {
     char list[512];
     snprintf(list, sizeof list, "%s", v);
-    const char *vals[64];
-    int k = 0;
+    const char *vals[65];
+    int k = 0, at = -1;
     char *save = NULL;
-    for (char *t = strtok_r(list, ",", &save); t && k < 64; t = strtok_r(NULL, ",", &save))
+    for (char *t = strtok_r(list, ",", &save); t && k < 64; t = strtok_r(NULL, ",", &save)) {
+        if (*keep && bench_same_value(t, keep))
+            at = k;
         vals[k++] = t;
-    if (k <= 3)
-        snprintf(out, n, "%s", v);
-    else
-        snprintf(out, n, "%s,%s,%s", vals[0], vals[k / 2], vals[k - 1]);
+    }
+    if (*keep && at < 0) {
+        char *e;
+        double x = strtod(keep, &e);
+        at = k;
+        for (int i = 0; !*e && i < k; i++) { /* before the first value it precedes, in v's direction */
+            double a = strtod(vals[i], NULL), dir = k > 1 ? strtod(vals[k - 1], NULL) - strtod(vals[0], NULL) : 1;
+            if ((dir >= 0 && x < a) || (dir < 0 && x > a)) {
+                at = i;
+                break;
+            }
+        }
+        memmove(&vals[at + 1], &vals[at], sizeof vals[0] * (size_t)(k - at));
+        vals[at] = keep;
+        k++;
+    }
+    int pick[64], np = 0;
+    if (quick && k > 3) {
+        int mid = at > 0 && at < k - 1 ? at : k / 2;
+        pick[0] = 0, pick[1] = mid, pick[2] = k - 1, np = 3;
+    } else
+        for (int i = 0; i < k; i++)
+            pick[np++] = i;
+    out[0] = '\0';
+    for (int i = 0; i < np; i++) {
+        size_t len = strlen(out);
+        snprintf(out + len, n - len, "%s%s", i ? "," : "", vals[pick[i]]);
+    }
     return out;
 }
 
@@ -617,10 +649,12 @@ static bool pick_sweeps(const scene *base, sweep *sweeps, const char **values, i
 {
     bool applies[MAX_SWEEPS];
     *n = list_sweeps(base, sweeps, applies);
-    static char quick[MAX_SWEEPS][256];
-    for (int k = 0; k < *n && !B.opt->knob_count; k++)
-        values[k] = !applies[k] ? NULL : B.opt->quick ? three_values(sweeps[k].values, quick[k], sizeof quick[k])
-                                                       : sweeps[k].values;
+    static char chosen[MAX_SWEEPS][256];
+    for (int k = 0; k < *n && !B.opt->knob_count; k++) {
+        char keep[64];
+        bench_base_value(base, sweeps[k].name, keep, sizeof keep);
+        values[k] = !applies[k] ? NULL : sweep_values(sweeps[k].values, keep, B.opt->quick, chosen[k], sizeof chosen[k]);
+    }
     for (int i = 0; i < B.opt->knob_count; i++) {
         const char *arg = B.opt->knobs[i], *eq = strchr(arg, '=');
         bool found = false;
@@ -646,8 +680,8 @@ bool bench_run(const cli_options *opt, err_t *err)
 {
     memset(&B, 0, sizeof B);
     B.opt = opt;
-    B.w = opt->width ? opt->width : opt->quick ? DEFAULT_WIDTH / 2 : opt->full ? DEFAULT_WIDTH * 2 : DEFAULT_WIDTH;
-    B.h = opt->height ? opt->height : opt->quick ? DEFAULT_HEIGHT / 2 : opt->full ? DEFAULT_HEIGHT * 2 : DEFAULT_HEIGHT;
+    B.w = opt->width ? opt->width : opt->quick ? QUICK_WIDTH : opt->full ? FULL_WIDTH : DEFAULT_WIDTH;
+    B.h = opt->height ? opt->height : opt->quick ? QUICK_HEIGHT : opt->full ? FULL_HEIGHT : DEFAULT_HEIGHT;
     if (opt->frame_times)
         return frame_times(opt, err);
     if (opt->terrain_scale)

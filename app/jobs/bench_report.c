@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "gpu/gpu.h"
+#include "scene/program.h"
 #include "scene/quality.h"
 
 /* "+3.1 ms" where b's interval lies wholly above or below a's, else "not measurable". */
@@ -109,42 +110,46 @@ static int by_time(const void *a, const void *b)
 }
 
 /* The value the scene's own preset gives a sweep ("" when the bench does not know it): the operating
- * point each small multiple marks. */
-static void base_value(const bench_results *r, const char *knob, char *out, size_t n)
+ * point each small multiple rings, and the value a sweep always holds. */
+void bench_base_value(const scene *s, const char *knob, char *out, size_t n)
 {
     knob_id k;
+    const bench_approximation *a = bench_approximation_of(knob);
     out[0] = '\0';
     if (!strcmp(knob, "preset"))
-        snprintf(out, n, "%s", preset_name(r->base->preset));
+        snprintf(out, n, "%s", preset_name(s->preset));
     else if (!strcmp(knob, "resolution_scale"))
         snprintf(out, n, "1");
+    else if (!strcmp(knob, "method") && s->program == PROGRAM_TERRAIN)
+        snprintf(out, n, "%s", s->terrain.maxmip ? "maxmip" : "linear");
+    else if (!strcmp(knob, "iterations") && program_is_fractal(s->program))
+        snprintf(out, n, "%d", s->fractal.iterations);
+    else if (a && !strncmp(knob, "fx_", 3))
+        snprintf(out, n, "%s", a->on); /* swept only where the scene uses it */
     else if (knob_from_name(knob, &k))
-        snprintf(out, n, "%g", knob_value(&r->base->quality, k));
+        snprintf(out, n, "%g", knob_value(&s->quality, k));
 }
 
-static bool same_value(const char *a, const char *b)
+bool bench_same_value(const char *a, const char *b)
 {
     char *ea, *eb;
     double x = strtod(a, &ea), y = strtod(b, &eb);
     return *a && *b && (!strcmp(a, b) || (!*ea && !*eb && ea != a && eb != b && x == y));
 }
 
-/* gnuplot data: one block per knob (ms, RMSE, value, ms_lo, ms_hi, 1 at the preset's value), then the
- * Pareto front sorted by time (ms, RMSE, knob=value). Returns the knob count. */
+/* gnuplot data: one block per knob (ms, RMSE, value, ms_lo, ms_hi), then the Pareto front sorted by
+ * time (ms, RMSE). Returns the knob count. */
 static int write_plot_data(const bench_results *r, FILE *f, char (*knobs)[32], int max_knobs)
 {
     int nk = 0;
-    char base[64] = "";
     for (int i = 0; i < r->nrows; i++) {
         const bench_row *w = &r->rows[i];
         if ((nk == 0 || strcmp(knobs[nk - 1], w->knob)) && nk < max_knobs) {
             if (nk)
                 fprintf(f, "\n\n");
             snprintf(knobs[nk++], 32, "%s", w->knob);
-            base_value(r, w->knob, base, sizeof base);
         }
-        fprintf(f, "%.4f %.6f %s %.4f %.4f %d\n", w->ms, fmax(w->m.rmse, 1e-5), w->value, w->ms_lo, w->ms_hi,
-                same_value(w->value, base));
+        fprintf(f, "%.4f %.6f %s %.4f %.4f\n", w->ms, fmax(w->m.rmse, 1e-5), w->value, w->ms_lo, w->ms_hi);
     }
     fprintf(f, "\n\n");
     const bench_row **front = util_alloc(sizeof *front * (size_t)(r->nrows + 1), "the bench report");
@@ -153,17 +158,8 @@ static int write_plot_data(const bench_results *r, FILE *f, char (*knobs)[32], i
         if (r->rows[i].front)
             front[n++] = &r->rows[i];
     qsort(front, (size_t)n, sizeof *front, by_time);
-    /* A preset on the front is labelled as a preset already, and a point within a tenth of a decade of
-     * the last labelled one (on both axes) would print over it: both "-" (no label). */
-    double last_x = -1e9, last_y = -1e9;
-    for (int i = 0; i < n; i++) {
-        double x = log10(front[i]->ms), y = log10(fmax(front[i]->m.rmse, 1e-5));
-        bool label = strcmp(front[i]->knob, "preset") && (fabs(x - last_x) > 0.1 || fabs(y - last_y) > 0.1);
-        if (label)
-            last_x = x, last_y = y;
-        fprintf(f, "%.4f %.6f %s%s%s\n", front[i]->ms, fmax(front[i]->m.rmse, 1e-5), label ? front[i]->knob : "-",
-                label ? "=" : "", label ? front[i]->value : "");
-    }
+    for (int i = 0; i < n; i++)
+        fprintf(f, "%.4f %.6f\n", front[i]->ms, fmax(front[i]->m.rmse, 1e-5));
     free(front);
     return nk;
 }
@@ -178,85 +174,249 @@ static bool run_gnuplot(const char *gp, err_t *err)
     return true;
 }
 
-/* Small multiples: one panel a knob, each point labelled with its value, the time's interval as a bar,
- * the scene's preset value ringed; lower left is better in every panel. */
+/* ---- placing labels where they can be read ------------------------------------------------------ */
+
+/* An axis as drawn: its range and whether it is logarithmic. Log only where the values span more than
+ * a decade (within one a log axis has no labelled tic); a flat response is drawn flat, not blown up. */
+typedef struct axis_range {
+    double lo, hi;
+    bool log;
+} axis_range;
+
+static axis_range axis_fit(double lo, double hi, double pad)
+{
+    axis_range a = {lo, hi, lo > 0 && hi > 10 * lo};
+    if (a.log) {
+        double l = log10(lo), h = log10(hi), d = pad * (h - l);
+        a.lo = pow(10, l - d), a.hi = pow(10, h + d);
+        return a;
+    }
+    double mid = 0.5 * (lo + hi), span = fmax(hi - lo, 0.16 * fabs(hi));
+    span = span > 0 ? span : 1;
+    a.lo = mid - (0.5 + pad) * span, a.hi = mid + (0.5 + pad) * span;
+    if (a.lo < 0 && lo >= 0) /* times and errors are not negative: the axis starts at 0 */
+        a.hi -= a.lo, a.lo = 0;
+    return a;
+}
+
+static double axis_px(const axis_range *a, double v, double size)
+{
+    return a->log ? (log10(v) - log10(a->lo)) / (log10(a->hi) - log10(a->lo)) * size
+                  : (v - a->lo) / (a->hi - a->lo) * size;
+}
+
+static double axis_value(const axis_range *a, double px, double size)
+{
+    return a->log ? pow(10, log10(a->lo) + px / size * (log10(a->hi) - log10(a->lo)))
+                  : a->lo + px / size * (a->hi - a->lo);
+}
+
+/* gnuplot commands for one axis ("x" or "y"): its range, scale and about four tics at round steps */
+static void axis_set(FILE *f, const char *name, const axis_range *a)
+{
+    fprintf(f, "%s logscale %s\nset %srange [%.9g:%.9g]\n", a->log ? "set" : "unset", name, name, a->lo, a->hi);
+    if (a->log) { /* 1, 2 and 5 of each decade where it spans less than three */
+        bool fine = a->hi < 1000 * a->lo;
+        fprintf(f, "set %stics (", name);
+        const char *sep = "";
+        for (double d = pow(10, floor(log10(a->lo))); d <= a->hi; d *= 10)
+            for (int m = 1; m <= 5; m += m == 1 ? 1 : 3)
+                if ((m == 1 || fine) && d * m >= a->lo && d * m <= a->hi)
+                    fprintf(f, "%s%.9g", sep, d * m), sep = ", ";
+        fprintf(f, ")\n");
+        return;
+    }
+    double raw = (a->hi - a->lo) / 4, p = pow(10, floor(log10(raw))), m = raw / p;
+    fprintf(f, "set %stics %.9g\n", name, (m < 1.5 ? 1 : m < 3.5 ? 2 : m < 7.5 ? 5 : 10) * p);
+}
+
+typedef struct box {
+    double x0, y0, x1, y1;
+} box;
+
+enum { MAX_BOXES = 1024 };
+typedef struct label_space {
+    double w, h;           /* the plot area in pixels */
+    double cw, ch;         /* a character's width and a line's height at the labels' font */
+    box taken[MAX_BOXES];  /* what a label must not cover: points, lines, labels placed */
+    int n;
+} label_space;
+
+static void take(label_space *ls, double x0, double y0, double x1, double y1)
+{
+    if (ls->n < MAX_BOXES)
+        ls->taken[ls->n++] = (box){fmin(x0, x1), fmin(y0, y1), fmax(x0, x1), fmax(y0, y1)};
+}
+
+/* The first of the places around the point (px, py) where a label of len characters fits inside the
+ * plot and over nothing taken: above, below, right, left, the diagonals, then further out. Its centre
+ * into (cx, cy), and the place is taken; false where none is free (the label is left out: the table
+ * has every value). */
+static bool place(label_space *ls, double px, double py, int len, double scale, double *cx, double *cy)
+{
+    double hw = 0.5 * len * ls->cw * scale + 2, hh = 0.5 * ls->ch * scale + 1, g = 5;
+    const double at[][2] = {{0, g + hh},          {0, -g - hh},         {g + hw, 0},          {-g - hw, 0},
+                            {g + hw, -g - hh},    {g + hw, g + hh},     {-g - hw, -g - hh},   {-g - hw, g + hh},
+                            {0, 2 * g + 3 * hh}, {0, -2 * g - 3 * hh}, {2 * g + hw, -2 * hh}, {-2 * g - hw, 2 * hh},
+                            {g + hw, -3 * g - 3 * hh}, {-g - hw, -3 * g - 3 * hh}, {g + hw, 3 * g + 3 * hh},
+                            {-g - hw, 3 * g + 3 * hh}, {0, -4 * g - 5 * hh}, {0, 4 * g + 5 * hh}};
+    for (size_t i = 0; i < sizeof at / sizeof at[0]; i++) {
+        box b = {px + at[i][0] - hw, py + at[i][1] - hh, px + at[i][0] + hw, py + at[i][1] + hh};
+        bool free = b.x0 >= 0 && b.y0 >= 0 && b.x1 <= ls->w && b.y1 <= ls->h;
+        for (int k = 0; free && k < ls->n; k++)
+            free = !(b.x0 < ls->taken[k].x1 && ls->taken[k].x0 < b.x1 && b.y0 < ls->taken[k].y1 &&
+                     ls->taken[k].y0 < b.y1);
+        if (free) {
+            *cx = px + at[i][0], *cy = py + at[i][1];
+            take(ls, b.x0, b.y0, b.x1, b.y1);
+            return true;
+        }
+    }
+    return false;
+}
+
+/* A label in data coordinates from its centre in pixels */
+static void label_at(FILE *f, const axis_range *ax, const axis_range *ay, const label_space *ls, double cx, double cy,
+                     const char *text, const char *style)
+{
+    fprintf(f, "set label \"%s\" at %.9g,%.9g centre %s noenhanced front\n", text, axis_value(ax, cx, ls->w),
+            axis_value(ay, cy, ls->h), style);
+}
+
+/* Small multiples: one panel a knob, each point labelled with its value where the label can be read,
+ * the time's interval as a bar, the scene's preset value ringed; lower left is better in every panel.
+ * Panels are 380x300 pixels, their plot areas about 300x225. */
 static void small_multiples(const bench_results *r, FILE *f, const char *dat, const char *png, char (*knobs)[32],
                             int nk)
 {
     static const char *const COLOURS[] = {"#1b9e77", "#d95f02", "#7570b3", "#e7298a", "#66a61e", "#e6ab02",
                                           "#a6761d", "#666666"};
     int cols = nk < 3 ? nk : 3, rows = (nk + cols - 1) / cols;
-    fprintf(f, "set terminal pngcairo size %d,%d font ',9'\nset output '%s'\n", 380 * cols, 300 * rows + 40, png);
+    fprintf(f, "set terminal pngcairo size %d,%d font ',9'\nset output '%s'\n", 380 * cols, 300 * rows + 55, png);
     fprintf(f, "set multiplot layout %d,%d title \"%s, %dx%d, %.40s: colour error against time, each knob swept "
                "alone from the %s preset\\nBetter: down and left. Ring: the preset's value. Bars: the time's 95 %% "
-               "interval.\" noenhanced font ',10'\n",
-            rows, cols, r->opt->scene, r->w, r->h, (const char *)glGetString(GL_RENDERER), preset_name(r->base->preset));
-    /* each panel spans its own points (not whole decades), with room for the labels */
-    fprintf(f, "set autoscale fix\nset grid\nunset key\nset xlabel 'ms per image' offset 0,0.5\n"
-               "set ylabel 'RMSE' offset 1.5,0\nset offsets graph 0.15, graph 0.2, graph 0.25, graph 0.25\n"
-               "set format y '%%g'\nset format x '%%g'\n");
+               "interval.\\nCompare times within a panel (its settings were timed in turn); between panels the "
+               "machine's load drifts.\" noenhanced font ',10'\n",
+            rows, cols, prefix(r), r->w, r->h, (const char *)glGetString(GL_RENDERER), preset_name(r->base->preset));
+    fprintf(f, "set grid\nunset key\nset xlabel 'ms per image' offset 0,0.5\nset ylabel 'RMSE' offset 1.5,0\n"
+               "set format y '%%g'\nset format x '%%g'\nset lmargin 10\nset rmargin 2\n");
     for (int k = 0; k < nk; k++) {
         const char *c = COLOURS[k % (int)(sizeof COLOURS / sizeof COLOURS[0])];
-        fprintf(f, "set title '%s' noenhanced font ',11'\n", knobs[k]);
-        /* a log axis only where the panel's values span more than a decade: within one, a log axis has
-         * no labelled tic */
-        double lo[2] = {INFINITY, INFINITY}, hi[2] = {0, 0};
+        char base[64];
+        bench_base_value(r->base, knobs[k], base, sizeof base);
+        double lo[2] = {INFINITY, INFINITY}, hi[2] = {0, 0}, e_lo = INFINITY, e_hi = 0;
         for (int i = 0; i < r->nrows; i++)
             if (!strcmp(r->rows[i].knob, knobs[k])) {
-                double v[2] = {r->rows[i].ms, fmax(r->rows[i].m.rmse, 1e-5)};
-                for (int a = 0; a < 2; a++)
-                    lo[a] = fmin(lo[a], v[a]), hi[a] = fmax(hi[a], v[a]);
+                const bench_row *w = &r->rows[i];
+                lo[0] = fmin(lo[0], fmin(w->ms_lo, w->ms)), hi[0] = fmax(hi[0], fmax(w->ms_hi, w->ms));
+                double e = fmax(w->m.rmse, 1e-5);
+                lo[1] = fmin(lo[1], e), hi[1] = fmax(hi[1], e);
+                e_lo = fmin(e_lo, w->m.rmse), e_hi = fmax(e_hi, w->m.rmse);
             }
-        for (int a = 0; a < 2; a++) {
-            const char *axis = a ? "y" : "x";
-            if (hi[a] > 10 * lo[a]) {
-                fprintf(f, "set logscale %s\nset autoscale %s\nset autoscale %sfix\n", axis, axis, axis);
-            } else if (hi[a] - lo[a] < 0.1 * hi[a]) { /* flat: drawn flat, not blown up to fill the panel */
-                double mid = 0.5 * (lo[a] + hi[a]);
-                fprintf(f, "unset logscale %s\nset %srange [%g:%g]\n", axis, axis, mid - 0.08 * hi[a],
-                        mid + 0.08 * hi[a]);
-            } else {
-                fprintf(f, "unset logscale %s\nset autoscale %s\nset autoscale %sfix\n", axis, axis, axis);
+        axis_range ax = axis_fit(lo[0], hi[0], 0.1), ay = axis_fit(lo[1], hi[1], 0.2);
+        fprintf(f, "unset label\nset title '%s' noenhanced font ',11'\n", knobs[k]);
+        axis_set(f, "x", &ax);
+        axis_set(f, "y", &ay);
+        label_space ls = {.w = 300, .h = 225, .cw = 5.2, .ch = 10};
+        for (int i = 0; i < r->nrows; i++) /* the points and rings first: no label covers them */
+            if (!strcmp(r->rows[i].knob, knobs[k])) {
+                const bench_row *w = &r->rows[i];
+                double px = axis_px(&ax, w->ms, ls.w), py = axis_px(&ay, fmax(w->m.rmse, 1e-5), ls.h);
+                double rad = bench_same_value(w->value, base) ? 11 : 3.5;
+                take(&ls, px - rad, py - rad, px + rad, py + rad);
+                take(&ls, axis_px(&ax, w->ms_lo, ls.w), py - 2, axis_px(&ax, w->ms_hi, ls.w), py + 2);
+                if (rad > 5)
+                    fprintf(f, "set label '' at %.9g,%.9g point pt 6 ps 2.4 lw 1.5 lc rgb 'black' front\n", w->ms,
+                            fmax(w->m.rmse, 1e-5));
             }
+        if (e_hi - e_lo <= 1e-9 * fmax(e_hi, 1e-9)) { /* every value the same image: say so */
+            fprintf(f, "set label 'every value: the same image' at graph 0.5, graph 0.1 centre font ',8' "
+                       "tc rgb '#555555'\n");
+            take(&ls, 0.2 * ls.w, 0, 0.8 * ls.w, 0.18 * ls.h);
         }
-        /* values alternate above and below their points, so neighbours' labels do not collide */
+        for (int i = 0; i < r->nrows; i++)
+            if (!strcmp(r->rows[i].knob, knobs[k])) {
+                const bench_row *w = &r->rows[i];
+                double cx, cy;
+                if (place(&ls, axis_px(&ax, w->ms, ls.w), axis_px(&ay, fmax(w->m.rmse, 1e-5), ls.h),
+                          (int)strlen(w->value), 1, &cx, &cy))
+                    label_at(f, &ax, &ay, &ls, cx, cy, w->value, "font ',8'");
+            }
         fprintf(f, "plot '%s' index %d using 1:2 with lines lw 1.5 lc rgb '%s', "
-                   "'' index %d using 1:2:4:5 with xerrorbars pt 7 ps 0.7 lc rgb '%s', "
-                   "'' index %d using ($6 > 0 ? $1 : 1/0):2 with points pt 6 ps 2.4 lw 1.5 lc rgb 'black', "
-                   "'' index %d using 1:2:(int($0) %% 2 ? '' : stringcolumn(3)) with labels offset char 0,1 "
-                   "font ',8' noenhanced, "
-                   "'' index %d using 1:2:(int($0) %% 2 ? stringcolumn(3) : '') with labels offset char 0,-1 "
-                   "font ',8' noenhanced\n",
-                dat, k, c, k, c, k, k, k);
+                   "'' index %d using 1:2:4:5 with xerrorbars pt 7 ps 0.7 lc rgb '%s'\n",
+                dat, k, c, k, c);
     }
     fprintf(f, "unset multiplot\n");
 }
 
-/* The overview: every setting in grey, the presets labelled, the Pareto front as a staircase. */
-static void overview(const bench_results *r, FILE *f, const char *dat, const char *png, char (*knobs)[32], int nk)
+/* The overview: every setting in grey, the presets labelled, the Pareto front as a staircase with its
+ * settings named where the names can be read. 900x600 pixels, the plot area about 800x470. */
+static void overview(const bench_results *r, FILE *f, const char *dat, const char *png, int nk)
 {
-    int presets = -1;
-    for (int k = 0; k < nk; k++)
-        if (!strcmp(knobs[k], "preset"))
-            presets = k;
+    double lo[2] = {INFINITY, INFINITY}, hi[2] = {0, 0};
+    for (int i = 0; i < r->nrows; i++) {
+        const bench_row *w = &r->rows[i];
+        bool preset = !strcmp(w->knob, "preset");
+        lo[0] = fmin(lo[0], preset ? w->ms_lo : w->ms), hi[0] = fmax(hi[0], preset ? w->ms_hi : w->ms);
+        lo[1] = fmin(lo[1], fmax(w->m.rmse, 1e-5)), hi[1] = fmax(hi[1], fmax(w->m.rmse, 1e-5));
+    }
+    axis_range ax = axis_fit(lo[0], hi[0], 0.06), ay = axis_fit(lo[1], hi[1], 0.12);
     fprintf(f, "reset\nset terminal pngcairo size 900,600 font ',10'\nset output '%s'\n", png);
     fprintf(f, "set title \"%s, %dx%d: every setting the bench tried (grey), the presets (blue) and the Pareto "
                "front\\n(black: no setting is measurably faster and no worse, or better and not measurably slower). "
                "Better: down and left.\" noenhanced\n",
-            r->opt->scene, r->w, r->h);
-    fprintf(f, "set logscale xy\nset autoscale fix\nset grid\nunset key\nset xlabel 'ms per image (median)'\n"
-               "set ylabel 'colour RMSE against %s'\nset offsets graph 0.05, graph 0.25, graph 0.1, graph 0.25\n"
-               "set format y '%%g'\nset format x '%%g'\n",
+            prefix(r), r->w, r->h);
+    fprintf(f, "set grid\nunset key\nset xlabel 'ms per image (median)'\nset ylabel 'colour RMSE against %s'\n"
+               "set format y '%%g'\nset format x '%%g'\nset lmargin 10\nset rmargin 3\nset tmargin 4\nset bmargin 4\n",
             r->opt->path_truth ? "the path-traced truth" : "the reference");
+    axis_set(f, "x", &ax);
+    axis_set(f, "y", &ay);
+    label_space ls = {.w = 800, .h = 470, .cw = 5.2, .ch = 10};
+    const bench_row **front = util_alloc(sizeof *front * (size_t)(r->nrows + 1), "the bench report");
+    int n = 0;
+    for (int i = 0; i < r->nrows; i++) {
+        const bench_row *w = &r->rows[i];
+        double px = axis_px(&ax, w->ms, ls.w), py = axis_px(&ay, fmax(w->m.rmse, 1e-5), ls.h);
+        if (w->front || !strcmp(w->knob, "preset"))
+            take(&ls, px - 4, py - 4, px + 4, py + 4);
+        if (w->front)
+            front[n++] = w;
+    }
+    qsort(front, (size_t)n, sizeof *front, by_time);
+    for (int i = 0; i + 1 < n; i++) { /* the staircase: across at this point's error, down at the next's time */
+        double x0 = axis_px(&ax, front[i]->ms, ls.w), x1 = axis_px(&ax, front[i + 1]->ms, ls.w);
+        double y0 = axis_px(&ay, fmax(front[i]->m.rmse, 1e-5), ls.h), y1 = axis_px(&ay, fmax(front[i + 1]->m.rmse, 1e-5), ls.h);
+        take(&ls, x0, y0 - 1.5, x1, y0 + 1.5);
+        take(&ls, x1 - 1.5, y1, x1 + 1.5, y0);
+    }
+    for (int i = 0; i < r->nrows; i++) /* the presets' names first, larger and in blue */
+        if (!strcmp(r->rows[i].knob, "preset")) {
+            const bench_row *w = &r->rows[i];
+            double cx, cy;
+            if (place(&ls, axis_px(&ax, w->ms, ls.w), axis_px(&ay, fmax(w->m.rmse, 1e-5), ls.h),
+                      (int)strlen(w->value), 1.25, &cx, &cy))
+                label_at(f, &ax, &ay, &ls, cx, cy, w->value, "font ',10' tc rgb '#1f5fbf'");
+        }
+    for (int i = 0; i < n; i++)
+        if (strcmp(front[i]->knob, "preset")) {
+            char text[80];
+            double cx, cy;
+            snprintf(text, sizeof text, "%s=%s", front[i]->knob, front[i]->value);
+            if (place(&ls, axis_px(&ax, front[i]->ms, ls.w), axis_px(&ay, fmax(front[i]->m.rmse, 1e-5), ls.h),
+                      (int)strlen(text), 1, &cx, &cy))
+                label_at(f, &ax, &ay, &ls, cx, cy, text, "font ',8'");
+        }
+    free(front);
     fprintf(f, "plot for [k=0:%d] '%s' index k using 1:2 with points pt 7 ps 0.6 lc rgb '#bbbbbb', "
-               "'%s' index %d using 1:2 with steps lw 2 lc rgb 'black', "
-               "'' index %d using 1:2:(strcol(3) eq '-' ? '' : strcol(3)) with labels offset char 0.4,-0.4 left "
-               "rotate by -35 font ',8' noenhanced",
-            nk - 1, dat, dat, nk, nk);
-    if (presets >= 0)
-        fprintf(f, ", '' index %d using 1:2:4:5 with xerrorbars pt 5 ps 1.3 lc rgb '#1f5fbf', "
-                   "'' index %d using 1:2:3 with labels offset char 0.8,0.8 left font ',10' tc rgb '#1f5fbf' noenhanced",
-                presets, presets);
+               "'%s' index %d using 1:2 with steps lw 2 lc rgb 'black'",
+            nk - 1, dat, dat, nk);
+    for (int k = 0, i = 0; k < nk; k++) { /* the presets' block, with their intervals */
+        if (!strcmp(r->rows[i].knob, "preset"))
+            fprintf(f, ", '' index %d using 1:2:4:5 with xerrorbars pt 5 ps 1.3 lc rgb '#1f5fbf'", k);
+        const char *knob = r->rows[i].knob;
+        while (i < r->nrows && !strcmp(r->rows[i].knob, knob))
+            i++;
+    }
     fprintf(f, "\n");
 }
 
@@ -275,7 +435,7 @@ static bool write_plot(const bench_results *r, err_t *err)
     snprintf(png, sizeof png, "%s/%s-plot.png", r->opt->out, prefix(r));
     snprintf(over, sizeof over, "%s/%s-overview.png", r->opt->out, prefix(r));
     small_multiples(r, f, dat, png, knobs, nk);
-    overview(r, f, dat, over, knobs, nk);
+    overview(r, f, dat, over, nk);
     fclose(f);
     return run_gnuplot(gp, err);
 }

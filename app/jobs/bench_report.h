@@ -34,6 +34,11 @@ typedef struct bench_approximation {
 /* The approximation knob names, or NULL. */
 const bench_approximation *bench_approximation_of(const char *knob);
 
+/* The value scene s's own preset gives the sweep named knob ("" where the bench does not know it), and
+ * whether two sweep values are the same ("0.5" and "0.50" are) */
+void bench_base_value(const scene *s, const char *knob, char *out, size_t n);
+bool bench_same_value(const char *a, const char *b);
+
 typedef struct effect_row {
     effect e;
     bool in_scene;
