@@ -211,18 +211,35 @@ static double axis_value(const axis_range *a, double px, double size)
                   : a->lo + px / size * (a->hi - a->lo);
 }
 
-/* gnuplot commands for one axis ("x" or "y"): its range, scale and about four tics at round steps */
-static void axis_set(FILE *f, const char *name, const axis_range *a)
+/* the width of v's tic label in characters */
+static int strlen_g(double v)
+{
+    char t[32];
+    return snprintf(t, sizeof t, "%g", v);
+}
+
+/* gnuplot commands for one axis ("x" or "y", size pixels long): its range, scale and tics (about four
+ * at round steps on a linear axis) */
+static void axis_set(FILE *f, const char *name, const axis_range *a, double size)
 {
     fprintf(f, "%s logscale %s\nset %srange [%.9g:%.9g]\n", a->log ? "set" : "unset", name, name, a->lo, a->hi);
-    if (a->log) { /* 1, 2 and 5 of each decade where it spans less than three */
-        bool fine = a->hi < 1000 * a->lo;
+    if (a->log) { /* each decade, then 5 and 2 of each where their labels have room (size: the axis in pixels) */
+        static const int MULT[] = {1, 5, 2};
+        bool x = name[0] == 'x'; /* x labels side by side (their width), y labels stacked (a line) */
+        double at[64][2];
+        int n = 0;
+        for (int i = 0; i < 3; i++)
+            for (double d = pow(10, floor(log10(a->lo))); d <= a->hi && n < 64; d *= 10) {
+                double v = d * MULT[i], px = axis_px(a, v, size), room = x ? 0.5 * (strlen_g(v) * 7 + 14) : 8;
+                bool free = v >= a->lo && v <= a->hi;
+                for (int k = 0; free && k < n; k++)
+                    free = fabs(px - at[k][1]) > room + (x ? 0.5 * (strlen_g(at[k][0]) * 7 + 14) : 8);
+                if (free)
+                    at[n][0] = v, at[n++][1] = px;
+            }
         fprintf(f, "set %stics (", name);
-        const char *sep = "";
-        for (double d = pow(10, floor(log10(a->lo))); d <= a->hi; d *= 10)
-            for (int m = 1; m <= 5; m += m == 1 ? 1 : 3)
-                if ((m == 1 || fine) && d * m >= a->lo && d * m <= a->hi)
-                    fprintf(f, "%s%.9g", sep, d * m), sep = ", ";
+        for (int k = 0; k < n; k++)
+            fprintf(f, "%s%.9g", k ? ", " : "", at[k][0]);
         fprintf(f, ")\n");
         return;
     }
@@ -234,12 +251,14 @@ typedef struct box {
     double x0, y0, x1, y1;
 } box;
 
-enum { MAX_BOXES = 1024 };
+enum { MAX_BOXES = 4096, MAX_ANCHORS = 512 };
 typedef struct label_space {
-    double w, h;           /* the plot area in pixels */
-    double cw, ch;         /* a character's width and a line's height at the labels' font */
-    box taken[MAX_BOXES];  /* what a label must not cover: points, lines, labels placed */
+    double w, h;                   /* the plot area in pixels */
+    double cw, ch;                 /* a character's width and a line's height at the labels' font */
+    box taken[MAX_BOXES];          /* what a label must not cover: points, lines, labels placed */
     int n;
+    double anchor[MAX_ANCHORS][2]; /* the labelled points: a label sits nearer its own than any other */
+    int na;
 } label_space;
 
 static void take(label_space *ls, double x0, double y0, double x1, double y1)
@@ -248,26 +267,48 @@ static void take(label_space *ls, double x0, double y0, double x1, double y1)
         ls->taken[ls->n++] = (box){fmin(x0, x1), fmin(y0, y1), fmax(x0, x1), fmax(y0, y1)};
 }
 
+/* A line drawn from (x0, y0) to (x1, y1): boxes along it every 3 pixels, 2 pixels either side */
+static void take_line(label_space *ls, double x0, double y0, double x1, double y1)
+{
+    int steps = (int)ceil(hypot(x1 - x0, y1 - y0) / 3);
+    for (int i = 0; i <= steps; i++) {
+        double t = steps ? (double)i / steps : 0, x = x0 + t * (x1 - x0), y = y0 + t * (y1 - y0);
+        take(ls, x - 2, y - 2, x + 2, y + 2);
+    }
+}
+
+static void anchor(label_space *ls, double px, double py)
+{
+    if (ls->na < MAX_ANCHORS)
+        ls->anchor[ls->na][0] = px, ls->anchor[ls->na++][1] = py;
+}
+
 /* The first of the places around the point (px, py) where a label of len characters fits inside the
- * plot and over nothing taken: above, below, right, left, the diagonals, then further out. Its centre
- * into (cx, cy), and the place is taken; false where none is free (the label is left out: the table
- * has every value). */
+ * plot, over nothing taken, and nearer its point than any other labelled point (so it cannot be read
+ * as another's): above, below, right, left, the diagonals, then further out. Its centre into (cx, cy),
+ * and the place is taken; false where none is (the label is left out: the table has every value). */
 static bool place(label_space *ls, double px, double py, int len, double scale, double *cx, double *cy)
 {
     double hw = 0.5 * len * ls->cw * scale + 2, hh = 0.5 * ls->ch * scale + 1, g = 5;
     const double at[][2] = {{0, g + hh},          {0, -g - hh},         {g + hw, 0},          {-g - hw, 0},
                             {g + hw, -g - hh},    {g + hw, g + hh},     {-g - hw, -g - hh},   {-g - hw, g + hh},
-                            {0, 2 * g + 3 * hh}, {0, -2 * g - 3 * hh}, {2 * g + hw, -2 * hh}, {-2 * g - hw, 2 * hh},
-                            {g + hw, -3 * g - 3 * hh}, {-g - hw, -3 * g - 3 * hh}, {g + hw, 3 * g + 3 * hh},
-                            {-g - hw, 3 * g + 3 * hh}, {0, -4 * g - 5 * hh}, {0, 4 * g + 5 * hh}};
+                            {0, 2 * g + 3 * hh}, {0, -2 * g - 3 * hh}, {2 * g + hw, -2 * hh}, {-2 * g - hw, 2 * hh}};
     for (size_t i = 0; i < sizeof at / sizeof at[0]; i++) {
-        box b = {px + at[i][0] - hw, py + at[i][1] - hh, px + at[i][0] + hw, py + at[i][1] + hh};
+        double x = px + at[i][0], y = py + at[i][1];
+        box b = {x - hw, y - hh, x + hw, y + hh};
         bool free = b.x0 >= 0 && b.y0 >= 0 && b.x1 <= ls->w && b.y1 <= ls->h;
         for (int k = 0; free && k < ls->n; k++)
             free = !(b.x0 < ls->taken[k].x1 && ls->taken[k].x0 < b.x1 && b.y0 < ls->taken[k].y1 &&
                      ls->taken[k].y0 < b.y1);
+        /* nearest: from the label's box to each point, its own within a pixel */
+        double own = hypot(fmax(0, fabs(x - px) - hw), fmax(0, fabs(y - py) - hh));
+        for (int k = 0; free && k < ls->na; k++) {
+            double qx = ls->anchor[k][0], qy = ls->anchor[k][1];
+            if (hypot(qx - px, qy - py) > 1)
+                free = hypot(fmax(0, fabs(x - qx) - hw), fmax(0, fabs(y - qy) - hh)) > own + 1;
+        }
         if (free) {
-            *cx = px + at[i][0], *cy = py + at[i][1];
+            *cx = x, *cy = y;
             take(ls, b.x0, b.y0, b.x1, b.y1);
             return true;
         }
@@ -298,8 +339,8 @@ static void small_multiples(const bench_results *r, FILE *f, const char *dat, co
                "interval.\\nCompare times within a panel (its settings were timed in turn); between panels the "
                "machine's load drifts.\" noenhanced font ',10'\n",
             rows, cols, prefix(r), r->w, r->h, (const char *)glGetString(GL_RENDERER), preset_name(r->base->preset));
-    fprintf(f, "set grid\nunset key\nset xlabel 'ms per image' offset 0,0.5\nset ylabel 'RMSE' offset 1.5,0\n"
-               "set format y '%%g'\nset format x '%%g'\nset lmargin 10\nset rmargin 2\n");
+    fprintf(f, "set grid\nunset key\nset xlabel 'ms per image' offset 0,0.5\nset ylabel 'RMSE' offset 0.5,0\n"
+               "set format y '%%g'\nset format x '%%g'\nset lmargin 11\nset rmargin 2\n");
     for (int k = 0; k < nk; k++) {
         const char *c = COLOURS[k % (int)(sizeof COLOURS / sizeof COLOURS[0])];
         char base[64];
@@ -315,13 +356,18 @@ static void small_multiples(const bench_results *r, FILE *f, const char *dat, co
             }
         axis_range ax = axis_fit(lo[0], hi[0], 0.1), ay = axis_fit(lo[1], hi[1], 0.2);
         fprintf(f, "unset label\nset title '%s' noenhanced font ',11'\n", knobs[k]);
-        axis_set(f, "x", &ax);
-        axis_set(f, "y", &ay);
+        axis_set(f, "x", &ax, 280);
+        axis_set(f, "y", &ay, 225);
         label_space ls = {.w = 300, .h = 225, .cw = 5.2, .ch = 10};
-        for (int i = 0; i < r->nrows; i++) /* the points and rings first: no label covers them */
+        double last[2] = {NAN, NAN};
+        for (int i = 0; i < r->nrows; i++) /* the points, rings and lines first: no label covers them */
             if (!strcmp(r->rows[i].knob, knobs[k])) {
                 const bench_row *w = &r->rows[i];
                 double px = axis_px(&ax, w->ms, ls.w), py = axis_px(&ay, fmax(w->m.rmse, 1e-5), ls.h);
+                anchor(&ls, px, py);
+                if (!isnan(last[0]))
+                    take_line(&ls, last[0], last[1], px, py);
+                last[0] = px, last[1] = py;
                 double rad = bench_same_value(w->value, base) ? 11 : 3.5;
                 take(&ls, px - rad, py - rad, px + rad, py + rad);
                 take(&ls, axis_px(&ax, w->ms_lo, ls.w), py - 2, axis_px(&ax, w->ms_hi, ls.w), py + 2);
@@ -369,16 +415,18 @@ static void overview(const bench_results *r, FILE *f, const char *dat, const cha
     fprintf(f, "set grid\nunset key\nset xlabel 'ms per image (median)'\nset ylabel 'colour RMSE against %s'\n"
                "set format y '%%g'\nset format x '%%g'\nset lmargin 10\nset rmargin 3\nset tmargin 4\nset bmargin 4\n",
             r->opt->path_truth ? "the path-traced truth" : "the reference");
-    axis_set(f, "x", &ax);
-    axis_set(f, "y", &ay);
+    axis_set(f, "x", &ax, 800);
+    axis_set(f, "y", &ay, 470);
     label_space ls = {.w = 800, .h = 470, .cw = 5.2, .ch = 10};
     const bench_row **front = util_alloc(sizeof *front * (size_t)(r->nrows + 1), "the bench report");
     int n = 0;
     for (int i = 0; i < r->nrows; i++) {
         const bench_row *w = &r->rows[i];
         double px = axis_px(&ax, w->ms, ls.w), py = axis_px(&ay, fmax(w->m.rmse, 1e-5), ls.h);
-        if (w->front || !strcmp(w->knob, "preset"))
+        if (w->front || !strcmp(w->knob, "preset")) {
             take(&ls, px - 4, py - 4, px + 4, py + 4);
+            anchor(&ls, px, py);
+        }
         if (w->front)
             front[n++] = w;
     }
@@ -386,8 +434,8 @@ static void overview(const bench_results *r, FILE *f, const char *dat, const cha
     for (int i = 0; i + 1 < n; i++) { /* the staircase: across at this point's error, down at the next's time */
         double x0 = axis_px(&ax, front[i]->ms, ls.w), x1 = axis_px(&ax, front[i + 1]->ms, ls.w);
         double y0 = axis_px(&ay, fmax(front[i]->m.rmse, 1e-5), ls.h), y1 = axis_px(&ay, fmax(front[i + 1]->m.rmse, 1e-5), ls.h);
-        take(&ls, x0, y0 - 1.5, x1, y0 + 1.5);
-        take(&ls, x1 - 1.5, y1, x1 + 1.5, y0);
+        take(&ls, x0, y0 - 3, x1, y0 + 3);
+        take(&ls, x1 - 3, y1, x1 + 3, y0);
     }
     for (int i = 0; i < r->nrows; i++) /* the presets' names first, larger and in blue */
         if (!strcmp(r->rows[i].knob, "preset")) {
