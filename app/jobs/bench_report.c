@@ -284,10 +284,11 @@ static void anchor(label_space *ls, double px, double py)
 }
 
 /* The first of the places around the point (px, py) where a label of len characters fits inside the
- * plot, over nothing taken, and nearer its point than any other labelled point (so it cannot be read
- * as another's): above, below, right, left, the diagonals, then further out. Its centre into (cx, cy),
- * and the place is taken; false where none is (the label is left out: the table has every value). */
-static bool place(label_space *ls, double px, double py, int len, double scale, double *cx, double *cy)
+ * plot, over nothing taken, and (with nearest) nearer its point than any other labelled point, so it
+ * cannot be read as another's (the presets' names go without: few and far apart): above, below,
+ * right, left, the diagonals, then further out. Its centre into (cx, cy), and the place is taken;
+ * false where none is (the label is left out: the table has every value). */
+static bool place(label_space *ls, double px, double py, int len, double scale, bool nearest, double *cx, double *cy)
 {
     double hw = 0.5 * len * ls->cw * scale + 2, hh = 0.5 * ls->ch * scale + 1, g = 5;
     const double at[][2] = {{0, g + hh},          {0, -g - hh},         {g + hw, 0},          {-g - hw, 0},
@@ -302,7 +303,7 @@ static bool place(label_space *ls, double px, double py, int len, double scale, 
                      ls->taken[k].y0 < b.y1);
         /* nearest: from the label's box to each point, its own within a pixel */
         double own = hypot(fmax(0, fabs(x - px) - hw), fmax(0, fabs(y - py) - hh));
-        for (int k = 0; free && k < ls->na; k++) {
+        for (int k = 0; free && nearest && k < ls->na; k++) {
             double qx = ls->anchor[k][0], qy = ls->anchor[k][1];
             if (hypot(qx - px, qy - py) > 1)
                 free = hypot(fmax(0, fabs(x - qx) - hw), fmax(0, fabs(y - qy) - hh)) > own + 1;
@@ -385,7 +386,7 @@ static void small_multiples(const bench_results *r, FILE *f, const char *dat, co
                 const bench_row *w = &r->rows[i];
                 double cx, cy;
                 if (place(&ls, axis_px(&ax, w->ms, ls.w), axis_px(&ay, fmax(w->m.rmse, 1e-5), ls.h),
-                          (int)strlen(w->value), 1, &cx, &cy))
+                          (int)strlen(w->value), 1, strcmp(knobs[k], "preset") != 0, &cx, &cy))
                     label_at(f, &ax, &ay, &ls, cx, cy, w->value, "font ',8'");
             }
         fprintf(f, "plot '%s' index %d using 1:2 with lines lw 1.5 lc rgb '%s', "
@@ -442,7 +443,7 @@ static void overview(const bench_results *r, FILE *f, const char *dat, const cha
             const bench_row *w = &r->rows[i];
             double cx, cy;
             if (place(&ls, axis_px(&ax, w->ms, ls.w), axis_px(&ay, fmax(w->m.rmse, 1e-5), ls.h),
-                      (int)strlen(w->value), 1.25, &cx, &cy))
+                      (int)strlen(w->value), 1.25, false, &cx, &cy))
                 label_at(f, &ax, &ay, &ls, cx, cy, w->value, "font ',10' tc rgb '#1f5fbf'");
         }
     for (int i = 0; i < n; i++)
@@ -451,7 +452,7 @@ static void overview(const bench_results *r, FILE *f, const char *dat, const cha
             double cx, cy;
             snprintf(text, sizeof text, "%s=%s", front[i]->knob, front[i]->value);
             if (place(&ls, axis_px(&ax, front[i]->ms, ls.w), axis_px(&ay, fmax(front[i]->m.rmse, 1e-5), ls.h),
-                      (int)strlen(text), 1, &cx, &cy))
+                      (int)strlen(text), 1, true, &cx, &cy))
                 label_at(f, &ax, &ay, &ls, cx, cy, text, "font ',8'");
         }
     free(front);
