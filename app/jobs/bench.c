@@ -479,9 +479,10 @@ static const char *sweep_values(const char *v, const char *keep, bool quick, cha
     if (*keep && at < 0) {
         char *e;
         double x = strtod(keep, &e);
+        double dir = k > 1 ? strtod(vals[k - 1], NULL) - strtod(vals[0], NULL) : 1;
         at = k;
         for (int i = 0; !*e && i < k; i++) { /* before the first value it precedes, in v's direction */
-            double a = strtod(vals[i], NULL), dir = k > 1 ? strtod(vals[k - 1], NULL) - strtod(vals[0], NULL) : 1;
+            double a = strtod(vals[i], NULL);
             if ((dir >= 0 && x < a) || (dir < 0 && x > a)) {
                 at = i;
                 break;
@@ -491,17 +492,15 @@ static const char *sweep_values(const char *v, const char *keep, bool quick, cha
         vals[at] = keep;
         k++;
     }
-    int pick[64], np = 0;
     if (quick && k > 3) {
         int mid = at > 0 && at < k - 1 ? at : k / 2;
-        pick[0] = 0, pick[1] = mid, pick[2] = k - 1, np = 3;
-    } else
-        for (int i = 0; i < k; i++)
-            pick[np++] = i;
+        snprintf(out, n, "%s,%s,%s", vals[0], vals[mid], vals[k - 1]);
+        return out;
+    }
     out[0] = '\0';
-    for (int i = 0; i < np; i++) {
+    for (int i = 0; i < k; i++) {
         size_t len = strlen(out);
-        snprintf(out + len, n - len, "%s%s", i ? "," : "", vals[pick[i]]);
+        snprintf(out + len, n - len, "%s%s", i ? "," : "", vals[i]);
     }
     return out;
 }
@@ -653,7 +652,8 @@ static bool pick_sweeps(const scene *base, sweep *sweeps, const char **values, i
     for (int k = 0; k < *n && !B.opt->knob_count; k++) {
         char keep[64];
         bench_base_value(base, sweeps[k].name, keep, sizeof keep);
-        values[k] = !applies[k] ? NULL : sweep_values(sweeps[k].values, keep, B.opt->quick, chosen[k], sizeof chosen[k]);
+        values[k] = !applies[k] ? NULL
+                                : sweep_values(sweeps[k].values, keep, B.opt->quick, chosen[k], sizeof chosen[k]);
     }
     for (int i = 0; i < B.opt->knob_count; i++) {
         const char *arg = B.opt->knobs[i], *eq = strchr(arg, '=');

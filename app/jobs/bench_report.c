@@ -137,6 +137,18 @@ bool bench_same_value(const char *a, const char *b)
     return *a && *b && (!strcmp(a, b) || (!*ea && !*eb && ea != a && eb != b && x == y));
 }
 
+/* The rows on the Pareto front, sorted by time (n of them; the caller frees the array) */
+static const bench_row **pareto_front(const bench_results *r, int *n)
+{
+    const bench_row **front = util_alloc(sizeof *front * (size_t)(r->nrows + 1), "the bench report");
+    *n = 0;
+    for (int i = 0; i < r->nrows; i++)
+        if (r->rows[i].front)
+            front[(*n)++] = &r->rows[i];
+    qsort(front, (size_t)*n, sizeof *front, by_time);
+    return front;
+}
+
 /* gnuplot data: one block per knob (ms, RMSE, value, ms_lo, ms_hi), then the Pareto front sorted by
  * time (ms, RMSE). Returns the knob count. */
 static int write_plot_data(const bench_results *r, FILE *f, char (*knobs)[32], int max_knobs)
@@ -152,12 +164,8 @@ static int write_plot_data(const bench_results *r, FILE *f, char (*knobs)[32], i
         fprintf(f, "%.4f %.6f %s %.4f %.4f\n", w->ms, fmax(w->m.rmse, 1e-5), w->value, w->ms_lo, w->ms_hi);
     }
     fprintf(f, "\n\n");
-    const bench_row **front = util_alloc(sizeof *front * (size_t)(r->nrows + 1), "the bench report");
-    int n = 0;
-    for (int i = 0; i < r->nrows; i++)
-        if (r->rows[i].front)
-            front[n++] = &r->rows[i];
-    qsort(front, (size_t)n, sizeof *front, by_time);
+    int n;
+    const bench_row **front = pareto_front(r, &n);
     for (int i = 0; i < n; i++)
         fprintf(f, "%.4f %.6f\n", front[i]->ms, fmax(front[i]->m.rmse, 1e-5));
     free(front);
@@ -398,7 +406,8 @@ static void small_multiples(const bench_results *r, FILE *f, const char *dat, co
 
 /* The overview: every setting in grey, the presets labelled, the Pareto front as a staircase with its
  * settings named where the names can be read. 900x600 pixels, the plot area about 800x470. */
-static void overview(const bench_results *r, FILE *f, const char *dat, const char *png, int nk)
+static void overview(const bench_results *r, FILE *f, const char *dat, const char *png, char (*knobs)[32],
+                     int nk)
 {
     double lo[2] = {INFINITY, INFINITY}, hi[2] = {0, 0};
     for (int i = 0; i < r->nrows; i++) {
@@ -419,8 +428,6 @@ static void overview(const bench_results *r, FILE *f, const char *dat, const cha
     axis_set(f, "x", &ax, 800);
     axis_set(f, "y", &ay, 470);
     label_space ls = {.w = 800, .h = 470, .cw = 5.2, .ch = 10};
-    const bench_row **front = util_alloc(sizeof *front * (size_t)(r->nrows + 1), "the bench report");
-    int n = 0;
     for (int i = 0; i < r->nrows; i++) {
         const bench_row *w = &r->rows[i];
         double px = axis_px(&ax, w->ms, ls.w), py = axis_px(&ay, fmax(w->m.rmse, 1e-5), ls.h);
@@ -428,10 +435,9 @@ static void overview(const bench_results *r, FILE *f, const char *dat, const cha
             take(&ls, px - 4, py - 4, px + 4, py + 4);
             anchor(&ls, px, py);
         }
-        if (w->front)
-            front[n++] = w;
     }
-    qsort(front, (size_t)n, sizeof *front, by_time);
+    int n;
+    const bench_row **front = pareto_front(r, &n);
     for (int i = 0; i + 1 < n; i++) { /* the staircase: across at this point's error, down at the next's time */
         double x0 = axis_px(&ax, front[i]->ms, ls.w), x1 = axis_px(&ax, front[i + 1]->ms, ls.w);
         double y0 = axis_px(&ay, fmax(front[i]->m.rmse, 1e-5), ls.h), y1 = axis_px(&ay, fmax(front[i + 1]->m.rmse, 1e-5), ls.h);
@@ -459,13 +465,9 @@ static void overview(const bench_results *r, FILE *f, const char *dat, const cha
     fprintf(f, "plot for [k=0:%d] '%s' index k using 1:2 with points pt 7 ps 0.6 lc rgb '#bbbbbb', "
                "'%s' index %d using 1:2 with steps lw 2 lc rgb 'black'",
             nk - 1, dat, dat, nk);
-    for (int k = 0, i = 0; k < nk; k++) { /* the presets' block, with their intervals */
-        if (!strcmp(r->rows[i].knob, "preset"))
+    for (int k = 0; k < nk; k++) /* the presets' block, with their intervals */
+        if (!strcmp(knobs[k], "preset"))
             fprintf(f, ", '' index %d using 1:2:4:5 with xerrorbars pt 5 ps 1.3 lc rgb '#1f5fbf'", k);
-        const char *knob = r->rows[i].knob;
-        while (i < r->nrows && !strcmp(r->rows[i].knob, knob))
-            i++;
-    }
     fprintf(f, "\n");
 }
 
@@ -484,7 +486,7 @@ static bool write_plot(const bench_results *r, err_t *err)
     snprintf(png, sizeof png, "%s/%s-plot.png", r->opt->out, prefix(r));
     snprintf(over, sizeof over, "%s/%s-overview.png", r->opt->out, prefix(r));
     small_multiples(r, f, dat, png, knobs, nk);
-    overview(r, f, dat, over, nk);
+    overview(r, f, dat, over, knobs, nk);
     fclose(f);
     return run_gnuplot(gp, err);
 }
