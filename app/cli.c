@@ -461,7 +461,7 @@ bool cli_parse(int argc, char **argv, cli_options *o, err_t *err)
             continue;
         if (o->stitch && strncmp(a, "--", 2) != 0) { /* stitch: the tile files */
             if (o->input_count == (int)(sizeof o->inputs / sizeof o->inputs[0]))
-                return err_set(err, "fathom stitch: too many files (at most %d)", (int)(sizeof o->inputs / sizeof o->inputs[0]));
+                return err_set(err, "stitch: too many files (at most %d)", (int)(sizeof o->inputs / sizeof o->inputs[0]));
             o->inputs[o->input_count++] = a;
             continue;
         }

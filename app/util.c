@@ -3,6 +3,7 @@
 #include "util.h"
 
 #include <assert.h>
+#include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <limits.h>
@@ -21,6 +22,16 @@ static void err_vset(err_t *err, bool newline_ok, const char *fmt, va_list ap)
     for (char *c = err->msg; *c; c++)
         if (((unsigned char)*c < 0x20 && !(newline_ok && *c == '\n')) || *c == 0x7f)
             *c = '?';
+}
+
+const char *util_printable(const char *s, char *out, size_t n)
+{
+    size_t k = 0;
+    for (; *s && k + 1 < n; s++)
+        out[k++] = ((unsigned char)*s < 0x20 || *s == 0x7f) ? '?' : *s;
+    if (n)
+        out[k] = '\0';
+    return out;
 }
 
 bool err_set(err_t *err, const char *fmt, ...)
@@ -45,18 +56,83 @@ bool err_set_lines(err_t *err, const char *fmt, ...)
     return false;
 }
 
+void util_remove_folder(const char *dir)
+{
+    DIR *d = opendir(dir);
+    for (struct dirent *e; d && (e = readdir(d));) {
+        char path[PATH_MAX_LEN + 256];
+        if (strcmp(e->d_name, ".") && strcmp(e->d_name, "..") &&
+            snprintf(path, sizeof path, "%s/%s", dir, e->d_name) < (int)sizeof path)
+            unlink(path);
+    }
+    if (d)
+        closedir(d);
+    rmdir(dir);
+}
+
+bool util_atomic_open(util_atomic *a, const char *path, err_t *err)
+{
+    static unsigned serial;
+    *a = (util_atomic){0};
+    if (snprintf(a->path, sizeof a->path, "%s", path) >= (int)sizeof a->path)
+        return err_set(err, "cannot write '%.200s...': the path is too long", path);
+    const char *slash = strrchr(path, '/'), *base = slash ? slash + 1 : path;
+    for (int tries = 0; tries < 100; tries++) {
+        snprintf(a->tmp, sizeof a->tmp, "%.*s.%.200s.tmp%ld-%u", (int)(base - path), path, base, (long)getpid(),
+                 serial++);
+        int fd = open(a->tmp, O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
+        if (fd < 0 && errno == EEXIST)
+            continue;
+        if (fd < 0)
+            return err_set(err, "cannot write '%s': %s", path, strerror(errno));
+        a->f = fdopen(fd, "w");
+        if (!a->f) {
+            close(fd);
+            unlink(a->tmp);
+            return err_set(err, "cannot write '%s': %s", path, strerror(errno));
+        }
+        return true;
+    }
+    return err_set(err, "cannot write '%s': no free temporary name beside it", path);
+}
+
+bool util_atomic_commit(util_atomic *a, err_t *err)
+{
+    FILE *f = a->f;
+    a->f = NULL;
+    errno = 0;
+    bool ok = fflush(f) == 0 && !ferror(f);
+    ok = (fsync(fileno(f)) == 0 || errno == EINVAL) && ok; /* EINVAL: a file system without fsync */
+    int saved = errno;
+    ok = fclose(f) == 0 && ok;
+    if (!ok || rename(a->tmp, a->path) != 0) {
+        if (ok)
+            saved = errno;
+        unlink(a->tmp);
+        return err_set(err, "cannot write '%s': %s (is the disk full?)", a->path,
+                       strerror(saved ? saved : EIO));
+    }
+    return true;
+}
+
+void util_atomic_abort(util_atomic *a)
+{
+    if (a->f)
+        fclose(a->f);
+    a->f = NULL;
+    unlink(a->tmp);
+}
+
 bool util_write_text_atomic(const char *path, const char *text, const char *what, err_t *err)
 {
-    char tmp[PATH_MAX_LEN + 32];
-    snprintf(tmp, sizeof tmp, "%s.tmp%d", path, (int)getpid());
-    FILE *f = fopen(tmp, "w");
-    bool ok = f && fputs(text, f) >= 0;
-    ok = (f && fclose(f) == 0) && ok && rename(tmp, path) == 0;
-    if (!ok) {
-        err_set(err, "cannot save %s to '%s': %s", what, path, strerror(errno));
-        remove(tmp);
-    }
-    return ok;
+    util_atomic a;
+    err_t e;
+    if (!util_atomic_open(&a, path, &e))
+        return err_set(err, "cannot save %s: %s", what, e.msg);
+    fputs(text, a.f);
+    if (!util_atomic_commit(&a, &e))
+        return err_set(err, "cannot save %s: %s", what, e.msg);
+    return true;
 }
 
 bool util_read_file(const char *path, char **out, size_t *len, err_t *err)

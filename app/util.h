@@ -36,15 +36,34 @@ char *util_strdup(const char *s);
 /* Reads a whole file, NUL-terminated. *out is malloc'd; the caller frees it. */
 bool util_read_file(const char *path, char **out, size_t *len, err_t *err);
 
-/* Writes text to path atomically: a temporary file beside it, then a rename (a reader never sees half
- * a file). False with "cannot save WHAT to 'path': reason". */
+/* Writes text to path atomically (util_atomic below). False with "cannot save WHAT to 'path': reason". */
 bool util_write_text_atomic(const char *path, const char *text, const char *what, err_t *err);
+
+/* A file written whole or not at all. open makes a new temporary file beside path (".BASE.tmpPID-N",
+ * O_EXCL|O_NOFOLLOW: nothing planted there, a symbolic link included, is followed or overwritten);
+ * commit checks every write, flushes it to the disk and renames it over path (rename replaces a link
+ * at path, it never writes through one); on any failure, and in abort, the temporary file is removed
+ * and path is left as it was. */
+typedef struct util_atomic {
+    void *f; /* FILE *, for fprintf */
+    char tmp[PATH_MAX_LEN + 48], path[PATH_MAX_LEN];
+} util_atomic;
+bool util_atomic_open(util_atomic *a, const char *path, err_t *err);
+bool util_atomic_commit(util_atomic *a, err_t *err); /* "cannot write 'path': reason (is the disk full?)" */
+void util_atomic_abort(util_atomic *a);
+
+/* s with every control byte (below 0x20, 0x7f: ESC, BEL, a newline) as '?', into out: text from a
+ * file that goes to a terminal, a CSV cell or a one-line message. Returns out. */
+const char *util_printable(const char *s, char *out, size_t n);
 
 /* Directory part of path ("." if none), and a path resolved against a directory (absolute paths
  * are kept). Both truncate nothing silently: they return false when out is too small. */
 bool util_dirname(const char *path, char *out, size_t n);
 bool util_join(const char *dir, const char *rel, char *out, size_t n);
 bool util_file_exists(const char *path);
+/* Removes a folder of files that fathom made: each entry is unlinked (a link goes, what it points to
+ * stays; a subfolder stays, and with it the folder), then the folder. */
+void util_remove_folder(const char *dir);
 
 /* Where shaders/, scenes/, textures/ and terrains/ live: $FATHOM_DATA_DIR, else found beside the
  * binary (installed: <prefix>/bin/../share/fathom), else the source tree it was built from. */

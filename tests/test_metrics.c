@@ -4,12 +4,15 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include <cmocka.h>
 
 #include "check.h"
+#include "jobs/gnuplot.h"
 #include "jobs/metrics.h"
 #include "gpu/aov.h"
 
@@ -192,6 +195,46 @@ static void pareto_front(void **st)
     assert_true(f[0] && !f[1] && f[2]);
 }
 
+
+/* Every byte value inside a string that gnuplot_string quotes, beside a command substitution, a macro,
+ * a quote and a backslash: gnuplot must print each string back as text (control bytes as '?', a newline
+ * as a line break) and run nothing. gnuplot's `print` writes to stderr: gnuplot_run's log. */
+static void gnuplot_strings_are_text(void **st)
+{
+    (void)st;
+    char dir[] = "/tmp/fathom-gnuplot-XXXXXX", path[64], ran[80];
+    assert_non_null(mkdtemp(dir));
+    snprintf(path, sizeof path, "%s/t.gp", dir);
+    snprintf(ran, sizeof ran, "%s/RAN", dir);
+    FILE *f = fopen(path, "w");
+    assert_non_null(f);
+    strbuf want = {0};
+    fprintf(f, "x = 'MACRO'\n");
+    for (int b = 1; b < 256; b++) {
+        char s[160];
+        snprintf(s, sizeof s, "a%cb'`touch %s`@x\\n\"", (char)b, ran);
+        fputs("print ", f);
+        gnuplot_string(f, s);
+        fputc('\n', f);
+        for (const char *c = s; *c; c++)
+            sb_printf(&want, "%c", ((unsigned char)*c < 0x20 && *c != '\n') || *c == 0x7f ? '?' : *c);
+        sb_append(&want, "\n");
+    }
+    fclose(f);
+    err_t e;
+    bool ok = gnuplot_run(dir, "t.gp", &e);
+    if (!ok)
+        fail_msg("%s", e.msg);
+    char log[80], *got = NULL;
+    snprintf(log, sizeof log, "%s/%s", dir, GNUPLOT_LOG_NAME);
+    assert_true(util_read_file(log, &got, NULL, &e));
+    assert_string_equal(got, want.data);
+    assert_int_equal(access(ran, F_OK), -1); /* the backquotes ran nothing */
+    free(got);
+    sb_free(&want);
+    unlink(log), unlink(path), rmdir(dir);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -202,6 +245,7 @@ int main(void)
         cmocka_unit_test(median_interval_from_order_statistics),
         cmocka_unit_test(upscale_is_exact_on_flat_and_keeps_layout),
         cmocka_unit_test(pareto_front),
+        cmocka_unit_test(gnuplot_strings_are_text),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -304,6 +304,15 @@ image_writer *image_writer_open_text(const char *path, int width, int height, in
     snprintf(w->path, sizeof w->path, "%s", path);
     temp_path_for(path, w->tmp, sizeof w->tmp);
     w->width = width, w->height = height, w->channels = channels;
+    /* the temporary file is made new here (O_EXCL, O_NOFOLLOW): whatever was planted at its name, a
+     * link to another file included, is refused rather than written through */
+    int fd = open(w->tmp, O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
+    if (fd < 0) {
+        err_set(err, "cannot write '%s': its temporary file '%s': %s", path, w->tmp, strerror(errno));
+        free(w);
+        return NULL;
+    }
+    close(fd);
     set_temp(w->tmp);
     bool ok = png ? png_begin(&w->png, w->tmp, width, height, channels, texts)
                   : (w->oiio = open_fn(path, w->tmp, width, height, channels, f32, names, texts, err)) != NULL;

@@ -186,9 +186,11 @@ static void diff_colour(double e, uint8_t out[3])
 static void write_difference(const char *knob, const char *value, const uint8_t *test, const uint8_t *ref, char *name,
                              size_t n)
 {
-    const char *prefix = B.opt->name ? B.opt->name : B.opt->scene;
+    char prefix[BENCH_PREFIX_MAX], k[sizeof ((bench_row *)0)->knob], v[sizeof ((bench_row *)0)->value];
     char path[PATH_MAX_LEN];
-    snprintf(name, n, "%s-diff-%s-%s.png", prefix, knob, value);
+    bench_prefix(B.opt, prefix, sizeof prefix);
+    bench_safe_name(knob, k, sizeof k), bench_safe_name(value, v, sizeof v); /* "../x" is a file name here */
+    snprintf(name, n, "%s-diff-%s-%s.png", prefix, k, v);
     snprintf(path, sizeof path, "%s/%s", B.opt->out, name);
     size_t px = (size_t)B.w * (size_t)B.h;
     uint8_t *img = util_alloc(px * 3, "a difference image");
@@ -322,8 +324,9 @@ static bool make_references(const scene *base, metrics *convergence, double *ref
             *ref_ms = ms;
         read_back(B.w, B.h, &B.views[v].srgb, &B.views[v].aov);
         if (v == 0 && B.opt->out) { /* what the difference images are against */
-            char path[PATH_MAX_LEN];
-            snprintf(path, sizeof path, "%s/%s-reference.png", B.opt->out, B.opt->name ? B.opt->name : B.opt->scene);
+            char path[PATH_MAX_LEN], prefix[BENCH_PREFIX_MAX];
+            bench_prefix(B.opt, prefix, sizeof prefix);
+            snprintf(path, sizeof path, "%s/%s-reference.png", B.opt->out, prefix);
             if (!image_write_u8(path, B.w, B.h, 4, B.views[v].srgb, err))
                 return false;
         }
@@ -433,29 +436,66 @@ static bool row_done(err_t *err)
     return bench_write_rows(&res, err);
 }
 
+/* One value of sweep k as the override it sets (into set; *n is 0 or 1) and the render scale */
+static bool sweep_setting(const sweep *k, const char *v, char *set, size_t size, int *n, double *scale, err_t *err)
+{
+    *n = 0, *scale = 1.0;
+    if (!k->own) {
+        if (snprintf(set, size, "%s=%s", k->key, v) >= (int)size)
+            return err_set(err, "bad --knob %s value '%.40s...': too long", k->name, v);
+        *n = 1;
+        return true;
+    }
+    char *end;
+    *scale = strtod(v, &end);
+    if (*end || !(*scale > 0 && *scale <= 1))
+        return err_set(err, "bad --knob resolution_scale value '%s': expected a number in (0, 1]", v);
+    return true;
+}
+
 static bool add_sweep_rows(const sweep *k, const char *values, err_t *err)
 {
     char list[512];
     snprintf(list, sizeof list, "%s", values);
     char *save = NULL;
     for (char *v = strtok_r(list, ",", &save); v; v = strtok_r(NULL, ",", &save)) {
-        if (B.nrows == MAX_ROWS)
-            return err_set(err, "too many bench settings (at most %d)", MAX_ROWS);
         char set[128];
-        const char *sets[1];
-        int n = 0;
-        double scale = 1.0;
-        if (!k->own) {
-            snprintf(set, sizeof set, "%s=%s", k->key, v);
-            sets[n++] = set;
-        } else {
-            char *end;
-            scale = strtod(v, &end);
-            if (*end || scale <= 0 || scale > 1)
-                return err_set(err, "bad --knob resolution_scale value '%s': expected a number in (0, 1]", v);
-        }
-        if (!measure(k->name, v, sets, n, scale, &B.rows[B.nrows], err) || !row_done(err))
+        const char *sets[1] = {set};
+        int n;
+        double scale;
+        if (!sweep_setting(k, v, set, sizeof set, &n, &scale, err) ||
+            !measure(k->name, v, sets, n, scale, &B.rows[B.nrows], err) || !row_done(err))
             return false;
+    }
+    return true;
+}
+
+/* Every value of every sweep, checked before the first image: a bad one is refused at once, not after
+ * minutes of rendering the others. The rows must fit too. */
+static bool check_sweeps(const sweep *sweeps, const char *const *values, int nsweeps, err_t *err)
+{
+    int rows = PRESET_COUNT;
+    for (int k = 0; k < nsweeps; k++) {
+        if (!values[k])
+            continue;
+        if (strlen(values[k]) >= 512)
+            return err_set(err, "--knob %s: the values are longer than 511 characters", sweeps[k].name);
+        char list[512];
+        snprintf(list, sizeof list, "%s", values[k]);
+        char *save = NULL;
+        for (char *v = strtok_r(list, ",", &save); v; v = strtok_r(NULL, ",", &save)) {
+            char set[128];
+            const char *sets[1] = {set};
+            int n;
+            double scale;
+            scene s;
+            if (++rows > MAX_ROWS)
+                return err_set(err, "too many bench settings (at most %d): sweep fewer values", MAX_ROWS);
+            if (!sweep_setting(&sweeps[k], v, set, sizeof set, &n, &scale, err) || (n && !load(sets, n, &s, err)))
+                return false;
+            if (n)
+                scene_free(&s);
+        }
     }
     return true;
 }
@@ -676,6 +716,23 @@ static bool pick_sweeps(const scene *base, sweep *sweeps, const char **values, i
     return true;
 }
 
+/* --out: a folder made when it does not exist (its parent must); *created says whether it was */
+static bool make_out(const char *out, bool *created, err_t *err)
+{
+    struct stat st;
+    if (!out)
+        return true;
+    if (stat(out, &st) != 0) {
+        if (mkdir(out, 0777) != 0)
+            return err_set(err, "--out '%s': cannot make the folder (%s): does its parent exist?", out,
+                           strerror(errno));
+        *created = true;
+    } else if (!S_ISDIR(st.st_mode)) {
+        return err_set(err, "--out '%s' is not a folder: name a folder for the results", out);
+    }
+    return true;
+}
+
 bool bench_run(const cli_options *opt, err_t *err)
 {
     memset(&B, 0, sizeof B);
@@ -689,21 +746,15 @@ bool bench_run(const cli_options *opt, err_t *err)
     if (opt->interactive)
         return bench_interactive(opt, opt->width ? opt->width : GPU_DEFAULT_WIDTH,
                                  opt->height ? opt->height : GPU_DEFAULT_HEIGHT, err);
-    if (opt->out) { /* a new folder is made (its parent must exist); anything else there is refused */
-        struct stat st;
-        if (stat(opt->out, &st) != 0 && mkdir(opt->out, 0777) != 0)
-            return err_set(err, "--out '%s': cannot make the folder (%s): does its parent exist?", opt->out,
-                           strerror(errno));
-        if (stat(opt->out, &st) != 0 || !S_ISDIR(st.st_mode))
-            return err_set(err, "--out '%s' is not a folder: name a folder for the results", opt->out);
-    }
     scene base;
     if (!load(NULL, 0, &base, err))
         return false;
     sweep sweeps[MAX_SWEEPS];
     const char *values[MAX_SWEEPS] = {0};
     int nsweeps;
-    if (!pick_sweeps(&base, sweeps, values, &nsweeps, err)) {
+    bool created = false;
+    if (!pick_sweeps(&base, sweeps, values, &nsweeps, err) || !check_sweeps(sweeps, values, nsweeps, err) ||
+        !make_out(opt->out, &created, err)) {
         scene_free(&base);
         return false;
     }
@@ -749,5 +800,7 @@ bool bench_run(const cli_options *opt, err_t *err)
     scene_free(&base);
     render_shutdown();
     gpu_close();
+    if (!ok && created)
+        util_remove_folder(opt->out);
     return ok;
 }

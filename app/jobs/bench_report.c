@@ -1,12 +1,17 @@
 #include "jobs/bench_report.h"
 
+#include <errno.h>
+#include <stdint.h>
 #include <epoxy/gl.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
+#include "data/image_io.h"
 #include "gpu/gpu.h"
+#include "jobs/gnuplot.h"
 #include "scene/program.h"
 #include "scene/quality.h"
 
@@ -21,16 +26,20 @@ static const char *bench_difference(double a_lo, double a_hi, double b_lo, doubl
     return buf;
 }
 
+static const char *scene_label(const bench_results *r);
+
 void bench_print(const bench_results *r)
 {
-    printf("%s, %dx%d, %s; reference converged to RMSE %.5f\n", r->opt->scene, r->w, r->h, gpu_describe(),
+    printf("%s, %dx%d, %s; reference converged to RMSE %.5f\n", scene_label(r), r->w, r->h, gpu_describe(),
            r->conv->rmse);
     printf("%-16s %-10s %10s %8s %8s %8s %10s %10s %7s %8s %8s %7s %7s\n", "knob", "value", "ms/image", "RMSE",
            "edgeRMSE", "PSNR", "depth fp", "max fp", "flips%", "IoU", "edge px", "steps", "out%");
     for (int i = 0; i < r->nrows; i++) {
         const bench_row *w = &r->rows[i];
-        printf("%-16s %-10s %10.1f %8.4f %8.4f %8.1f %10.3f %10.2f %7.2f %8.4f %8.1f %7.1f %7.2f%s\n", w->knob,
-               w->value, w->ms, w->m.rmse, w->m.edge_rmse, w->m.psnr_db, w->m.depth_mean_fp, w->m.depth_max_fp,
+        char knob[sizeof w->knob], value[sizeof w->value];
+        util_printable(w->knob, knob, sizeof knob), util_printable(w->value, value, sizeof value);
+        printf("%-16s %-10s %10.1f %8.4f %8.4f %8.1f %10.3f %10.2f %7.2f %8.4f %8.1f %7.1f %7.2f%s\n", knob,
+               value, w->ms, w->m.rmse, w->m.edge_rmse, w->m.psnr_db, w->m.depth_mean_fp, w->m.depth_max_fp,
                100 * w->m.flip_share, w->m.iou, w->m.edge_max_px, w->m.mean_steps, 100 * w->m.exhausted_share,
                w->front ? "  *" : "");
     }
@@ -44,15 +53,54 @@ void bench_print(const bench_results *r)
 }
 
 
-static const char *prefix(const bench_results *r) { return r->opt->name ? r->opt->name : r->opt->scene; }
-
-static FILE *open_out(const bench_results *r, const char *name, char *path, err_t *err)
+void bench_safe_name(const char *s, char *out, size_t n)
 {
-    snprintf(path, PATH_MAX_LEN, "%s/%s-%s", r->opt->out, prefix(r), name);
-    FILE *f = fopen(path, "w");
-    if (!f)
-        err_set(err, "cannot write '%s': check that --out '%s' is a writable folder", path, r->opt->out);
-    return f;
+    size_t k = 0;
+    for (; *s && k + 1 < n; s++) {
+        char c = *s;
+        bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '-' ||
+                  c == '_' || (c == '.' && k > 0);
+        out[k++] = ok ? c : '_';
+    }
+    out[k] = '\0';
+    if (k == 0)
+        snprintf(out, n, "bench");
+}
+
+void bench_prefix(const cli_options *o, char *out, size_t n)
+{
+    const char *s = o->name ? o->name : o->scene, *slash = strrchr(s, '/'), *base = slash ? slash + 1 : s;
+    const char *dot = strrchr(base, '.');
+    char stem[BENCH_PREFIX_MAX];
+    snprintf(stem, sizeof stem, "%.*s", (int)(dot && dot > base && !o->name ? dot - base : (long)strlen(base)),
+             base);
+    bench_safe_name(stem, out, n);
+}
+
+/* The run's file-name prefix (one run at a time) */
+static const char *prefix(const bench_results *r)
+{
+    static char p[BENCH_PREFIX_MAX];
+    bench_prefix(r->opt, p, sizeof p);
+    return p;
+}
+
+/* The scene in the CSV files and the table: its base name made safe, whatever --name says */
+static const char *scene_label(const bench_results *r)
+{
+    static char p[BENCH_PREFIX_MAX];
+    cli_options o = {.scene = r->opt->scene};
+    bench_prefix(&o, p, sizeof p);
+    return p;
+}
+
+/* OUT/PREFIX-name, opened as a new temporary file beside it (util_atomic: renamed over it when whole) */
+static bool open_out(const bench_results *r, const char *name, util_atomic *a, err_t *err)
+{
+    char path[PATH_MAX_LEN];
+    if (snprintf(path, sizeof path, "%s/%s-%s", r->opt->out, prefix(r), name) >= (int)sizeof path)
+        return err_set(err, "--out '%s': the path is too long", r->opt->out);
+    return util_atomic_open(a, path, err);
 }
 
 static void knob_csv(const bench_results *r, FILE *f)
@@ -62,7 +110,7 @@ static void knob_csv(const bench_results *r, FILE *f)
     for (int i = 0; i < r->nrows; i++) {
         const bench_row *w = &r->rows[i];
         fprintf(f, "%s,%d,%d,%d,%s,%s,%.3f,%.6f,%.3f,%.4f,%.4f,%.6f,%.6f,%.2f,%.3f,%.6f,%.6f,%d,%.3f,%.3f\n",
-                r->opt->scene, r->w, r->h, r->views, w->knob, w->value, w->ms, w->m.rmse,
+                scene_label(r), r->w, r->h, r->views, w->knob, w->value, w->ms, w->m.rmse,
                 isinf(w->m.psnr_db) ? 999.0 : w->m.psnr_db, w->m.depth_mean_fp, w->m.depth_max_fp, w->m.flip_share,
                 w->m.iou, w->m.edge_max_px, w->m.mean_steps, w->m.exhausted_share, w->m.edge_rmse, w->front, w->ms_lo,
                 w->ms_hi);
@@ -71,36 +119,25 @@ static void knob_csv(const bench_results *r, FILE *f)
 
 bool bench_write_rows(const bench_results *r, err_t *err)
 {
-    char path[PATH_MAX_LEN], part[PATH_MAX_LEN + 8];
-    FILE *f = open_out(r, "knobs.csv.part", part, err);
-    if (!f)
+    util_atomic a;
+    if (!open_out(r, "knobs.csv", &a, err))
         return false;
-    knob_csv(r, f);
-    bool ok = fclose(f) == 0;
-    snprintf(path, sizeof path, "%s/%s-knobs.csv", r->opt->out, prefix(r));
-    if (!ok || rename(part, path) != 0) {
-        remove(part);
-        return err_set(err, "cannot write '%s': is the disk full?", path);
-    }
-    return true;
+    knob_csv(r, a.f);
+    return util_atomic_commit(&a, err);
 }
 
 static bool write_csv(const bench_results *r, err_t *err)
 {
-    char path[PATH_MAX_LEN];
-    if (!bench_write_rows(r, err))
+    util_atomic a;
+    if (!bench_write_rows(r, err) || !open_out(r, "effects.csv", &a, err))
         return false;
-    FILE *f = open_out(r, "effects.csv", path, err);
-    if (!f)
-        return false;
-    fprintf(f, "scene,effect,in_scene,ms_compiled_out,ms_compiled_in,ms_compiled_in_switched_off,out_lo,out_hi,in_lo,"
-               "in_hi,in_off_lo,in_off_hi\n");
+    fprintf(a.f, "scene,effect,in_scene,ms_compiled_out,ms_compiled_in,ms_compiled_in_switched_off,out_lo,out_hi,"
+                 "in_lo,in_hi,in_off_lo,in_off_hi\n");
     for (int e = 0; e < EFFECT_COUNT; e++)
-        fprintf(f, "%s,%s,%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f\n", r->opt->scene, effect_name(r->fx[e].e),
-                r->fx[e].in_scene, r->fx[e].out_ms, r->fx[e].in_ms, r->fx[e].in_off_ms, r->fx[e].out_lo, r->fx[e].out_hi,
-                r->fx[e].in_lo, r->fx[e].in_hi, r->fx[e].in_off_lo, r->fx[e].in_off_hi);
-    fclose(f);
-    return true;
+        fprintf(a.f, "%s,%s,%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f\n", scene_label(r), effect_name(r->fx[e].e),
+                r->fx[e].in_scene, r->fx[e].out_ms, r->fx[e].in_ms, r->fx[e].in_off_ms, r->fx[e].out_lo,
+                r->fx[e].out_hi, r->fx[e].in_lo, r->fx[e].in_hi, r->fx[e].in_off_lo, r->fx[e].in_off_hi);
+    return util_atomic_commit(&a, err);
 }
 
 static int by_time(const void *a, const void *b)
@@ -161,7 +198,9 @@ static int write_plot_data(const bench_results *r, FILE *f, char (*knobs)[32], i
                 fprintf(f, "\n\n");
             snprintf(knobs[nk++], 32, "%s", w->knob);
         }
-        fprintf(f, "%.4f %.6f %s %.4f %.4f\n", w->ms, fmax(w->m.rmse, 1e-5), w->value, w->ms_lo, w->ms_hi);
+        char value[sizeof w->value];
+        bench_safe_name(w->value, value, sizeof value); /* one column, whatever the value holds */
+        fprintf(f, "%.4f %.6f %s %.4f %.4f\n", w->ms, fmax(w->m.rmse, 1e-5), value, w->ms_lo, w->ms_hi);
     }
     fprintf(f, "\n\n");
     int n;
@@ -170,16 +209,6 @@ static int write_plot_data(const bench_results *r, FILE *f, char (*knobs)[32], i
         fprintf(f, "%.4f %.6f\n", front[i]->ms, fmax(front[i]->m.rmse, 1e-5));
     free(front);
     return nk;
-}
-
-static bool run_gnuplot(const char *gp, err_t *err)
-{
-    char cmd[PATH_MAX_LEN * 2];
-    snprintf(cmd, sizeof cmd, "gnuplot '%s' 2>&1", gp);
-    if (system(cmd) != 0)
-        return err_set(err, "gnuplot failed on '%s' (is gnuplot installed? apt-get install gnuplot-nox); the CSV "
-                            "files are written", gp);
-    return true;
 }
 
 /* ---- placing labels where they can be read ------------------------------------------------------ */
@@ -329,7 +358,9 @@ static bool place(label_space *ls, double px, double py, int len, double scale, 
 static void label_at(FILE *f, const axis_range *ax, const axis_range *ay, const label_space *ls, double cx, double cy,
                      const char *text, const char *style)
 {
-    fprintf(f, "set label \"%s\" at %.9g,%.9g centre %s noenhanced front\n", text, axis_value(ax, cx, ls->w),
+    fputs("set label ", f);
+    gnuplot_string(f, text);
+    fprintf(f, " at %.9g,%.9g centre %s noenhanced front\n", axis_value(ax, cx, ls->w),
             axis_value(ay, cy, ls->h), style);
 }
 
@@ -342,12 +373,16 @@ static void small_multiples(const bench_results *r, FILE *f, const char *dat, co
     static const char *const COLOURS[] = {"#1b9e77", "#d95f02", "#7570b3", "#e7298a", "#66a61e", "#e6ab02",
                                           "#a6761d", "#666666"};
     int cols = nk < 3 ? nk : 3, rows = (nk + cols - 1) / cols;
-    fprintf(f, "set terminal pngcairo size %d,%d font ',9'\nset output '%s'\n", 380 * cols, 300 * rows + 55, png);
-    fprintf(f, "set multiplot layout %d,%d title \"%s, %dx%d, %.40s: colour error against time, each knob swept "
-               "alone from the %s preset\\nBetter: down and left. Ring: the preset's value. Bars: the time's 95 %% "
-               "interval.\\nCompare times within a panel (its settings were timed in turn); between panels the "
-               "machine's load drifts.\" noenhanced font ',10'\n",
-            rows, cols, prefix(r), r->w, r->h, (const char *)glGetString(GL_RENDERER), preset_name(r->base->preset));
+    fprintf(f, "set terminal pngcairo size %d,%d font ',9'\nset output ", 380 * cols, 300 * rows + 55);
+    gnuplot_string(f, png);
+    char title[512];
+    snprintf(title, sizeof title, "%s, %dx%d, %.40s: colour error against time, each knob swept alone from the %s "
+             "preset\nBetter: down and left. Ring: the preset's value. Bars: the time's 95 %% interval.\nCompare "
+             "times within a panel (its settings were timed in turn); between panels the machine's load drifts.",
+             prefix(r), r->w, r->h, (const char *)glGetString(GL_RENDERER), preset_name(r->base->preset));
+    fprintf(f, "\nset multiplot layout %d,%d title ", rows, cols);
+    gnuplot_string(f, title);
+    fprintf(f, " noenhanced font ',10'\n");
     fprintf(f, "set grid\nunset key\nset xlabel 'ms per image' offset 0,0.5\nset ylabel 'RMSE' offset 0.5,0\n"
                "set format y '%%g'\nset format x '%%g'\nset lmargin 11\nset rmargin 2\n");
     for (int k = 0; k < nk; k++) {
@@ -364,7 +399,9 @@ static void small_multiples(const bench_results *r, FILE *f, const char *dat, co
                 e_lo = fmin(e_lo, w->m.rmse), e_hi = fmax(e_hi, w->m.rmse);
             }
         axis_range ax = axis_fit(lo[0], hi[0], 0.1), ay = axis_fit(lo[1], hi[1], 0.2);
-        fprintf(f, "unset label\nset title '%s' noenhanced font ',11'\n", knobs[k]);
+        fprintf(f, "unset label\nset title ");
+        gnuplot_string(f, knobs[k]);
+        fprintf(f, " noenhanced font ',11'\n");
         axis_set(f, "x", &ax, 280);
         axis_set(f, "y", &ay, 225);
         label_space ls = {.w = 300, .h = 225, .cw = 5.2, .ch = 10};
@@ -397,9 +434,11 @@ static void small_multiples(const bench_results *r, FILE *f, const char *dat, co
                           (int)strlen(w->value), 1, strcmp(knobs[k], "preset") != 0, &cx, &cy))
                     label_at(f, &ax, &ay, &ls, cx, cy, w->value, "font ',8'");
             }
-        fprintf(f, "plot '%s' index %d using 1:2 with lines lw 1.5 lc rgb '%s', "
+        fputs("plot ", f);
+        gnuplot_string(f, dat);
+        fprintf(f, " index %d using 1:2 with lines lw 1.5 lc rgb '%s', "
                    "'' index %d using 1:2:4:5 with xerrorbars pt 7 ps 0.7 lc rgb '%s'\n",
-                dat, k, c, k, c);
+                k, c, k, c);
     }
     fprintf(f, "unset multiplot\n");
 }
@@ -417,11 +456,15 @@ static void overview(const bench_results *r, FILE *f, const char *dat, const cha
         lo[1] = fmin(lo[1], fmax(w->m.rmse, 1e-5)), hi[1] = fmax(hi[1], fmax(w->m.rmse, 1e-5));
     }
     axis_range ax = axis_fit(lo[0], hi[0], 0.06), ay = axis_fit(lo[1], hi[1], 0.12);
-    fprintf(f, "reset\nset terminal pngcairo size 900,600 font ',10'\nset output '%s'\n", png);
-    fprintf(f, "set title \"%s, %dx%d: every setting the bench tried (grey), the presets (blue) and the Pareto "
-               "front\\n(black: no setting is measurably faster and no worse, or better and not measurably slower). "
-               "Better: down and left.\" noenhanced\n",
-            prefix(r), r->w, r->h);
+    fprintf(f, "reset\nset terminal pngcairo size 900,600 font ',10'\nset output ");
+    gnuplot_string(f, png);
+    char title[320];
+    snprintf(title, sizeof title, "%s, %dx%d: every setting the bench tried (grey), the presets (blue) and the "
+             "Pareto front\n(black: no setting is measurably faster and no worse, or better and not measurably "
+             "slower). Better: down and left.", prefix(r), r->w, r->h);
+    fprintf(f, "\nset title ");
+    gnuplot_string(f, title);
+    fprintf(f, " noenhanced\n");
     fprintf(f, "set grid\nunset key\nset xlabel 'ms per image (median)'\nset ylabel 'colour RMSE against %s'\n"
                "set format y '%%g'\nset format x '%%g'\nset lmargin 10\nset rmargin 3\nset tmargin 4\nset bmargin 4\n",
             r->opt->path_truth ? "the path-traced truth" : "the reference");
@@ -462,33 +505,86 @@ static void overview(const bench_results *r, FILE *f, const char *dat, const cha
                 label_at(f, &ax, &ay, &ls, cx, cy, text, "font ',8'");
         }
     free(front);
-    fprintf(f, "plot for [k=0:%d] '%s' index k using 1:2 with points pt 7 ps 0.6 lc rgb '#bbbbbb', "
-               "'%s' index %d using 1:2 with steps lw 2 lc rgb 'black'",
-            nk - 1, dat, dat, nk);
+    fprintf(f, "plot for [k=0:%d] ", nk - 1);
+    gnuplot_string(f, dat);
+    fprintf(f, " index k using 1:2 with points pt 7 ps 0.6 lc rgb '#bbbbbb', ");
+    gnuplot_string(f, dat);
+    fprintf(f, " index %d using 1:2 with steps lw 2 lc rgb 'black'", nk);
     for (int k = 0; k < nk; k++) /* the presets' block, with their intervals */
         if (!strcmp(knobs[k], "preset"))
             fprintf(f, ", '' index %d using 1:2:4:5 with xerrorbars pt 5 ps 1.3 lc rgb '#1f5fbf'", k);
     fprintf(f, "\n");
 }
 
+/* The plot script: the data file and the two images named as given (relative to the folder it runs in) */
+static void plot_script(const bench_results *r, FILE *f, const char *dat, const char *png, const char *over,
+                        char (*knobs)[32], int nk)
+{
+    small_multiples(r, f, dat, png, knobs, nk);
+    overview(r, f, dat, over, knobs, nk);
+}
+
+/* A file of the private folder into OUT/PREFIX-name: read back whole as a PNG, then renamed (a link
+ * planted at the target is replaced, never followed). */
+static bool move_plot(const bench_results *r, const char *dir, const char *file, const char *name, err_t *err)
+{
+    char from[PATH_MAX_LEN + 32], to[PATH_MAX_LEN];
+    int w, h;
+    uint8_t *px = NULL;
+    snprintf(from, sizeof from, "%s/%s", dir, file);
+    snprintf(to, sizeof to, "%s/%s-%s", r->opt->out, prefix(r), name);
+    err_t e;
+    if (!image_read_u8(from, 3, 16384, &w, &h, &px, &e))
+        return err_set(err, "cannot write '%s': gnuplot's image is incomplete (is the disk full?)", to);
+    free(px);
+    if (rename(from, to) != 0)
+        return err_set(err, "cannot write '%s': %s", to, strerror(errno));
+    return true;
+}
+
+/* The plots: gnuplot runs in a folder of its own inside --out (made by mkdtemp: nothing planted there),
+ * on a script and data of constant names, and its images are moved out when whole. The script and data
+ * a user keeps (PREFIX-plot.gp, PREFIX-plot.dat: `gnuplot PREFIX-plot.gp` in the --out folder redraws
+ * them) are written beside the results. */
 static bool write_plot(const bench_results *r, err_t *err)
 {
     enum { MAX_KNOBS = 64 };
-    char dat[PATH_MAX_LEN], gp[PATH_MAX_LEN], png[PATH_MAX_LEN], over[PATH_MAX_LEN], knobs[MAX_KNOBS][32];
-    FILE *f = open_out(r, "plot.dat", dat, err);
-    if (!f)
+    char knobs[MAX_KNOBS][32], dir[PATH_MAX_LEN], dat[BENCH_PREFIX_MAX + 16], png[BENCH_PREFIX_MAX + 16],
+        over[BENCH_PREFIX_MAX + 16];
+    util_atomic a;
+    if (!open_out(r, "plot.dat", &a, err))
         return false;
-    int nk = write_plot_data(r, f, knobs, MAX_KNOBS);
-    fclose(f);
-    f = open_out(r, "plot.gp", gp, err);
-    if (!f)
+    int nk = write_plot_data(r, a.f, knobs, MAX_KNOBS);
+    if (!util_atomic_commit(&a, err) || !open_out(r, "plot.gp", &a, err))
         return false;
-    snprintf(png, sizeof png, "%s/%s-plot.png", r->opt->out, prefix(r));
-    snprintf(over, sizeof over, "%s/%s-overview.png", r->opt->out, prefix(r));
-    small_multiples(r, f, dat, png, knobs, nk);
-    overview(r, f, dat, over, knobs, nk);
-    fclose(f);
-    return run_gnuplot(gp, err);
+    snprintf(dat, sizeof dat, "%s-plot.dat", prefix(r));
+    snprintf(png, sizeof png, "%s-plot.png", prefix(r));
+    snprintf(over, sizeof over, "%s-overview.png", prefix(r));
+    plot_script(r, a.f, dat, png, over, knobs, nk);
+    if (!util_atomic_commit(&a, err))
+        return false;
+    if (snprintf(dir, sizeof dir, "%s/.gnuplot-XXXXXX", r->opt->out) >= (int)sizeof dir || !mkdtemp(dir))
+        return err_set(err, "cannot make a folder for gnuplot in '%s': %s", r->opt->out, strerror(errno));
+    char path[PATH_MAX_LEN + 32];
+    snprintf(path, sizeof path, "%s/plot.dat", dir);
+    FILE *f = fopen(path, "w");
+    bool ok = f != NULL;
+    if (f) {
+        write_plot_data(r, f, knobs, MAX_KNOBS);
+        ok = fclose(f) == 0;
+    }
+    snprintf(path, sizeof path, "%s/plot.gp", dir);
+    f = ok ? fopen(path, "w") : NULL;
+    if (f) {
+        plot_script(r, f, "plot.dat", "plot.png", "overview.png", knobs, nk);
+        ok = fclose(f) == 0;
+    }
+    if (!ok || !f)
+        err_set(err, "cannot write gnuplot's script in '%s': %s (is the disk full?)", dir, strerror(errno));
+    ok = ok && f && gnuplot_run(dir, "plot.gp", err) && move_plot(r, dir, "plot.png", "plot.png", err) &&
+         move_plot(r, dir, "overview.png", "overview.png", err);
+    util_remove_folder(dir);
+    return ok;
 }
 
 static void summary_header(const bench_results *r, FILE *f)
@@ -503,9 +599,13 @@ static void summary_header(const bench_results *r, FILE *f)
         sb_printf(&sets, " --knob %s", o->knobs[i]);
     if (o->path_truth)
         sb_append(&sets, " --truth path");
+    char title[256], name[PATH_MAX_LEN];
+    util_printable(r->base->title, title, sizeof title), util_printable(o->scene, name, sizeof name);
+    for (char *ch = sets.data; ch && *ch; ch++)
+        *ch = (unsigned char)*ch < 0x20 ? '?' : *ch;
     fprintf(f, "%s. %dx%d, %d views (the start camera, and turned %.0f° about the look-at point), median of %d "
                "images after a warm-up, on %s. Made by `fathom bench --scene %s --size %dx%d --runs %d%s --out DIR`.\n\n",
-            r->base->title, r->w, r->h, r->views, (double)r->view_turn_deg, o->runs, gpu_describe(), o->scene, r->w,
+            title, r->w, r->h, r->views, (double)r->view_turn_deg, o->runs, gpu_describe(), name, r->w,
             r->h, o->runs, sets.data ? sets.data : "");
     sb_free(&sets);
     if (o->path_truth)
@@ -623,10 +723,10 @@ static void approximations_md(const bench_results *r, FILE *f)
 
 static bool write_summary(const bench_results *r, err_t *err)
 {
-    char path[PATH_MAX_LEN];
-    FILE *f = open_out(r, "summary.md", path, err);
-    if (!f)
+    util_atomic a;
+    if (!open_out(r, "summary.md", &a, err))
         return false;
+    FILE *f = a.f;
     summary_header(r, f);
     fprintf(f, "![the presets and the Pareto front](%s-overview.png)\n\n![each knob alone](%s-plot.png)\n\n",
             prefix(r), prefix(r));
@@ -658,8 +758,7 @@ static bool write_summary(const bench_results *r, err_t *err)
                 bench_difference(x->out_lo, x->out_hi, x->in_off_lo, x->in_off_hi, x->out_ms, x->in_off_ms, d2,
                                  sizeof d2));
     }
-    fclose(f);
-    return true;
+    return util_atomic_commit(&a, err);
 }
 
 /* ---- the HTML report: one self-contained page (its plots inline) --------------------------------- */
@@ -776,10 +875,11 @@ static void html_differences(const bench_results *r, FILE *f)
 
 static bool write_html(const bench_results *r, err_t *err)
 {
-    char path[PATH_MAX_LEN], png[PATH_MAX_LEN];
-    FILE *f = open_out(r, "report.html", path, err);
-    if (!f)
+    char png[PATH_MAX_LEN];
+    util_atomic a;
+    if (!open_out(r, "report.html", &a, err))
         return false;
+    FILE *f = a.f;
     fprintf(f, "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>What accuracy costs: ");
     html_text(f, prefix(r));
     fprintf(f, "</title>\n<style>body{font:14px sans-serif;margin:2em;max-width:1200px}"
@@ -805,9 +905,7 @@ static bool write_html(const bench_results *r, err_t *err)
     html_differences(r, f);
     html_tables(r, f);
     fprintf(f, "</body></html>\n");
-    if (fclose(f) != 0)
-        return err_set(err, "cannot write '%s': is the disk full?", path);
-    return true;
+    return util_atomic_commit(&a, err);
 }
 
 bool bench_write(const bench_results *r, err_t *err)

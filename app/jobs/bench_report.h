@@ -58,6 +58,13 @@ typedef struct bench_results {
     double ref_ms;
 } bench_results;
 
+/* File names in --out: PREFIX-what, where PREFIX is --name, else the scene's base name without its
+ * extension (a preset's "../../x.json" is "x"), made safe by bench_safe_name: letters, digits, '-',
+ * '_' and '.' (not first); anything else '_'. Never a path, never empty. */
+enum { BENCH_PREFIX_MAX = 64 };
+void bench_prefix(const cli_options *o, char *out, size_t n);
+void bench_safe_name(const char *s, char *out, size_t n);
+
 void bench_print(const bench_results *r);
 bool bench_write(const bench_results *r, err_t *err);
 /* The knob CSV with the rows measured so far (Pareto marks among them), written to a temporary file

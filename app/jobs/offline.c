@@ -266,6 +266,7 @@ bool offline_render(const offline_desc *d, err_t *err)
 {
     if (!image_can_write(d->output, err))
         return false;
+    image_remove_stale_temps(d->output); /* what an earlier shot killed mid-write (SIGKILL) left */
     if (!gpu_open(&(gpu_desc){.headless = true}, err))
         return false;
     bool ok = render_init(err) && offline_render_current(d, err);
@@ -306,7 +307,7 @@ static bool same_file_as_a_tile(const char *output, const char *const *tiles, in
         return false; /* a new file: no tile can be it */
     for (int i = 0; i < n; i++)
         if (stat(tiles[i], &t) == 0 && t.st_dev == o.st_dev && t.st_ino == o.st_ino) {
-            err_set(err, "fathom stitch: --output '%s' is one of the tiles; name a new file for the poster", output);
+            err_set(err, "stitch: --output '%s' is one of the tiles; name a new file for the poster", output);
             return true;
         }
     return false;
@@ -340,7 +341,7 @@ static bool read_tile_record(tile_info *t, const char *output, err_t *err)
 bool offline_stitch(const char *output, const char *const *tiles, int n, bool quiet, err_t *err)
 {
     if (n < 1)
-        return err_set(err, "fathom stitch: no tile files given (e.g. fathom stitch --output poster.png poster.tile-*.png)");
+        return err_set(err, "stitch: no tile files given (e.g. fathom stitch --output poster.png poster.tile-*.png)");
     if (!image_can_write(output, err))
         return false;
     tile_info *t = util_calloc((size_t)n, sizeof *t, "tiles");
