@@ -6,6 +6,10 @@
  * modules (fathom_image.so, fathom_dem.so, beside the binary or in <prefix>/lib/fathom), reached through
  * lazy_symbol by image_io.c and dem_lazy.c, which load the module on first call.
  *
+ * A module is code fathom runs, so it is taken from those two places only, and only when it is a
+ * regular file owned by root or the user, writable by no one else, and a whole ELF object (a cut one
+ * would die of SIGBUS inside dlopen); anything else is refused in one line before dlopen.
+ *
  * Loading one on a background thread while the GL starts was measured and dropped: dlopen holds the
  * dynamic loader's lock while it maps OpenImageIO's libraries, and the GL driver's own loading and
  * libepoxy's first dlsym of each GL function wait for it (a 64x36 shot took 0.60 s with it, 0.55 s
