@@ -91,7 +91,7 @@ static bool answer_query(const cli_options *opt)
 static bool help_formula(const char *name, err_t *err)
 {
     formula f;
-    if (!formula_load(name, &f, err))
+    if (!formula_load(name, NULL, &f, err))
         return false;
     strbuf text = {0};
     formula_describe(&f, &text);

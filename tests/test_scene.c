@@ -633,7 +633,7 @@ static void formula_scenes(void **st)
         *nl = '\0';
         formula f;
         err_t e;
-        if (!formula_load(name, &f, &e))
+        if (!formula_load(name, NULL, &f, &e))
             fail_msg("%s", e.msg);
         assert_true(f.summary[0] && f.iterations >= f.iterations_lo && f.iterations <= f.iterations_hi);
     }

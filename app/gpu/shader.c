@@ -1,6 +1,9 @@
+/* realpath() is XSI */
+#define _XOPEN_SOURCE 700
 #include "gpu/shader.h"
 
 #include <ctype.h>
+#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -20,8 +23,98 @@ static int file_id(shader_files *files, const char *name)
     return -1;
 }
 
+/* Whether real (a resolved path) lies inside the folder dir (resolved too) */
+static bool inside(const char *real, const char *dir)
+{
+    size_t n = strlen(dir);
+    return !strncmp(real, dir, n) && (real[n] == '/' || (n == 1 && dir[0] == '/'));
+}
+
+/* The jail (shader.h): an #include in a file names a relative .glsl path of plain characters with no
+ * ".." part. Empty when it does, else why not. */
+static const char *include_refusal(const char *inc)
+{
+    size_t n = strlen(inc);
+    if (inc[0] == '/')
+        return "an absolute path";
+    if (n < 6 || strcmp(inc + n - 5, ".glsl"))
+        return "not a .glsl file";
+    for (const char *c = inc; *c; c++)
+        if (!isalnum((unsigned char)*c) && !strchr("_-./", *c))
+            return "a character other than letters, digits, '_', '-', '.' and '/'";
+    for (const char *c = inc; c; c = strchr(c, '/'), c = c ? c + 1 : NULL)
+        if (!strncmp(c, "..", 2) && (c[2] == '/' || c[2] == '\0'))
+            return "a '..' part";
+    return "";
+}
+
+/* Resolves include inc of a file whose own folder is home (NULL: a file of the shader tree): under
+ * root, else under home; the real path (links resolved) must stay inside the folder it was found in.
+ * Into path and *new_home (the folder that file's own includes may also use). */
+static bool resolve_include(const char *root, const char *home, const char *inc, char *path, size_t n,
+                            char *new_home, size_t hn, const char **why)
+{
+    const char *dirs[2] = {root, home};
+    for (int i = 0; i < 2; i++) {
+        char joined[PATH_MAX_LEN], real[PATH_MAX], base[PATH_MAX];
+        if (!dirs[i] || !util_join(dirs[i], inc, joined, sizeof joined) || !realpath(joined, real))
+            continue;
+        if (!realpath(dirs[i], base) || !inside(real, base) || strlen(real) >= n) {
+            *why = "it leads out of the folder it is found in";
+            return false;
+        }
+        snprintf(path, n, "%s", real);
+        snprintf(new_home, hn, "%s", i == 0 ? "" : home);
+        return true;
+    }
+    *why = "no such file under the shader folder or the formula's own";
+    return false;
+}
+
+/* Adds a foreign file's text to what the program takes from outside the shader tree; false past the
+ * bounds (shader.h) */
+static bool foreign_within_bounds(shader_files *files, const char *src, const char *file, err_t *err)
+{
+    files->foreign_bytes += strlen(src);
+    for (const char *c = src; *c; c++)
+        files->foreign_statements += *c == ';';
+    if (files->foreign_bytes > SHADER_FOREIGN_BYTES_MAX)
+        return err_set(err, "%s: a formula (with its own includes) is larger than %d KB: the GL compiler could "
+                            "crash on it; shorten it", file, SHADER_FOREIGN_BYTES_MAX / 1024);
+    if (files->foreign_statements > SHADER_FOREIGN_STATEMENTS_MAX)
+        return err_set(err, "%s: a formula (with its own includes) has more than %d statements: the GL compiler "
+                            "could crash on it; shorten it", file, SHADER_FOREIGN_STATEMENTS_MAX);
+    return true;
+}
+
+/* The text of a file that is not generated: a formula file by its absolute path (only generated text
+ * names one: expand checks), an include found by resolve_include, or a top-level file under root.
+ * *text is malloc'd; own_home gets the folder its own includes may also use ("" for the tree). */
+static bool read_source(const char *root, const char *file, const char *home, const char *from, int from_line,
+                        char **text, char own_home[PATH_MAX_LEN], err_t *err)
+{
+    char path[PATH_MAX_LEN];
+    err_t e = {"no such file"};
+    bool found;
+    if (file[0] == '/') {
+        found = snprintf(path, sizeof path, "%s", file) < (int)sizeof path;
+        util_dirname(file, own_home, PATH_MAX_LEN);
+    } else if (from) {
+        const char *why = "";
+        found = resolve_include(root, home, file, path, sizeof path, own_home, PATH_MAX_LEN, &why);
+        snprintf(e.msg, sizeof e.msg, "%s", why);
+    } else {
+        found = util_join(root, file, path, sizeof path);
+    }
+    if (found && util_read_file(path, text, NULL, &e))
+        return true;
+    if (from)
+        return err_set(err, "%s:%d: cannot include \"%s\": %s", from, from_line, file, e.msg);
+    return err_set(err, "shader '%s': %s", file, e.msg);
+}
+
 static bool expand(const char *root, const char *file, const shader_virtual *virt, int nvirt, strbuf *out,
-                   shader_files *files, int depth, const char *from, int from_line, err_t *err)
+                   shader_files *files, int depth, const char *from, int from_line, const char *home, err_t *err)
 {
     if (depth > MAX_INCLUDE_DEPTH)
         return err_set(err, "%s:%d: includes nest deeper than %d (a cycle?)", from, from_line, MAX_INCLUDE_DEPTH);
@@ -30,20 +123,18 @@ static bool expand(const char *root, const char *file, const shader_virtual *vir
     int id = files->count++;
     snprintf(files->names[id], SHADER_NAME_MAX, "%s", file);
 
-    char *text = NULL;
+    char *text = NULL, own_home[PATH_MAX_LEN] = "";
     const char *src = NULL;
+    bool generated = false; /* fathom's own text: it may name a formula file by its absolute path */
     for (int i = 0; i < nvirt; i++)
         if (!strcmp(virt[i].name, file))
-            src = virt[i].text;
-    if (!src) {
-        char path[PATH_MAX_LEN];
-        err_t e;
-        if (!util_join(root, file, path, sizeof path) || !util_read_file(path, &text, NULL, &e)) {
-            if (from)
-                return err_set(err, "%s:%d: cannot include \"%s\": %s", from, from_line, file, e.msg);
-            return err_set(err, "shader '%s': %s", file, e.msg);
-        }
-        src = text;
+            src = virt[i].text, generated = true;
+    if (!src && !read_source(root, file, home, from, from_line, &text, own_home, err))
+        return false;
+    src = src ? src : text;
+    if (own_home[0] && !foreign_within_bounds(files, src, file, err)) {
+        free(text);
+        return false;
     }
     sb_printf(out, "#line %d %d\n", line_mark(id, 1), id);
     int line = 1;
@@ -62,8 +153,16 @@ static bool expand(const char *root, const char *file, const shader_virtual *vir
             }
             char inc[SHADER_NAME_MAX];
             snprintf(inc, sizeof inc, "%.*s", (int)(b - a - 1), a + 1);
+            const char *refused = include_refusal(inc);
+            if (*refused && !(generated && inc[0] == '/')) {
+                free(text);
+                return err_set(err, "%s:%d: #include \"%s\" refused: %s (an include names a .glsl file under "
+                                    "the shader folder or the formula's own, e.g. \"fractal/common.glsl\")",
+                               file, line, inc, refused);
+            }
             if (file_id(files, inc) < 0) {
-                if (!expand(root, inc, virt, nvirt, out, files, depth + 1, file, line, err)) {
+                if (!expand(root, inc, virt, nvirt, out, files, depth + 1, file, line,
+                            own_home[0] ? own_home : NULL, err)) {
                     free(text);
                     return false;
                 }
@@ -85,7 +184,7 @@ static bool expand(const char *root, const char *file, const shader_virtual *vir
 bool shader_expand(const char *root, const char *file, const shader_virtual *virt, int nvirt, strbuf *out,
                    shader_files *files, err_t *err)
 {
-    return expand(root, file, virt, nvirt, out, files, 0, NULL, 0, err);
+    return expand(root, file, virt, nvirt, out, files, 0, NULL, 0, NULL, err);
 }
 
 void shader_translate_log(const char *log, const shader_files *files, strbuf *out)

@@ -270,14 +270,25 @@ void formula_user_dir(char *out, size_t n)
         snprintf(out, n, "%s/.config/fathom/formulas", home ? home : ".");
 }
 
-bool formula_load(const char *name_or_path, formula *f, err_t *err)
+/* Whether shaders/fractal/NAME.glsl is one of fathom's own formulas */
+static bool shipped(const char *name, char *file, size_t fn, char *path, size_t pn)
 {
-    char path[PATH_MAX_LEN], file[PATH_MAX_LEN], user[PATH_MAX_LEN], name[FORMULA_NAME_MAX];
+    int a = snprintf(file, fn, "fractal/%s.glsl", name);
+    int b = snprintf(path, pn, "%s/shaders/%s", util_data_dir(), file);
+    return a < (int)fn && b < (int)pn && util_file_exists(path);
+}
+
+bool formula_load(const char *name_or_path, const char *dir, formula *f, err_t *err)
+{
+    char path[PATH_MAX_LEN], file[PATH_MAX_LEN], user[PATH_MAX_LEN], name[FORMULA_NAME_MAX], joined[PATH_MAX_LEN];
     bool is_path = strchr(name_or_path, '/') || strstr(name_or_path, ".glsl");
     if (is_path) {
         char abs[PATH_MAX]; /* realpath writes up to PATH_MAX */
+        if (dir && name_or_path[0] != '/' && util_join(dir, name_or_path, joined, sizeof joined))
+            name_or_path = joined; /* a scene's formula file lies beside it, as its textures do */
         if (!realpath(name_or_path, abs))
-            return err_set(err, "formula file '%s' not found: check the path", name_or_path);
+            return err_set(err, "formula file '%s' not found: check the path%s", name_or_path,
+                           dir ? " (relative to the scene file's folder)" : "");
         if (strlen(abs) >= sizeof path)
             return err_set(err, "formula file '%s': its path is too long", name_or_path);
         memcpy(path, abs, strlen(abs) + 1);
@@ -287,18 +298,19 @@ bool formula_load(const char *name_or_path, formula *f, err_t *err)
             if (!isalnum((unsigned char)*c) && *c != '_' && *c != '-')
                 return err_set(err, "formula '%s': a name is letters, digits, '_' and '-' (or give a .glsl path)",
                                name_or_path);
-        formula_user_dir(user, sizeof user);
-        if (strlen(name_or_path) >= FORMULA_NAME_MAX ||
-            snprintf(path, sizeof path, "%s/%s.glsl", user, name_or_path) >= (int)sizeof path)
+        if (strlen(name_or_path) >= FORMULA_NAME_MAX)
             return err_set(err, "formula '%.64s…': the name is too long", name_or_path);
-        if (util_file_exists(path)) {
-            memcpy(file, path, sizeof file);
-        } else {
-            int a = snprintf(file, sizeof file, "fractal/%s.glsl", name_or_path);
-            int b = snprintf(path, sizeof path, "%s/shaders/%s", util_data_dir(), file);
-            if (a >= (int)sizeof file || b >= (int)sizeof path || !util_file_exists(path)) {
+        /* a shipped name always means the shipped formula: a user's file of that name never replaces it
+         * (formula_list says it is ignored); the user's folder holds only new names */
+        formula_user_dir(user, sizeof user);
+        if (!shipped(name_or_path, file, sizeof file, path, sizeof path)) {
+            if (snprintf(path, sizeof path, "%s/%s.glsl", user, name_or_path) >= (int)sizeof path ||
+                !util_file_exists(path)) {
                 strbuf names = {0};
                 formula_list(&names);
+                char *notes = names.data ? strstr(names.data, "note: ") : NULL;
+                if (notes) /* the names alone, on one line */
+                    *notes = '\0';
                 for (char *c = names.data; c && *c; c++)
                     if (*c == '\n')
                         *c = c[1] ? ' ' : '\0';
@@ -307,8 +319,13 @@ bool formula_load(const char *name_or_path, formula *f, err_t *err)
                 sb_free(&names);
                 return false;
             }
+            memcpy(file, path, sizeof file);
         }
     }
+    for (const char *c = file; *c; c++)
+        if (*c == '"' || *c == '\\' || (unsigned char)*c < 0x20 || *c == 0x7f)
+            return err_set(err, "formula file '%s': its path has a '\"', '\\' or control character, which GLSL's "
+                                "#include cannot carry: rename it", file);
     char *text;
     if (!util_read_file(path, &text, NULL, err))
         return false;
@@ -323,20 +340,27 @@ bool formula_load(const char *name_or_path, formula *f, err_t *err)
     return ok;
 }
 
-/* The .glsl files of a folder that declare a formula, sorted, appended one a line. */
-static void list_dir(const char *dir, strbuf *out)
+/* The .glsl files of a folder that declare a formula, sorted, appended one a line; with shadowed, a
+ * file whose name is also a shipped formula's goes to notes instead, as ignored. */
+static void list_dir(const char *dir, bool shadowed, strbuf *out, strbuf *notes)
 {
     struct dirent **list;
     int n = scandir(dir, &list, NULL, alphasort);
     for (int i = 0; i < n; i++) {
         const char *d = list[i]->d_name, *dot = strrchr(d, '.');
-        char path[PATH_MAX_LEN], *text;
+        char path[PATH_MAX_LEN], *text, name[FORMULA_NAME_MAX], sf[PATH_MAX_LEN], sp[PATH_MAX_LEN];
         err_t e;
         formula f;
-        if (dot && !strcmp(dot, ".glsl") && snprintf(path, sizeof path, "%s/%s", dir, d) < (int)sizeof path &&
-            util_read_file(path, &text, NULL, &e)) {
-            if (strstr(text, "@formula") && formula_parse(text, path, &f, &e))
-                sb_printf(out, "%.*s\n", (int)(dot - d), d);
+        if (dot && !strcmp(dot, ".glsl") && dot - d < FORMULA_NAME_MAX &&
+            snprintf(path, sizeof path, "%s/%s", dir, d) < (int)sizeof path && util_read_file(path, &text, NULL, &e)) {
+            snprintf(name, sizeof name, "%.*s", (int)(dot - d), d);
+            if (strstr(text, "@formula") && formula_parse(text, path, &f, &e)) {
+                if (shadowed && shipped(name, sf, sizeof sf, sp, sizeof sp))
+                    sb_printf(notes, "note: %s is ignored: the shipped formula %s has its name; rename it\n", path,
+                              name);
+                else
+                    sb_printf(out, "%s\n", name);
+            }
             free(text);
         }
         free(list[i]);
@@ -349,9 +373,13 @@ void formula_list(strbuf *out)
 {
     char dir[PATH_MAX_LEN];
     snprintf(dir, sizeof dir, "%s/shaders/fractal", util_data_dir());
-    list_dir(dir, out);
+    strbuf notes = {0};
+    list_dir(dir, false, out, NULL);
     formula_user_dir(dir, sizeof dir);
-    list_dir(dir, out);
+    list_dir(dir, true, out, &notes);
+    if (notes.data)
+        sb_append(out, notes.data);
+    sb_free(&notes);
 }
 
 void formula_describe(const formula *f, strbuf *out)

@@ -90,15 +90,17 @@ typedef struct formula {
 /* Reads the declarations of a formula's text; `source` names it in messages ("NAME.glsl:LINE: ..."). */
 bool formula_parse(const char *text, const char *source, formula *f, err_t *err);
 
-/* Finds and reads a formula: a path to a .glsl file (absolute or from the current folder), or a name
- * looked up in the user's folder, then in shaders/fractal/. */
-bool formula_load(const char *name_or_path, formula *f, err_t *err);
+/* Finds and reads a formula: a path to a .glsl file (absolute, or relative to dir: a scene file's
+ * folder; NULL: the current folder), or a name: a shipped formula (shaders/fractal/) by that name, else
+ * a file in the user's folder. A user's file never replaces a shipped formula of the same name. */
+bool formula_load(const char *name_or_path, const char *dir, formula *f, err_t *err);
 
 /* The user's formula folder: $FATHOM_FORMULAS, else $XDG_CONFIG_HOME/fathom/formulas, else
  * ~/.config/fathom/formulas (it need not exist). */
 void formula_user_dir(char *out, size_t n);
 
-/* The names of every formula fathom can find, one a line (shipped, then the user's). */
+/* The names of every formula fathom can find, one a line (shipped, then the user's), then a line
+ * "note: FILE is ignored: ..." for each user file that has a shipped formula's name. */
 void formula_list(strbuf *out);
 
 /* --help-formula: the summary, and each parameter with its type, default, range and meaning. */

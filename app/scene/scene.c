@@ -101,7 +101,7 @@ static bool parse_root(scene_ctx *c, cJSON *root)
     err_t ignore;
     if (program_from_name(prog, &s->program)) {
         c->formula = NULL;
-    } else if (!strchr(prog, '/') && !strstr(prog, ".glsl") && formula_load(prog, &named, &ignore)) {
+    } else if (!strchr(prog, '/') && !strstr(prog, ".glsl") && formula_load(prog, NULL, &named, &ignore)) {
         s->program = PROGRAM_FRACTAL;
         c->formula = prog;
     } else {

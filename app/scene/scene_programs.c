@@ -186,7 +186,7 @@ static bool hybrid_block(scene_ctx *c, const cJSON *block, scene_fractal *fr)
     if (!name)
         return fail(c, "fractal.hybrid.formula", "missing: name the step formula whose steps alternate with %s's",
                     fr->formula.name);
-    if (!formula_load(name, &fr->hybrid, c->err))
+    if (!formula_load(name, c->s->dir, &fr->hybrid, c->err))
         return fail_formula(c, "fractal.hybrid.formula");
     if (!fr->hybrid.step_formula)
         return fail(c, "fractal.hybrid.formula", "%s has its own estimate (no @de): only step formulas take part in "
@@ -308,7 +308,7 @@ bool fractal_parse(scene_ctx *c, const cJSON *root)
     ok = ok && get_str(c, use, "fractal", "formula", c->formula, &name);
     if (ok && !name)
         ok = fail(c, "fractal.formula", "missing: name a formula (fathom --list-formulas), e.g. \"formula\": \"mandelbulb\"");
-    ok = ok && (formula_load(name, &fr->formula, c->err) || fail_formula(c, "fractal.formula"));
+    ok = ok && (formula_load(name, c->s->dir, &fr->formula, c->err) || fail_formula(c, "fractal.formula"));
     const formula *f = &fr->formula;
     fr->steps[0] = fr->steps[1] = 1;
     ok = ok && fractal_common(c, use, fr) &&
