@@ -1,7 +1,9 @@
 /* aov — the layout of the per-pixel outputs besides colour (render_read_aovs): AOV_FLOATS floats a
  * pixel, rows top first. Depth is the distance along the unit ray to the first hit, +inf on a miss;
  * steps counts the primary ray's march steps (height samples on terrain), negated when the ray was
- * left unresolved (its budget and the tail after it ran out: common/march.glsl; drawn as a miss);
+ * left unresolved (its budget and the tail after it ran out: common/march.glsl; drawn as a miss), and
+ * negated with half a step more, −(steps + ½), when the pixel ran out of the loop budget or the driver
+ * cut its loops (common/budget.glsl; drawn as a miss too);
  * exit is the direction in which the main path left the scene; variance is, per colour channel, the
  * variance of the pixel's mean over its samples (the sample variance / n: the square of its standard
  * error; −1 where the pixel took one sample and nothing is known); samples is n. */

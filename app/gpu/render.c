@@ -668,7 +668,7 @@ void render_read_aovs(float *aov8)
     flip_rows(aov8, state.height, (size_t)state.width * AOV_FLOATS * sizeof(float));
 }
 
-long render_unresolved_pixels(void)
+long render_unresolved_pixels(long *loops)
 {
     size_t n = (size_t)state.width * (size_t)state.height;
     float *steps = util_alloc(sizeof(float) * n, "the steps readback");
@@ -678,8 +678,11 @@ long render_unresolved_pixels(void)
     glReadPixels(0, 0, state.width, state.height, GL_RED, GL_FLOAT, steps);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
     long count = 0;
-    for (size_t i = 0; i < n; i++)
+    for (size_t i = 0; i < n; i++) {
         count += steps[i] < 0.0f;
+        if (loops)
+            *loops += steps[i] < 0.0f && steps[i] != floorf(steps[i]); /* −(steps + ½): aov.h */
+    }
     free(steps);
     return count;
 }

@@ -133,8 +133,9 @@ void render_read_linear(float *rgba);
 /* srgb8 of the active image stretched to width × height (at most the targets' size), as the window shows it. */
 void render_read_stretched_srgb8(uint8_t *rgba, int width, int height, float exposure);
 void render_read_aovs(float *aov8);
-/* Pixels of the current image whose primary ray ran out of steps and its tail (drawn as a miss). */
-long render_unresolved_pixels(void);
+/* Pixels of the current image left unresolved (drawn as a miss): their primary ray ran out of steps
+ * and its tail, or (counted also in *loops when not NULL) the pixel ran out of the loop budget. */
+long render_unresolved_pixels(long *loops);
 
 /* Terrain scenes: the ground height under world (x, z); false for other scenes. */
 bool render_ground_height(float x, float z, float *height);
@@ -157,6 +158,10 @@ bool render_probe(const scene *s, const char *extra_defines, const float *points
 /* The same with another probe shader: fogprobe.frag gives the fog's optical depth for (y, dir y, length). */
 bool render_probe_with(const scene *s, const char *frag, const char *extra_defines, const float *points, int n,
                        float *out, err_t *err);
+/* The loop iterations map() runs at each of n points (into loops), measured against the driver's loop
+ * limiter (llvmpipe's; shaders/common/budget.glsl); false with err where the driver has none to
+ * measure against. */
+bool render_probe_loops(const scene *s, const float *points, int n, int *loops, err_t *err);
 /* A probe shader over n rays (origin xyz, direction xyz each, in uPoints and uDirs) into out (4 floats
  * each): dropletprobe.frag gives the droplets' grid walk for tests. */
 bool render_probe_rays(const scene *s, const char *frag, const char *extra_defines, const float *rays, int n,

@@ -4,9 +4,11 @@
 
 #include <assert.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "gpu/gpu.h"
 #include "gpu/render_programs.h"
 #include "gpu/render_scene.h"
 #include "gpu/res_heightfield.h"
@@ -75,6 +77,21 @@ bool render_probe_with(const scene *s, const char *frag, const char *extra_defin
                        float *out, err_t *err)
 {
     return probe_run(s, frag, extra_defines, points, 3, n, out, 2, err);
+}
+
+bool render_probe_loops(const scene *s, const float *points, int n, int *loops, err_t *err)
+{
+    int limit = render_programs_loop_limit();
+    if (limit == 0)
+        return err_set(err, "this driver (%s) has no loop limiter to measure loops against", gpu_describe());
+    char define[48];
+    snprintf(define, sizeof define, "#define PROBE_LOOPS %d\n", limit);
+    float *out = util_alloc(sizeof(float) * 4 * (size_t)n, "loop probes");
+    bool ok = probe_run(s, "probe.frag", define, points, 3, n, out, 4, err);
+    for (int i = 0; ok && i < n; i++)
+        loops[i] = limit - (int)out[4 * i + 2];
+    free(out);
+    return ok;
 }
 
 bool render_probe_rays(const scene *s, const char *frag, const char *extra_defines, const float *rays, int n,

@@ -48,14 +48,48 @@ void render_programs_shutdown(void)
     memset(&cache, 0, sizeof cache);
 }
 
+/* The loop budget of an invocation (shaders/common/budget.glsl): on llvmpipe below its loop limiter's
+ * 65,535 iterations, with room for the loops fathom does not count (lights, AO samples, refinement, a
+ * terrain's own traversal); elsewhere none (the shader's default). */
+enum { LLVMPIPE_LOOP_LIMIT = 65535, LOOP_BUDGET_SLACK = 2048 };
+static bool llvmpipe(void)
+{
+    const char *renderer = (const char *)glGetString(GL_RENDERER);
+    return renderer && strstr(renderer, "llvmpipe");
+}
+
+static void loop_budget(const char *preamble, strbuf *out)
+{
+    if (llvmpipe())
+        sb_printf(out, "#define LOOP_BUDGET %d\n", LLVMPIPE_LOOP_LIMIT - LOOP_BUDGET_SLACK);
+    sb_append(out, preamble ? preamble : "");
+}
+
+int render_programs_loop_limit(void) { return llvmpipe() ? LLVMPIPE_LOOP_LIMIT : 0; }
+
+const char *render_programs_loop_budget_text(void)
+{
+    static char text[128];
+    if (llvmpipe())
+        snprintf(text, sizeof text, "%d loop iterations a pixel: llvmpipe ends every loop after %d",
+                 LLVMPIPE_LOOP_LIMIT - LOOP_BUDGET_SLACK, LLVMPIPE_LOOP_LIMIT);
+    else
+        snprintf(text, sizeof text, "the driver cut the pixel's loops short");
+    return text;
+}
+
 /* frag: a fragment shader drawn over fullscreen.vert, or a compute shader (a name ending in .comp). */
 static GLuint build(const char *frag, const char *preamble, const char *map, err_t *err)
 {
     shader_virtual virt[] = {{"program.glsl", map}};
     size_t n = strlen(frag);
-    if (n > 5 && !strcmp(frag + n - 5, ".comp"))
-        return shader_build_compute(cache.shader_root, frag, preamble, virt, 1, err);
-    return shader_build(cache.shader_root, "fullscreen.vert", frag, preamble, virt, 1, err);
+    strbuf pre = {0};
+    loop_budget(preamble, &pre);
+    GLuint prog = n > 5 && !strcmp(frag + n - 5, ".comp")
+                      ? shader_build_compute(cache.shader_root, frag, pre.data, virt, 1, err)
+                      : shader_build(cache.shader_root, "fullscreen.vert", frag, pre.data, virt, 1, err);
+    sb_free(&pre);
+    return prog;
 }
 
 GLuint render_programs_get(const scene *s, const char *frag, const char *extra_defines, err_t *err)

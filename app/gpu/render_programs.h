@@ -19,4 +19,10 @@ GLuint render_programs_get(const scene *s, const char *frag, const char *extra_d
 /* Rebuilds every cached program from disk; on any error keeps them all. *current follows its program. */
 bool render_programs_reload(GLuint *current, err_t *err);
 
+/* The loop budget in words, for messages: "57343 loop iterations a pixel: llvmpipe ends every loop
+ * after 65535" (shaders/common/budget.glsl). */
+const char *render_programs_loop_budget_text(void);
+/* The driver's loop limit of an invocation, all loops together (llvmpipe: 65535), or 0 where it has none. */
+int render_programs_loop_limit(void);
+
 #endif

@@ -25,9 +25,22 @@ static double rnd(unsigned *state, double lo, double hi)
     return lo + (hi - lo) * (double)(*state >> 8) / 16777216.0;
 }
 
-static bool probe(const scene *s, const float *pts, int n, float *out, err_t *err)
+/* The estimates at n points, and (where the driver has a loop limiter: c->loops_measured) the most loop
+ * iterations one of them ran into c->loops (c NULL: not measured): the random points and the dense
+ * samples along the rays, near the surface included, where estimates run longest. */
+static bool probe(const scene *s, const float *pts, int n, float *out, formula_check *c, err_t *err)
 {
-    return render_probe(s, NULL, pts, n, out, err);
+    if (!render_probe(s, NULL, pts, n, out, err))
+        return false;
+    if (!c || !c->loops_measured)
+        return true;
+    int *loops = util_alloc(sizeof(int) * (size_t)n, "check loops");
+    err_t none;
+    c->loops_measured = render_probe_loops(s, pts, n, loops, &none);
+    for (int i = 0; c->loops_measured && i < n; i++)
+        c->loops = loops[i] > c->loops ? loops[i] : c->loops;
+    free(loops);
+    return true;
 }
 
 /* Finiteness over random points in a cube of twice the bound, plus the origin and the axes. */
@@ -42,7 +55,7 @@ static bool check_finite(const scene *s, unsigned *seed, formula_check *c, err_t
     static const float special[][3] = {{0, 0, 0}, {1e-30f, 0, 0}, {0, 1e-30f, 0}, {0, 0, 1e-30f}, {0, 1, 0},
                                        {0, -1, 0}, {1, 0, 0}, {0, 0, 1}, {1e-3f, 1e-3f, 1e-3f}};
     memcpy(pts, special, sizeof special);
-    bool ok = probe(s, pts, FINITE_POINTS, d, err);
+    bool ok = probe(s, pts, FINITE_POINTS, d, c, err);
     c->points = FINITE_POINTS;
     for (int i = 0; ok && i < FINITE_POINTS; i++)
         c->nonfinite += !isfinite(d[2 * i]);
@@ -61,7 +74,7 @@ static bool bisect(const scene *s, const float *o, const float *dir, double *lo,
         for (int r = 0; r < n; r++)
             for (int k = 0; k < 3; k++)
                 pts[3 * r + k] = (float)(o[3 * r + k] + 0.5 * (lo[r] + hi[r]) * dir[3 * r + k]);
-        ok = probe(s, pts, n, d, err);
+        ok = probe(s, pts, n, d, NULL, err);
         for (int r = 0; ok && r < n; r++)
             *(d[2 * r] < inside ? &hi[r] : &lo[r]) = 0.5 * (lo[r] + hi[r]);
     }
@@ -85,7 +98,7 @@ static bool locate_crossings(const scene *s, const float *o, const float *dir, d
             for (int k = 0; k < 3; k++)
                 pts[3 * ((size_t)r * FINE + (size_t)j) + (size_t)k] = (float)(o[3 * r + k] + t * dir[3 * r + k]);
         }
-    bool ok = probe(s, pts, (int)n, d, err);
+    bool ok = probe(s, pts, (int)n, d, NULL, err);
     for (int r = 0; ok && r < RAYS; r++) {
         if (first[r] <= 0)
             continue;
@@ -135,7 +148,7 @@ static bool check_rays(const scene *s, unsigned *seed, formula_check *c, err_t *
                 pts[3 * ((size_t)r * STEPS + (size_t)i) + (size_t)k] = (float)(a[k] + i * h * dir[3 * r + k]);
         }
     }
-    bool ok = probe(s, pts, (int)n, d, err);
+    bool ok = probe(s, pts, (int)n, d, c, err);
     double lo[RAYS], hi[RAYS];
     int first[RAYS];
     /* the first sample below `inside` brackets the crossing with the one before it; a ray with none
@@ -194,14 +207,15 @@ bool check_formula(const scene *s, unsigned seed, formula_check *out, err_t *err
     /* a Julia set or a hybrid is not the formula its @step was measured for: the scene's own step factor */
     bool mode = s->fractal.julia || s->fractal.has_hybrid;
     *out = (formula_check){.step = mode ? s->quality.step_factor : s->fractal.formula.step > 0 ? s->fractal.formula.step : 1.0,
-                           .mode = mode};
+                           .mode = mode, .loops_measured = true, .loops_declared = s->fractal.loops};
     if (!program_is_fractal(s->program))
         return err_set(err, "%s: check-formula checks fractal formulas; this scene's program is %s", s->path,
                        program_name(s->program));
     if (!render_set_scene(s, NULL, err) || !check_finite(s, &seed, out, err) || !check_rays(s, &seed, out, err))
         return false;
     out->suggested = out->worst > 1 ? 1 / out->worst : 1;
-    out->ok = out->nonfinite == 0 && out->crossing > 0 && out->step * out->worst <= CHECK_TOLERANCE;
+    out->ok = out->nonfinite == 0 && out->crossing > 0 && out->step * out->worst <= CHECK_TOLERANCE &&
+              (!out->loops_measured || out->loops <= out->loops_declared);
     return true;
 }
 
@@ -224,6 +238,13 @@ void check_describe(const scene *s, const formula_check *c, strbuf *out)
                         : ": set @step (and quality.step_factor) to it or lower");
     if (c->crossing == 0)
         sb_printf(out, "  no ray met the surface: check @bound and the parameters\n");
+    if (!c->loops_measured)
+        sb_printf(out, "  loops: not measured (this driver has no loop limiter to count them against)\n");
+    else
+        sb_printf(out, "  loops: an estimate runs at most %d loop iterations; @loops declares %d%s\n", c->loops,
+                  c->loops_declared, c->loops <= c->loops_declared ? ""
+                  : ": fathom's loop budget would run short and llvmpipe would cut pixels; declare @loops to at "
+                    "least that (an expression of the parameters) or bound the loops by FRACTAL_ITERATIONS");
 }
 
 bool check_formula_run(const cli_options *opt, err_t *err)

@@ -8,8 +8,12 @@
  *     set, so an estimate above it overshoots: sphere tracing at step factor k tunnels when
  *     k · estimate > distance. The report gives the worst ratio, the share above 1, and the step
  *     factor that keeps every sample's step inside (1 / worst ratio).
- * A formula passes when nothing is non-finite and its declared @step (1 when absent) times the worst
- * ratio stays within CHECK_TOLERANCE of 1. */
+ *   - its loops: at the same points, the loop iterations one estimate runs, measured against the
+ *     driver's loop limiter (llvmpipe's; shaders/common/budget.glsl), against what it declares
+ *     (@loops): the loop budget is spent by the declaration, so a formula that loops longer would be
+ *     cut by the driver mid-image. Not measurable on a driver without a limiter (a GPU).
+ * A formula passes when nothing is non-finite, its declared @step (1 when absent) times the worst
+ * ratio stays within CHECK_TOLERANCE of 1, and no estimate loops more than it declares. */
 #ifndef FATHOM_CHECK_H
 #define FATHOM_CHECK_H
 
@@ -32,6 +36,8 @@ typedef struct formula_check {
     double suggested;    /* the step factor that keeps every sample inside: min(1, 1 / worst) */
     double step;         /* the step factor the formula declares (1 when it declares none), or the scene's */
     bool mode;           /* a Julia set or a hybrid: checked at the scene's step factor */
+    bool loops_measured; /* the driver has a loop limiter to measure loops against */
+    int loops, loops_declared; /* the most loop iterations an estimate ran; what the formula declares */
     bool ok;
 } formula_check;
 

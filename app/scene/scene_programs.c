@@ -247,6 +247,16 @@ static bool trap_and_bound(scene_ctx *c, const cJSON *use, scene_fractal *fr)
         return fail(c, "fractal", "formula %s's @trap %s %s gives %g to %g: the second must be larger", f->name, f->trap[0],
                     f->trap[1], lo, hi);
     fr->trap[0] = (float)lo, fr->trap[1] = (float)hi;
+    double loops, hybrid_loops = 0;
+    if (!eval(c, "fractal", f, fr->values, fr->iterations, f->loops, &loops) ||
+        (fr->has_hybrid &&
+         !eval(c, "fractal.hybrid", &fr->hybrid, fr->hybrid_values, fr->iterations, fr->hybrid.loops, &hybrid_loops)))
+        return false;
+    loops = fmax(loops, hybrid_loops);
+    if (!(loops >= 1 && loops <= FORMULA_LOOPS_MAX))
+        return fail(c, "fractal", "formula %s's @loops %s gives %g: expected 1 to %d loop iterations an estimate",
+                    f->name, f->loops, loops, FORMULA_LOOPS_MAX);
+    fr->loops = (int)ceil(loops);
     bound = fmax(bound, other);
     return get_num(c, use, "fractal", "bound_radius", (float)fmin(fmax(bound, BOUND_MIN), BOUND_MAX), BOUND_MIN,
                    BOUND_MAX, &fr->bound_radius);
@@ -360,6 +370,9 @@ void fractal_uniforms(const scene *s, const uniform_sink *u)
 {
     const scene_fractal *f = &s->fractal;
     uniform_f(u, "uBoundRadius", f->bound_radius);
+    uniform_i(u, "uFormulaLoops", f->loops);
+    /* a step formula's loop spends its share each iteration: 1 unless @loops says its step loops too */
+    uniform_i(u, "uFormulaStepLoops", f->loops > f->iterations + 1 ? (f->loops - 1 + f->iterations - 1) / f->iterations : 1);
     uniform_fv(u, "uPalette", 3, 3, &f->palette[0][0]);
     uniform_fv(u, "uTrapRange", 2, 1, f->trap);
     uniform_fv(u, "uGlowColor", 3, 1, f->glow_color);

@@ -40,5 +40,6 @@
 // the quality knobs (MAX_STEPS, HIT_K, … from QUALITY_KNOBS in app/scene/quality.h), NUM_LIGHTS,
 // NUM_MATERIALS, and its own (FRACTAL_ITERATIONS, TERRAIN_MAXMIP).
 #include "common/sdf.glsl"
+#include "common/budget.glsl"
 #include "common/hit.glsl"
 #include "program.glsl"

@@ -141,7 +141,7 @@ void tailMarch(inout Hit h, inout float t, vec3 ro, vec3 rd, float tmax, float s
                float fPrev)
 {
     bool forced = false; // the last step was longer than its distance bound, toward a surface
-    for (int i = 0; i < TAIL_STEPS && !h.hit; i++) {
+    for (int i = 0; i < TAIL_STEPS && !h.hit && loopSpend(1); i++) {
         vec2 d = marchMap(ro + rd * t, rd * side);
         float dist = side * d.x, eps = hitEps(pathT + t);
         bool bound = isBound(d);
@@ -221,7 +221,7 @@ Hit castRay(vec3 ro, vec3 rd, float tmax, float side, float pathT)
 #ifdef MARCH_COVERAGE
     bool boundPrev = true;
 #endif
-    for (int i = 0; i < MAX_STEPS; i++) {
+    for (int i = 0; i < MAX_STEPS && loopSpend(1); i++) {
         h.steps = i + 1;
         vec2 d = marchMap(ro + rd * t, rd * side);
         float dist = side * d.x;
@@ -280,6 +280,10 @@ Hit castRay(vec3 ro, vec3 rd, float tmax, float side, float pathT)
     }
     if (!h.hit && t <= tmax && h.steps >= MAX_STEPS) // out of steps: not yet a hit, nor a miss
         tailMarch(h, t, ro, rd, tmax, side, pathT, tPrev, fPrev);
+    if (loopOut) { // out of the loop budget (common/budget.glsl): unresolved, whatever it had found
+        h.hit = false;
+        h.exhausted = true;
+    }
     h.t = t;
     return h;
 }

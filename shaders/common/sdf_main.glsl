@@ -442,7 +442,8 @@ void renderPixel(vec2 fragCoord, out vec4 color, out vec4 normalDepth, out vec4 
     PathSample S = tracePathSample(ray, fragCoord + uTileOffset); // seeded by the whole image's pixel
     color = vec4(S.radiance, 1.0);
     normalDepth = vec4(S.firstN, S.firstT);
-    aux = vec4(S.exhausted ? -float(S.steps) : float(S.steps), S.exitDir);
+    bool cut = loopOut || loopsWereCut(); // common/budget.glsl: flagged, as below
+    aux = vec4(cut ? -float(S.steps) - 0.5 : S.exhausted ? -float(S.steps) : float(S.steps), S.exitDir);
     return;
 #endif
     Path P = startPath(ray);
@@ -454,5 +455,10 @@ void renderPixel(vec2 fragCoord, out vec4 color, out vec4 normalDepth, out vec4 
 #endif
     color = vec4(radiance, 1.0);
     normalDepth = vec4(P.firstN, P.firstT);
-    aux = vec4(P.firstExhausted ? -float(P.firstSteps) : float(P.firstSteps), P.rd); // negative: unresolved
+    // negative: unresolved (out of steps); −(steps + ½): out of the loop budget or cut by the driver
+    // (common/budget.glsl). A primary ray out of the budget is a miss (castRay); one that ran out later,
+    // in its shadows or bounces, keeps what it found, flagged
+    bool loopsRanOut = loopOut || loopsWereCut();
+    aux = vec4(loopsRanOut ? -float(P.firstSteps) - 0.5 : P.firstExhausted ? -float(P.firstSteps) : float(P.firstSteps),
+               P.rd);
 }

@@ -6,7 +6,7 @@
 float hardShadow(vec3 ro, vec3 rd, float tmax, float pathT)
 {
     float t = 0.0;
-    for (int i = 0; i < SHADOW_STEPS; i++) {
+    for (int i = 0; i < SHADOW_STEPS && loopSpend(1); i++) {
         vec2 d = marchMap(ro + rd * t, rd); // along the ray: how far it is free (common/march.glsl)
         float h = d.x;
         if (h < hitEps(pathT + t) && !isBound(d))
@@ -22,7 +22,7 @@ float hardShadow(vec3 ro, vec3 rd, float tmax, float pathT)
 float softShadow(vec3 ro, vec3 rd, float tmax, float k, float pathT)
 {
     float res = 1.0, t = 0.0;
-    for (int i = 0; i < SHADOW_STEPS; i++) {
+    for (int i = 0; i < SHADOW_STEPS && loopSpend(1); i++) {
         vec2 d = marchMap(ro + rd * t, rd);
         float h = d.x, eps = hitEps(pathT + t);
         if (!isBound(d)) { // a bound is not an occluder: neither a hit nor a penumbra

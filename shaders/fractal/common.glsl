@@ -25,6 +25,8 @@ real3 worldOf(vec3 p) { return p; }
 
 #include "common/uniforms.glsl" // the eye and the pixel's angle: the bound's margin
 uniform float uBoundRadius; // a sphere about the origin that holds the whole set
+uniform int uFormulaLoops;  // loop iterations one estimate runs: the formula's @loops (common/budget.glsl)
+uniform int uFormulaStepLoops; // of them, those of one step of a step formula (1: its loop's own)
 uniform vec3 uPalette[3];   // orbit-trap colours: near, middle, far
 uniform vec2 uTrapRange;    // the formula's @trap: the orbit trap's values spread over the palette
 

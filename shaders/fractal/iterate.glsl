@@ -18,6 +18,7 @@ uniform vec3 uJuliaC;
 uniform int uStepsA, uStepsB;
 #endif
 
+#define FORMULA_LOOP_COUNTED 1 // each iteration spends one of the loop budget (common/budget.glsl)
 real formulaDE(real3 p, out float trap)
 {
     real3 z = p, c = uJulia ? real3(uJuliaC) : p;
@@ -25,6 +26,7 @@ real formulaDE(real3 p, out float trap)
     bool escaped = false;
     trap = 1e10;
     for (int i = 0; i < FRACTAL_ITERATIONS; i++) {
+        loopSpend(uFormulaStepLoops);
         r = length(z);
         escaped = r > real(uEscape);
         if (escaped)

@@ -3,7 +3,11 @@
 // @bound size * 1.7320508
 // @step 1
 // @trap 0 1
+// @loops 4 * iterations + 1
 // @deep
+//
+// Its loops: up to 2ᴺ paths of N levels, but the pruning below keeps an estimate to at most 2N + 3
+// loop iterations wherever check-formula probes it (N = 1 … 7); @loops declares twice that.
 //
 // The Menger sponge, level FRACTAL_ITERATIONS, as an exact distance (not the usual bound).
 // The sponge is symmetric under the cube's 48 reflections, so folding p into x ≥ y ≥ z ≥ 0 keeps its
