@@ -227,8 +227,8 @@ static bool set_output_option(const char *name, const char *val, cli_options *o,
         o->scene = val;
         o->scene_given = true;
     } else if (!strcmp(name, "--dem")) {
-        if (o->scene_given || o->dem)
-            return err_set(err, "--dem opens a DEM in the dem scene: give it once, without --scene");
+        if (o->scene_given || o->dem || o->formula)
+            return err_set(err, "--dem opens a DEM in the dem scene: give it once, without --scene or --formula");
         if (!*val)
             return err_set(err, "bad --dem '': the path of an elevation file (GeoTIFF, .hgt, .asc, netCDF, ...)");
         if (o->set_count == CLI_MAX_SETS)
@@ -381,7 +381,7 @@ static bool set_flag(const char *a, cli_options *o)
 static bool check_combinations(const cli_options *o, err_t *err)
 {
     if (o->stitch && (!o->output || o->input_count == 0))
-        return err_set(err, "fathom stitch needs --output POSTER and the tile files, e.g. fathom stitch --output "
+        return err_set(err, "stitch needs --output POSTER and the tile files, e.g. fathom stitch --output "
                             "poster.png poster.tile-*.png");
     if (o->tile_count && (!o->output || o->path || o->bench || o->stitch))
         return err_set(err, "--tile renders one tile of an offline shot: give --output (and no --path)");
@@ -412,6 +412,15 @@ static bool check_combinations(const cli_options *o, err_t *err)
         return err_set(err, "--aov needs an offline shot: add --output FILE.exr");
     if (o->fps && ((o->output && !o->path) || (o->bench && !o->interactive)))
         return err_set(err, "--fps is the window's (and bench --interactive's): it does not apply here");
+    if (o->check_formula && (o->output || o->aovs || o->path || o->tile_count || o->spp || o->width || o->frames))
+        return err_set(err, "fathom check-formula prints a report: --output, --aov, --path, --tile, --spp, --size and "
+                            "--frames do not apply (it takes NAME|FILE, --scene and --set)");
+    if ((o->bench || (!o->output && !o->stitch && !o->check_formula && !o->help_formula)) && o->width &&
+        (long)o->width * o->height > CLI_MAX_TARGET_PIXELS)
+        return err_set(err, "--size %dx%d: the window and the bench hold the whole image in %d-byte-a-pixel targets, "
+                            "at most %ld pixels (a 2 GB texture); offline shots render in strips and take up to %dx%d",
+                       o->width, o->height, CLI_TARGET_BYTES_PER_PIXEL, (long)CLI_MAX_TARGET_PIXELS, MAX_IMAGE_SIDE,
+                       MAX_IMAGE_SIDE);
     if (o->panel && (o->output || o->bench || o->path || o->check_formula))
         return err_set(err, "--panel is the window's: it does not apply here");
     if (o->interactive && !o->bench)
@@ -515,6 +524,11 @@ bool cli_apply_shot_text(cli_options *o, const char *text, const char *source, s
         return false;
     if (d->scene_text) /* a user's own scene, carried whole: it reopens on any machine */
         scene_provide_text(d->scene, d->scene_text);
+    strbuf notes = {0}; /* a formula changed or missing here: main prints them */
+    bool resolved = shot_resolve_formulas(d, &notes, err);
+    d->notes = notes.data;
+    if (!resolved)
+        return false;
     if (d->set_count + o->set_count > CLI_MAX_SETS)
         return err_set(err, "%s: its %d overrides and the command line's %d are more than %d", source, d->set_count,
                        o->set_count, CLI_MAX_SETS);

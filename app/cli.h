@@ -19,6 +19,10 @@
 #include "util.h"
 
 enum { CLI_MAX_SETS = 64 };
+/* The render targets hold 16 bytes a pixel (RGBA32F), and llvmpipe refuses a texture over 2 GB (an
+ * assert fired at 11586x11586): the window and the bench, which hold the whole image, take at most this
+ * many pixels; offline shots render in strips. */
+enum { CLI_TARGET_BYTES_PER_PIXEL = 16, CLI_MAX_TARGET_PIXELS = 0x7fffffff / CLI_TARGET_BYTES_PER_PIXEL };
 
 typedef enum aov_flag {
     AOV_DEPTH = 1u << 0,  /* distance along the normalized ray to the first hit, +inf on a miss */

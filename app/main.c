@@ -151,6 +151,8 @@ int main(int argc, char **argv)
     static shot_desc shot; /* --scene SHOT.png: opt points into it */
     if (opt.scene && (shot_is_image(opt.scene) || shot_is_preset(opt.scene)) && !cli_apply_shot(&opt, &shot, &err))
         return finish(false, &err);
+    if (shot.notes) /* its formulas: changed since, or carried (view/shot.h) */
+        fputs(shot.notes, stderr);
     static shot_desc view; /* --view NAME: likewise */
     if (opt.view_name && !apply_view(&opt, &view, &err))
         return finish(false, &err);

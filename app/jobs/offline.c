@@ -11,6 +11,7 @@
 #include "gpu/gpu.h"
 #include "data/image_io.h"
 #include "gpu/render.h"
+#include "gpu/render_programs.h"
 #include "view/shot.h"
 
 /* A band: about 2 Mpixel by default; at most 16 Mpixel whatever --strip-rows asks (GPU targets 52 bytes
@@ -164,7 +165,7 @@ bool offline_tile_name(const char *output, int index, int count, char *out, size
 }
 
 /* Renders rows [top, top + height) of the d->width × d->height image (all of it, or one tile) into w. */
-static bool render_bands(const offline_desc *d, int top, int height, image_writer *w, long *unresolved, err_t *err)
+static bool render_bands(const offline_desc *d, int top, int height, image_writer *w, long unresolved[2], err_t *err)
 {
     int rows = band_rows(d, height), bands = (height + rows - 1) / rows;
     double t0 = util_now();
@@ -183,7 +184,7 @@ static bool render_bands(const offline_desc *d, int top, int height, image_write
         if (e != GL_NO_ERROR)
             return err_set(err, "cannot render '%s': the GL failed on a %dx%d band (%s); try a smaller --strip-rows",
                            d->output, d->width, h, e == GL_OUT_OF_MEMORY ? "out of GPU memory" : "GL error");
-        *unresolved += render_unresolved_pixels();
+        unresolved[0] += render_unresolved_pixels(&unresolved[1]);
         if (!write_band(w, d->output, d->width, h, d->aovs, err))
             return false;
     }
@@ -210,7 +211,9 @@ offline_desc offline_shot(const cli_options *opt, const scene *s, camera cam, co
                                                            .aovs = opt->aovs,
                                                            .strip_rows = opt->strip_rows,
                                                            .quiet = opt->quiet});
-    shot_describe(s->path, sets, nsets, &d.cam, d.width, d.height, description);
+    const char *formulas[SHOT_FORMULA_MAX];
+    scene_formula_files(s, formulas);
+    shot_describe_fractal(s->path, sets, nsets, formulas, &d.cam, d.width, d.height, description);
     d.description = description->data;
     return d;
 }
@@ -241,8 +244,8 @@ bool offline_render_current(const offline_desc *desc, err_t *err)
     sb_free(&described);
     if (!w)
         return false;
-    long unresolved = 0;
-    if (!render_bands(d, top, rows, w, &unresolved, err)) {
+    long unresolved[2] = {0, 0}; /* all, and those out of the loop budget */
+    if (!render_bands(d, top, rows, w, unresolved, err)) {
         image_writer_abort(w);
         return false;
     }
@@ -255,10 +258,18 @@ bool offline_render_current(const offline_desc *desc, err_t *err)
     else if (!d->quiet)
         fprintf(stderr, "wrote %s (%dx%d, %d spp%s, %.2f s, %s, %s)\n", d->output, d->width, d->height, d->spp,
                 precision, util_now() - t0, render_backend_name(render_backend_used()), gpu_describe());
-    if (!d->quiet && unresolved)
+    long steps = unresolved[0] - unresolved[1], loops = unresolved[1];
+    double share = 100.0 / ((double)d->width * rows);
+    if (!d->quiet && steps)
         fprintf(stderr, "note: %ld pixel%s (%.3g%%) ran out of steps and are drawn as misses (the steps AOV marks them "
                         "negative); raise quality.max_steps or use --quality final\n",
-                unresolved, unresolved == 1 ? "" : "s", 100.0 * (double)unresolved / ((double)d->width * rows));
+                steps, steps == 1 ? "" : "s", share * (double)steps);
+    if (!d->quiet && loops)
+        fprintf(stderr, "note: %ld pixel%s (%.3g%%) ran out of the loop budget (%s): a ray that had found nothing "
+                        "is drawn as a miss, else the shading may be cut short (the steps AOV marks them -(steps + "
+                        "0.5)); lower fractal.iterations, quality.max_steps or quality.shadow_steps, or render on a "
+                        "GPU\n",
+                loops, loops == 1 ? "" : "s", share * (double)loops, render_programs_loop_budget_text());
     return true;
 }
 

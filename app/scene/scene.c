@@ -534,10 +534,18 @@ static void light_uniforms(const scene *s, const uniform_sink *u)
     uniform_fv(u, "uLightSoftness", 1, s->light_count, soft);
 }
 
+void scene_formula_files(const scene *s, const char *files[2])
+{
+    bool fractal = program_is_fractal(s->program);
+    files[0] = fractal ? s->fractal.formula.file : NULL;
+    files[1] = fractal && s->fractal.has_hybrid ? s->fractal.hybrid.file : NULL;
+}
+
 void scene_uniforms(const scene *s, const uniform_sink *u)
 {
     material_uniforms(s, u);
     light_uniforms(s, u);
+    uniform_i(u, "uLoopProbe", 2); /* the sentinel loop that tells a cut invocation: common/budget.glsl */
     float env[3];
     for (int k = 0; k < 3; k++)
         env[k] = s->env_color[k] * s->env_intensity;

@@ -83,6 +83,7 @@ typedef struct scene_fractal {
     float julia_c[3];
     float escape;        /* step formulas: the escape radius (formula.h @escape) */
     float trap[2];       /* the orbit trap's range over the palette (@trap) */
+    int loops;           /* loop iterations one estimate runs (@loops; a hybrid's larger) */
     fractal_precision precision;
     bool deep_ok;        /* the formula (and hybrid) can compile in double with these values */
     bool deep_now;       /* this variant is compiled in double (PRECISION_DOUBLE) */
@@ -183,6 +184,10 @@ bool scene_load_text(const char *text, const char *path, const char *const *sets
                      err_t *err);
 
 void scene_free(scene *s);
+
+/* The files of the formulas that draw s (its fractal's, its hybrid's), NULL where none: what a shot
+ * records (view/shot.h). */
+void scene_formula_files(const scene *s, const char *files[2]);
 
 /* The `#define` block (no #version) the scene compiles: program, effects, quality knobs, counts and
  * the program's own defines. Two scenes compile to the same program exactly when these (and their

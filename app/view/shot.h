@@ -15,11 +15,25 @@
 #define SHOT_KEY "fathom_shot"
 enum { SHOT_SET_MAX = 64 }; /* overrides a shot carries (cli.h takes as many) */
 
+/* The formulas that drew a fractal shot, so that it reopens as it was or says why not: a shipped one
+ * by its file under shaders/ and the hash of its text; a user's own by its path, hash and whole text
+ * (as a user's scene is carried). */
+enum { SHOT_FORMULA_MAX = 2, SHOT_FORMULA_TEXT_MAX = 64 * 1024 };
+typedef struct shot_formula {
+    char key[32];            /* the override that names it: "fractal.formula" or "fractal.hybrid.formula" */
+    char file[PATH_MAX_LEN]; /* "fractal/NAME.glsl" (shipped) or the user's file's absolute path */
+    char hash[17];           /* FNV-1a 64 of its text, 16 hex digits */
+    char *text;              /* a user's formula's text (malloc'd), NULL for a shipped one */
+} shot_formula;
+
 typedef struct shot_desc {
     char scene[PATH_MAX_LEN]; /* a shipped scene's name, or a file's absolute path */
     char *scene_text;         /* that file's text when it is not shipped (malloc'd: shot_free), or NULL */
     char sets[SHOT_SET_MAX][256];
     int set_count;
+    shot_formula formulas[SHOT_FORMULA_MAX];
+    int formula_count;
+    char *notes; /* shot_resolve_formulas's notes through cli_apply_shot (malloc'd), or NULL */
     camera cam;
     int width, height;
 } shot_desc;
@@ -28,6 +42,18 @@ typedef struct shot_desc {
  * by name when it is one of fathom's own (under <data>/scenes), else its absolute path and its text. */
 void shot_describe(const char *scene_path, const char *const *sets, int set_count, const camera *cam, int width,
                    int height, strbuf *out);
+/* The same with the formulas that drew it: formula_files[i] is the fractal's formula (i = 0) and its
+ * hybrid's (i = 1) as formula.h's `file` gives it ("fractal/NAME.glsl" or an absolute path), or NULL. */
+void shot_describe_fractal(const char *scene_path, const char *const *sets, int set_count,
+                           const char *const formula_files[SHOT_FORMULA_MAX], const camera *cam, int width, int height,
+                           strbuf *out);
+
+/* A reopened shot's formulas, checked against what this machine has: a shipped formula whose text
+ * changed since is named in notes (the image may differ); a user's formula that is missing here or
+ * changed is drawn from the text the shot carries, copied to the cache folder
+ * ($XDG_CACHE_HOME/fathom/formulas/HASH/NAME.glsl) and named by an override appended to d->sets, and
+ * notes say so. False with err when a carried text does not match its own hash (a damaged shot). */
+bool shot_resolve_formulas(shot_desc *d, strbuf *notes, err_t *err);
 
 /* A shot text with "renderer": what rendered it (the backend and the GPU), for the record: nothing
  * reads it back. Copies text unchanged when it is no JSON object. */

@@ -507,7 +507,9 @@ static void describe(int w, int h, strbuf *out)
 {
     const char *sets[CLI_MAX_SETS + OVERRIDES_MAX];
     int n = current_sets(sets);
-    shot_describe(app.scene.path, sets, n, &app.cam, w, h, out);
+    const char *formulas[SHOT_FORMULA_MAX];
+    scene_formula_files(&app.scene, formulas);
+    shot_describe_fractal(app.scene.path, sets, n, formulas, &app.cam, w, h, out);
 }
 
 /* Opens a shot description: its scene (carried or shipped), its overrides as the base (the edits go)
@@ -519,6 +521,15 @@ static bool open_shot(const char *text, const char *source, err_t *err)
         return false;
     if (d.scene_text)
         scene_provide_text(d.scene, d.scene_text);
+    strbuf notes = {0};
+    if (!shot_resolve_formulas(&d, &notes, err)) {
+        sb_free(&notes);
+        shot_free(&d);
+        return false;
+    }
+    if (notes.data) /* its formulas: changed since, or carried (view/shot.h) */
+        fputs(notes.data, stderr);
+    sb_free(&notes);
     char keep_base[CLI_MAX_SETS][OVERRIDE_LEN];
     int keep_count = app.base_count;
     overrides keep_edits = app.edits;
@@ -966,7 +977,7 @@ static bool draw(int w, int h, bool restart, camera *shown, bool *moved)
         if (render_samples() == 1)
             app.unresolved = -1;
         if (!moving && refining && render_samples() == app.scene.quality.spp)
-            note_converged(), app.unresolved = render_unresolved_pixels();
+            note_converged(), app.unresolved = render_unresolved_pixels(NULL);
     }
     app.scaled = iw != w || ih != h;
     render_display(0, w, h, app.exposure, app.view);
