@@ -17,6 +17,7 @@ awk '/^```sh/ {f = 1; next} /^```/ {f = 0} f && !/^apt-get/' "$src/README.md" | 
 while IFS= read -r line; do
     cmd=$(echo "$line" | sed -E 's/--size [0-9]+x[0-9]+/--size 32x18/; s/--spp [0-9]+/--spp 1/')
     case "$cmd" in
+    build/fathom\ check-formula*) ;; # a report: it takes no size, frames or output
     build/fathom\ bench*) cmd="$cmd --runs 1 --quiet"; echo "$cmd" | grep -q -- --size || cmd="$cmd --size 32x18" ;;
     build/fathom*--output* | build/fathom*--print-variant* | build/fathom*--list-scenes* | build/fathom*--help*)
         echo "$cmd" | grep -q -- --size || cmd="$cmd --size 32x18"

@@ -55,6 +55,11 @@ run "$fathom" bench --scene csg $quick --out planted
 check "bench-planted-links: exit 0" '[ $code -eq 0 ]'
 check "bench-planted-links: no target written through a link" '[ "$(cat targets/* | sort -u)" = keep ]'
 check "bench-planted-links: the results are files" '[ -f planted/csg-knobs.csv ] && [ ! -L planted/csg-knobs.csv ]'
+# a link planted at the name of the temporary file the bench will make (its PID is the shell's, which
+# execs it): the temporary file is made new (O_EXCL | O_NOFOLLOW), never written through the link
+mkdir templink && echo keep >targets/temp
+run sh -c 'ln -s ../targets/temp "templink/.csg-knobs.csv.tmp$$-0"; exec "$0" "$@"' "$fathom" bench --scene csg $quick --out templink
+check "bench-planted-temp-link: not written through" '[ "$(cat targets/temp)" = keep ]'
 # a bad --knob value is refused before anything renders, and a refused run leaves no folder
 run "$fathom" bench --scene csg --size 16x9 --runs 1 --knob "step_factor=0.5,0.6,0.7,0.8,9" --out refused --quiet
 check "bench-bad-knob-value: refused at once, no folder left" \
@@ -65,6 +70,8 @@ if mount -t tmpfs -o size=96k fathomtrust "$tmp/small" 2>/dev/null; then
     run "$fathom" bench --scene csg --size 64x36 --runs 1 --knob resolution_scale=0.5 --quiet --out "$tmp/small/full"
     check "bench-full-disk: fails with the disk named" '[ $code -ne 0 ] && grep -q "cannot write" "$tmp/stderr"'
     check "bench-full-disk: nothing left" '[ -z "$(ls -A "$tmp/small")" ]'
+    run "$fathom" --output "$tmp/small/full.png" --size 640x360 --spp 1 --quiet
+    check "full-disk-png: the reason, not libpng's 'Write Error'" 'grep -q "No space left on device" "$tmp/stderr"'
     umount "$tmp/small"
 else
     echo "skip bench-full-disk: cannot mount a tmpfs here"
@@ -84,6 +91,11 @@ check "module-group-writable: refused" '[ $code -eq 1 ] && grep -q "writable by 
 head -c 3000 "$image" >mods/bin/fathom_image.so && chmod 644 mods/bin/fathom_image.so
 run mods/bin/fathom $exr
 check "module-truncated: refused, no crash" '[ $code -eq 1 ] && grep -q "cut short" "$tmp/stderr"'
+if [ "$(id -u)" = 0 ] && id nobody >/dev/null 2>&1; then # root can give the module to another user
+    cp "$image" mods/bin/fathom_image.so && chmod 644 mods/bin/fathom_image.so && chown nobody mods/bin/fathom_image.so
+    run mods/bin/fathom $exr
+    check "module-owned-by-another-user: refused" '[ $code -eq 1 ] && grep -q "owned by another user" "$tmp/stderr"'
+fi
 rm mods/bin/fathom_image.so && mkfifo mods/bin/fathom_image.so
 run timeout 20 mods/bin/fathom $exr
 check "module-fifo: refused, no hang" '[ $code -eq 1 ] && grep -q "not a regular file" "$tmp/stderr"'
@@ -129,6 +141,101 @@ printf '{"program": "fractal", "fractal": {"formula": "ball.glsl"}}' >scenedir/b
 cd elsewhere && run "$fathom" --scene ../scenedir/ball.json $png && cd ..
 check "formula-path-relative-to-scene: found from another folder" '[ $code -eq 0 ] && [ -s o.png ]'
 rm -f o.png
+
+# ---- 7. a shot carries the formulas that drew it ---------------------------------------------------
+mkdir -p mine
+printf '// @formula a ball of radius r\nuniform float uR; // @param 1 [0.1, 2] radius\nfloat formulaDE(vec3 p, out float trap) { trap = 0.0; return length(p) - uR; }\n' >mine/ball.glsl
+run "$fathom" --formula mine/ball.glsl --output "$tmp/work/shot.png" --size 32x18 --spp 1 --quiet
+cp mine/ball.glsl ball-kept.glsl
+rm -rf mine # the formula is gone from this machine: the shot draws it from the text it carries
+run env XDG_CACHE_HOME="$tmp/work/cache" "$fathom" --scene shot.png --output "$tmp/work/again.png" --spp 1 --quiet
+check "shot-carries-a-user-formula: reopens without the file, and says so" \
+    '[ $code -eq 0 ] && cmp -s "$(ls cache/fathom/formulas/*/ball.glsl)" ball-kept.glsl && grep -q "is not on this machine: drawn with the text the shot carries" "$tmp/stderr"'
+mkdir -p mine && sed 's/length(p) - uR/length(p) - 0.5 * uR/' ball-kept.glsl >mine/ball.glsl
+run env XDG_CACHE_HOME="$tmp/work/cache" "$fathom" --scene shot.png --output "$tmp/work/again2.png" --spp 1 --quiet
+check "shot-formula-changed-since: said, and drawn as it was" \
+    '[ $code -eq 0 ] && grep -q "changed since this shot was made: drawn with the text the shot carries" "$tmp/stderr" && cmp -s again.png again2.png'
+run "$fathom" --scene mandelbox --output "$tmp/work/box.png" --size 32x18 --spp 1 --quiet
+mkdir -p data && cp -r "$src/shaders" "$src/scenes" "$src/textures" data/ 2>/dev/null
+sed -i 's/^\(uniform float uScale;.*@param \)[-0-9.]*/\1-1.7/' data/shaders/fractal/mandelbox.glsl
+run env FATHOM_DATA_DIR="$tmp/work/data" "$fathom" --scene box.png --output "$tmp/work/box2.png" --spp 1 --quiet
+check "shot-shipped-formula-changed: said" 'grep -q "note: formula fractal/mandelbox.glsl changed since this shot was made" "$tmp/stderr"'
+rm -rf data cache
+
+# ---- 8. the smaller ones --------------------------------------------------------------------------
+formula_case() { # NAME NEEDLE TEXT...: the formula file TEXT is refused with NEEDLE in one line
+    name=$1 needle=$2; shift 2
+    printf "$@" >fm/case.glsl
+    run "$fathom" --formula fm/case.glsl $png
+    check "$name" '[ $code -eq 1 ] && [ "$(wc -l <"$tmp/stderr")" -eq 1 ] && grep -qF -- "$needle" "$tmp/stderr"'
+}
+de='float formulaDE(vec3 p, out float trap) { trap = 0.0; return length(p) - 1.0; }\n'
+formula_case formula-default-past-float "expected DEFAULT [LO, HI]" "// @formula f\nuniform float uA; // @param 1e39 [0, 1e40] a\n$de"
+formula_case formula-fractional-iterations "whole numbers from 1 to 1000" "// @formula f\n// @iterations 2.5 [1, 8]\n$de"
+long=uA; i=0; while [ $i -lt 60 ]; do long="${long}bcde"; i=$((i + 1)); done
+formula_case formula-long-uniform "uniform name is at most 47 characters" "// @formula f\nuniform float $long; // @param 1 [0, 2] a\n$de"
+formula_case formula-escape-byte "a control character (0x1b)" "// @formula f \033[31mred\n$de"
+printf '\357\273\277// @formula with a BOM and CRLF\r\nuniform float uA; // @param 1 [0, 2] a\r\nfloat formulaDE(vec3 p, out float trap) { trap = 0.0; return length(p) - uA; }\r\n' >fm/crlf.glsl
+run "$fathom" --formula fm/crlf.glsl $png
+check "formula-bom-and-crlf: read as the text it is" '[ $code -eq 0 ] && [ -s o.png ]'
+rm -f o.png
+run "$fathom" --help-formula fm/crlf.glsl
+check "help-formula: no control byte reaches the terminal" '[ $code -eq 0 ] && ! grep -q "$(printf "\r")" "$tmp/stdout"'
+run "$fathom" --formula mandelbulb --dem "$src/terrains/jacksboro.png" $png
+check "formula-then-dem: a usage error (2), as dem-then-formula" '[ $code -eq 2 ]'
+run "$fathom" check-formula mandelbulb --output "$tmp/work/o.png"
+check "check-formula-output: refused, not ignored" '[ $code -eq 2 ] && grep -q "does not apply\|do not apply" "$tmp/stderr"'
+run "$fathom" bench --scene csg --size 12000x12000 --quiet
+check "bench-huge-size: refused up front, no assert" '[ $code -eq 2 ] && grep -q "at most 134217727 pixels" "$tmp/stderr"'
+run env FATHOM_TERRAIN_TILE=4294967296 timeout 60 "$fathom" --scene jacksboro $png
+check "terrain-tile-env-huge: refused, no endless loop" '[ $code -eq 1 ] && grep -q "FATHOM_TERRAIN_TILE" "$tmp/stderr"'
+run "$fathom" stitch --output "$tmp/work/p.png"
+check "stitch-message: one 'fathom:'" '[ "$(grep -o "fathom" "$tmp/stderr" | wc -l)" -le 2 ] && ! grep -q "fathom: fathom stitch" "$tmp/stderr"'
+# a single shot killed mid-write leaves its temporary file; the next shot into that folder removes it
+mkdir -p killed
+"$fathom" --output "$tmp/work/killed/shot.exr" --size 640x360 --spp 64 --quiet --aov depth &
+pid=$!
+i=0
+while [ $i -lt 3000 ] && ! ls -A killed | grep -q tmp; do sleep 0.01; i=$((i + 1)); done
+kill -KILL $pid; wait $pid 2>/dev/null
+run "$fathom" --output "$tmp/work/killed/next.png" --size 16x9 --spp 1 --quiet
+check "killed-shot-temp: removed by the next shot" '[ $i -lt 3000 ] && [ -z "$(ls -A killed | grep tmp)" ] && [ -s killed/next.png ]'
+
+# ---- 6. no silent truncation: every loop within fathom's budget, a pixel cut short flagged ---------
+if "$fathom" --scene csg --output "$tmp/work/probe.png" --size 8x8 --spp 1 2>&1 | grep -q llvmpipe; then
+    # a formula whose own loop runs 70,000 times an estimate: llvmpipe cuts it; was all sky, exit 0
+    cat >fm/long_loop.glsl <<'GLSL'
+// @formula a ball behind a loop longer than llvmpipe allows
+// @bound 2
+uniform int uCount; // @param 70000 [1, 100000] loop count
+float formulaDE(vec3 p, out float trap) {
+    trap = 0.0;
+    float s = 0.0;
+    for (int i = 0; i < uCount; i++)
+        s += 1.0;
+    return s >= float(uCount) - 0.5 ? length(p) - 1.0 : 1e9;
+}
+GLSL
+    run "$fathom" --formula fm/long_loop.glsl --output "$tmp/work/o.png" --size 32x18 --spp 1
+    check "loops-cut-by-the-driver: flagged and counted" 'grep -q "ran out of the loop budget" "$tmp/stderr"'
+    run "$fathom" check-formula fm/long_loop.glsl
+    check "loops-cut-by-the-driver: check-formula fails it" \
+        '[ $code -ne 0 ] && grep -q "loops: an estimate runs at most .* @loops declares 2:" "$tmp/stdout"'
+    # fathom's own budget: a formula that declares 9,000 loop iterations an estimate (it runs 3,000) spends
+    # the budget by its declaration, so marches end unresolved before llvmpipe's limit would cut them
+    sed 's|^// @bound 2|// @bound 2\n// @loops count * 3|; s|@param 70000|@param 3000|' fm/long_loop.glsl >fm/declared.glsl
+    run "$fathom" --formula fm/declared.glsl --output "$tmp/work/o.png" --size 32x18 --spp 1
+    check "loop-budget: spent by the declaration, flagged as out of the loop budget" \
+        '[ $code -eq 0 ] && grep -q "ran out of the loop budget (63487" "$tmp/stderr"'
+    run "$fathom" check-formula fm/declared.glsl
+    check "loop-budget: check-formula passes a formula within its declaration" \
+        'grep -q "runs at most 300[0-9] loop iterations; @loops declares 9000$" "$tmp/stdout"'
+    run "$fathom" check-formula menger --set fractal.iterations=7
+    check "loop-budget: the shipped Menger sponge declares its loops" '[ $code -eq 0 ] && grep -q "@loops declares 29$" "$tmp/stdout"'
+    rm -f o.png probe.png
+else
+    echo "skip loops: not llvmpipe (a GPU has no loop limiter to cut them)"
+fi
 
 echo "trust: $passed passed, $failed failed"
 [ "$failed" -eq 0 ]

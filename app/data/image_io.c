@@ -111,7 +111,11 @@ typedef struct png_io {
 static void png_fail(png_structp png, png_const_charp msg)
 {
     png_io *io = png_get_error_ptr(png);
-    snprintf(io->why, sizeof io->why, "%s", msg);
+    int saved = errno;
+    if (io->f && ferror(io->f) && saved) /* libpng says only "Write Error": say why (a full disk) */
+        snprintf(io->why, sizeof io->why, "%s (is the disk full?)", strerror(saved));
+    else
+        snprintf(io->why, sizeof io->why, "%s", msg);
     png_longjmp(png, 1);
 }
 

@@ -104,9 +104,11 @@ static void load(module *m)
         char self[64];
         snprintf(self, sizeof self, "/proc/self/fd/%d", fd);
         m->handle = dlopen(self, RTLD_NOW | RTLD_LOCAL);
-        if (!m->handle)
+        if (!m->handle) {
             err_set(&m->why, "cannot load %s, %s: %s", path, m->what, dlerror());
-        close(fd); /* a loaded object keeps its own mapping */
+            close(fd);
+        } /* else fd stays open: the loader knows the module by "/proc/self/fd/N", and a second module
+           * opened on a reused N would be taken for the first */
         return;
     }
     err_set(&m->why, "%s, %s, is not beside %s nor in ../lib/fathom: reinstall fathom (cmake --install BUILD)",

@@ -32,6 +32,8 @@ static void release(void)
     memset(&state, 0, sizeof state);
 }
 
+enum { TILE_ENV_MAX = 1 << 16 };
+
 static int log2i(int v)
 {
     int k = 0;
@@ -49,8 +51,14 @@ static bool plan_tiles(const heightfield *hf, struct terrain_tiles *t, err_t *er
     glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &max_layers);
     int tile = 4096;
     const char *env = getenv("FATHOM_TERRAIN_TILE");
-    if (env && atoi(env) >= 4)
-        tile = 1 << log2i(atoi(env));
+    if (env) { /* checked whole: a value past 2^30 once looped forever (1 << 31) */
+        char *end;
+        long v = strtol(env, &end, 10);
+        if (end == env || *end || v < 4 || v > TILE_ENV_MAX)
+            return err_set(err, "FATHOM_TERRAIN_TILE='%s': expected a tile side from 4 to %d texels (rounded up to "
+                                "a power of two), or unset it", env, TILE_ENV_MAX);
+        tile = 1 << log2i((int)v);
+    }
     while (tile > max_side)
         tile /= 2;
     bool one = hf->width <= tile && hf->height <= tile;

@@ -132,6 +132,8 @@ static bool expand(const char *root, const char *file, const shader_virtual *vir
     if (!src && !read_source(root, file, home, from, from_line, &text, own_home, err))
         return false;
     src = src ? src : text;
+    if (!strncmp(src, "\xef\xbb\xbf", 3)) /* a UTF-8 byte-order mark: not GLSL (an editor's) */
+        src += 3;
     if (own_home[0] && !foreign_within_bounds(files, src, file, err)) {
         free(text);
         return false;

@@ -42,7 +42,7 @@ static bool numbers(const char **p, float *v, int count)
     for (int i = 0; i < count; i++) {
         char *end;
         double x = strtod(skip_space(*p), &end);
-        if (end == skip_space(*p) || !isfinite(x))
+        if (end == skip_space(*p) || !isfinite((float)x)) /* 1e39 is a finite double but an infinite float */
             return false;
         v[i] = (float)x;
         *p = skip_space(end);
@@ -80,7 +80,12 @@ static bool range(const char **p, formula_param *q)
 static bool param_line(const char *line, const char *at, formula_param *q, char *why, size_t n)
 {
     char type[16], name[FORMULA_KEY_MAX];
-    if (sscanf(line, " uniform %15s %47[A-Za-z0-9_] ;", type, name) != 2)
+    int end = 0;
+    if (sscanf(line, " uniform %15s %47[A-Za-z0-9_]%n", type, name, &end) != 2 || end == 0)
+        return snprintf(why, n, "expected 'uniform TYPE uName; // @param ...'") < 0;
+    if (isalnum((unsigned char)line[end]) || line[end] == '_') /* cut at 47: the shader would never get it */
+        return snprintf(why, n, "a parameter's uniform name is at most %d characters", FORMULA_KEY_MAX - 1) < 0;
+    if (*skip_space(line + end) != ';')
         return snprintf(why, n, "expected 'uniform TYPE uName; // @param ...'") < 0;
     bool color = !strncmp(at, "@color", 6);
     *q = (formula_param){0};
@@ -148,6 +153,10 @@ static void estimate_directive(formula *f, const char *at, char *why, size_t n, 
         }
         snprintf(f->trap[0], sizeof f->trap[0], "%.*s", (int)(c - q), q);
         snprintf(f->trap[1], sizeof f->trap[1], "%s", hi);
+    } else if (!strncmp(at, "@loops", 6)) {
+        snprintf(f->loops, sizeof f->loops, "%s", skip_space(at + 6));
+        if (!f->loops[0])
+            snprintf(why, n, "expected @loops EXPR: the loop iterations one estimate runs (e.g. iterations * 3)");
     } else if (!strncmp(at, "@deep", 5)) {
         f->deep = true;
         p = skip_space(at + 5);
@@ -187,7 +196,8 @@ static bool directive(formula *f, const char *line, const char *at, char *why, s
     } else if (!strncmp(at, "@iterations", 11)) {
         formula_param q = {0};
         p = at + 11;
-        if (!numbers(&p, q.def, 1) || !range(&p, &q) || q.def[0] < q.lo || q.def[0] > q.hi || q.lo < 1 || q.hi > 1000)
+        if (!numbers(&p, q.def, 1) || !range(&p, &q) || q.def[0] < q.lo || q.def[0] > q.hi || q.lo < 1 || q.hi > 1000 ||
+            q.def[0] != floorf(q.def[0]) || q.lo != floorf(q.lo) || q.hi != floorf(q.hi))
             return snprintf(why, n, "expected @iterations DEFAULT [LO, HI], whole numbers from 1 to 1000") < 0;
         f->iterations = (int)q.def[0], f->iterations_lo = (int)q.lo, f->iterations_hi = (int)q.hi;
     } else if (!strncmp(at, "@bound", 6)) {
@@ -215,8 +225,8 @@ static bool directive(formula *f, const char *line, const char *at, char *why, s
         snprintf(r->message, sizeof r->message, "%.*s", (int)(close - msg - 1), msg + 1);
         f->require_count++;
     } else {
-        return snprintf(why, n, "unknown directive (known: @formula @iterations @bound @step @escape @de @trap @deep @require "
-                                "@param @color)") < 0;
+        return snprintf(why, n, "unknown directive (known: @formula @iterations @bound @step @escape @de @trap @loops "
+                                "@deep @require @param @color)") < 0;
     }
     return true;
 }
@@ -227,10 +237,19 @@ bool formula_parse(const char *text, const char *source, formula *f, err_t *err)
     snprintf(f->bound, sizeof f->bound, "2");
     snprintf(f->trap[0], sizeof f->trap[0], "0");
     snprintf(f->trap[1], sizeof f->trap[1], "1");
+    snprintf(f->loops, sizeof f->loops, "iterations + 1");
     int line = 1;
+    if (!strncmp(text, UTF8_BOM, 3)) /* an editor's byte-order mark: not text (shader.c skips it too) */
+        text += 3;
     for (const char *p = text; *p; line++) {
         const char *eol = strchr(p, '\n');
-        size_t len = eol ? (size_t)(eol - p) : strlen(p);
+        size_t len = eol ? (size_t)(eol - p) : strlen(p), full = len;
+        if (len && p[len - 1] == '\r') /* a CRLF file's lines end in \r */
+            len--;
+        for (size_t i = 0; i < len; i++)
+            if (((unsigned char)p[i] < 0x20 && p[i] != '\t') || p[i] == 0x7f)
+                return err_set(err, "%s:%d: a control character (0x%02x) in the text: a formula file is plain "
+                                    "text", source, line, (unsigned char)p[i]);
         char buf[512];
         snprintf(buf, sizeof buf, "%.*s", (int)(len < sizeof buf ? len : sizeof buf - 1), p);
         const char *c = strstr(buf, "//");
@@ -240,7 +259,7 @@ bool formula_parse(const char *text, const char *source, formula *f, err_t *err)
             if (!directive(f, buf, at, why, sizeof why))
                 return err_set(err, "%s:%d: %s", source, line, why);
         }
-        p = eol ? eol + 1 : p + len;
+        p = eol ? eol + 1 : p + full;
     }
     if (!f->summary[0])
         return err_set(err, "%s: no '// @formula' line: a formula file says what it is there", source);

@@ -9,6 +9,9 @@
  *   //                             expression of the parameters (+ - * / ( ) abs sqrt min max)
  *   // @step 0.9                   the step factor its estimate needs (quality.step_factor)
  *   // @trap 0.4 1.1               the orbit trap's values (two expressions) spread over the palette
+ *   // @loops iterations * 4       loop iterations one estimate runs, all its loops together (an
+ *   //                             expression; default iterations + 1): what it spends of the loop
+ *   //                             budget (shaders/common/budget.glsl); check-formula measures it
  *   // @require min_radius < fixed_radius "min_radius must be below fixed_radius"
  *   // @deep whole power           written against real/real3 (fractal/common.glsl), so it compiles
  *   //                             in double for a deep zoom; "whole KEY..." names parameters that
@@ -44,8 +47,10 @@
 
 #include "util.h"
 
+#define UTF8_BOM "\xef\xbb\xbf"
+
 enum { FORMULA_MAX_PARAMS = 24, FORMULA_NAME_MAX = 64, FORMULA_KEY_MAX = 48, FORMULA_TEXT_MAX = 200,
-       FORMULA_MAX_REQUIRES = 4, FORMULA_EXPR_MAX = 160 };
+       FORMULA_MAX_REQUIRES = 4, FORMULA_EXPR_MAX = 160, FORMULA_LOOPS_MAX = 1 << 20 };
 
 /* The keys of the fractal block that are not a formula's parameters. */
 #define FORMULA_COMMON_KEYS "formula", "iterations", "bound_radius", "palette", "glow", "glow_color", "julia", \
@@ -76,6 +81,7 @@ typedef struct formula {
     char bound[FORMULA_EXPR_MAX]; /* expression of the parameters */
     float step;                   /* 0: not declared (1) */
     char trap[2][FORMULA_EXPR_MAX]; /* the orbit trap's range: expressions of the parameters */
+    char loops[FORMULA_EXPR_MAX]; /* @loops: loop iterations one estimate runs (an expression) */
     bool step_formula;            /* formulaStep and the loop (@de), not its own formulaDE */
     bool de_log;                  /* @de log: ½ ln r · r / dr; else r / dr */
     char escape[FORMULA_EXPR_MAX]; /* @escape: an expression of the parameters */

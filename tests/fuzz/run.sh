@@ -7,12 +7,15 @@
 # Findings (crash-*, leak-*, timeout-*) land in build-fuzz/findings-TARGET; the corpus grows in
 # build-fuzz/corpus-TARGET.
 # Usage: tests/fuzz/run.sh [MINUTES] [scene|droplets|readers]   (needs: apt-get install clang)
+# FUZZ_BUILD=DIR uses a folder already configured with -DFATHOM_FUZZ=ON (tests/build_types.sh), and
+# FUZZ_SECONDS=N runs N seconds instead of MINUTES (a smoke run).
 set -eu
 minutes=${1:-5}
 target=${2:-scene}
 src=$(cd "$(dirname "$0")/../.." && pwd)
-build="$src/build-fuzz"
-CC=clang CXX=clang++ cmake -S "$src" -B "$build" -DFATHOM_FUZZ=ON -DBUILD_TESTING=OFF >/dev/null
+build="${FUZZ_BUILD:-$src/build-fuzz}"
+seconds=${FUZZ_SECONDS:-$((minutes * 60))}
+[ -n "${FUZZ_BUILD:-}" ] || CC=clang CXX=clang++ cmake -S "$src" -B "$build" -DFATHOM_FUZZ=ON -DBUILD_TESTING=OFF >/dev/null
 cmake --build "$build" -j 2 --target "fuzz_$target" >/dev/null
 mkdir -p "$build/corpus-$target" "$build/findings-$target"
 if [ "$target" = scene ]; then
@@ -30,5 +33,8 @@ fi
 cd "$build/findings-$target"
 dict="$src/tests/fuzz/$target.dict"
 [ -f "$dict" ] || dict="$src/tests/fuzz/scene.dict"
-"$build/fuzz_$target" "$build/corpus-$target" -dict="$dict" -max_total_time=$((minutes * 60)) \
-    -max_len=16384 -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 2>&1 | tail -n 25
+status=0
+"$build/fuzz_$target" "$build/corpus-$target" -dict="$dict" -max_total_time="$seconds" \
+    -max_len=16384 -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 >"$build/fuzz-$target.log" 2>&1 || status=$?
+tail -n 25 "$build/fuzz-$target.log"
+exit $status
