@@ -109,7 +109,8 @@ mkdir -p fm
 echo 'ghp_FAKESECRET0123456789' >token.txt
 ln -s "$tmp/work/token.txt" fm/link.glsl
 png="--output $tmp/work/o.png --size 16x9 --spp 1 --quiet"
-for inc in "$tmp/work/token.txt" ../token.txt link.glsl 'sub/../../token.glsl'; do
+up=$(printf '../%.0s' 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16) # from the shader folder up to /, then down
+for inc in "$tmp/work/token.txt" "$up${tmp#/}/work/token.txt" ../token.txt link.glsl 'sub/../../token.glsl'; do
     printf '// @formula reads a file\n#include "%s"\nfloat formulaDE(vec3 p, out float trap) { trap = 0.0; return length(p) - 1.0; }\n' "$inc" >fm/evil.glsl
     run "$fathom" --formula fm/evil.glsl $png
     check "formula-include '$inc': refused, the file's text not shown" \
