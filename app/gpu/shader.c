@@ -116,10 +116,11 @@ static bool read_source(const char *root, const char *file, const char *home, co
 static bool expand(const char *root, const char *file, const shader_virtual *virt, int nvirt, strbuf *out,
                    shader_files *files, int depth, const char *from, int from_line, const char *home, err_t *err)
 {
+    const char *where = from ? from : file; /* the top-level file has no includer */
     if (depth > MAX_INCLUDE_DEPTH)
-        return err_set(err, "%s:%d: includes nest deeper than %d (a cycle?)", from, from_line, MAX_INCLUDE_DEPTH);
+        return err_set(err, "%s:%d: includes nest deeper than %d (a cycle?)", where, from_line, MAX_INCLUDE_DEPTH);
     if (files->count == SHADER_MAX_FILES || strlen(file) >= SHADER_NAME_MAX)
-        return err_set(err, "%s:%d: too many shader files or name too long: '%s'", from, from_line, file);
+        return err_set(err, "%s:%d: too many shader files or name too long: '%s'", where, from_line, file);
     int id = files->count++;
     snprintf(files->names[id], SHADER_NAME_MAX, "%s", file);
 
