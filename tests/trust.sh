@@ -60,10 +60,19 @@ check "bench-planted-links: the results are files" '[ -f planted/csg-knobs.csv ]
 mkdir templink && echo keep >targets/temp
 run sh -c 'ln -s ../targets/temp "templink/.csg-knobs.csv.tmp$$-0"; exec "$0" "$@"' "$fathom" bench --scene csg $quick --out templink
 check "bench-planted-temp-link: not written through" '[ "$(cat targets/temp)" = keep ]'
+# a gnuplot that exits 0 but leaves its images cut short (a full disk under it): the bench fails
+mkdir fakebin && printf '#!/bin/sh\nprintf "\\211PNG" >plot.png; printf "\\211PNG" >overview.png\n' >fakebin/gnuplot
+chmod +x fakebin/gnuplot
+run env PATH="$tmp/work/fakebin:$PATH" "$fathom" bench --scene csg $quick --out cutplots
+check "bench-gnuplot-image-cut-short: refused, not moved in" \
+    '[ $code -eq 1 ] && grep -q "image is incomplete" "$tmp/stderr" && [ ! -e cutplots ]'
 # a bad --knob value is refused before anything renders, and a refused run leaves no folder
 run "$fathom" bench --scene csg --size 16x9 --runs 1 --knob "step_factor=0.5,0.6,0.7,0.8,9" --out refused --quiet
 check "bench-bad-knob-value: refused at once, no folder left" \
     '[ $code -ne 0 ] && grep -q "step_factor" "$tmp/stderr" && [ ! -e refused ] && [ ! -s "$tmp/stdout" ]'
+mkdir refused2 # into a folder that exists: had a value been rendered, its row would be on disk
+run "$fathom" bench --scene csg --size 16x9 --runs 1 --knob "step_factor=0.5,0.6,0.7,0.8,9" --out refused2 --quiet
+check "bench-bad-knob-value: nothing rendered before the refusal" '[ $code -ne 0 ] && [ -z "$(ls -A refused2)" ]'
 # a full disk: no partial plot, CSV or report, and the folder the run made is gone
 mkdir -p "$tmp/small"
 if mount -t tmpfs -o size=96k fathomtrust "$tmp/small" 2>/dev/null; then
@@ -116,6 +125,12 @@ for inc in "$tmp/work/token.txt" "$up${tmp#/}/work/token.txt" ../token.txt link.
     check "formula-include '$inc': refused, the file's text not shown" \
         '[ $code -eq 1 ] && [ "$(wc -l <"$tmp/stderr")" -eq 1 ] && ! grep -q FAKESECRET "$tmp/stderr" && [ ! -e o.png ]'
 done
+# an absolute path to a .glsl file: refused by its form alone, whatever it is called
+cp token.txt "$tmp/secret.glsl"
+printf '// @formula reads a file\n#include "%s"\nfloat formulaDE(vec3 p, out float trap) { trap = 0.0; return length(p) - 1.0; }\n' "$tmp/secret.glsl" >fm/evil.glsl
+run "$fathom" --formula fm/evil.glsl $png
+check "formula-include-absolute-glsl: refused, the file's text not shown" \
+    '[ $code -eq 1 ] && grep -q "an absolute path" "$tmp/stderr" && ! grep -q FAKESECRET "$tmp/stderr"'
 printf '// @formula quote\nfloat formulaDE(vec3 p, out float trap) { trap = 0.0; return length(p) - 1.0; }\n' >'fm/a"b.glsl'
 run "$fathom" --formula 'fm/a"b.glsl' $png
 check "formula-quote-in-path: refused" '[ $code -eq 1 ] && grep -q "rename it" "$tmp/stderr"'
@@ -230,7 +245,18 @@ GLSL
         '[ $code -eq 0 ] && grep -q "ran out of the loop budget (63487" "$tmp/stderr"'
     run "$fathom" check-formula fm/declared.glsl
     check "loop-budget: check-formula passes a formula within its declaration" \
-        'grep -q "runs at most 300[0-9] loop iterations; @loops declares 9000$" "$tmp/stdout"'
+        '[ $code -eq 0 ] && grep -q "runs at most 300[0-9] loop iterations; @loops declares 9000$" "$tmp/stdout"'
+    sed '/^\/\/ @loops/d' fm/declared.glsl >fm/undeclared.glsl
+    run "$fathom" check-formula fm/undeclared.glsl
+    check "loop-budget: check-formula fails 3,000 loops declared as 2 (and nothing else)" \
+        '[ $code -ne 0 ] && grep -q "passes\|FAILS" "$tmp/stdout" && grep -q "@loops declares 2:" "$tmp/stdout" && grep -q "above 1 at 0$" "$tmp/stdout"'
+    # the budget is spent by the declaration: 30 times the loops flags far more pixels than the truth
+    sed 's|^// @loops count \* 3|// @loops count * 30|' fm/declared.glsl >fm/overdeclared.glsl
+    run "$fathom" --formula fm/overdeclared.glsl --output "$tmp/work/o.png" --size 32x18 --spp 1
+    over=$(sed -n 's/^note: \([0-9]*\) pixels.*loop budget.*/\1/p' "$tmp/stderr")
+    run "$fathom" --formula fm/undeclared.glsl --output "$tmp/work/o.png" --size 32x18 --spp 1
+    under=$(sed -n 's/^note: \([0-9]*\) pixels.*loop budget.*/\1/p' "$tmp/stderr")
+    check "loop-budget: spent as declared ($over pixels at 30x, ${under:-0} at 2)" '[ "${over:-0}" -gt $((2 * ${under:-0} + 10)) ]'
     run "$fathom" check-formula menger --set fractal.iterations=7
     check "loop-budget: the shipped Menger sponge declares its loops" '[ $code -eq 0 ] && grep -q "@loops declares 29$" "$tmp/stdout"'
     rm -f o.png probe.png
