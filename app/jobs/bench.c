@@ -453,8 +453,12 @@ static bool sweep_setting(const sweep *k, const char *v, char *set, size_t size,
     return true;
 }
 
-static bool add_sweep_rows(const sweep *k, const char *values, err_t *err)
+/* Each value of sweep k: with render, measured as a row; else only checked (its override loads, and
+ * *rows, counted up, stays within MAX_ROWS), so a bad value is refused before the first image. */
+static bool each_value(const sweep *k, const char *values, bool render, int *rows, err_t *err)
 {
+    if (strlen(values) >= 512)
+        return err_set(err, "--knob %s: the values are longer than 511 characters", k->name);
     char list[512];
     snprintf(list, sizeof list, "%s", values);
     char *save = NULL;
@@ -463,9 +467,17 @@ static bool add_sweep_rows(const sweep *k, const char *values, err_t *err)
         const char *sets[1] = {set};
         int n;
         double scale;
-        if (!sweep_setting(k, v, set, sizeof set, &n, &scale, err) ||
-            !measure(k->name, v, sets, n, scale, &B.rows[B.nrows], err) || !row_done(err))
+        scene s;
+        if (!render && ++*rows > MAX_ROWS)
+            return err_set(err, "too many bench settings (at most %d): sweep fewer values", MAX_ROWS);
+        if (!sweep_setting(k, v, set, sizeof set, &n, &scale, err))
             return false;
+        if (render && (!measure(k->name, v, sets, n, scale, &B.rows[B.nrows], err) || !row_done(err)))
+            return false;
+        if (!render && n && !load(sets, n, &s, err))
+            return false;
+        if (!render && n)
+            scene_free(&s);
     }
     return true;
 }
@@ -475,28 +487,9 @@ static bool add_sweep_rows(const sweep *k, const char *values, err_t *err)
 static bool check_sweeps(const sweep *sweeps, const char *const *values, int nsweeps, err_t *err)
 {
     int rows = PRESET_COUNT;
-    for (int k = 0; k < nsweeps; k++) {
-        if (!values[k])
-            continue;
-        if (strlen(values[k]) >= 512)
-            return err_set(err, "--knob %s: the values are longer than 511 characters", sweeps[k].name);
-        char list[512];
-        snprintf(list, sizeof list, "%s", values[k]);
-        char *save = NULL;
-        for (char *v = strtok_r(list, ",", &save); v; v = strtok_r(NULL, ",", &save)) {
-            char set[128];
-            const char *sets[1] = {set};
-            int n;
-            double scale;
-            scene s;
-            if (++rows > MAX_ROWS)
-                return err_set(err, "too many bench settings (at most %d): sweep fewer values", MAX_ROWS);
-            if (!sweep_setting(&sweeps[k], v, set, sizeof set, &n, &scale, err) || (n && !load(sets, n, &s, err)))
-                return false;
-            if (n)
-                scene_free(&s);
-        }
-    }
+    for (int k = 0; k < nsweeps; k++)
+        if (values[k] && !each_value(&sweeps[k], values[k], false, &rows, err))
+            return false;
     return true;
 }
 
@@ -773,7 +766,7 @@ bool bench_run(const cli_options *opt, err_t *err)
     bool ok = render_init(err) && make_references(&base, &conv, &ref_ms, err);
     for (int k = 0; ok && k < nsweeps; k++)
         if (values[k])
-            ok = add_sweep_rows(&sweeps[k], values[k], err);
+            ok = each_value(&sweeps[k], values[k], true, NULL, err);
     for (int p = 0; ok && p < PRESET_COUNT; p++) {
         char set[64];
         snprintf(set, sizeof set, "quality.preset=%s", preset_name((quality_preset)p));
