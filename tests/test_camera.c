@@ -293,6 +293,49 @@ static void slide_never_stalls(void **st)
 }
 
 /* The pivot's direction in the camera's own frame (right, up, forward), unit. */
+/* Movement by real time: S held for 4 s moves the camera as far at 2 fps (frames of 0.5 s) as at
+ * 30 fps, through open space and gliding 5 cm above the terrain world's floor (where one 0.5 s step
+ * would lift out by its skin, an eighth of its length, and be held back); and per_distance speed
+ * (a fractal's) the same. A frame of 10 s moves CAMERA_MAX_STEPS steps only. */
+static void travel_is_by_real_time(void **st)
+{
+    (void)st;
+    world_kind k = WORLD_TERRAIN;
+    struct { double y; bool per_distance; } cases[] = {{3.0, false}, {0.0, false}, {3.0, true}};
+    for (int c = 0; c < 3; c++) {
+        double end[2][3];
+        for (int run = 0; run < 2; run++) {
+            float dt = run ? 0.5f : 1.0f / 30.0f;
+            int frames = run ? 8 : 120;
+            double start[3] = {-2.0, cases[c].y, 0.0};
+            if (cases[c].y == 0.0) { /* 5 cm above the ground below the start */
+                start[1] = 10.0;
+                float d;
+                probe(&k, start, 1, &d);
+                start[1] -= d - 0.05;
+            }
+            double at[3] = {start[0] + 1, start[1], start[2]};
+            camera cam = camera_look_at(start, at, 1.0f);
+            camera_input in = {.move = {0, 0, -1}};
+            camera_travel_rule r = {.speed = cases[c].per_distance ? 0.1f : 0.5f, .sensitivity = 0.0025f,
+                                    .per_distance = cases[c].per_distance, .min_distance = 1e-6f, .step_factor = 1.0f};
+            for (int f = 0; f < frames; f++)
+                camera_travel(&cam, &in, dt, &r, probe, &k);
+            memcpy(end[run], cam.position, sizeof end[run]);
+        }
+        double moved = fabs(end[0][0] + 2.0), gap = camera_distance(end[0], end[1]);
+        fprintf(stderr, "  case %d: 4 s at 30 fps moved %.4g m; at 2 fps %.4g m from there\n", c, moved, gap);
+        assert_true(moved > 0.1);
+        assert_true(gap < 1e-4 * moved);
+    }
+    double start[3] = {0, 3, 0}, at[3] = {1, 3, 0};
+    camera cam = camera_look_at(start, at, 1.0f);
+    camera_input in = {.move = {0, 0, 1}};
+    camera_travel_rule r = {.speed = 1.0f, .sensitivity = 0.0025f, .step_factor = 1.0f};
+    assert_int_equal(camera_travel(&cam, &in, 10.0f, &r, probe, &k), CAMERA_MAX_STEPS);
+    assert_true(fabs(camera_distance(cam.position, start) - CAMERA_MAX_STEPS * (double)CAMERA_STEP_S) < 1e-3);
+}
+
 static void seen(const camera *c, const double pivot[3], double out[3])
 {
     camera_basis b = camera_get_basis(c);
@@ -348,6 +391,7 @@ int main(void)
         cmocka_unit_test(slide_never_enters_a_solid),
         cmocka_unit_test(slide_never_stalls),
         cmocka_unit_test(deep_positions),
+        cmocka_unit_test(travel_is_by_real_time),
         cmocka_unit_test(orbit_keeps_the_pivot),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -3,6 +3,7 @@
 #include <float.h>
 
 #include <math.h>
+#include <string.h>
 
 static float clampf(float v, float lo, float hi) { return v < lo ? lo : v > hi ? hi : v; }
 
@@ -180,6 +181,34 @@ float camera_slide(const double from[3], double to[3], float step_factor, double
         to[i] = corner[i] + m[i] * keep2;
     }
     return (float)(keep2 * slid / len);
+}
+
+int camera_travel(camera *c, const camera_input *in, float dt, const camera_travel_rule *r, camera_probe_fn probe,
+                  void *ctx)
+{
+    int steps = (int)ceilf(dt / CAMERA_STEP_S - 1e-3f);
+    steps = steps < 1 ? 1 : steps > CAMERA_MAX_STEPS ? CAMERA_MAX_STEPS : steps;
+    float step_dt = fminf(dt, CAMERA_STEP_S * (float)steps) / (float)steps;
+    camera_input step = *in;
+    for (int k = 0; k < steps; k++) {
+        double before[3];
+        memcpy(before, c->position, sizeof before);
+        float speed = r->speed;
+        if (r->per_distance) {
+            float d;
+            probe(ctx, c->position, 1, &d);
+            speed *= fmaxf(fabsf(d), r->min_distance);
+        }
+        camera_update(c, &step, step_dt, speed, r->sensitivity);
+        step.look[0] = step.look[1] = 0; /* the look turns once a frame */
+        double target[3];
+        memcpy(target, c->position, sizeof target);
+        memcpy(c->position, before, sizeof before);
+        if (memcmp(before, target, sizeof before))
+            camera_slide(before, target, r->step_factor, camera_resolution(before, r->deep), probe, ctx, NULL);
+        memcpy(c->position, target, sizeof target);
+    }
+    return steps;
 }
 
 /* v rotated by angle a about the unit axis k (Rodrigues). */

@@ -68,6 +68,23 @@ enum { CAMERA_SLIDE_UNIFORM = 16, CAMERA_SLIDE_NEAR = 8,
 float camera_slide(const double from[3], double to[3], float step_factor, double resolution, camera_probe_fn probe,
                    void *ctx, double corner[3]);
 
+/* One frame's flight of dt seconds by real time: steps of at most CAMERA_STEP_S each, every step through
+ * the slide rule, so a slow frame (2 fps) moves the camera as far as the same time at 30 fps would. The
+ * look turns once. speed: m/s, or with per_distance that many times the distance bound at the camera
+ * (at least min_distance: some speed at the surface). A frame longer than CAMERA_MAX_STEPS steps
+ * moves that far only (a stalled machine does not jump the camera). Returns the steps taken. */
+#define CAMERA_STEP_S (1.0f / 30.0f)
+enum { CAMERA_MAX_STEPS = 60 };
+typedef struct camera_travel_rule {
+    float speed, sensitivity;
+    bool per_distance;
+    float min_distance;
+    float step_factor; /* the renderer's: its distance bound times this is free */
+    bool deep;         /* the renderer works in double here (camera_resolution) */
+} camera_travel_rule;
+int camera_travel(camera *c, const camera_input *in, float dt, const camera_travel_rule *r, camera_probe_fn probe,
+                  void *ctx);
+
 /* The position's resolution where the renderer works in float (deep = false) or in double (a deep
  * zoom): a few units in the last place of |p|, with room. */
 double camera_resolution(const double p[3], bool deep);
