@@ -64,6 +64,10 @@ typedef struct bench_results {
 enum { BENCH_PREFIX_MAX = 64 };
 void bench_prefix(const cli_options *o, char *out, size_t n);
 void bench_safe_name(const char *s, char *out, size_t n);
+/* This run's PREFIX (one run at a time), and OUT/PREFIX-name opened as a new temporary file beside it
+ * (util_atomic: renamed over it when whole). */
+const char *bench_run_prefix(const bench_results *r);
+bool bench_open_out(const bench_results *r, const char *name, util_atomic *a, err_t *err);
 
 void bench_print(const bench_results *r);
 bool bench_write(const bench_results *r, err_t *err);
