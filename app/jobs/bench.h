@@ -14,9 +14,20 @@
 #include <stdbool.h>
 
 #include "cli.h"
+#include "scene/scene.h"
+#include "view/camera.h"
 #include "util.h"
 
 bool bench_run(const cli_options *opt, err_t *err);
+
+/* bench --frame-times (bench_frames.c): whole-process start-up times, then each preset's frame time
+ * (one sample per pixel) at the start view at w × h, on both backends side by side. */
+bool bench_frame_times(const cli_options *opt, int w, int h, err_t *err);
+
+/* For the bench's files: the scene with the command line's --set, then `extra` more; and the time (ms)
+ * of all of s's samples from cam at w × h (wall clock around glFinish). */
+bool bench_load(const cli_options *opt, const char *const *extra, int n_extra, scene *s, err_t *err);
+double bench_image_ms(const scene *s, const camera *cam, int w, int h);
 
 /* bench --interactive (bench_interactive.c): a scripted flight at window size w × h under the window's
  * resolution controller; prints frame times, internal size, moving-frame error and time to converge. */

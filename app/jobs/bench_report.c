@@ -2,10 +2,12 @@
 #include "jobs/bench_report.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "data/image_io.h"
 #include "gpu/gpu.h"
 #include "jobs/bench_plot.h"
 #include "scene/program.h"
@@ -334,6 +336,49 @@ static bool write_summary(const bench_results *r, err_t *err)
                                  sizeof d2));
     }
     return util_atomic_commit(&a, err);
+}
+
+/* A difference image's colour for an error e of full scale (0–1 of the 8-bit display): black at 0,
+ * through purple, red and orange to yellow at BENCH_DIFF_YELLOW and white past it; a ramp that darkens
+ * nowhere, so more error is always brighter. */
+static void diff_colour(double e, uint8_t out[3])
+{
+    static const double STOPS[][3] = {{0, 0, 0}, {0.35, 0.05, 0.45}, {0.85, 0.15, 0.2}, {1, 0.55, 0}, {1, 0.95, 0.3},
+                                      {1, 1, 1}};
+    enum { N = sizeof STOPS / sizeof STOPS[0] };
+    double x = e / BENCH_DIFF_YELLOW * (N - 2);
+    x = x < 0 ? 0 : x > N - 1 ? N - 1 : x;
+    int i = (int)x < N - 1 ? (int)x : N - 2;
+    double f = x - i;
+    for (int c = 0; c < 3; c++)
+        out[c] = (uint8_t)lround(255 * (STOPS[i][c] + f * (STOPS[i + 1][c] - STOPS[i][c])));
+}
+
+void bench_write_difference(const cli_options *opt, int w, int h, const char *knob, const char *value,
+                            const uint8_t *test, const uint8_t *ref, char *name, size_t n)
+{
+    char prefix[BENCH_PREFIX_MAX], k[sizeof ((bench_row *)0)->knob], v[sizeof ((bench_row *)0)->value];
+    char path[PATH_MAX_LEN];
+    bench_prefix(opt, prefix, sizeof prefix);
+    bench_safe_name(knob, k, sizeof k), bench_safe_name(value, v, sizeof v); /* "../x" is a file name here */
+    snprintf(name, n, "%s-diff-%s-%s.png", prefix, k, v);
+    snprintf(path, sizeof path, "%s/%s", opt->out, name);
+    size_t px = (size_t)w * (size_t)h;
+    uint8_t *img = util_alloc(px * 3, "a difference image");
+    for (size_t i = 0; i < px; i++) {
+        int e = 0;
+        for (int c = 0; c < 3; c++) {
+            int d = abs((int)test[i * 4 + (size_t)c] - (int)ref[i * 4 + (size_t)c]);
+            e = d > e ? d : e;
+        }
+        diff_colour(e / 255.0, img + i * 3);
+    }
+    err_t err;
+    if (!image_write_u8(path, w, h, 3, img, &err)) {
+        fprintf(stderr, "\nfathom bench: %s (the report goes on without it)\n", err.msg);
+        name[0] = 0;
+    }
+    free(img);
 }
 
 /* ---- the HTML report: one self-contained page (its plots inline) --------------------------------- */

@@ -4,6 +4,8 @@
 #define FATHOM_BENCH_REPORT_H
 
 #include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
 
 #include "cli.h"
 #include "jobs/metrics.h"
@@ -70,6 +72,11 @@ const char *bench_run_prefix(const bench_results *r);
 bool bench_open_out(const bench_results *r, const char *name, util_atomic *a, err_t *err);
 
 void bench_print(const bench_results *r);
+/* With --out, where a setting's w × h image (RGBA8) differs from the reference's (view 1):
+ * OUT/PREFIX-diff-KNOB-VALUE.png, the largest channel's difference per pixel in a ramp that darkens
+ * nowhere; its file name into name (empty when not written: said on stderr, the report goes on). */
+void bench_write_difference(const cli_options *opt, int w, int h, const char *knob, const char *value,
+                            const uint8_t *test, const uint8_t *ref, char *name, size_t n);
 bool bench_write(const bench_results *r, err_t *err);
 /* The knob CSV with the rows measured so far (Pareto marks among them), written to a temporary file
  * and renamed over PREFIX-knobs.csv: a run stopped half-way keeps every row it finished, never a torn
