@@ -24,6 +24,7 @@
 
 #include "gltest.h"
 #include "gpu/render.h"
+#include "gpu/render_probe.h"
 
 enum { BW = 64, BH = 36, SPP = 2 };
 

@@ -13,6 +13,7 @@
 
 #include "gltest.h"
 #include "gpu/render.h"
+#include "gpu/render_probe.h"
 
 static double frand(unsigned *seed)
 {

@@ -25,6 +25,7 @@
 #include "data/droplets.h"
 #include "gltest.h"
 #include "gpu/render.h"
+#include "gpu/render_probe.h"
 
 static double frand(unsigned *seed)
 {

@@ -14,6 +14,7 @@
 #include "check.h"
 #include "gltest.h"
 #include "gpu/render.h"
+#include "gpu/render_probe.h"
 #include "jobs/check.h"
 
 static uint32_t rng = 987654321u;

@@ -20,6 +20,7 @@
 #include "jobs/offline.h"
 #include "reference.h"
 #include "gpu/render.h"
+#include "gpu/render_probe.h"
 #include "scene/scene.h"
 
 #include "gltest.h"

@@ -21,6 +21,7 @@
 #include "gltest.h"
 #include "data/image_io.h"
 #include "gpu/render.h"
+#include "gpu/render_probe.h"
 #include "data/terrain.h"
 
 /* ---- the reference: a ray against the solid column under a bilinear heightfield, in double ------- */

@@ -1,7 +1,7 @@
-/* render — targets, one sample, display and readback. The rest of the module:
+/* render — targets, backends and samples (render.h). The rest of the module:
+ *   render_output.c    display and readback
  *   render_programs.c  the program cache and the full-screen VAO
- *   render_scene.c     the current scene and its GPU resources, one file a kind (render_resource.h)
- *   render_probe.c     map() (or another probe shader) evaluated at points on the GPU */
+ *   render_scene.c     the current scene and its GPU resources, one file a kind (render_resource.h) */
 #include "gpu/render.h"
 
 #include <assert.h>
@@ -17,37 +17,11 @@
 #include "gpu/res_droplets.h"
 #include "gpu/res_heightfield.h"
 #include "gpu/gpu.h"
+#include "gpu/render_state.h"
 #include "gpu/shader.h"
 
-enum { NUM_TARGETS = 4 };
-
-static struct {
-    GLuint display_prog;
-    GLuint fbo, targets[NUM_TARGETS];
-    GLuint out_fbo, out_tex; /* RGBA8 for sRGB readback */
-    GLuint ref_fbo, ref_tex; /* a grabbed image for the difference view */
-    int ref_samples;
-    int width, height, samples;   /* the active image: all of the targets or, while flying, a corner */
-    int alloc_width, alloc_height; /* the targets' size */
-    int full_width, full_height, tile_x, tile_y; /* the image the target is a band of; its GL offset */
-    GLuint prog; /* the current scene's program */
-    /* adaptive sampling (render_set_adaptive): after the first sample, further samples only where the
-     * edge mask (shaders/edgemask.frag) is set; each pixel's alpha counts its own samples */
-    bool adaptive;
-    bool edge_aware; /* stretched images: depth-aware upsampling (display.frag) */
-    GLuint mask_prog, mask_fbo, mask_tex;
-    int masked; /* pixels the mask kept, of the last mask */
-    int band_done; /* rows of the current sample done by render_sample_band, from the top */
-    int first_jitter; /* the Halton point of an image's first sample (0: the pixel centre) */
-    GLuint preview_fbo, preview_tex; /* the last moving image, shown where a still one has no sample yet */
-    GLuint stretch_fbo, stretch_tex; /* a moving image tone-mapped at its own size, before the stretch */
-    int preview_w, preview_h;
-    camera cam;
-    double origin[3]; /* a deep zoom's: the world position the shader's coordinates are relative to */
-    float heat_max;   /* the steps heat map's top (0: the scene's MAX_STEPS) */
-    unsigned runtime_effects; /* effects switched on at run time (bits as in effect.h) */
-    render_backend backend;   /* resolved by render_init: fragment or compute */
-} state = {.runtime_effects = ~0u};
+render_state render_shared = {.runtime_effects = ~0u};
+static render_state *const state = &render_shared;
 
 static render_backend requested = BACKEND_AUTO; /* render_request_backend */
 static bool requested_set;
@@ -80,7 +54,7 @@ void render_request_backend(render_backend b)
     requested_set = true;
 }
 
-render_backend render_backend_used(void) { return state.backend; }
+render_backend render_backend_used(void) { return state->backend; }
 
 bool render_has_compute(void)
 {
@@ -102,9 +76,9 @@ bool render_switch_backend(render_backend b, err_t *err)
     if (b == BACKEND_COMPUTE && !render_has_compute())
         return err_set(err, "the compute backend needs OpenGL 4.3 compute shaders, which this OpenGL (%s) lacks: "
                             "use --backend fragment", gpu_describe());
-    state.backend = b == BACKEND_AUTO ? (render_auto_is_compute() ? BACKEND_COMPUTE : BACKEND_FRAGMENT) : b;
-    state.samples = 0;
-    state.band_done = 0;
+    state->backend = b == BACKEND_AUTO ? (render_auto_is_compute() ? BACKEND_COMPUTE : BACKEND_FRAGMENT) : b;
+    state->samples = 0;
+    state->band_done = 0;
     return true;
 }
 
@@ -134,45 +108,45 @@ bool render_init(err_t *err)
     if (!resolve_backend(err))
         return false;
     render_programs_init();
-    state.display_prog = build_display(err);
-    state.mask_prog = state.display_prog ? build_mask(err) : 0;
-    return state.display_prog != 0 && state.mask_prog != 0;
+    state->display_prog = build_display(err);
+    state->mask_prog = state->display_prog ? build_mask(err) : 0;
+    return state->display_prog != 0 && state->mask_prog != 0;
 }
 
 static void free_targets(void)
 {
-    if (state.fbo) {
-        glDeleteFramebuffers(1, &state.fbo);
-        glDeleteTextures(NUM_TARGETS, state.targets);
-        glDeleteFramebuffers(1, &state.out_fbo);
-        glDeleteTextures(1, &state.out_tex);
-        glDeleteFramebuffers(1, &state.ref_fbo);
-        glDeleteTextures(1, &state.ref_tex);
-        glDeleteFramebuffers(1, &state.mask_fbo);
-        glDeleteTextures(1, &state.mask_tex);
-        glDeleteFramebuffers(1, &state.preview_fbo);
-        glDeleteTextures(1, &state.preview_tex);
-        glDeleteFramebuffers(1, &state.stretch_fbo);
-        glDeleteTextures(1, &state.stretch_tex);
-        state.stretch_fbo = state.stretch_tex = 0;
-        state.preview_fbo = state.preview_tex = 0;
-        state.preview_w = state.preview_h = 0;
-        state.fbo = state.out_fbo = state.ref_fbo = state.ref_tex = state.mask_fbo = state.mask_tex = 0;
-        state.ref_samples = 0;
+    if (state->fbo) {
+        glDeleteFramebuffers(1, &state->fbo);
+        glDeleteTextures(NUM_TARGETS, state->targets);
+        glDeleteFramebuffers(1, &state->out_fbo);
+        glDeleteTextures(1, &state->out_tex);
+        glDeleteFramebuffers(1, &state->ref_fbo);
+        glDeleteTextures(1, &state->ref_tex);
+        glDeleteFramebuffers(1, &state->mask_fbo);
+        glDeleteTextures(1, &state->mask_tex);
+        glDeleteFramebuffers(1, &state->preview_fbo);
+        glDeleteTextures(1, &state->preview_tex);
+        glDeleteFramebuffers(1, &state->stretch_fbo);
+        glDeleteTextures(1, &state->stretch_tex);
+        state->stretch_fbo = state->stretch_tex = 0;
+        state->preview_fbo = state->preview_tex = 0;
+        state->preview_w = state->preview_h = 0;
+        state->fbo = state->out_fbo = state->ref_fbo = state->ref_tex = state->mask_fbo = state->mask_tex = 0;
+        state->ref_samples = 0;
     }
 }
 
-void render_set_runtime_effects(unsigned mask) { state.runtime_effects = mask; }
+void render_set_runtime_effects(unsigned mask) { state->runtime_effects = mask; }
 
 void render_shutdown(void)
 {
     free_targets();
     render_scene_shutdown();
-    glDeleteProgram(state.display_prog);
-    glDeleteProgram(state.mask_prog);
+    glDeleteProgram(state->display_prog);
+    glDeleteProgram(state->mask_prog);
     render_programs_shutdown();
-    memset(&state, 0, sizeof state);
-    state.runtime_effects = ~0u;
+    memset(state, 0, sizeof *state);
+    state->runtime_effects = ~0u;
 }
 
 void render_preamble(const scene *s, const char *extra_defines, strbuf *out)
@@ -184,10 +158,10 @@ void render_preamble(const scene *s, const char *extra_defines, strbuf *out)
 
 bool render_set_scene(const scene *s, const char *extra_defines, err_t *err)
 {
-    GLuint prog = render_programs_get(s, state.backend == BACKEND_COMPUTE ? "sdf.comp" : "sdf.frag", extra_defines, err);
+    GLuint prog = render_programs_get(s, state->backend == BACKEND_COMPUTE ? "sdf.comp" : "sdf.frag", extra_defines, err);
     if (!prog || !render_scene_set(s, err))
         return false;
-    state.prog = prog;
+    state->prog = prog;
     render_scene_uniforms(prog, s);
     return true;
 }
@@ -209,74 +183,74 @@ static void single_target(GLenum internal, GLenum format, GLenum type, int w, in
 void render_resize(int width, int height)
 {
     assert(width > 0 && height > 0);
-    if (state.fbo && width == state.alloc_width && height == state.alloc_height) {
+    if (state->fbo && width == state->alloc_width && height == state->alloc_height) {
         render_set_active(width, height);
         return;
     }
     free_targets();
-    state.width = state.alloc_width = width;
-    state.height = state.alloc_height = height;
+    state->width = state->alloc_width = width;
+    state->height = state->alloc_height = height;
     render_set_window(width, height, 0, 0);
-    glGenFramebuffers(1, &state.fbo);
-    glBindFramebuffer(GL_FRAMEBUFFER, state.fbo);
-    glGenTextures(NUM_TARGETS, state.targets);
+    glGenFramebuffers(1, &state->fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, state->fbo);
+    glGenTextures(NUM_TARGETS, state->targets);
     for (int i = 0; i < NUM_TARGETS; i++) {
-        glBindTexture(GL_TEXTURE_2D, state.targets[i]);
+        glBindTexture(GL_TEXTURE_2D, state->targets[i]);
         glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, width, height, 0, GL_RGBA, GL_FLOAT, NULL);
         glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
         glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + (GLenum)i, GL_TEXTURE_2D, state.targets[i], 0);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + (GLenum)i, GL_TEXTURE_2D, state->targets[i], 0);
     }
     assert(glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE);
-    single_target(GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE, width, height, &state.out_fbo, &state.out_tex);
-    single_target(GL_R8, GL_RED, GL_UNSIGNED_BYTE, width, height, &state.mask_fbo, &state.mask_tex);
-    single_target(GL_RGBA32F, GL_RGBA, GL_FLOAT, width, height, &state.preview_fbo, &state.preview_tex);
-    single_target(GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE, width, height, &state.stretch_fbo, &state.stretch_tex);
+    single_target(GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE, width, height, &state->out_fbo, &state->out_tex);
+    single_target(GL_R8, GL_RED, GL_UNSIGNED_BYTE, width, height, &state->mask_fbo, &state->mask_tex);
+    single_target(GL_RGBA32F, GL_RGBA, GL_FLOAT, width, height, &state->preview_fbo, &state->preview_tex);
+    single_target(GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE, width, height, &state->stretch_fbo, &state->stretch_tex);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    state.samples = 0;
-    state.band_done = 0;
+    state->samples = 0;
+    state->band_done = 0;
 }
 
 void render_set_active(int width, int height)
 {
-    assert(width > 0 && height > 0 && width <= state.alloc_width && height <= state.alloc_height);
-    if (width != state.width || height != state.height) {
-        state.samples = 0;
-        state.band_done = 0;
+    assert(width > 0 && height > 0 && width <= state->alloc_width && height <= state->alloc_height);
+    if (width != state->width || height != state->height) {
+        state->samples = 0;
+        state->band_done = 0;
     }
-    state.width = width;
-    state.height = height;
+    state->width = width;
+    state->height = height;
     render_set_window(width, height, 0, 0);
 }
 
 void render_active_size(int *width, int *height)
 {
-    *width = state.width;
-    *height = state.height;
+    *width = state->width;
+    *height = state->height;
 }
 
 void render_set_window(int full_width, int full_height, int left, int top)
 {
-    state.full_width = full_width;
-    state.full_height = full_height;
-    state.tile_x = left;
-    state.tile_y = full_height - top - state.height; /* GL counts rows from the bottom */
+    state->full_width = full_width;
+    state->full_height = full_height;
+    state->tile_x = left;
+    state->tile_y = full_height - top - state->height; /* GL counts rows from the bottom */
 }
 
 void render_begin(const camera *c)
 {
-    state.cam = *c;
-    state.samples = 0;
-    state.band_done = 0;
+    state->cam = *c;
+    state->samples = 0;
+    state->band_done = 0;
     const scene *s = render_scene_current();
     bool deep = s && s->fractal.deep_now;
     for (int i = 0; i < 3; i++)
-        state.origin[i] = deep ? c->position[i] : 0.0;
+        state->origin[i] = deep ? c->position[i] : 0.0;
 }
 
-void render_origin(double origin[3]) { memcpy(origin, state.origin, sizeof state.origin); }
+void render_origin(double origin[3]) { memcpy(origin, state->origin, sizeof state->origin); }
 
-void render_set_origin(const double origin[3]) { memcpy(state.origin, origin, sizeof state.origin); }
+void render_set_origin(const double origin[3]) { memcpy(state->origin, origin, sizeof state->origin); }
 
 void render_origin_uniforms(GLuint prog)
 {
@@ -284,41 +258,17 @@ void render_origin_uniforms(GLuint prog)
      * filtering depends on them), as the image's does */
     float eye[3];
     for (int i = 0; i < 3; i++)
-        eye[i] = (float)(state.cam.position[i] - state.origin[i]);
+        eye[i] = (float)(state->cam.position[i] - state->origin[i]);
     glUniform3fv(glGetUniformLocation(prog, "uCamPos"), 1, eye);
-    if (state.full_height > 0)
-        glUniform1f(glGetUniformLocation(prog, "uPixelAngle"), camera_pixel_angle(&state.cam, state.full_height));
+    if (state->full_height > 0)
+        glUniform1f(glGetUniformLocation(prog, "uPixelAngle"), camera_pixel_angle(&state->cam, state->full_height));
     GLint o = glGetUniformLocation(prog, "uOrigin");
     if (o < 0) /* a float program: its positions are world positions */
         return;
-    glUniform3d(o, state.origin[0], state.origin[1], state.origin[2]);
-    glUniform3f(glGetUniformLocation(prog, "uOriginApprox"), (float)state.origin[0], (float)state.origin[1],
-                (float)state.origin[2]);
-    glUniform1f(glGetUniformLocation(prog, "uOriginFloor"), (float)camera_resolution(state.origin, true));
-}
-
-bool render_fit_precision(scene *s, const camera *c, int height, err_t *err)
-{
-    if (s->program != PROGRAM_FRACTAL || !s->fractal.deep_ok || s->fractal.precision != PRECISION_AUTO)
-        return true;
-    bool deep = s->fractal.deep_now;
-    double origin[3] = {0, 0, 0};
-    float p[3], d[2];
-    for (int i = 0; i < 3; i++) {
-        origin[i] = deep ? c->position[i] : 0.0;
-        p[i] = (float)(c->position[i] - origin[i]);
-    }
-    render_set_origin(origin);
-    if (!render_probe(s, NULL, p, 1, d, err))
-        return false;
-    bool want = scene_needs_double(s, fabs((double)d[0]), c, height, deep);
-    if (want == deep)
-        return true;
-    if (want && !render_has_fp64())
-        return err_set(err, "this view needs double precision (a deep zoom), which this OpenGL (%s) lacks "
-                            "(GL_ARB_gpu_shader_fp64): the image stops resolving detail here", gpu_describe());
-    s->fractal.deep_now = want;
-    return render_set_scene(s, NULL, err);
+    glUniform3d(o, state->origin[0], state->origin[1], state->origin[2]);
+    glUniform3f(glGetUniformLocation(prog, "uOriginApprox"), (float)state->origin[0], (float)state->origin[1],
+                (float)state->origin[2]);
+    glUniform1f(glGetUniformLocation(prog, "uOriginFloor"), (float)camera_resolution(state->origin, true));
 }
 
 bool render_has_fp64(void)
@@ -326,41 +276,41 @@ bool render_has_fp64(void)
     return epoxy_gl_version() >= 40 || epoxy_has_gl_extension("GL_ARB_gpu_shader_fp64");
 }
 
-int render_samples(void) { return state.samples; }
+int render_samples(void) { return state->samples; }
 
-void render_set_adaptive(bool on) { state.adaptive = on; }
+void render_set_adaptive(bool on) { state->adaptive = on; }
 
-void render_set_first_jitter(int k) { state.first_jitter = k; }
+void render_set_first_jitter(int k) { state->first_jitter = k; }
 
-void render_set_edge_aware(bool on) { state.edge_aware = on; }
+void render_set_edge_aware(bool on) { state->edge_aware = on; }
 
-int render_adaptive_pixels(void) { return state.masked; }
+int render_adaptive_pixels(void) { return state->masked; }
 
 /* The edge mask from the first sample (shaders/edgemask.frag), into mask_tex. */
 static void build_edge_mask(void)
 {
-    glBindFramebuffer(GL_FRAMEBUFFER, state.mask_fbo);
-    glViewport(0, 0, state.width, state.height);
-    glUseProgram(state.mask_prog);
+    glBindFramebuffer(GL_FRAMEBUFFER, state->mask_fbo);
+    glViewport(0, 0, state->width, state->height);
+    glUseProgram(state->mask_prog);
     glActiveTexture(GL_TEXTURE1);
-    glBindTexture(GL_TEXTURE_2D, state.targets[1]);
+    glBindTexture(GL_TEXTURE_2D, state->targets[1]);
     glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_2D, state.targets[0]);
-    glUniform1i(glGetUniformLocation(state.mask_prog, "uAccum"), 0);
-    glUniform1i(glGetUniformLocation(state.mask_prog, "uNormalDepth"), 1);
-    glUniform1f(glGetUniformLocation(state.mask_prog, "uExposure"), 1.0f);
-    glUniform2i(glGetUniformLocation(state.mask_prog, "uSize"), state.width, state.height);
+    glBindTexture(GL_TEXTURE_2D, state->targets[0]);
+    glUniform1i(glGetUniformLocation(state->mask_prog, "uAccum"), 0);
+    glUniform1i(glGetUniformLocation(state->mask_prog, "uNormalDepth"), 1);
+    glUniform1f(glGetUniformLocation(state->mask_prog, "uExposure"), 1.0f);
+    glUniform2i(glGetUniformLocation(state->mask_prog, "uSize"), state->width, state->height);
     glBindVertexArray(render_programs_vao());
     glDrawArrays(GL_TRIANGLES, 0, 3);
     /* how many pixels it kept: for the HUD and the bench (a small readback, once per still image) */
-    size_t n = (size_t)state.width * (size_t)state.height;
+    size_t n = (size_t)state->width * (size_t)state->height;
     uint8_t *m = malloc(n);
-    state.masked = 0;
+    state->masked = 0;
     if (m) {
         glPixelStorei(GL_PACK_ALIGNMENT, 1);
-        glReadPixels(0, 0, state.width, state.height, GL_RED, GL_UNSIGNED_BYTE, m);
+        glReadPixels(0, 0, state->width, state->height, GL_RED, GL_UNSIGNED_BYTE, m);
         for (size_t i = 0; i < n; i++)
-            state.masked += m[i] > 127;
+            state->masked += m[i] > 127;
         free(m);
     }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -377,7 +327,7 @@ static float halton(int i, int base)
     return r;
 }
 
-static GLint loc(const char *name) { return glGetUniformLocation(state.prog, name); }
+static GLint loc(const char *name) { return glGetUniformLocation(state->prog, name); }
 
 /* The fragment path: a full-screen triangle over rows [y0, y1), target 0 blended additively. */
 static void draw_rows(int y0, int y1, bool first)
@@ -387,7 +337,7 @@ static void draw_rows(int y0, int y1, bool first)
     static const GLenum sums_only[NUM_TARGETS] = {GL_COLOR_ATTACHMENT0, GL_NONE, GL_NONE, GL_COLOR_ATTACHMENT3};
     glDrawBuffers(NUM_TARGETS, first ? all : sums_only);
     glEnable(GL_SCISSOR_TEST);
-    glScissor(0, y0, state.width, y1 - y0);
+    glScissor(0, y0, state->width, y1 - y0);
     glEnablei(GL_BLEND, 0); /* the sums: radiance and its square */
     glEnablei(GL_BLEND, 3);
     glBlendFunc(GL_ONE, GL_ONE);
@@ -405,20 +355,20 @@ static void draw_rows(int y0, int y1, bool first)
 static void dispatch_rows(int y0, int y1, bool first)
 {
     for (int i = 0; i < NUM_TARGETS; i++)
-        glBindImageTexture((GLuint)i, state.targets[i], 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+        glBindImageTexture((GLuint)i, state->targets[i], 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
     glUniform1i(loc("uAccum"), 0);
     glUniform1i(loc("uNormalDepth"), 1);
     glUniform1i(loc("uAux"), 2);
     glUniform1i(loc("uSquares"), 3);
     glUniform1i(loc("uFirstSample"), first ? 1 : 0);
     GLint group[3]; /* sdf.comp's local size */
-    glGetProgramiv(state.prog, GL_COMPUTE_WORK_GROUP_SIZE, group);
-    int rows = compute_tile_pixels / state.width;
+    glGetProgramiv(state->prog, GL_COMPUTE_WORK_GROUP_SIZE, group);
+    int rows = compute_tile_pixels / state->width;
     rows = rows < group[1] ? group[1] : rows / group[1] * group[1];
     for (int y = y0; y < y1; y += rows) {
         int h = y1 - y < rows ? y1 - y : rows;
-        glUniform4i(loc("uRect"), 0, y, state.width, h);
-        glDispatchCompute((GLuint)((state.width + group[0] - 1) / group[0]), (GLuint)((h + group[1] - 1) / group[1]), 1);
+        glUniform4i(loc("uRect"), 0, y, state->width, h);
+        glDispatchCompute((GLuint)((state->width + group[0] - 1) / group[0]), (GLuint)((h + group[1] - 1) / group[1]), 1);
         if (y + rows < y1)
             glFlush(); /* the GPU starts on this tile while the next is queued */
     }
@@ -430,15 +380,15 @@ static void dispatch_rows(int y0, int y1, bool first)
 /* Rows [y0, y1) of the current sample (GL rows, bottom up). */
 static void sample_rows(int y0, int y1)
 {
-    assert(state.fbo && state.prog);
+    assert(state->fbo && state->prog);
     /* the path tracer's noise is everywhere, not only on edges: every pixel takes every sample */
-    bool adaptive = state.adaptive && state.samples > 0 && !render_scene_current()->quality.integrator;
-    if (adaptive && state.samples == 1 && state.band_done == 0)
+    bool adaptive = state->adaptive && state->samples > 0 && !render_scene_current()->quality.integrator;
+    if (adaptive && state->samples == 1 && state->band_done == 0)
         build_edge_mask();
-    glBindFramebuffer(GL_FRAMEBUFFER, state.fbo);
-    glViewport(0, 0, state.width, state.height);
-    bool first = state.samples == 0;
-    if (first && state.band_done == 0) {
+    glBindFramebuffer(GL_FRAMEBUFFER, state->fbo);
+    glViewport(0, 0, state->width, state->height);
+    bool first = state->samples == 0;
+    if (first && state->band_done == 0) {
         static const GLenum all[NUM_TARGETS] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
                                                 GL_COLOR_ATTACHMENT3};
         glDrawBuffers(NUM_TARGETS, all);
@@ -446,27 +396,27 @@ static void sample_rows(int y0, int y1)
         glClear(GL_COLOR_BUFFER_BIT);
     }
 
-    glUseProgram(state.prog);
-    camera_basis b = camera_get_basis(&state.cam);
-    glUniform2f(loc("uResolution"), (float)state.full_width, (float)state.full_height);
-    glUniform2f(loc("uTileOffset"), (float)state.tile_x, (float)state.tile_y);
-    render_origin_uniforms(state.prog); /* uCamPos relative to the origin: 0 in a deep zoom */
+    glUseProgram(state->prog);
+    camera_basis b = camera_get_basis(&state->cam);
+    glUniform2f(loc("uResolution"), (float)state->full_width, (float)state->full_height);
+    glUniform2f(loc("uTileOffset"), (float)state->tile_x, (float)state->tile_y);
+    render_origin_uniforms(state->prog); /* uCamPos relative to the origin: 0 in a deep zoom */
     glUniform3fv(loc("uCamForward"), 1, b.forward);
     glUniform3fv(loc("uCamRight"), 1, b.right);
     glUniform3fv(loc("uCamUp"), 1, b.up);
-    glUniform1f(loc("uTanHalfFov"), tanf(0.5f * state.cam.fov_y));
-    glUniform1ui(loc("uFxRuntime"), state.runtime_effects);
-    glUniform1i(loc("uSampleIndex"), state.samples); /* the path tracer's random numbers */
+    glUniform1f(loc("uTanHalfFov"), tanf(0.5f * state->cam.fov_y));
+    glUniform1ui(loc("uFxRuntime"), state->runtime_effects);
+    glUniform1i(loc("uSampleIndex"), state->samples); /* the path tracer's random numbers */
     glUniform1i(loc("uAdaptive"), adaptive ? 1 : 0);
     glUniform1i(loc("uEdgeMask"), RENDER_UNIT_EDGE_MASK);
-    int k = first ? state.first_jitter : state.samples; /* Halton point k; 0 is the pixel centre */
-    bool jitter = (render_scene_current()->effects & state.runtime_effects & (1u << EFFECT_AA)) && k > 0;
+    int k = first ? state->first_jitter : state->samples; /* Halton point k; 0 is the pixel centre */
+    bool jitter = (render_scene_current()->effects & state->runtime_effects & (1u << EFFECT_AA)) && k > 0;
     glUniform2f(loc("uJitter"), jitter ? halton(k, 2) - 0.5f : 0.0f, jitter ? halton(k, 3) - 0.5f : 0.0f);
     render_scene_bind();
     glActiveTexture(GL_TEXTURE0 + RENDER_UNIT_EDGE_MASK);
-    glBindTexture(GL_TEXTURE_2D, state.mask_tex);
+    glBindTexture(GL_TEXTURE_2D, state->mask_tex);
     glActiveTexture(GL_TEXTURE0);
-    if (state.backend == BACKEND_COMPUTE)
+    if (state->backend == BACKEND_COMPUTE)
         dispatch_rows(y0, y1, first);
     else
         draw_rows(y0, y1, first);
@@ -474,284 +424,56 @@ static void sample_rows(int y0, int y1)
 
 void render_sample(void)
 {
-    sample_rows(0, state.height - state.band_done);
-    state.samples++;
-    state.band_done = 0;
+    sample_rows(0, state->height - state->band_done);
+    state->samples++;
+    state->band_done = 0;
 }
 
-int render_band_rows(void) { return state.band_done; }
+int render_band_rows(void) { return state->band_done; }
 
 bool render_sample_band(int rows)
 {
     rows = rows < 1 ? 1 : rows;
-    int top = state.height - state.band_done, bottom = top - rows > 0 ? top - rows : 0;
+    int top = state->height - state->band_done, bottom = top - rows > 0 ? top - rows : 0;
     sample_rows(bottom, top);
-    state.band_done += top - bottom;
-    if (state.band_done < state.height)
+    state->band_done += top - bottom;
+    if (state->band_done < state->height)
         return false;
-    state.samples++;
-    state.band_done = 0;
+    state->samples++;
+    state->band_done = 0;
     return true;
 }
 
 void render_keep_preview(void)
 {
-    if (!state.samples)
+    if (!state->samples)
         return;
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, state.fbo);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, state->fbo);
     glReadBuffer(GL_COLOR_ATTACHMENT0);
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, state.preview_fbo);
-    glBlitFramebuffer(0, 0, state.width, state.height, 0, 0, state.width, state.height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, state->preview_fbo);
+    glBlitFramebuffer(0, 0, state->width, state->height, 0, 0, state->width, state->height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    state.preview_w = state.width;
-    state.preview_h = state.height;
-}
-
-void render_grab_reference(void)
-{
-    if (!state.ref_tex) {
-        glGenTextures(1, &state.ref_tex);
-        glBindTexture(GL_TEXTURE_2D, state.ref_tex);
-        glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, state.alloc_width, state.alloc_height, 0, GL_RGBA, GL_FLOAT, NULL);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-        glGenFramebuffers(1, &state.ref_fbo);
-        glBindFramebuffer(GL_FRAMEBUFFER, state.ref_fbo);
-        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, state.ref_tex, 0);
-    }
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, state.fbo);
-    glReadBuffer(GL_COLOR_ATTACHMENT0);
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, state.ref_fbo);
-    glDrawBuffers(1, (const GLenum[]){GL_COLOR_ATTACHMENT0});
-    glBlitFramebuffer(0, 0, state.width, state.height, 0, 0, state.width, state.height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    state.ref_samples = state.samples;
-}
-
-static void display_pass(GLuint fbo, int width, int height, float exposure, render_view view);
-
-/* A stretched colour image (a moving frame): tone-mapped at its own size, then stretched by the
- * blitter's bilinear filter, so the full-screen pass runs over the small image's pixels, not the
- * window's (at 1280x720 on llvmpipe the pass took 26 ms of each moving frame). The filtering is then
- * in display colour rather than linear: moving frames only. */
-void render_display(GLuint fbo, int width, int height, float exposure, render_view view)
-{
-    bool stretched = state.width != width || state.height != height;
-    if (!(view == VIEW_COLOR && stretched && !state.edge_aware && state.stretch_fbo)) {
-        display_pass(fbo, width, height, exposure, view);
-        return;
-    }
-    display_pass(state.stretch_fbo, state.width, state.height, exposure, view);
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, state.stretch_fbo);
-    glReadBuffer(GL_COLOR_ATTACHMENT0);
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
-    glBlitFramebuffer(0, 0, state.width, state.height, 0, 0, width, height, GL_COLOR_BUFFER_BIT, GL_LINEAR);
-    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-}
-
-static void display_pass(GLuint fbo, int width, int height, float exposure, render_view view)
-{
-    GLuint p = state.display_prog;
-    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-    glViewport(0, 0, width, height);
-    glUseProgram(p);
-    glActiveTexture(GL_TEXTURE1);
-    glBindTexture(GL_TEXTURE_2D, state.targets[2]);
-    glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_2D, state.targets[0]);
-    glUniform1i(glGetUniformLocation(p, "uAccum"), 0);
-    glUniform1i(glGetUniformLocation(p, "uAux"), 1);
-    if (view == VIEW_DIFFERENCE && !state.ref_samples)
-        view = VIEW_COLOR; /* nothing grabbed yet */
-    glActiveTexture(GL_TEXTURE2);
-    glBindTexture(GL_TEXTURE_2D, state.ref_tex);
-    glActiveTexture(GL_TEXTURE3);
-    glBindTexture(GL_TEXTURE_2D, state.targets[1]);
-    glActiveTexture(GL_TEXTURE4);
-    glBindTexture(GL_TEXTURE_2D, state.preview_tex);
-    glActiveTexture(GL_TEXTURE0);
-    glUniform1i(glGetUniformLocation(p, "uPreview"), 4);
-    glUniform2f(glGetUniformLocation(p, "uPreviewSize"), (float)state.preview_w, (float)state.preview_h);
-    glUniform1i(glGetUniformLocation(p, "uReference"), 2);
-    glUniform1i(glGetUniformLocation(p, "uNormalDepth"), 3);
-    glUniform1i(glGetUniformLocation(p, "uEdgeAware"), state.edge_aware ? 1 : 0);
-    glUniform1f(glGetUniformLocation(p, "uInvRefSamples"), state.ref_samples ? 1.0f / (float)state.ref_samples : 0.0f);
-    glUniform1i(glGetUniformLocation(p, "uView"), (GLint)view);
-    float top = state.heat_max > 0 ? state.heat_max
-                : render_scene_current() ? (float)render_scene_current()->quality.max_steps : 1.0f;
-    glUniform1f(glGetUniformLocation(p, "uMaxSteps"), top);
-    glUniform1f(glGetUniformLocation(state.display_prog, "uExposure"), exposure);
-    glUniform2f(glGetUniformLocation(p, "uSrcSize"), (float)state.width, (float)state.height);
-    glUniform2f(glGetUniformLocation(p, "uDstSize"), (float)width, (float)height);
-    glBindVertexArray(render_programs_vao());
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-}
-
-/* GL rows run bottom to top; files run top to bottom. */
-static void flip_rows(void *data, int height, size_t row_bytes)
-{
-    uint8_t *p = data, *tmp = util_alloc(row_bytes, "a row of the image");
-    for (int y = 0; y < height / 2; y++) {
-        uint8_t *a = p + (size_t)y * row_bytes, *b = p + (size_t)(height - 1 - y) * row_bytes;
-        memcpy(tmp, a, row_bytes);
-        memcpy(a, b, row_bytes);
-        memcpy(b, tmp, row_bytes);
-    }
-    free(tmp);
-}
-
-static void read_rect(GLuint fbo, GLenum attachment, GLenum type, int w, int h, void *out)
-{
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
-    glReadBuffer(attachment);
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadPixels(0, 0, w, h, GL_RGBA, type, out);
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
-}
-
-static void read_target(GLuint fbo, GLenum attachment, GLenum type, void *out)
-{
-    read_rect(fbo, attachment, type, state.width, state.height, out);
-}
-
-void render_read_stretched_srgb8(uint8_t *rgba, int width, int height, float exposure)
-{
-    assert(width <= state.alloc_width && height <= state.alloc_height);
-    render_display(state.out_fbo, width, height, exposure, VIEW_COLOR);
-    read_rect(state.out_fbo, GL_COLOR_ATTACHMENT0, GL_UNSIGNED_BYTE, width, height, rgba);
-    flip_rows(rgba, height, (size_t)width * 4);
-}
-
-void render_read_srgb8(uint8_t *rgba, float exposure)
-{
-    render_read_stretched_srgb8(rgba, state.width, state.height, exposure);
-}
-
-void render_read_linear(float *rgba)
-{
-    read_target(state.fbo, GL_COLOR_ATTACHMENT0, GL_FLOAT, rgba);
-    size_t n = (size_t)state.width * (size_t)state.height;
-    for (size_t i = 0; i < n; i++) { /* alpha counts the pixel's own samples (adaptive sampling) */
-        float inv = rgba[i * 4 + 3] > 0.0f ? 1.0f / rgba[i * 4 + 3] : 0.0f;
-        for (int c = 0; c < 4; c++)
-            rgba[i * 4 + (size_t)c] *= inv;
-    }
-    flip_rows(rgba, state.height, (size_t)state.width * 4 * sizeof(float));
-}
-
-void render_read_aovs(float *aov8)
-{
-    size_t n = (size_t)state.width * (size_t)state.height;
-    float *t[NUM_TARGETS];
-    for (int k = 0; k < NUM_TARGETS; k++) {
-        t[k] = util_alloc(sizeof(float) * 4 * n, "the AOV readback");
-        read_target(state.fbo, GL_COLOR_ATTACHMENT0 + (GLenum)k, GL_FLOAT, t[k]);
-    }
-    for (size_t i = 0; i < n; i++) {
-        float *o = aov8 + i * AOV_FLOATS;
-        memcpy(o, t[1] + i * 4, sizeof(float) * 4);
-        memcpy(o + 4, t[2] + i * 4, sizeof(float) * 4);
-        if (o[AOV_SLOT_DEPTH] < 0.0f) /* the shader marks a miss with depth −1 */
-            o[AOV_SLOT_DEPTH] = INFINITY;
-        /* the variance of the mean from the sums of x and x² over n samples (in double: the two sums
-         * are close, and float would cancel): (Σx² − (Σx)²/n) / (n (n − 1)) */
-        double samples = t[0][i * 4 + 3];
-        o[AOV_SLOT_SAMPLES] = (float)samples;
-        for (int c = 0; c < 3; c++) {
-            double sum = t[0][i * 4 + (size_t)c], sq = t[3][i * 4 + (size_t)c];
-            double var = samples >= 2 ? (sq - sum * sum / samples) / (samples * (samples - 1)) : -1.0;
-            o[AOV_SLOT_VARIANCE + c] = (float)(samples >= 2 && var < 0 ? 0 : var); /* rounding */
-        }
-    }
-    for (int k = 0; k < NUM_TARGETS; k++)
-        free(t[k]);
-    flip_rows(aov8, state.height, (size_t)state.width * AOV_FLOATS * sizeof(float));
-}
-
-long render_unresolved_pixels(long *loops)
-{
-    size_t n = (size_t)state.width * (size_t)state.height;
-    float *steps = util_alloc(sizeof(float) * n, "the steps readback");
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, state.fbo);
-    glReadBuffer(GL_COLOR_ATTACHMENT2); /* AOV_SLOT_STEPS is its red channel */
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadPixels(0, 0, state.width, state.height, GL_RED, GL_FLOAT, steps);
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
-    long count = 0;
-    for (size_t i = 0; i < n; i++) {
-        count += steps[i] < 0.0f;
-        if (loops)
-            *loops += steps[i] < 0.0f && steps[i] != floorf(steps[i]); /* −(steps + ½): aov.h */
-    }
-    free(steps);
-    return count;
-}
-
-void render_set_heat_max(float steps) { state.heat_max = steps; }
-
-float render_heat_max(void)
-{
-    const scene *s = render_scene_current();
-    return state.heat_max > 0 ? state.heat_max : s ? (float)s->quality.max_steps : 1.0f;
-}
-
-bool render_read_pixel(int x, int y_from_top, float out[AOV_FLOATS])
-{
-    if (!state.fbo || x < 0 || y_from_top < 0 || x >= state.width || y_from_top >= state.height || state.samples == 0)
-        return false;
-    int y = state.height - 1 - y_from_top;
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, state.fbo);
-    glReadBuffer(GL_COLOR_ATTACHMENT1);
-    glReadPixels(x, y, 1, 1, GL_RGBA, GL_FLOAT, out);
-    glReadBuffer(GL_COLOR_ATTACHMENT2);
-    glReadPixels(x, y, 1, 1, GL_RGBA, GL_FLOAT, out + 4);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    for (int i = 8; i < AOV_FLOATS; i++) /* the variance and sample count: not read for a cursor */
-        out[i] = 0.0f;
-    if (out[AOV_SLOT_DEPTH] < 0.0f)
-        out[AOV_SLOT_DEPTH] = INFINITY;
-    return true;
-}
-
-double render_reference_rmse(void)
-{
-    if (!state.ref_samples || !state.samples)
-        return -1.0;
-    size_t n = (size_t)state.width * (size_t)state.height;
-    float *now = util_alloc(sizeof(float) * 4 * n, "the reference comparison");
-    float *ref = util_alloc(sizeof(float) * 4 * n, "the reference comparison");
-    read_target(state.fbo, GL_COLOR_ATTACHMENT0, GL_FLOAT, now);
-    read_target(state.ref_fbo, GL_COLOR_ATTACHMENT0, GL_FLOAT, ref);
-    double sum = 0;
-    for (size_t i = 0; i < n; i++) { /* each pixel's mean: alpha counts its samples */
-        float a = now[4 * i + 3] > 0 ? 1.0f / now[4 * i + 3] : 0.0f, b = ref[4 * i + 3] > 0 ? 1.0f / ref[4 * i + 3] : 0.0f;
-        for (int c = 0; c < 3; c++) {
-            double d = (double)(now[4 * i + (size_t)c] * a - ref[4 * i + (size_t)c] * b);
-            sum += d * d;
-        }
-    }
-    free(now);
-    free(ref);
-    return sqrt(sum / (3.0 * (double)n));
+    state->preview_w = state->width;
+    state->preview_h = state->height;
 }
 
 bool render_reload(err_t *err)
 {
     /* Build everything first: one failure keeps every old program. */
     GLuint display = build_display(err), mask = display ? build_mask(err) : 0;
-    if (!display || !mask || !render_programs_reload(&state.prog, err)) {
+    if (!display || !mask || !render_programs_reload(&state->prog, err)) {
         glDeleteProgram(display);
         glDeleteProgram(mask);
         return false;
     }
-    glDeleteProgram(state.display_prog);
-    glDeleteProgram(state.mask_prog);
-    state.display_prog = display;
-    state.mask_prog = mask;
+    glDeleteProgram(state->display_prog);
+    glDeleteProgram(state->mask_prog);
+    state->display_prog = display;
+    state->mask_prog = mask;
     if (render_scene_current())
-        render_scene_uniforms(state.prog, render_scene_current());
-    state.samples = 0;
-    state.band_done = 0;
+        render_scene_uniforms(state->prog, render_scene_current());
+    state->samples = 0;
+    state->band_done = 0;
     return true;
 }
 

@@ -1,11 +1,14 @@
 /* render — draws a scene into a floating-point accumulation target, one jittered sample at a time,
  * and turns it into display colour. Needs a current GL 3.3 core context; does not care whose.
  *
- * Targets (all width × height, RGBA32F): 0 accumulated linear radiance (additive blending),
- * 1 normal.xyz + depth, 2 steps + exit direction. The first sample after render_begin() is
- * unjittered (pixel centres) and is the only one that writes targets 1 and 2, so AOVs are exact
- * per-pixel probes; later samples add colour only. Programs are compiled once per variant
- * (preamble + generated map) and cached.
+ * Targets (all width × height, RGBA32F, NUM_TARGETS = 4): 0 accumulated linear radiance (additive
+ * blending; alpha counts the pixel's samples), 1 normal.xyz + depth, 2 steps + exit direction, 3 the
+ * sum of squared samples (the variance in aov.h). The first sample after render_begin() is unjittered
+ * (pixel centres) and is the only one that writes targets 1 and 2, so AOVs are exact per-pixel
+ * probes; later samples add to 0 and 3 only. Programs are compiled once per variant (preamble +
+ * generated map) and cached. The module's files: render.c (targets, samples, backends),
+ * render_output.c (display and readback), render_programs.c (the program cache), render_scene.c
+ * (the scene's GPU resources, render_resource.h); probes are render_probe.h's.
  */
 #ifndef FATHOM_RENDER_H
 #define FATHOM_RENDER_H
@@ -72,15 +75,11 @@ void render_active_size(int *width, int *height);
 void render_set_window(int full_width, int full_height, int left, int top);
 void render_begin(const camera *c); /* new view: restart accumulation */
 
-/* Deep zoom. A fractal whose formula compiles in double (formula.h @deep) switches to double where a
- * float cannot resolve the view (scene_needs_double). The shader then works in coordinates relative
- * to an origin, the eye, held here in double (render_begin sets it); probes take their points
- * relative to it too (0 everywhere else). render_fit_precision probes the distance at the camera and
- * sets s->fractal.deep_now as the view needs, re-setting the scene when it changes (false: the GL
- * lacks doubles, or a GL error). */
+/* Deep zoom: a double program works in coordinates relative to an origin, the eye, held here in
+ * double (render_begin sets it); probes take their points relative to it too (0 everywhere else).
+ * render_probe.h's render_fit_precision picks the precision. */
 void render_origin(double origin[3]);
 void render_set_origin(const double origin[3]);
-bool render_fit_precision(scene *s, const camera *c, int height, err_t *err);
 bool render_has_fp64(void);
 /* Uploads the view to prog: the eye (relative to the origin) and the pixel's angle of the last
  * render_begin, and the origin when prog reads one (a double program). Probes see the view too. */
@@ -137,8 +136,6 @@ void render_read_aovs(float *aov8);
  * and its tail, or (counted also in *loops when not NULL) the pixel ran out of the loop budget. */
 long render_unresolved_pixels(long *loops);
 
-/* Terrain scenes: the ground height under world (x, z); false for other scenes. */
-bool render_ground_height(float x, float z, float *height);
 /* Frees what the current scene put on the GPU (textures, heightfield, droplets). */
 void render_release_scene(void);
 /* The loaded terrain's texture tiles (1 x 1 when it fits one texture); false without a terrain. */
@@ -152,20 +149,6 @@ const struct droplets *render_droplets(double *read_s, double *grid_s);
 /* Recompiles every cached program from the files on disk; on error keeps the old programs. */
 bool render_reload(err_t *err);
 
-/* Evaluates the scene's map() on the GPU at n points (xyz each) into out (distance, material each):
- * the shader's own distance estimate, for tests and the window's flying speed. */
-bool render_probe(const scene *s, const char *extra_defines, const float *points, int n, float *out, err_t *err);
-/* The same with another probe shader: fogprobe.frag gives the fog's optical depth for (y, dir y, length). */
-bool render_probe_with(const scene *s, const char *frag, const char *extra_defines, const float *points, int n,
-                       float *out, err_t *err);
-/* The loop iterations map() runs at each of n points (into loops), measured against the driver's loop
- * limiter (llvmpipe's; shaders/common/budget.glsl); false with err where the driver has none to
- * measure against. */
-bool render_probe_loops(const scene *s, const float *points, int n, int *loops, err_t *err);
-/* A probe shader over n rays (origin xyz, direction xyz each, in uPoints and uDirs) into out (4 floats
- * each): dropletprobe.frag gives the droplets' grid walk for tests. */
-bool render_probe_rays(const scene *s, const char *frag, const char *extra_defines, const float *rays, int n,
-                       float *out, err_t *err);
 
 /* The #define preamble of the current scene's variant (for --print-variant). */
 void render_preamble(const scene *s, const char *extra_defines, strbuf *out);

@@ -1,6 +1,5 @@
-/* render_probe — a probe shader (probe.frag: map() at points; fogprobe.frag: fog optical depth) run
- * over a texture of points: the shader's own numbers, for tests and the window's flying speed. */
-#include "gpu/render.h"
+/* render_probe — probe shaders run over a texture of points (render_probe.h). */
+#include "gpu/render_probe.h"
 
 #include <assert.h>
 #include <math.h>
@@ -9,6 +8,7 @@
 #include <string.h>
 
 #include "gpu/gpu.h"
+#include "gpu/render.h"
 #include "gpu/render_programs.h"
 #include "gpu/render_scene.h"
 #include "gpu/res_heightfield.h"
@@ -116,4 +116,28 @@ bool render_ground_height(float x, float z, float *height)
         return false;
     *height = h;
     return true;
+}
+
+bool render_fit_precision(scene *s, const camera *c, int height, err_t *err)
+{
+    if (s->program != PROGRAM_FRACTAL || !s->fractal.deep_ok || s->fractal.precision != PRECISION_AUTO)
+        return true;
+    bool deep = s->fractal.deep_now;
+    double origin[3] = {0, 0, 0};
+    float p[3], d[2];
+    for (int i = 0; i < 3; i++) {
+        origin[i] = deep ? c->position[i] : 0.0;
+        p[i] = (float)(c->position[i] - origin[i]);
+    }
+    render_set_origin(origin);
+    if (!render_probe(s, NULL, p, 1, d, err))
+        return false;
+    bool want = scene_needs_double(s, fabs((double)d[0]), c, height, deep);
+    if (want == deep)
+        return true;
+    if (want && !render_has_fp64())
+        return err_set(err, "this view needs double precision (a deep zoom), which this OpenGL (%s) lacks "
+                            "(GL_ARB_gpu_shader_fp64): the image stops resolving detail here", gpu_describe());
+    s->fractal.deep_now = want;
+    return render_set_scene(s, NULL, err);
 }

@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #include "gpu/aov.h"
+#include "jobs/bench_plot.h"
 #include "jobs/bench_report.h"
 #include "jobs/bench_sweeps.h"
 #include "gpu/gpu.h"
@@ -473,7 +474,7 @@ bool bench_run(const cli_options *opt, err_t *err)
                              .conv = &conv, .ref_ms = ref_ms};
         bench_print(&res);
         if (opt->out)
-            ok = bench_write(&res, err);
+            ok = bench_write_csv(&res, err) && bench_plot_write(&res, err) && bench_write_pages(&res, err);
     }
     for (int v = 0; v < VIEWS; v++) {
         free(B.views[v].srgb);

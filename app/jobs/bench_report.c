@@ -9,7 +9,6 @@
 
 #include "data/image_io.h"
 #include "gpu/gpu.h"
-#include "jobs/bench_plot.h"
 #include "scene/program.h"
 #include "scene/quality.h"
 
@@ -122,7 +121,7 @@ bool bench_write_rows(const bench_results *r, err_t *err)
     return util_atomic_commit(&a, err);
 }
 
-static bool write_csv(const bench_results *r, err_t *err)
+bool bench_write_csv(const bench_results *r, err_t *err)
 {
     util_atomic a;
     if (!bench_write_rows(r, err) || !bench_open_out(r, "effects.csv", &a, err))
@@ -528,7 +527,4 @@ static bool write_html(const bench_results *r, err_t *err)
     return util_atomic_commit(&a, err);
 }
 
-bool bench_write(const bench_results *r, err_t *err)
-{
-    return write_csv(r, err) && bench_plot_write(r, err) && write_summary(r, err) && write_html(r, err);
-}
+bool bench_write_pages(const bench_results *r, err_t *err) { return write_summary(r, err) && write_html(r, err); }

@@ -77,7 +77,10 @@ void bench_print(const bench_results *r);
  * nowhere; its file name into name (empty when not written: said on stderr, the report goes on). */
 void bench_write_difference(const cli_options *opt, int w, int h, const char *knob, const char *value,
                             const uint8_t *test, const uint8_t *ref, char *name, size_t n);
-bool bench_write(const bench_results *r, err_t *err);
+/* With --out: the CSV files (PREFIX-knobs.csv, PREFIX-effects.csv); then, after bench_plot_write (their
+ * plots go inline), the markdown summary and the HTML report. */
+bool bench_write_csv(const bench_results *r, err_t *err);
+bool bench_write_pages(const bench_results *r, err_t *err);
 /* The knob CSV with the rows measured so far (Pareto marks among them), written to a temporary file
  * and renamed over PREFIX-knobs.csv: a run stopped half-way keeps every row it finished, never a torn
  * line. bench_write rewrites it whole at the end. */

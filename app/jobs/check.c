@@ -8,6 +8,7 @@
 
 #include "gpu/gpu.h"
 #include "gpu/render.h"
+#include "gpu/render_probe.h"
 
 enum {
     FINITE_POINTS = 1 << 14, /* random points probed for NaN and Inf */

@@ -12,6 +12,7 @@
 #include "jobs/offline.h"
 #include "view/path.h"
 #include "gpu/render.h"
+#include "gpu/render_probe.h"
 #include "scene/scene.h"
 #include "view/shot.h"
 

@@ -11,6 +11,7 @@
 #include "gpu/gpu.h"
 #include "data/image_io.h"
 #include "gpu/render.h"
+#include "gpu/render_probe.h"
 #include "gpu/render_programs.h"
 #include "view/shot.h"
 

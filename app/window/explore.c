@@ -15,6 +15,7 @@
 
 #include "gpu/gpu.h"
 #include "gpu/render.h"
+#include "gpu/render_probe.h"
 #include "gpu/res_heightfield.h"
 #include "scene/program.h"
 #include "view/resolution.h"

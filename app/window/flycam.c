@@ -9,6 +9,7 @@
 
 #include "gpu/aov.h"
 #include "gpu/render.h"
+#include "gpu/render_probe.h"
 #include "window/panel.h"
 
 enum { PROBE_MAX = 64, CURSOR_SETTLE_FRAMES = 3 };
