@@ -7,6 +7,9 @@
 #  3. No function in app/ or shaders/ is longer than 80 lines (style.md, rule 16).
 #  4. Every source file that a comment, README.md or docs/ cites (app/..., shaders/..., tests/...,
 #     a bare NAME.c/.h/.glsl/.frag/.vert) exists.
+#  5. Every global function in app/*.c carries its module's prefix: the file name's first word and '_'
+#     (scene_json.c: scene_, res_csg_list.c: res_), or one of the few names below that a module owns
+#     for its types (quality.c: knob_ and preset_, the QUALITY_KNOBS table's rows and presets).
 set -u
 cd "$1" || exit 2
 fail=0
@@ -78,5 +81,27 @@ for n in $names; do
     [ -n "$(find app shaders tests -name "$n" -print -quit)" ] || say "'$n' is cited in app/ or shaders/ but no such file exists"
 done
 
-[ $fail = 0 ] && echo "layers: ok ($(wc -l <"$edges") includes, every layer downwards, no cycle, no long function, every cited file exists)"
+# 5. module prefixes (C++ files keep their helpers in an anonymous namespace)
+for f in $(find app -name '*.c' | sort); do
+    stem=$(basename "${f%.c}")
+    case $stem in
+    quality) also="knob_ preset_" ;;     # the knob table's rows and the presets
+    terrain) also="heightfield_" ;;      # the heightfield type it loads
+    resolution) also="res_" ;;           # the res_controller
+    util) also="err_ sb_" ;;             # err_t and strbuf
+    *) also="" ;;
+    esac
+    bad=$(awk -v pre="${stem%%_*}_ $also" '
+        /^[A-Za-z]/ && !/^(static|typedef|extern|enum|union|#)/ && !/^struct [A-Za-z_]+ *\{/ && /\(/ && !/;[[:space:]]*$/ {
+            line = $0; sub(/\(.*/, "", line); n = split(line, w, /[ \t*]+/); name = w[n]
+            if (name == "main") next
+            k = split(pre, p, " "); ok = 0
+            for (i = 1; i <= k; i++) if (index(name, p[i]) == 1) ok = 1
+            if (!ok) print FILENAME ":" FNR ": " name
+        }' "$f")
+    [ -n "$bad" ] && say "global functions without their module's prefix (${stem%%_*}_$also; or make them static):
+$bad"
+done
+
+[ $fail = 0 ] && echo "layers: ok ($(wc -l <"$edges") includes, every layer downwards, no cycle, no long function, every cited file exists, every global function prefixed)"
 exit $fail

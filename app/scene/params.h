@@ -5,8 +5,8 @@
  * CSG primitive's radius — shows up there with its range and needs no panel code. An edit goes back
  * as a "key=value" override and meets exactly the checks --set does. Pure C.
  *
- * Recorded: numbers, whole numbers, vectors, colours, booleans and names from a list (get_num,
- * get_int, get_vec3, get_enum and the fractal block's own reads). Not recorded: files (textures,
+ * Recorded: numbers, whole numbers, vectors, colours, booleans and names from a list (scene_get_num,
+ * scene_get_int, scene_get_vec3, scene_get_enum and the fractal block's own reads). Not recorded: files (textures,
  * heightmaps: not a slider's business) and the camera's position and look-at (the window edits its
  * live camera instead). */
 #ifndef FATHOM_PARAMS_H

@@ -21,10 +21,10 @@
 
 /* clang-format off */
 #define PROGRAM_LIST(X)                                                                                                 \
-    X(CSG,        "csg",        NULL,                      FAMILY_CSG,     csg_parse,        NULL,            NULL,               NULL) \
-    X(FRACTAL,    "fractal",    NULL,                      FAMILY_FRACTAL, fractal_parse,    fractal_defines, fractal_uniforms,   NULL) \
-    X(TERRAIN,    "terrain",    "terrain/terrain.glsl",    FAMILY_TERRAIN, heightmap_parse,  heightmap_defines, layer_uniforms,   "terrain.method=linear,maxmip") \
-    X(NOISE,      "noise",      "terrain/noise.glsl",      FAMILY_TERRAIN, noise_parse,      NULL,            noise_uniforms,     NULL)
+    X(CSG,        "csg",        NULL,                      FAMILY_CSG,     scene_csg_parse,        NULL,            NULL,               NULL) \
+    X(FRACTAL,    "fractal",    NULL,                      FAMILY_FRACTAL, scene_fractal_parse,    scene_fractal_defines, scene_fractal_uniforms,   NULL) \
+    X(TERRAIN,    "terrain",    "terrain/terrain.glsl",    FAMILY_TERRAIN, scene_heightmap_parse,  scene_heightmap_defines, scene_layer_uniforms,   "terrain.method=linear,maxmip") \
+    X(NOISE,      "noise",      "terrain/noise.glsl",      FAMILY_TERRAIN, scene_noise_parse,      NULL,            scene_noise_uniforms,     NULL)
 /* clang-format on */
 
 typedef enum program_kind {
@@ -46,15 +46,15 @@ struct scene_ctx;
 struct cJSON;
 
 /* The programs' hooks named in PROGRAM_LIST: block parsers, #defines, uniforms (scene_programs.c). */
-bool csg_parse(struct scene_ctx *c, const struct cJSON *root); /* scene_csg.c: "objects" → map() */
-bool fractal_parse(struct scene_ctx *c, const struct cJSON *root);
-bool heightmap_parse(struct scene_ctx *c, const struct cJSON *root);
-bool noise_parse(struct scene_ctx *c, const struct cJSON *root);
-void fractal_defines(const struct scene *s, struct strbuf *out);
-void heightmap_defines(const struct scene *s, struct strbuf *out);
-void fractal_uniforms(const struct scene *s, const struct uniform_sink *u);
-void layer_uniforms(const struct scene *s, const struct uniform_sink *u);
-void noise_uniforms(const struct scene *s, const struct uniform_sink *u);
+bool scene_csg_parse(struct scene_ctx *c, const struct cJSON *root); /* scene_csg.c: "objects" → map() */
+bool scene_fractal_parse(struct scene_ctx *c, const struct cJSON *root);
+bool scene_heightmap_parse(struct scene_ctx *c, const struct cJSON *root);
+bool scene_noise_parse(struct scene_ctx *c, const struct cJSON *root);
+void scene_fractal_defines(const struct scene *s, struct strbuf *out);
+void scene_heightmap_defines(const struct scene *s, struct strbuf *out);
+void scene_fractal_uniforms(const struct scene *s, const struct uniform_sink *u);
+void scene_layer_uniforms(const struct scene *s, const struct uniform_sink *u);
+void scene_noise_uniforms(const struct scene *s, const struct uniform_sink *u);
 
 typedef struct program_def {
     const char *name, *map_file;

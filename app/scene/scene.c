@@ -28,7 +28,7 @@ static bool check_family_blocks(scene_ctx *c, const cJSON *root, const program_d
         for (int k = 0; k < PROGRAM_COUNT; k++)
             if (program_get((program_kind)k)->family == (program_family)f)
                 sb_printf(&readers, "%s%s", readers.len ? ", " : "", program_name((program_kind)k));
-        bool r = fail(c, block, "a %s scene has no \"%s\" block (its shape is the \"%s\" block; only %s read \"%s\")",
+        bool r = scene_fail(c, block, "a %s scene has no \"%s\" block (its shape is the \"%s\" block; only %s read \"%s\")",
                       p->name, block, program_family_block(p->family), readers.data, block);
         sb_free(&readers);
         return r;
@@ -89,14 +89,14 @@ static bool parse_root(scene_ctx *c, cJSON *root)
     static const char *const keys[] = {"title", "program", "camera", "environment", "lights", "fog",
                                        "materials", "objects", "fractal", "terrain", "quality", "effects",
                                        "droplets", NULL};
-    if (!check_keys(c, root, "", keys))
+    if (!scene_check_keys(c, root, "", keys))
         return false;
     const char *title = NULL, *prog = NULL;
-    if (!get_str(c, root, "", "title", "", &title) || !get_str(c, root, "", "program", NULL, &prog))
+    if (!scene_get_str(c, root, "", "title", "", &title) || !scene_get_str(c, root, "", "program", NULL, &prog))
         return false;
     snprintf(s->title, sizeof s->title, "%s", title);
     if (!prog)
-        return fail(c, "program", "missing: say which program draws the scene, e.g. \"program\": \"csg\"");
+        return scene_fail(c, "program", "missing: say which program draws the scene, e.g. \"program\": \"csg\"");
     formula named; /* "program": "mandelbulb": the fractal program with that formula */
     err_t ignore;
     if (program_from_name(prog, &s->program)) {
@@ -111,7 +111,7 @@ static bool parse_root(scene_ctx *c, cJSON *root)
         for (char *q = formulas.data; q && *q; q++)
             if (*q == '\n')
                 *q = q[1] ? ' ' : '\0';
-        bool r = fail(c, "program", "unknown program '%s' (programs: %s; or a formula's name: %s)", prog, known.data,
+        bool r = scene_fail(c, "program", "unknown program '%s' (programs: %s; or a formula's name: %s)", prog, known.data,
                       formulas.data ? formulas.data : "none");
         sb_free(&known);
         sb_free(&formulas);
@@ -120,12 +120,12 @@ static bool parse_root(scene_ctx *c, cJSON *root)
     const program_def *p = program_get(s->program);
     if (!check_family_blocks(c, root, p))
         return false;
-    if (!parse_camera(c, root) || !parse_fog(c, root) || !parse_environment(c, root) || !parse_lights(c, root) ||
-        !parse_quality(c, root) || !parse_effects(c, root) || !parse_droplets(c, root))
+    if (!scene_parse_camera(c, root) || !scene_parse_fog(c, root) || !scene_parse_environment(c, root) || !scene_parse_lights(c, root) ||
+        !scene_parse_quality(c, root) || !scene_parse_effects(c, root) || !scene_parse_droplets(c, root))
         return false;
     /* fractals colour their own surface: their "materials" are optional */
     bool materials = p->family != FAMILY_FRACTAL || cJSON_GetObjectItemCaseSensitive(root, "materials");
-    if ((materials && !parse_materials(c, root)) || !p->parse(c, root))
+    if ((materials && !scene_parse_materials(c, root)) || !p->parse(c, root))
         return false;
     if (p->map_file)
         sb_printf(&c->code, "#include \"%s\"\n", p->map_file);
@@ -157,14 +157,14 @@ static bool check_duplicates(scene_ctx *c, const cJSON *node, const char *path)
     for (const cJSON *it = node->child; it; it = it->next, index++) {
         char p[KEY_PATH_MAX];
         if (cJSON_IsObject(node)) {
-            child_path(p, sizeof p, path, it->string);
+            scene_child_path(p, sizeof p, path, it->string);
             for (const cJSON *before = node->child; before != it; before = before->next)
                 if (!strcmp(before->string, it->string))
-                    return fail(c, p, "the key '%s' appears twice in the same object; keep one", it->string);
+                    return scene_fail(c, p, "the key '%s' appears twice in the same object; keep one", it->string);
         } else {
             char idx[16];
             snprintf(idx, sizeof idx, "%d", index);
-            child_path(p, sizeof p, path, idx);
+            scene_child_path(p, sizeof p, path, idx);
         }
         if ((cJSON_IsObject(it) || cJSON_IsArray(it)) && !check_duplicates(c, it, p))
             return false;
@@ -340,7 +340,7 @@ static bool load_text(const char *text, const char *path, const char *const *set
         ok = scene_apply_set(root, sets[i], err); /* its errors name the override already */
     if (ok) {
         ok = parse_root(&c, root) &&
-             (!s->cam_auto || (s->program == PROGRAM_FRACTAL ? fractal_frame(s, err) : terrain_frame(s, err)));
+             (!s->cam_auto || (s->program == PROGRAM_FRACTAL ? scene_fractal_frame(s, err) : scene_terrain_frame(s, err)));
         if (!ok && set_count > 0 && blame)
             blame_override(text, path, sets, set_count, err);
     }

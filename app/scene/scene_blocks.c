@@ -27,55 +27,55 @@ static bool parse_material(scene_ctx *c, const cJSON *m, const char *path, scene
                                        "absorption", "emission", "texture", "uv_scale", "relief",
                                        "relief_depth", NULL};
     static const float white[3] = {1, 1, 1}, zero[3] = {0, 0, 0};
-    if (!check_keys(c, m, path, keys))
+    if (!scene_check_keys(c, m, path, keys))
         return false;
     const char *tex = NULL, *relief = NULL;
-    if (!get_vec3(c, m, path, "base_color", white, 0, 1, out->base_color) ||
-        !get_num(c, m, path, "metallic", 0, 0, 1, &out->metallic) ||
-        !get_num(c, m, path, "roughness", 0.5f, 0, 1, &out->roughness) ||
-        !get_num(c, m, path, "transmission", 0, 0, 1, &out->transmission) ||
-        !get_num(c, m, path, "ior", 1.5f, 1, 4, &out->ior) ||
-        !get_vec3(c, m, path, "absorption", zero, 0, 1e4f, out->absorption) ||
-        !get_vec3(c, m, path, "emission", zero, 0, 1e6f, out->emission) ||
-        !get_num(c, m, path, "uv_scale", 1, 1e-7f, 1e4f, &out->uv_scale) ||
-        !get_str(c, m, path, "texture", NULL, &tex) || !get_str(c, m, path, "relief", NULL, &relief) ||
-        !get_num(c, m, path, "relief_depth", 0.05f, 1e-5f, 1e3f, &out->relief_depth))
+    if (!scene_get_vec3(c, m, path, "base_color", white, 0, 1, out->base_color) ||
+        !scene_get_num(c, m, path, "metallic", 0, 0, 1, &out->metallic) ||
+        !scene_get_num(c, m, path, "roughness", 0.5f, 0, 1, &out->roughness) ||
+        !scene_get_num(c, m, path, "transmission", 0, 0, 1, &out->transmission) ||
+        !scene_get_num(c, m, path, "ior", 1.5f, 1, 4, &out->ior) ||
+        !scene_get_vec3(c, m, path, "absorption", zero, 0, 1e4f, out->absorption) ||
+        !scene_get_vec3(c, m, path, "emission", zero, 0, 1e6f, out->emission) ||
+        !scene_get_num(c, m, path, "uv_scale", 1, 1e-7f, 1e4f, &out->uv_scale) ||
+        !scene_get_str(c, m, path, "texture", NULL, &tex) || !scene_get_str(c, m, path, "relief", NULL, &relief) ||
+        !scene_get_num(c, m, path, "relief_depth", 0.05f, 1e-5f, 1e3f, &out->relief_depth))
         return false;
     out->texture = -1;
     out->relief = -1;
     if (relief) {
         char p[512], resolved[PATH_MAX_LEN];
-        child_path(p, sizeof p, path, "relief");
-        if (!resolve_file(c, p, relief, resolved))
+        scene_child_path(p, sizeof p, path, "relief");
+        if (!scene_resolve_file(c, p, relief, resolved))
             return false;
         out->relief = add_texture(c->s, resolved, true);
         if (out->relief < 0)
-            return fail(c, p, "too many textures (at most %d)", SCENE_MAX_TEXTURES);
+            return scene_fail(c, p, "too many textures (at most %d)", SCENE_MAX_TEXTURES);
     }
     if (tex) {
         char p[512], resolved[PATH_MAX_LEN];
-        child_path(p, sizeof p, path, "texture");
-        if (!resolve_file(c, p, tex, resolved))
+        scene_child_path(p, sizeof p, path, "texture");
+        if (!scene_resolve_file(c, p, tex, resolved))
             return false;
         out->texture = add_texture(c->s, resolved, false);
         if (out->texture < 0)
-            return fail(c, p, "too many textures (at most %d)", SCENE_MAX_TEXTURES);
+            return scene_fail(c, p, "too many textures (at most %d)", SCENE_MAX_TEXTURES);
     }
     return true;
 }
 
-bool parse_materials(scene_ctx *c, const cJSON *root)
+bool scene_parse_materials(scene_ctx *c, const cJSON *root)
 {
     const cJSON *mats = cJSON_GetObjectItemCaseSensitive(root, "materials");
     if (!cJSON_IsObject(mats) || !mats->child)
-        return fail(c, "materials", "expected an object of named materials, e.g. {\"red\": {\"base_color\": [0.8, 0.1, 0.1]}}");
+        return scene_fail(c, "materials", "expected an object of named materials, e.g. {\"red\": {\"base_color\": [0.8, 0.1, 0.1]}}");
     for (const cJSON *m = mats->child; m; m = m->next) {
         char p[512];
-        child_path(p, sizeof p, "materials", m->string);
+        scene_child_path(p, sizeof p, "materials", m->string);
         if (c->s->material_count == SCENE_MAX_MATERIALS)
-            return fail(c, p, "too many materials (at most %d)", SCENE_MAX_MATERIALS);
+            return scene_fail(c, p, "too many materials (at most %d)", SCENE_MAX_MATERIALS);
         if (strlen(m->string) == 0 || strlen(m->string) >= SCENE_NAME_MAX)
-            return fail(c, p, "material names must have 1 to 63 characters");
+            return scene_fail(c, p, "material names must have 1 to 63 characters");
         scene_material *out = &c->s->materials[c->s->material_count++];
         strcpy(out->name, m->string);
         if (!parse_material(c, m, p, out))
@@ -84,7 +84,7 @@ bool parse_materials(scene_ctx *c, const cJSON *root)
     return true;
 }
 
-int find_material(const scene *s, const char *name)
+int scene_find_material(const scene *s, const char *name)
 {
     for (int i = 0; i < s->material_count; i++)
         if (!strcmp(s->materials[i].name, name))
@@ -94,7 +94,7 @@ int find_material(const scene *s, const char *name)
 
 /* ---- droplets ---------------------------------------------------------------------------------- */
 
-bool parse_droplets(scene_ctx *c, const cJSON *root)
+bool scene_parse_droplets(scene_ctx *c, const cJSON *root)
 {
     scene *s = c->s;
     const cJSON *d = cJSON_GetObjectItemCaseSensitive(root, "droplets");
@@ -107,27 +107,27 @@ bool parse_droplets(scene_ctx *c, const cJSON *root)
     static const float water[3] = {0.34f, 0.0565f, 0.0092f};
     const char *file = NULL;
     if (!cJSON_IsObject(d))
-        return fail(c, "droplets", "expected an object like {\"file\": \"spray.csv\"}");
-    if (!check_keys(c, d, "droplets", keys) || !get_str(c, d, "droplets", "file", NULL, &file))
+        return scene_fail(c, "droplets", "expected an object like {\"file\": \"spray.csv\"}");
+    if (!scene_check_keys(c, d, "droplets", keys) || !scene_get_str(c, d, "droplets", "file", NULL, &file))
         return false;
     if (!file)
-        return fail(c, "droplets.file", "missing: name a CSV file of droplet centres and radii (ParaView's "
+        return scene_fail(c, "droplets.file", "missing: name a CSV file of droplet centres and radii (ParaView's "
                                         "Points:0..2 with radius or diameter, or x,y,z,r)");
     s->has_droplets = true;
     int structure = 0;
-    if (!get_enum(c, d, "droplets", "structure", "droplet structure", structures, 0, &structure))
+    if (!scene_get_enum(c, d, "droplets", "structure", "droplet structure", structures, 0, &structure))
         return false;
     s->droplets.bvh = structure == 1;
-    return resolve_file(c, "droplets.file", file, s->droplets.file) &&
-           get_num(c, d, "droplets", "scale", 1, 1e-9f, 1e9f, &s->droplets.scale) &&
-           get_num(c, d, "droplets", "ior", 1.33f, 1.0001f, 4, &s->droplets.ior) &&
-           get_vec3(c, d, "droplets", "absorption", water, 0, 1e6f, s->droplets.absorption) &&
-           get_num(c, d, "droplets", "roughness", 0.08f, 0.01f, 1, &s->droplets.roughness);
+    return scene_resolve_file(c, "droplets.file", file, s->droplets.file) &&
+           scene_get_num(c, d, "droplets", "scale", 1, 1e-9f, 1e9f, &s->droplets.scale) &&
+           scene_get_num(c, d, "droplets", "ior", 1.33f, 1.0001f, 4, &s->droplets.ior) &&
+           scene_get_vec3(c, d, "droplets", "absorption", water, 0, 1e6f, s->droplets.absorption) &&
+           scene_get_num(c, d, "droplets", "roughness", 0.08f, 0.01f, 1, &s->droplets.roughness);
 }
 
 /* ---- camera and fog --------------------------------------------------------------------------- */
 
-bool parse_camera(scene_ctx *c, const cJSON *root)
+bool scene_parse_camera(scene_ctx *c, const cJSON *root)
 {
     scene *s = c->s;
     bool fractal = program_is_fractal(s->program);
@@ -135,7 +135,7 @@ bool parse_camera(scene_ctx *c, const cJSON *root)
     static const double cam_pos[3] = {0, 1, 5}, cam_at[3] = {0, 0, 0};
     if (cJSON_IsString(cam)) { /* "auto": framed from the terrain's extent once it is known (scene.c) */
         if (strcmp(cam->valuestring, "auto") || (s->program != PROGRAM_TERRAIN && s->program != PROGRAM_FRACTAL))
-            return fail(c, "camera", "expected an object with position and look_at%s",
+            return scene_fail(c, "camera", "expected an object with position and look_at%s",
                         s->program == PROGRAM_TERRAIN   ? ", or \"auto\" (framed from the DEM)"
                         : s->program == PROGRAM_FRACTAL ? ", or \"auto\" (framed from the formula's bound)"
                                                         : "");
@@ -144,25 +144,25 @@ bool parse_camera(scene_ctx *c, const cJSON *root)
     }
     if (cam) {
         static const char *const ckeys[] = {"position", "look_at", "fov", "adaptive_speed", NULL};
-        if (!check_keys(c, cam, "camera", ckeys))
+        if (!scene_check_keys(c, cam, "camera", ckeys))
             return false;
         const cJSON *adaptive = cJSON_GetObjectItemCaseSensitive(cam, "adaptive_speed");
         if (adaptive && !cJSON_IsBool(adaptive))
-            return fail(c, "camera.adaptive_speed", "expected true or false");
+            return scene_fail(c, "camera.adaptive_speed", "expected true or false");
         s->adaptive_speed = adaptive ? cJSON_IsTrue(adaptive) : fractal;
     } else {
         s->adaptive_speed = fractal;
     }
-    if (!get_dvec3(c, cam, "camera", "position", cam_pos, -CAMERA_MAX_COORD, CAMERA_MAX_COORD, s->cam_position) ||
-        !get_dvec3(c, cam, "camera", "look_at", cam_at, -CAMERA_MAX_COORD, CAMERA_MAX_COORD, s->cam_look_at) ||
-        !get_num(c, cam, "camera", "fov", 50, 1, 170, &s->cam_fov_deg))
+    if (!scene_get_dvec3(c, cam, "camera", "position", cam_pos, -CAMERA_MAX_COORD, CAMERA_MAX_COORD, s->cam_position) ||
+        !scene_get_dvec3(c, cam, "camera", "look_at", cam_at, -CAMERA_MAX_COORD, CAMERA_MAX_COORD, s->cam_look_at) ||
+        !scene_get_num(c, cam, "camera", "fov", 50, 1, 170, &s->cam_fov_deg))
         return false;
     if (camera_degenerate(s->cam_position, s->cam_look_at))
-        return fail(c, "camera.look_at", "is the camera's position: the camera needs a point to look at");
+        return scene_fail(c, "camera.look_at", "is the camera's position: the camera needs a point to look at");
     return true;
 }
 
-bool parse_fog(scene_ctx *c, const cJSON *root)
+bool scene_parse_fog(scene_ctx *c, const cJSON *root)
 {
     scene *s = c->s;
     const cJSON *fog = cJSON_GetObjectItemCaseSensitive(root, "fog");
@@ -171,41 +171,41 @@ bool parse_fog(scene_ctx *c, const cJSON *root)
     static const char *const fkeys[] = {"color", "density", "falloff", "height", NULL};
     static const float fog_grey[3] = {0.6f, 0.65f, 0.7f};
     s->has_fog = true;
-    return check_keys(c, fog, "fog", fkeys) && get_vec3(c, fog, "fog", "color", fog_grey, 0, 1e3f, s->fog_color) &&
-           get_num(c, fog, "fog", "density", 0.02f, 0, 1e3f, &s->fog_density) &&
-           get_num(c, fog, "fog", "falloff", 0, -1e3f, 1e3f, &s->fog_falloff) &&
-           get_num(c, fog, "fog", "height", 0, -1e7f, 1e7f, &s->fog_height);
+    return scene_check_keys(c, fog, "fog", fkeys) && scene_get_vec3(c, fog, "fog", "color", fog_grey, 0, 1e3f, s->fog_color) &&
+           scene_get_num(c, fog, "fog", "density", 0.02f, 0, 1e3f, &s->fog_density) &&
+           scene_get_num(c, fog, "fog", "falloff", 0, -1e3f, 1e3f, &s->fog_falloff) &&
+           scene_get_num(c, fog, "fog", "height", 0, -1e7f, 1e7f, &s->fog_height);
 }
 
 /* ---- lights and environment ------------------------------------------------------------------- */
 
-bool parse_lights(scene_ctx *c, const cJSON *root)
+bool scene_parse_lights(scene_ctx *c, const cJSON *root)
 {
     const cJSON *lights = cJSON_GetObjectItemCaseSensitive(root, "lights");
     if (!lights)
         return true;
     if (!cJSON_IsArray(lights))
-        return fail(c, "lights", "expected an array of lights");
+        return scene_fail(c, "lights", "expected an array of lights");
     int i = 0;
     for (const cJSON *l = lights->child; l; l = l->next, i++) {
         char p[64];
         snprintf(p, sizeof p, "lights.%d", i);
         if (c->s->light_count == SCENE_MAX_LIGHTS)
-            return fail(c, p, "too many lights (at most %d)", SCENE_MAX_LIGHTS);
+            return scene_fail(c, p, "too many lights (at most %d)", SCENE_MAX_LIGHTS);
         static const char *const keys[] = {"type", "position", "direction", "color", "intensity", "shadow",
                                            "softness", NULL};
-        if (!check_keys(c, l, p, keys))
+        if (!scene_check_keys(c, l, p, keys))
             return false;
         scene_light *out = &c->s->lights[c->s->light_count++];
         static const float white[3] = {1, 1, 1}, up[3] = {0, 1, 0}, zero[3] = {0, 0, 0};
         /* in the order of light_type and shadow_mode (scene.h) */
         static const char *const TYPES[] = {"point", "directional", NULL}, *const SHADOWS[] = {"none", "hard", "soft", NULL};
         int type, shadow;
-        if (!get_enum(c, l, p, "type", "light type", TYPES, LIGHT_POINT, &type) ||
-            !get_enum(c, l, p, "shadow", "shadow", SHADOWS, SHADOW_HARD, &shadow) ||
-            !get_vec3(c, l, p, "color", white, 0, 1e3f, out->color) ||
-            !get_num(c, l, p, "intensity", 1, 0, 1e7f, &out->intensity) ||
-            !get_num(c, l, p, "softness", 16, 1, 1024, &out->softness))
+        if (!scene_get_enum(c, l, p, "type", "light type", TYPES, LIGHT_POINT, &type) ||
+            !scene_get_enum(c, l, p, "shadow", "shadow", SHADOWS, SHADOW_HARD, &shadow) ||
+            !scene_get_vec3(c, l, p, "color", white, 0, 1e3f, out->color) ||
+            !scene_get_num(c, l, p, "intensity", 1, 0, 1e7f, &out->intensity) ||
+            !scene_get_num(c, l, p, "softness", 16, 1, 1024, &out->softness))
             return false;
         out->type = (light_type)type;
         out->shadow = (shadow_mode)shadow;
@@ -215,15 +215,15 @@ bool parse_lights(scene_ctx *c, const cJSON *root)
         const char *own = type == LIGHT_POINT ? "position" : "direction", *other = type == LIGHT_POINT ? "direction" : "position";
         if (cJSON_GetObjectItemCaseSensitive(l, other)) {
             char kp[96];
-            child_path(kp, sizeof kp, p, other);
-            return fail(c, kp, "a %s light has a \"%s\", not a %s", TYPES[type], own, other);
+            scene_child_path(kp, sizeof kp, p, other);
+            return scene_fail(c, kp, "a %s light has a \"%s\", not a %s", TYPES[type], own, other);
         }
-        if (!get_vec3(c, l, p, own, type == LIGHT_POINT ? zero : up, -1e6f, 1e6f, out->vec))
+        if (!scene_get_vec3(c, l, p, own, type == LIGHT_POINT ? zero : up, -1e6f, 1e6f, out->vec))
             return false;
         if (type == LIGHT_DIRECTIONAL) { /* unit, toward the light */
             float len = sqrtf(out->vec[0] * out->vec[0] + out->vec[1] * out->vec[1] + out->vec[2] * out->vec[2]);
             if (len < 1e-6f)
-                return fail(c, p, "direction must not be zero");
+                return scene_fail(c, p, "direction must not be zero");
             for (int k = 0; k < 3; k++)
                 out->vec[k] /= len;
         }
@@ -231,7 +231,7 @@ bool parse_lights(scene_ctx *c, const cJSON *root)
     return true;
 }
 
-bool parse_environment(scene_ctx *c, const cJSON *root)
+bool scene_parse_environment(scene_ctx *c, const cJSON *root)
 {
     scene *s = c->s;
     static const float grey[3] = {0.5f, 0.6f, 0.7f};
@@ -242,22 +242,22 @@ bool parse_environment(scene_ctx *c, const cJSON *root)
         return true;
     }
     static const char *const keys[] = {"color", "intensity", "cubemap", NULL};
-    if (!check_keys(c, env, "environment", keys) ||
-        !get_vec3(c, env, "environment", "color", grey, 0, 1e3f, s->env_color) ||
-        !get_num(c, env, "environment", "intensity", 1, 0, 1e6f, &s->env_intensity))
+    if (!scene_check_keys(c, env, "environment", keys) ||
+        !scene_get_vec3(c, env, "environment", "color", grey, 0, 1e3f, s->env_color) ||
+        !scene_get_num(c, env, "environment", "intensity", 1, 0, 1e6f, &s->env_intensity))
         return false;
     const cJSON *cube = cJSON_GetObjectItemCaseSensitive(env, "cubemap");
     if (!cube)
         return true;
     if (!cJSON_IsArray(cube) || cJSON_GetArraySize(cube) != 6)
-        return fail(c, "environment.cubemap", "expected six image paths in the order +X, -X, +Y, -Y, +Z, -Z");
+        return scene_fail(c, "environment.cubemap", "expected six image paths in the order +X, -X, +Y, -Y, +Z, -Z");
     int i = 0;
     for (const cJSON *f = cube->child; f; f = f->next, i++) {
         char p[64];
         snprintf(p, sizeof p, "environment.cubemap.%d", i);
         if (!cJSON_IsString(f))
-            return fail(c, p, "expected an image path in quotes");
-        if (!resolve_file(c, p, f->valuestring, s->cubemap[i]))
+            return scene_fail(c, p, "expected an image path in quotes");
+        if (!scene_resolve_file(c, p, f->valuestring, s->cubemap[i]))
             return false;
     }
     s->has_cubemap = true;
@@ -265,7 +265,7 @@ bool parse_environment(scene_ctx *c, const cJSON *root)
 }
 
 /* The "quality" block: "preset" picks the starting values, then every knob of QUALITY_KNOBS may be set. */
-bool parse_quality(scene_ctx *c, const cJSON *root)
+bool scene_parse_quality(scene_ctx *c, const cJSON *root)
 {
     scene *s = c->s;
     const cJSON *q = cJSON_GetObjectItemCaseSensitive(root, "quality");
@@ -278,16 +278,16 @@ bool parse_quality(scene_ctx *c, const cJSON *root)
     for (int k = 0; k < KNOB_COUNT; k++)
         keys[k + 1] = knob_get_def((knob_id)k)->name;
     keys[KNOB_COUNT + 1] = NULL;
-    if (!check_keys(c, q, "quality", keys))
+    if (!scene_check_keys(c, q, "quality", keys))
         return false;
     const char *name = NULL;
-    if (!get_str(c, q, "quality", "preset", "interactive", &name))
+    if (!scene_get_str(c, q, "quality", "preset", "interactive", &name))
         return false;
     if (!preset_from_name(name, &s->preset)) {
         strbuf known = {0};
         for (int p = 0; p < PRESET_COUNT; p++)
             sb_printf(&known, "%s%s", p ? ", " : "", preset_name((quality_preset)p));
-        bool r = fail(c, "quality.preset", "unknown preset '%s' (known: %s)", name, known.data);
+        bool r = scene_fail(c, "quality.preset", "unknown preset '%s' (known: %s)", name, known.data);
         sb_free(&known);
         return r;
     }
@@ -295,42 +295,42 @@ bool parse_quality(scene_ctx *c, const cJSON *root)
     for (int k = 0; k < KNOB_COUNT; k++) {
         const knob_def *d = knob_get_def((knob_id)k);
         float v;
-        if (!get_num(c, q, "quality", d->name, (float)knob_value(&s->quality, (knob_id)k), (float)d->min,
+        if (!scene_get_num(c, q, "quality", d->name, (float)knob_value(&s->quality, (knob_id)k), (float)d->min,
                      (float)d->max, &v))
             return false;
         if (d->type == KNOB_INT && v != floorf(v)) {
             char p[KEY_PATH_MAX];
-            child_path(p, sizeof p, "quality", d->name);
-            return fail(c, p, "expected a whole number");
+            scene_child_path(p, sizeof p, "quality", d->name);
+            return scene_fail(c, p, "expected a whole number");
         }
         knob_set_value(&s->quality, (knob_id)k, v);
     }
     return true;
 }
 
-bool parse_effects(scene_ctx *c, const cJSON *root)
+bool scene_parse_effects(scene_ctx *c, const cJSON *root)
 {
     const cJSON *fx = cJSON_GetObjectItemCaseSensitive(root, "effects");
     if (!fx)
         return true;
     if (!cJSON_IsObject(fx))
-        return fail(c, "effects", "expected an object like {\"fog\": \"off\"}");
+        return scene_fail(c, "effects", "expected an object like {\"fog\": \"off\"}");
     for (const cJSON *it = fx->child; it; it = it->next) {
         char p[128];
-        child_path(p, sizeof p, "effects", it->string);
+        scene_child_path(p, sizeof p, "effects", it->string);
         effect e;
         if (!effect_from_name(it->string, &e)) {
             strbuf list = {0};
             for (int i = 0; i < EFFECT_COUNT; i++)
                 sb_printf(&list, "%s%s", i ? ", " : "", effect_name((effect)i));
-            bool r = fail(c, p, "unknown effect '%s' (known: %s)", it->string, list.data);
+            bool r = scene_fail(c, p, "unknown effect '%s' (known: %s)", it->string, list.data);
             sb_free(&list);
             return r;
         }
         /* in the order of effect_mode (scene.h) */
         static const char *const MODES[] = {"auto", "on", "off", NULL};
         int mode;
-        if (!get_enum(c, fx, "effects", it->string, "mode", MODES, EFFECT_AUTO, &mode))
+        if (!scene_get_enum(c, fx, "effects", it->string, "mode", MODES, EFFECT_AUTO, &mode))
             return false;
         c->s->effect_modes[e] = (effect_mode)mode;
     }

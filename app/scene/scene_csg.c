@@ -28,8 +28,8 @@ static bool read_transform(scene_ctx *c, const cJSON *node, const char *path, xf
 {
     static const float zero[3] = {0, 0, 0};
     float rot[3];
-    if (!get_vec3(c, node, path, "position", zero, -1e6f, 1e6f, x->pos) ||
-        !get_vec3(c, node, path, "rotation", zero, -360, 360, rot))
+    if (!scene_get_vec3(c, node, path, "position", zero, -1e6f, 1e6f, x->pos) ||
+        !scene_get_vec3(c, node, path, "rotation", zero, -360, 360, rot))
         return false;
     x->rotated = rot[0] != 0 || rot[1] != 0 || rot[2] != 0;
     double cx = cos(rot[0] * DEG2RAD), sx = sin(rot[0] * DEG2RAD);
@@ -80,13 +80,13 @@ typedef void (*shape_extent)(const float k[SHAPE_PARAMS], float half[3]);
 
 static bool read_sphere(scene_ctx *c, const cJSON *node, const char *path, float k[SHAPE_PARAMS])
 {
-    return get_num(c, node, path, "radius", 1, TINY, BIG, &k[0]);
+    return scene_get_num(c, node, path, "radius", 1, TINY, BIG, &k[0]);
 }
 
 static bool read_box(scene_ctx *c, const cJSON *node, const char *path, float k[SHAPE_PARAMS])
 {
     static const float unit[3] = {1, 1, 1};
-    if (!get_vec3(c, node, path, "size", unit, TINY, BIG, k))
+    if (!scene_get_vec3(c, node, path, "size", unit, TINY, BIG, k))
         return false;
     for (int i = 0; i < 3; i++)
         k[i] *= 0.5f;
@@ -95,22 +95,22 @@ static bool read_box(scene_ctx *c, const cJSON *node, const char *path, float k[
 
 static bool read_round_box(scene_ctx *c, const cJSON *node, const char *path, float k[SHAPE_PARAMS])
 {
-    if (!read_box(c, node, path, k) || !get_num(c, node, path, "radius", 0.1f, 0, BIG, &k[3]))
+    if (!read_box(c, node, path, k) || !scene_get_num(c, node, path, "radius", 0.1f, 0, BIG, &k[3]))
         return false;
     if (k[3] > fminf(k[0], fminf(k[1], k[2])))
-        return fail(c, path, "radius must be at most half the smallest size");
+        return scene_fail(c, path, "radius must be at most half the smallest size");
     return true;
 }
 
 static bool read_torus(scene_ctx *c, const cJSON *node, const char *path, float k[SHAPE_PARAMS])
 {
-    return get_num(c, node, path, "major", 1, TINY, BIG, &k[0]) && get_num(c, node, path, "minor", 0.25f, TINY, BIG, &k[1]);
+    return scene_get_num(c, node, path, "major", 1, TINY, BIG, &k[0]) && scene_get_num(c, node, path, "minor", 0.25f, TINY, BIG, &k[1]);
 }
 
 /* Cylinder and capsule: half height, radius. */
 static bool read_cylinder(scene_ctx *c, const cJSON *node, const char *path, float k[SHAPE_PARAMS])
 {
-    if (!get_num(c, node, path, "radius", 0.5f, TINY, BIG, &k[1]) || !get_num(c, node, path, "height", 1, TINY, BIG, &k[0]))
+    if (!scene_get_num(c, node, path, "radius", 0.5f, TINY, BIG, &k[1]) || !scene_get_num(c, node, path, "height", 1, TINY, BIG, &k[0]))
         return false;
     k[0] *= 0.5f;
     return true;
@@ -118,7 +118,7 @@ static bool read_cylinder(scene_ctx *c, const cJSON *node, const char *path, flo
 
 static bool read_capsule(scene_ctx *c, const cJSON *node, const char *path, float k[SHAPE_PARAMS])
 {
-    if (!get_num(c, node, path, "radius", 0.5f, TINY, BIG, &k[1]) || !get_num(c, node, path, "height", 1, 0, BIG, &k[0]))
+    if (!scene_get_num(c, node, path, "radius", 0.5f, TINY, BIG, &k[1]) || !scene_get_num(c, node, path, "height", 1, 0, BIG, &k[0]))
         return false;
     k[0] *= 0.5f;
     return true;
@@ -126,11 +126,11 @@ static bool read_capsule(scene_ctx *c, const cJSON *node, const char *path, floa
 
 static bool read_cone(scene_ctx *c, const cJSON *node, const char *path, float k[SHAPE_PARAMS])
 {
-    if (!get_num(c, node, path, "radius_bottom", 0.5f, 0, BIG, &k[1]) ||
-        !get_num(c, node, path, "radius_top", 0, 0, BIG, &k[2]) || !get_num(c, node, path, "height", 1, TINY, BIG, &k[0]))
+    if (!scene_get_num(c, node, path, "radius_bottom", 0.5f, 0, BIG, &k[1]) ||
+        !scene_get_num(c, node, path, "radius_top", 0, 0, BIG, &k[2]) || !scene_get_num(c, node, path, "height", 1, TINY, BIG, &k[0]))
         return false;
     if (k[1] + k[2] <= 0)
-        return fail(c, path, "a cone needs radius_bottom or radius_top above 0");
+        return scene_fail(c, path, "a cone needs radius_bottom or radius_top above 0");
     k[0] *= 0.5f;
     return true;
 }
@@ -139,11 +139,11 @@ static bool read_cone(scene_ctx *c, const cJSON *node, const char *path, float k
 static bool read_plane(scene_ctx *c, const cJSON *node, const char *path, float k[SHAPE_PARAMS])
 {
     static const float up[3] = {0, 1, 0};
-    if (!get_vec3(c, node, path, "normal", up, -1, 1, k))
+    if (!scene_get_vec3(c, node, path, "normal", up, -1, 1, k))
         return false;
     double len = sqrt((double)k[0] * k[0] + (double)k[1] * k[1] + (double)k[2] * k[2]);
     if (len < 1e-6)
-        return fail(c, path, "normal must not be zero");
+        return scene_fail(c, path, "normal must not be zero");
     for (int i = 0; i < 3; i++)
         k[i] = (float)(k[i] / len);
     return true;
@@ -204,11 +204,11 @@ static int find_shape(scene_ctx *c, const char *path, const char *shape)
         if (!strcmp(shape, SHAPES[i].name))
             return i;
     char p[KEY_PATH_MAX];
-    child_path(p, sizeof p, path, "shape");
+    scene_child_path(p, sizeof p, path, "shape");
     strbuf known = {0};
     for (int i = 0; i < SHAPE_COUNT; i++)
         sb_printf(&known, "%s%s", i ? ", " : "", SHAPES[i].name);
-    fail(c, p, "unknown shape '%s' (known: %s)", shape, known.data);
+    scene_fail(c, p, "unknown shape '%s' (known: %s)", shape, known.data);
     sb_free(&known);
     return -1;
 }
@@ -216,17 +216,17 @@ static int find_shape(scene_ctx *c, const char *path, const char *shape)
 static int primitive_material(scene_ctx *c, const cJSON *node, const char *path)
 {
     const char *mname = NULL;
-    if (!get_str(c, node, path, "material", NULL, &mname))
+    if (!scene_get_str(c, node, path, "material", NULL, &mname))
         return -1;
     char mp[KEY_PATH_MAX];
-    child_path(mp, sizeof mp, path, "material");
+    scene_child_path(mp, sizeof mp, path, "material");
     if (!mname) {
-        fail(c, mp, "every primitive needs a material, e.g. \"material\": \"%s\"", c->s->materials[0].name);
+        scene_fail(c, mp, "every primitive needs a material, e.g. \"material\": \"%s\"", c->s->materials[0].name);
         return -1;
     }
-    int mat = find_material(c->s, mname);
+    int mat = scene_find_material(c->s, mname);
     if (mat < 0)
-        fail(c, mp, "no material named '%s' in \"materials\"", mname);
+        scene_fail(c, mp, "no material named '%s' in \"materials\"", mname);
     return mat;
 }
 
@@ -247,7 +247,7 @@ static bool read_primitive(scene_ctx *c, const cJSON *node, const char *path, co
     for (int i = 0; i < SHAPE_MAX_KEYS && SHAPES[pr->shape].keys[i]; i++)
         keys[nk++] = SHAPES[pr->shape].keys[i];
     keys[nk] = NULL;
-    if (!check_keys(c, node, path, keys))
+    if (!scene_check_keys(c, node, path, keys))
         return false;
     pr->material = primitive_material(c, node, path);
     return pr->material >= 0 && read_transform(c, node, path, &pr->x) &&
@@ -290,33 +290,33 @@ static int emit_op(scene_ctx *c, const cJSON *node, const char *path, const char
             oi = i;
     char p[512];
     if (oi < 0) {
-        child_path(p, sizeof p, path, "op");
+        scene_child_path(p, sizeof p, path, "op");
         strbuf known = {0};
         for (size_t i = 0; i < sizeof OPS / sizeof OPS[0]; i++)
             sb_printf(&known, "%s%s", i ? ", " : "", OPS[i].name);
-        fail(c, p, "unknown op '%s' (known: %s)", op, known.data);
+        scene_fail(c, p, "unknown op '%s' (known: %s)", op, known.data);
         sb_free(&known);
         return -1;
     }
-    if (!check_keys(c, node, path, keys))
+    if (!scene_check_keys(c, node, path, keys))
         return -1;
     float k = 0;
     if (OPS[oi].smooth) {
         if (!cJSON_GetObjectItemCaseSensitive(node, "k")) {
-            fail(c, path, "'%s' needs a blend radius \"k\" (metres, > 0)", op);
+            scene_fail(c, path, "'%s' needs a blend radius \"k\" (metres, > 0)", op);
             return -1;
         }
-        if (!get_num(c, node, path, "k", 0, 1e-5f, 1e4f, &k))
+        if (!scene_get_num(c, node, path, "k", 0, 1e-5f, 1e4f, &k))
             return -1;
     } else if (cJSON_GetObjectItemCaseSensitive(node, "k")) {
-        child_path(p, sizeof p, path, "k");
-        fail(c, p, "'k' only applies to smooth_ ops");
+        scene_child_path(p, sizeof p, path, "k");
+        scene_fail(c, p, "'k' only applies to smooth_ ops");
         return -1;
     }
     const cJSON *kids = cJSON_GetObjectItemCaseSensitive(node, "children");
-    child_path(p, sizeof p, path, "children");
+    scene_child_path(p, sizeof p, path, "children");
     if (!cJSON_IsArray(kids) || cJSON_GetArraySize(kids) < 2) {
-        fail(c, p, "expected an array of at least two nodes");
+        scene_fail(c, p, "expected an array of at least two nodes");
         return -1;
     }
     char q[32];
@@ -349,14 +349,14 @@ static int emit_op(scene_ctx *c, const cJSON *node, const char *path, const char
 static int emit_node(scene_ctx *c, const cJSON *node, const char *path, const char *pin)
 {
     if (!cJSON_IsObject(node)) {
-        fail(c, path, "expected a node: {\"shape\": ...} or {\"op\": ..., \"children\": [...]}");
+        scene_fail(c, path, "expected a node: {\"shape\": ...} or {\"op\": ..., \"children\": [...]}");
         return -1;
     }
     const char *shape = NULL, *op = NULL;
-    if (!get_str(c, node, path, "shape", NULL, &shape) || !get_str(c, node, path, "op", NULL, &op))
+    if (!scene_get_str(c, node, path, "shape", NULL, &shape) || !scene_get_str(c, node, path, "op", NULL, &op))
         return -1;
     if (shape && op) {
-        fail(c, path, "a node has either \"shape\" or \"op\", not both");
+        scene_fail(c, path, "a node has either \"shape\" or \"op\", not both");
         return -1;
     }
     if (c->params && (shape || op)) {
@@ -370,7 +370,7 @@ static int emit_node(scene_ctx *c, const cJSON *node, const char *path, const ch
         return emit_primitive(c, node, path, pin, shape);
     if (op)
         return emit_op(c, node, path, pin, op);
-    fail(c, path, "a node needs \"shape\" (a primitive) or \"op\" (a CSG operation)");
+    scene_fail(c, path, "a node needs \"shape\" (a primitive) or \"op\" (a CSG operation)");
     return -1;
 }
 
@@ -409,10 +409,10 @@ static void flatten(const cJSON *arr, const char *path, items *out)
         char p[KEY_PATH_MAX];
         char idx[16];
         snprintf(idx, sizeof idx, "%d", i);
-        child_path(p, sizeof p, path, idx);
+        scene_child_path(p, sizeof p, path, idx);
         if (cJSON_IsObject(n) && plain_union(n)) {
             char kp[KEY_PATH_MAX];
-            child_path(kp, sizeof kp, p, "children");
+            scene_child_path(kp, sizeof kp, p, "children");
             flatten(cJSON_GetObjectItemCaseSensitive(n, "children"), kp, out);
             continue;
         }
@@ -455,14 +455,14 @@ static bool build_list(scene_ctx *c, const items *it)
     scene *s = c->s;
     int n = it->listable;
     if (n > CSG_LIST_MAX)
-        return fail(c, "objects", "%d primitives: at most %d are supported", n, CSG_LIST_MAX);
+        return scene_fail(c, "objects", "%d primitives: at most %d are supported", n, CSG_LIST_MAX);
     float *packed = malloc(sizeof(float) * 4 * CSG_LIST_TEXELS * (size_t)n);
     float(*lo)[3] = malloc(sizeof *lo * (size_t)n), (*hi)[3] = malloc(sizeof *hi * (size_t)n);
     bvh_node *nodes = malloc(sizeof *nodes * (size_t)bvh_max_nodes(n));
     int *order = malloc(sizeof *order * (size_t)n);
     bool used[SHAPE_COUNT] = {0}, ok = packed && lo && hi && nodes && order;
     if (!ok)
-        fail(c, "objects", "out of memory for %d primitives", n);
+        scene_fail(c, "objects", "out of memory for %d primitives", n);
     for (int i = 0, k = 0; ok && i < it->n; i++) {
         if (!cJSON_IsObject(it->v[i].node) || !listable(it->v[i].node))
             continue;
@@ -492,7 +492,7 @@ static bool build_list(scene_ctx *c, const items *it)
         s->csg_node_count = count;
         s->primitive_count += n;
         if (!ok)
-            fail(c, "objects", "out of memory for %d primitives", n);
+            scene_fail(c, "objects", "out of memory for %d primitives", n);
     }
     free(packed);
     free(lo);
@@ -530,11 +530,11 @@ static bool emit_into_union(scene_ctx *c, const cJSON *node, const char *path, i
 
 /* The "objects" array: one map() that unions the top-level nodes. With CSG_LIST_MIN bounded primitives
  * or more in the objects' union, those come from the primitive list and the rest is code. */
-bool csg_parse(scene_ctx *c, const cJSON *root)
+bool scene_csg_parse(scene_ctx *c, const cJSON *root)
 {
     const cJSON *objs = cJSON_GetObjectItemCaseSensitive(root, "objects");
     if (!cJSON_IsArray(objs) || cJSON_GetArraySize(objs) < 1)
-        return fail(c, "objects", "expected an array of at least one node");
+        return scene_fail(c, "objects", "expected an array of at least one node");
     items it = {0};
     flatten(objs, "objects", &it);
     bool list = it.listable >= CSG_LIST_MIN, ok = !list || build_list(c, &it);
@@ -554,7 +554,7 @@ bool csg_parse(scene_ctx *c, const cJSON *root)
         return false;
     int code = c->s->primitive_count - c->s->csg_list_count;
     if (code > CSG_CODE_MAX)
-        return fail(c, "objects", "%d primitives inside operations would be compiled into the shader; at most %d "
+        return scene_fail(c, "objects", "%d primitives inside operations would be compiled into the shader; at most %d "
                     "are (compile time grows fast): put primitives at the top level of \"objects\" or in plain "
                     "unions (no position or rotation), where any number is drawn from a list", code, CSG_CODE_MAX);
     if (!list)

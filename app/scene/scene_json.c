@@ -6,7 +6,7 @@
 
 #include "scene/scene_parse.h"
 
-bool fail(scene_ctx *c, const char *path, const char *fmt, ...)
+bool scene_fail(scene_ctx *c, const char *path, const char *fmt, ...)
 {
     char what[1024];
     va_list ap;
@@ -18,28 +18,28 @@ bool fail(scene_ctx *c, const char *path, const char *fmt, ...)
 }
 
 /* Key paths only appear in messages: a long one is cut, which is fine there. */
-void child_path(char *out, size_t n, const char *parent, const char *key)
+void scene_child_path(char *out, size_t n, const char *parent, const char *key)
 {
     if (snprintf(out, n, "%s%s%s", parent, parent[0] ? "." : "", key) >= (int)n)
         out[n - 1] = '\0';
 }
 
 /* Every object is checked against the keys it may hold, so a typo is an error, not a silent default. */
-bool check_keys(scene_ctx *c, const cJSON *obj, const char *path, const char *const *allowed)
+bool scene_check_keys(scene_ctx *c, const cJSON *obj, const char *path, const char *const *allowed)
 {
     if (!cJSON_IsObject(obj))
-        return fail(c, path, "expected an object {...}");
+        return scene_fail(c, path, "expected an object {...}");
     for (const cJSON *it = obj->child; it; it = it->next) {
         bool ok = false;
         for (const char *const *k = allowed; *k; k++)
             ok |= !strcmp(it->string, *k);
         if (!ok) {
             char p[512];
-            child_path(p, sizeof p, path, it->string);
+            scene_child_path(p, sizeof p, path, it->string);
             strbuf list = {0};
             for (const char *const *k = allowed; *k; k++)
                 sb_printf(&list, "%s%s", k == allowed ? "" : ", ", *k);
-            bool r = fail(c, p, "unknown key '%s' (allowed here: %s)", it->string, list.data);
+            bool r = scene_fail(c, p, "unknown key '%s' (allowed here: %s)", it->string, list.data);
             sb_free(&list);
             return r;
         }
@@ -47,88 +47,88 @@ bool check_keys(scene_ctx *c, const cJSON *obj, const char *path, const char *co
     return true;
 }
 
-scene_param *record_param(scene_ctx *c, const char *path, const char *key, param_type type, const double *v,
+scene_param *scene_record_param(scene_ctx *c, const char *path, const char *key, param_type type, const double *v,
                           double lo, double hi)
 {
     if (!c->params)
         return NULL;
     scene_param p = {.type = type, .lo = lo, .hi = hi};
-    child_path(p.key, sizeof p.key, path, key);
+    scene_child_path(p.key, sizeof p.key, path, key);
     for (int i = 0; i < (type == PARAM_VEC3 || type == PARAM_COLOR ? 3 : 1); i++)
         p.value[i] = v[i];
     return params_add(c->params, &p);
 }
 
-bool get_num(scene_ctx *c, const cJSON *obj, const char *path, const char *key, float def, float lo,
+bool scene_get_num(scene_ctx *c, const cJSON *obj, const char *path, const char *key, float def, float lo,
                     float hi, float *out)
 {
     const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
     char p[512];
-    child_path(p, sizeof p, path, key);
+    scene_child_path(p, sizeof p, path, key);
     if (v && (!cJSON_IsNumber(v) || !isfinite(v->valuedouble) || v->valuedouble < lo || v->valuedouble > hi)) {
         char range[128];
         snprintf(range, sizeof range, "%g to %g", (double)lo, (double)hi);
-        return fail(c, p, "expected a number from %s", range);
+        return scene_fail(c, p, "expected a number from %s", range);
     }
     *out = v ? (float)v->valuedouble : def;
-    record_param(c, path, key, PARAM_FLOAT, (const double[1]){*out}, lo, hi);
+    scene_record_param(c, path, key, PARAM_FLOAT, (const double[1]){*out}, lo, hi);
     return true;
 }
 
-bool get_int(scene_ctx *c, const cJSON *obj, const char *path, const char *key, int def, int lo, int hi,
+bool scene_get_int(scene_ctx *c, const cJSON *obj, const char *path, const char *key, int def, int lo, int hi,
                     int *out)
 {
-    float f = 0; /* set by get_num on success; GCC -O3 cannot see it */
-    if (!get_num(c, obj, path, key, (float)def, (float)lo, (float)hi, &f))
+    float f = 0; /* set by scene_get_num on success; GCC -O3 cannot see it */
+    if (!scene_get_num(c, obj, path, key, (float)def, (float)lo, (float)hi, &f))
         return false;
     if (f != floorf(f)) {
         char p[512];
-        child_path(p, sizeof p, path, key);
-        return fail(c, p, "expected a whole number");
+        scene_child_path(p, sizeof p, path, key);
+        return scene_fail(c, p, "expected a whole number");
     }
     *out = (int)f;
-    record_param(c, path, key, PARAM_INT, (const double[1]){f}, lo, hi);
+    scene_record_param(c, path, key, PARAM_INT, (const double[1]){f}, lo, hi);
     return true;
 }
 
-bool get_dvec3(scene_ctx *c, const cJSON *obj, const char *path, const char *key, const double def[3], double lo,
+bool scene_get_dvec3(scene_ctx *c, const cJSON *obj, const char *path, const char *key, const double def[3], double lo,
                double hi, double out[3])
 {
     const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
     char p[512];
-    child_path(p, sizeof p, path, key);
+    scene_child_path(p, sizeof p, path, key);
     if (!v) {
         memcpy(out, def, sizeof(double) * 3);
         return true;
     }
     if (!cJSON_IsArray(v) || cJSON_GetArraySize(v) != 3)
-        return fail(c, p, "expected three numbers [x, y, z]");
+        return scene_fail(c, p, "expected three numbers [x, y, z]");
     for (int i = 0; i < 3; i++) {
         const cJSON *e = cJSON_GetArrayItem(v, i);
         if (!cJSON_IsNumber(e) || !isfinite(e->valuedouble) || e->valuedouble < lo || e->valuedouble > hi) {
             char range[128];
             snprintf(range, sizeof range, "%g to %g", lo, hi);
-            return fail(c, p, "expected three numbers, each from %s", range);
+            return scene_fail(c, p, "expected three numbers, each from %s", range);
         }
         out[i] = e->valuedouble;
     }
     return true;
 }
 
-bool get_vec3(scene_ctx *c, const cJSON *obj, const char *path, const char *key, const float def[3],
+bool scene_get_vec3(scene_ctx *c, const cJSON *obj, const char *path, const char *key, const float def[3],
                      float lo, float hi, float out[3])
 {
     double d[3] = {def[0], def[1], def[2]}, v[3];
-    if (!get_dvec3(c, obj, path, key, d, lo, hi, v))
+    if (!scene_get_dvec3(c, obj, path, key, d, lo, hi, v))
         return false;
     for (int i = 0; i < 3; i++)
         out[i] = (float)v[i];
     bool colour = strstr(key, "color") && lo >= 0 && hi <= 1;
-    record_param(c, path, key, colour ? PARAM_COLOR : PARAM_VEC3, v, lo, hi);
+    scene_record_param(c, path, key, colour ? PARAM_COLOR : PARAM_VEC3, v, lo, hi);
     return true;
 }
 
-bool get_str(scene_ctx *c, const cJSON *obj, const char *path, const char *key, const char *def,
+bool scene_get_str(scene_ctx *c, const cJSON *obj, const char *path, const char *key, const char *def,
                     const char **out)
 {
     const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
@@ -138,18 +138,18 @@ bool get_str(scene_ctx *c, const cJSON *obj, const char *path, const char *key, 
     }
     if (!cJSON_IsString(v)) {
         char p[512];
-        child_path(p, sizeof p, path, key);
-        return fail(c, p, "expected a string in quotes");
+        scene_child_path(p, sizeof p, path, key);
+        return scene_fail(c, p, "expected a string in quotes");
     }
     *out = v->valuestring;
     return true;
 }
 
-bool get_enum(scene_ctx *c, const cJSON *obj, const char *path, const char *key, const char *what,
+bool scene_get_enum(scene_ctx *c, const cJSON *obj, const char *path, const char *key, const char *what,
               const char *const *names, int def, int *out)
 {
     const char *v = NULL;
-    if (!get_str(c, obj, path, key, names[def], &v))
+    if (!scene_get_str(c, obj, path, key, names[def], &v))
         return false;
     for (int i = 0; names[i]; i++)
         if (!strcmp(v, names[i])) {
@@ -157,7 +157,7 @@ bool get_enum(scene_ctx *c, const cJSON *obj, const char *path, const char *key,
             int n = 0;
             while (names[n])
                 n++;
-            scene_param *p = record_param(c, path, key, PARAM_ENUM, (const double[1]){i}, 0, n - 1);
+            scene_param *p = scene_record_param(c, path, key, PARAM_ENUM, (const double[1]){i}, 0, n - 1);
             if (p) {
                 size_t at = 0;
                 for (int k = 0; k < n && at + strlen(names[k]) + 1 < sizeof p->names; k++, p->name_count++) {
@@ -168,21 +168,21 @@ bool get_enum(scene_ctx *c, const cJSON *obj, const char *path, const char *key,
             return true;
         }
     char p[KEY_PATH_MAX];
-    child_path(p, sizeof p, path, key);
+    scene_child_path(p, sizeof p, path, key);
     strbuf known = {0};
     for (int i = 0; names[i]; i++)
         sb_printf(&known, "%s%s", i ? ", " : "", names[i]);
-    bool r = fail(c, p, "unknown %s '%s' (known: %s)", what, v, known.data);
+    bool r = scene_fail(c, p, "unknown %s '%s' (known: %s)", what, v, known.data);
     sb_free(&known);
     return r;
 }
 
-bool resolve_file(scene_ctx *c, const char *path, const char *rel, char *out)
+bool scene_resolve_file(scene_ctx *c, const char *path, const char *rel, char *out)
 {
     if (!util_join(c->s->dir, rel, out, PATH_MAX_LEN))
-        return fail(c, path, "path '%s' is too long", rel);
+        return scene_fail(c, path, "path '%s' is too long", rel);
     if (!util_file_exists(out))
-        return fail(c, path, "file '%s' not found (paths are relative to the scene file's folder)", out);
+        return scene_fail(c, path, "file '%s' not found (paths are relative to the scene file's folder)", out);
     return true;
 }
 

@@ -27,51 +27,51 @@ typedef struct scene_ctx {
 
 /* Records a tunable value read by hand (the get_* functions record their own): its key path, type,
  * value (v[0] for a number or bool, v[0..2] for a vector) and range. Does nothing without c->params. */
-scene_param *record_param(scene_ctx *c, const char *path, const char *key, param_type type, const double *v,
+scene_param *scene_record_param(scene_ctx *c, const char *path, const char *key, param_type type, const double *v,
                           double lo, double hi);
 
-bool fail(scene_ctx *c, const char *path, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+bool scene_fail(scene_ctx *c, const char *path, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
 
 /* "parent.key" (cut when long: key paths only appear in messages). */
-void child_path(char *out, size_t n, const char *parent, const char *key);
+void scene_child_path(char *out, size_t n, const char *parent, const char *key);
 
 /* Every object is checked against the keys it may hold, so a typo is an error, not a silent default. */
-bool check_keys(scene_ctx *c, const cJSON *obj, const char *path, const char *const *allowed);
+bool scene_check_keys(scene_ctx *c, const cJSON *obj, const char *path, const char *const *allowed);
 
 /* Optional values: a missing key gives def; a present one must be of the type and in [lo, hi]. */
-bool get_num(scene_ctx *c, const cJSON *obj, const char *path, const char *key, float def, float lo, float hi,
+bool scene_get_num(scene_ctx *c, const cJSON *obj, const char *path, const char *key, float def, float lo, float hi,
              float *out);
-bool get_int(scene_ctx *c, const cJSON *obj, const char *path, const char *key, int def, int lo, int hi, int *out);
-bool get_vec3(scene_ctx *c, const cJSON *obj, const char *path, const char *key, const float def[3], float lo,
+bool scene_get_int(scene_ctx *c, const cJSON *obj, const char *path, const char *key, int def, int lo, int hi, int *out);
+bool scene_get_vec3(scene_ctx *c, const cJSON *obj, const char *path, const char *key, const float def[3], float lo,
               float hi, float out[3]);
 /* The same in double (camera positions: a deep zoom needs more than a float's digits). */
-bool get_dvec3(scene_ctx *c, const cJSON *obj, const char *path, const char *key, const double def[3], double lo,
+bool scene_get_dvec3(scene_ctx *c, const cJSON *obj, const char *path, const char *key, const double def[3], double lo,
                double hi, double out[3]);
-bool get_str(scene_ctx *c, const cJSON *obj, const char *path, const char *key, const char *def, const char **out);
+bool scene_get_str(scene_ctx *c, const cJSON *obj, const char *path, const char *key, const char *def, const char **out);
 
 /* A string from a NULL-terminated list of names: *out = its index (def when the key is missing).
  * An unknown name is refused with the list ("unknown light type 'x' (known: point, directional)"). */
-bool get_enum(scene_ctx *c, const cJSON *obj, const char *path, const char *key, const char *what,
+bool scene_get_enum(scene_ctx *c, const cJSON *obj, const char *path, const char *key, const char *what,
               const char *const *names, int def, int *out);
 
 /* A file named in the scene: resolved against the scene file's folder and checked to exist. */
-bool resolve_file(scene_ctx *c, const char *path, const char *rel, char *out);
+bool scene_resolve_file(scene_ctx *c, const char *path, const char *rel, char *out);
 
 /* Blocks every program has (scene_blocks.c). */
-bool parse_materials(scene_ctx *c, const cJSON *root);
-int find_material(const scene *s, const char *name);
-bool parse_camera(scene_ctx *c, const cJSON *root);
-bool parse_fog(scene_ctx *c, const cJSON *root);
-bool parse_environment(scene_ctx *c, const cJSON *root);
-bool parse_lights(scene_ctx *c, const cJSON *root);
-bool parse_quality(scene_ctx *c, const cJSON *root);
-bool parse_effects(scene_ctx *c, const cJSON *root);
-bool parse_droplets(scene_ctx *c, const cJSON *root);
+bool scene_parse_materials(scene_ctx *c, const cJSON *root);
+int scene_find_material(const scene *s, const char *name);
+bool scene_parse_camera(scene_ctx *c, const cJSON *root);
+bool scene_parse_fog(scene_ctx *c, const cJSON *root);
+bool scene_parse_environment(scene_ctx *c, const cJSON *root);
+bool scene_parse_lights(scene_ctx *c, const cJSON *root);
+bool scene_parse_quality(scene_ctx *c, const cJSON *root);
+bool scene_parse_effects(scene_ctx *c, const cJSON *root);
+bool scene_parse_droplets(scene_ctx *c, const cJSON *root);
 
 /* "camera": "auto": frames the camera, distances, haze and layers from the DEM (heightfield_probe). */
-bool terrain_frame(scene *s, err_t *err);
+bool scene_terrain_frame(scene *s, err_t *err);
 /* "camera": "auto" for a fractal: a three-quarter view of its bounding sphere, whatever the formula. */
-bool fractal_frame(scene *s, err_t *err);
+bool scene_fractal_frame(scene *s, err_t *err);
 
 /* --set overrides (scene_set.c): "a.b.0.c=value" applied to the parsed JSON tree. */
 bool scene_apply_set(cJSON *root, const char *kv, err_t *err);

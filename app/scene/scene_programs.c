@@ -17,7 +17,7 @@ static void record_palette(scene_ctx *c, float pal[3][3])
     for (int i = 0; i < 3; i++) {
         char key[8];
         snprintf(key, sizeof key, "%d", i);
-        scene_param *p = record_param(c, "fractal.palette", key, PARAM_COLOR,
+        scene_param *p = scene_record_param(c, "fractal.palette", key, PARAM_COLOR,
                                       (const double[3]){pal[i][0], pal[i][1], pal[i][2]}, 0, 1);
         if (p)
             p->array_len = 3, p->array_index = i;
@@ -34,15 +34,15 @@ static bool get_palette(scene_ctx *c, const cJSON *f, float out[3][3])
         return true;
     }
     if (!cJSON_IsArray(pal) || cJSON_GetArraySize(pal) != 3)
-        return fail(c, "fractal.palette", "expected three colours [[r,g,b], [r,g,b], [r,g,b]] (near, middle, far)");
+        return scene_fail(c, "fractal.palette", "expected three colours [[r,g,b], [r,g,b], [r,g,b]] (near, middle, far)");
     int i = 0;
     for (const cJSON *col = pal->child; col; col = col->next, i++) {
         if (!cJSON_IsArray(col) || cJSON_GetArraySize(col) != 3)
-            return fail(c, "fractal.palette", "colour %d: expected [r, g, b]", i);
+            return scene_fail(c, "fractal.palette", "colour %d: expected [r, g, b]", i);
         for (int k = 0; k < 3; k++) {
             const cJSON *v = cJSON_GetArrayItem(col, k);
             if (!cJSON_IsNumber(v) || v->valuedouble < 0 || v->valuedouble > 1)
-                return fail(c, "fractal.palette", "colour %d: expected numbers from 0 to 1", i);
+                return scene_fail(c, "fractal.palette", "colour %d: expected numbers from 0 to 1", i);
             out[i][k] = (float)v->valuedouble;
         }
     }
@@ -57,8 +57,8 @@ static const float BOUND_MIN = 1e-3f, BOUND_MAX = 1e6f;
 /* Keys every fractal reads: the palette and the glow. */
 static bool fractal_common(scene_ctx *c, const cJSON *use, scene_fractal *fr)
 {
-    return get_palette(c, use, fr->palette) && get_num(c, use, "fractal", "glow", 0, 0, 100, &fr->glow) &&
-           get_vec3(c, use, "fractal", "glow_color", WARM, 0, 100, fr->glow_color);
+    return get_palette(c, use, fr->palette) && scene_get_num(c, use, "fractal", "glow", 0, 0, 100, &fr->glow) &&
+           scene_get_vec3(c, use, "fractal", "glow_color", WARM, 0, 100, fr->glow_color);
 }
 
 /* Fractals are drawn with material 0; a scene may omit "materials". */
@@ -75,7 +75,7 @@ static void default_material(scene *s)
 static bool fail_formula(scene_ctx *c, const char *path)
 {
     err_t why = *c->err;
-    return fail(c, path, "%s", why.msg);
+    return scene_fail(c, path, "%s", why.msg);
 }
 
 /* One declared parameter from the block at `path` (its default when absent), checked against its
@@ -83,11 +83,11 @@ static bool fail_formula(scene_ctx *c, const char *path)
 static bool get_param(scene_ctx *c, const cJSON *use, const char *path, const formula_param *q, float v[3])
 {
     char key[128];
-    child_path(key, sizeof key, path, q->key);
+    scene_child_path(key, sizeof key, path, q->key);
     switch (q->type) {
     case FORMULA_INT: {
         int i;
-        if (!get_int(c, use, path, q->key, (int)q->def[0], (int)q->lo, (int)q->hi, &i))
+        if (!scene_get_int(c, use, path, q->key, (int)q->def[0], (int)q->lo, (int)q->hi, &i))
             return false;
         v[0] = (float)i;
         break;
@@ -95,20 +95,20 @@ static bool get_param(scene_ctx *c, const cJSON *use, const char *path, const fo
     case FORMULA_BOOL: {
         const cJSON *b = cJSON_GetObjectItemCaseSensitive(use, q->key);
         if (b && !cJSON_IsBool(b) && !(cJSON_IsNumber(b) && (b->valuedouble == 0 || b->valuedouble == 1)))
-            return fail(c, key, "expected true or false");
+            return scene_fail(c, key, "expected true or false");
         v[0] = !b ? q->def[0] : cJSON_IsBool(b) ? (float)cJSON_IsTrue(b) : (float)b->valuedouble;
-        record_param(c, path, q->key, PARAM_BOOL, (const double[1]){v[0]}, 0, 1);
+        scene_record_param(c, path, q->key, PARAM_BOOL, (const double[1]){v[0]}, 0, 1);
         break;
     }
     case FORMULA_VEC3:
     case FORMULA_COLOR:
-        return get_vec3(c, use, path, q->key, q->def, q->lo, q->hi, v);
+        return scene_get_vec3(c, use, path, q->key, q->def, q->lo, q->hi, v);
     default:
-        if (!get_num(c, use, path, q->key, q->def[0], q->lo, q->hi, v))
+        if (!scene_get_num(c, use, path, q->key, q->def[0], q->lo, q->hi, v))
             return false;
     }
     if (q->has_gap && v[0] > q->gap_lo && v[0] < q->gap_hi)
-        return fail(c, key, "%g is between %g and %g, where the formula has no set: take a value outside",
+        return scene_fail(c, key, "%g is between %g and %g, where the formula has no set: take a value outside",
                     (double)v[0], (double)q->gap_lo, (double)q->gap_hi);
     return true;
 }
@@ -132,7 +132,7 @@ static bool check_requires(scene_ctx *c, const char *path, const formula *f, flo
         if (!eval(c, path, f, values, iterations, r->lhs, &a) || !eval(c, path, f, values, iterations, r->rhs, &b))
             return false;
         if (r->less ? !(a < b) : !(a > b))
-            return fail(c, path, "%s (formula %s: %s %c %s)", r->message, f->name, r->lhs, r->less ? '<' : '>', r->rhs);
+            return scene_fail(c, path, "%s (formula %s: %s %c %s)", r->message, f->name, r->lhs, r->less ? '<' : '>', r->rhs);
     }
     return true;
 }
@@ -149,7 +149,7 @@ static bool formula_block(scene_ctx *c, const cJSON *use, const char *path, cons
     for (int i = 0; i < f->param_count; i++)
         keys[n++] = f->params[i].key;
     keys[n] = NULL;
-    if (!check_keys(c, use, path, keys))
+    if (!scene_check_keys(c, use, path, keys))
         return false;
     for (int i = 0; i < f->param_count; i++)
         if (!get_param(c, use, path, &f->params[i], values[i]))
@@ -177,25 +177,25 @@ static bool hybrid_block(scene_ctx *c, const cJSON *block, scene_fractal *fr)
         return true;
     const char *name = NULL;
     if (!cJSON_IsObject(h))
-        return fail(c, "fractal.hybrid", "expected an object like {\"formula\": \"mandelbulb\", \"steps\": 1}");
+        return scene_fail(c, "fractal.hybrid", "expected an object like {\"formula\": \"mandelbulb\", \"steps\": 1}");
     if (!fr->formula.step_formula)
-        return fail(c, "fractal.hybrid", "formula %s has its own estimate (no @de): only step formulas take part in "
+        return scene_fail(c, "fractal.hybrid", "formula %s has its own estimate (no @de): only step formulas take part in "
                     "hybrids", fr->formula.name);
-    if (!get_str(c, h, "fractal.hybrid", "formula", NULL, &name))
+    if (!scene_get_str(c, h, "fractal.hybrid", "formula", NULL, &name))
         return false;
     if (!name)
-        return fail(c, "fractal.hybrid.formula", "missing: name the step formula whose steps alternate with %s's",
+        return scene_fail(c, "fractal.hybrid.formula", "missing: name the step formula whose steps alternate with %s's",
                     fr->formula.name);
     if (!formula_load(name, c->s->dir, &fr->hybrid, c->err))
         return fail_formula(c, "fractal.hybrid.formula");
     if (!fr->hybrid.step_formula)
-        return fail(c, "fractal.hybrid.formula", "%s has its own estimate (no @de): only step formulas take part in "
+        return scene_fail(c, "fractal.hybrid.formula", "%s has its own estimate (no @de): only step formulas take part in "
                     "hybrids", fr->hybrid.name);
     if (!strcmp(fr->hybrid.file, fr->formula.file))
-        return fail(c, "fractal.hybrid.formula", "%s with itself is %s with more iterations: name another", name, name);
+        return scene_fail(c, "fractal.hybrid.formula", "%s with itself is %s with more iterations: name another", name, name);
     static const char *const common[] = {"formula", "steps", NULL};
     fr->has_hybrid = true;
-    return get_int(c, h, "fractal.hybrid", "steps", 1, 1, 16, &fr->steps[1]) &&
+    return scene_get_int(c, h, "fractal.hybrid", "steps", 1, 1, 16, &fr->steps[1]) &&
            formula_block(c, h, "fractal.hybrid", common, &fr->hybrid, fr->hybrid_values, fr->iterations);
 }
 
@@ -207,19 +207,19 @@ static bool step_loop(scene_ctx *c, const cJSON *use, scene_fractal *fr)
     static const float JULIA_C[3] = {-0.6f, 0.4f, 0.2f};
     const cJSON *julia = cJSON_GetObjectItemCaseSensitive(use, "julia");
     if (julia && !cJSON_IsBool(julia))
-        return fail(c, "fractal.julia", "expected true or false");
+        return scene_fail(c, "fractal.julia", "expected true or false");
     fr->julia = cJSON_IsTrue(julia);
     if (fr->formula.step_formula)
-        record_param(c, "fractal", "julia", PARAM_BOOL, (const double[1]){fr->julia}, 0, 1);
+        scene_record_param(c, "fractal", "julia", PARAM_BOOL, (const double[1]){fr->julia}, 0, 1);
     if (!fr->formula.step_formula) {
         if (fr->julia || cJSON_GetObjectItemCaseSensitive(use, "julia_c") || cJSON_GetObjectItemCaseSensitive(use, "steps"))
-            return fail(c, "fractal", "julia, julia_c and steps belong to step formulas (@de); %s has its own estimate",
+            return scene_fail(c, "fractal", "julia, julia_c and steps belong to step formulas (@de); %s has its own estimate",
                         fr->formula.name);
         return true;
     }
     double a, b = 0;
-    if (!get_vec3(c, use, "fractal", "julia_c", JULIA_C, -4, 4, fr->julia_c) ||
-        !get_int(c, use, "fractal", "steps", 1, 1, 16, &fr->steps[0]) ||
+    if (!scene_get_vec3(c, use, "fractal", "julia_c", JULIA_C, -4, 4, fr->julia_c) ||
+        !scene_get_int(c, use, "fractal", "steps", 1, 1, 16, &fr->steps[0]) ||
         !eval(c, "fractal", &fr->formula, fr->values, fr->iterations, fr->formula.escape, &a) ||
         (fr->has_hybrid && !eval(c, "fractal.hybrid", &fr->hybrid, fr->hybrid_values, fr->iterations, fr->hybrid.escape, &b)))
         return false;
@@ -228,7 +228,7 @@ static bool step_loop(scene_ctx *c, const cJSON *use, scene_fractal *fr)
     if (fr->has_hybrid && log_de)
         escape = fmin(escape, HYBRID_LOG_ESCAPE);
     if (!(escape > 1 && escape < 1e18))
-        return fail(c, "fractal", "the escape radius %g (formula %s's @escape) is not above 1", escape, fr->formula.name);
+        return scene_fail(c, "fractal", "the escape radius %g (formula %s's @escape) is not above 1", escape, fr->formula.name);
     fr->escape = (float)escape;
     return true;
 }
@@ -244,7 +244,7 @@ static bool trap_and_bound(scene_ctx *c, const cJSON *use, scene_fractal *fr)
         (fr->has_hybrid && !eval(c, "fractal.hybrid", &fr->hybrid, fr->hybrid_values, fr->iterations, fr->hybrid.bound, &other)))
         return false;
     if (!(hi > lo))
-        return fail(c, "fractal", "formula %s's @trap %s %s gives %g to %g: the second must be larger", f->name, f->trap[0],
+        return scene_fail(c, "fractal", "formula %s's @trap %s %s gives %g to %g: the second must be larger", f->name, f->trap[0],
                     f->trap[1], lo, hi);
     fr->trap[0] = (float)lo, fr->trap[1] = (float)hi;
     double loops, hybrid_loops = 0;
@@ -254,11 +254,11 @@ static bool trap_and_bound(scene_ctx *c, const cJSON *use, scene_fractal *fr)
         return false;
     loops = fmax(loops, hybrid_loops);
     if (!(loops >= 1 && loops <= FORMULA_LOOPS_MAX))
-        return fail(c, "fractal", "formula %s's @loops %s gives %g: expected 1 to %d loop iterations an estimate",
+        return scene_fail(c, "fractal", "formula %s's @loops %s gives %g: expected 1 to %d loop iterations an estimate",
                     f->name, f->loops, loops, FORMULA_LOOPS_MAX);
     fr->loops = (int)ceil(loops);
     bound = fmax(bound, other);
-    return get_num(c, use, "fractal", "bound_radius", (float)fmin(fmax(bound, BOUND_MIN), BOUND_MAX), BOUND_MIN,
+    return scene_get_num(c, use, "fractal", "bound_radius", (float)fmin(fmax(bound, BOUND_MIN), BOUND_MAX), BOUND_MIN,
                    BOUND_MAX, &fr->bound_radius);
 }
 
@@ -267,13 +267,13 @@ static bool precision(scene_ctx *c, const cJSON *use, scene_fractal *fr)
 {
     static const char *const names[] = {"auto", "float", "double", NULL};
     int p = 0;
-    if (!get_enum(c, use, "fractal", "precision", "precision", names, 0, &p))
+    if (!scene_get_enum(c, use, "fractal", "precision", "precision", names, 0, &p))
         return false;
     fr->precision = (fractal_precision)p;
     fr->deep_ok = deep_ok(&fr->formula, fr->values) && (!fr->has_hybrid || deep_ok(&fr->hybrid, fr->hybrid_values)) &&
                   !c->s->has_droplets;
     if (fr->precision == PRECISION_DOUBLE && !fr->deep_ok)
-        return fail(c, "fractal.precision", "double needs a formula written for it (@deep)%s%s: %s cannot",
+        return scene_fail(c, "fractal.precision", "double needs a formula written for it (@deep)%s%s: %s cannot",
                     fr->formula.deep_whole[0] ? " with whole " : "", fr->formula.deep_whole,
                     fr->has_hybrid && fr->formula.deep ? fr->hybrid.name : fr->formula.name);
     fr->deep_now = fr->precision == PRECISION_DOUBLE;
@@ -306,7 +306,7 @@ static void fractal_code(scene_ctx *c, const scene_fractal *fr)
 
 /* The fractal block: "formula" (or the program's name when it names one), the block's own keys and
  * the formula's declared parameters (formula.h); a hybrid's second formula; map() is made of them. */
-bool fractal_parse(scene_ctx *c, const cJSON *root)
+bool scene_fractal_parse(scene_ctx *c, const cJSON *root)
 {
     scene_fractal *fr = &c->s->fractal;
     const cJSON *block = cJSON_GetObjectItemCaseSensitive(root, "fractal");
@@ -314,15 +314,15 @@ bool fractal_parse(scene_ctx *c, const cJSON *root)
     const cJSON *use = block ? block : empty;
     const char *name = c->formula;
     static const char *const common[] = {FORMULA_COMMON_KEYS, NULL};
-    bool ok = cJSON_IsObject(use) || fail(c, "fractal", "expected an object {...}");
-    ok = ok && get_str(c, use, "fractal", "formula", c->formula, &name);
+    bool ok = cJSON_IsObject(use) || scene_fail(c, "fractal", "expected an object {...}");
+    ok = ok && scene_get_str(c, use, "fractal", "formula", c->formula, &name);
     if (ok && !name)
-        ok = fail(c, "fractal.formula", "missing: name a formula (fathom --list-formulas), e.g. \"formula\": \"mandelbulb\"");
+        ok = scene_fail(c, "fractal.formula", "missing: name a formula (fathom --list-formulas), e.g. \"formula\": \"mandelbulb\"");
     ok = ok && (formula_load(name, c->s->dir, &fr->formula, c->err) || fail_formula(c, "fractal.formula"));
     const formula *f = &fr->formula;
     fr->steps[0] = fr->steps[1] = 1;
     ok = ok && fractal_common(c, use, fr) &&
-         get_int(c, use, "fractal", "iterations", f->iterations, f->iterations_lo, f->iterations_hi, &fr->iterations) &&
+         scene_get_int(c, use, "fractal", "iterations", f->iterations, f->iterations_lo, f->iterations_hi, &fr->iterations) &&
          formula_block(c, use, "fractal", common, f, fr->values, fr->iterations) && hybrid_block(c, use, fr) &&
          step_loop(c, use, fr) && trap_and_bound(c, use, fr) && precision(c, use, fr);
     cJSON_Delete(empty);
@@ -333,7 +333,7 @@ bool fractal_parse(scene_ctx *c, const cJSON *root)
     return ok;
 }
 
-bool fractal_frame(scene *s, err_t *err)
+bool scene_fractal_frame(scene *s, err_t *err)
 {
     (void)err;
     const float R = s->fractal.bound_radius, DIR[3] = {0.55f, 0.42f, 0.72f}; /* a unit three-quarter view */
@@ -344,7 +344,7 @@ bool fractal_frame(scene *s, err_t *err)
     return true;
 }
 
-void fractal_defines(const scene *s, strbuf *out)
+void scene_fractal_defines(const scene *s, strbuf *out)
 {
     sb_printf(out, "#define FRACTAL_ITERATIONS %d\n", s->fractal.iterations);
     if (s->fractal.deep_now) /* a deep zoom: common/uniforms.glsl, fractal/common.glsl */
@@ -366,7 +366,7 @@ static void param_uniforms(const formula *f, const float *values, const char *pr
     }
 }
 
-void fractal_uniforms(const scene *s, const uniform_sink *u)
+void scene_fractal_uniforms(const scene *s, const uniform_sink *u)
 {
     const scene_fractal *f = &s->fractal;
     uniform_f(u, "uBoundRadius", f->bound_radius);
@@ -389,51 +389,51 @@ void fractal_uniforms(const scene *s, const uniform_sink *u)
 
 /* ---- terrains: the "terrain" block ------------------------------------------------------------ */
 
-bool noise_parse(scene_ctx *c, const cJSON *root)
+bool scene_noise_parse(scene_ctx *c, const cJSON *root)
 {
     struct scene_terrain *t = &c->s->terrain;
     const cJSON *tb = cJSON_GetObjectItemCaseSensitive(root, "terrain");
     static const char *const keys[] = {"base", "amplitude", "frequency", "octaves", "sand_line", "snow_line",
                                        "grass_slope", NULL};
     const cJSON *empty = cJSON_CreateObject(), *use = tb ? tb : empty;
-    bool ok = (!tb || check_keys(c, tb, "terrain", keys)) &&
-              get_num(c, use, "terrain", "base", 0, -1e6f, 1e6f, &t->base) &&
-              get_num(c, use, "terrain", "amplitude", 40, 0, 1e6f, &t->amplitude) &&
-              get_num(c, use, "terrain", "frequency", 0.01f, 1e-7f, 1e3f, &t->frequency) &&
-              get_int(c, use, "terrain", "octaves", 6, 1, 12, &t->octaves) &&
-              get_num(c, use, "terrain", "sand_line", -1e9f, -1e9f, 1e9f, &t->sand_line) &&
-              get_num(c, use, "terrain", "snow_line", 1e9f, -1e9f, 1e9f, &t->snow_line) &&
-              get_num(c, use, "terrain", "grass_slope", 0.8f, 0, 1, &t->grass_slope);
+    bool ok = (!tb || scene_check_keys(c, tb, "terrain", keys)) &&
+              scene_get_num(c, use, "terrain", "base", 0, -1e6f, 1e6f, &t->base) &&
+              scene_get_num(c, use, "terrain", "amplitude", 40, 0, 1e6f, &t->amplitude) &&
+              scene_get_num(c, use, "terrain", "frequency", 0.01f, 1e-7f, 1e3f, &t->frequency) &&
+              scene_get_int(c, use, "terrain", "octaves", 6, 1, 12, &t->octaves) &&
+              scene_get_num(c, use, "terrain", "sand_line", -1e9f, -1e9f, 1e9f, &t->sand_line) &&
+              scene_get_num(c, use, "terrain", "snow_line", 1e9f, -1e9f, 1e9f, &t->snow_line) &&
+              scene_get_num(c, use, "terrain", "grass_slope", 0.8f, 0, 1, &t->grass_slope);
     cJSON_Delete((cJSON *)empty);
     return ok;
 }
 
 static bool spacing_ok(const cJSON *v) { return cJSON_IsNumber(v) && terrain_spacing_ok(v->valuedouble); }
 
-bool heightmap_parse(scene_ctx *c, const cJSON *root)
+bool scene_heightmap_parse(scene_ctx *c, const cJSON *root)
 {
     struct scene_terrain *t = &c->s->terrain;
     const cJSON *tb = cJSON_GetObjectItemCaseSensitive(root, "terrain");
     static const char *const keys[] = {"heightmap", "spacing", "height_min", "height_max", "exaggeration", "method",
                                        "sand_line", "snow_line", "grass_slope", "nodata", "normals", "colors", NULL};
     if (!tb)
-        return fail(c, "terrain", "a terrain scene needs a \"terrain\" block with a \"heightmap\"");
-    if (!check_keys(c, tb, "terrain", keys))
+        return scene_fail(c, "terrain", "a terrain scene needs a \"terrain\" block with a \"heightmap\"");
+    if (!scene_check_keys(c, tb, "terrain", keys))
         return false;
     const char *hm = NULL;
     static const float zero2[3] = {0, 0, 0};
     float sp[3];
-    if (!get_str(c, tb, "terrain", "heightmap", NULL, &hm))
+    if (!scene_get_str(c, tb, "terrain", "heightmap", NULL, &hm))
         return false;
     if (!hm)
-        return fail(c, "terrain.heightmap", "missing: a heightmap image (16-bit PNG, EXR, TIFF…)");
-    if (!resolve_file(c, "terrain.heightmap", hm, t->heightmap))
+        return scene_fail(c, "terrain.heightmap", "missing: a heightmap image (16-bit PNG, EXR, TIFF…)");
+    if (!scene_resolve_file(c, "terrain.heightmap", hm, t->heightmap))
         return false;
     const cJSON *spacing = cJSON_GetObjectItemCaseSensitive(tb, "spacing");
     if (spacing) {
         if (!cJSON_IsArray(spacing) || cJSON_GetArraySize(spacing) != 2 || !spacing_ok(spacing->child) ||
             !spacing_ok(spacing->child->next))
-            return fail(c, "terrain.spacing", "expected [dx, dz]: metres per texel, both from %g to %g",
+            return scene_fail(c, "terrain.spacing", "expected [dx, dz]: metres per texel, both from %g to %g",
                         (double)TERRAIN_SPACING_MIN, (double)TERRAIN_SPACING_MAX);
         sp[0] = (float)spacing->child->valuedouble;
         sp[1] = (float)spacing->child->next->valuedouble;
@@ -442,30 +442,30 @@ bool heightmap_parse(scene_ctx *c, const cJSON *root)
     }
     t->spacing[0] = sp[0];
     t->spacing[1] = sp[1];
-    if (!get_num(c, tb, "terrain", "height_min", 0, -1e5f, 1e5f, &t->height_min) ||
-        !get_num(c, tb, "terrain", "height_max", 0, -1e5f, 1e5f, &t->height_max) ||
-        !get_num(c, tb, "terrain", "exaggeration", 1, 0.01f, 100, &t->exaggeration) ||
-        !get_num(c, tb, "terrain", "sand_line", -1e9f, -1e9f, 1e9f, &t->sand_line) ||
-        !get_num(c, tb, "terrain", "snow_line", 1e9f, -1e9f, 1e9f, &t->snow_line) ||
-        !get_num(c, tb, "terrain", "grass_slope", 0.8f, 0, 1, &t->grass_slope))
+    if (!scene_get_num(c, tb, "terrain", "height_min", 0, -1e5f, 1e5f, &t->height_min) ||
+        !scene_get_num(c, tb, "terrain", "height_max", 0, -1e5f, 1e5f, &t->height_max) ||
+        !scene_get_num(c, tb, "terrain", "exaggeration", 1, 0.01f, 100, &t->exaggeration) ||
+        !scene_get_num(c, tb, "terrain", "sand_line", -1e9f, -1e9f, 1e9f, &t->sand_line) ||
+        !scene_get_num(c, tb, "terrain", "snow_line", 1e9f, -1e9f, 1e9f, &t->snow_line) ||
+        !scene_get_num(c, tb, "terrain", "grass_slope", 0.8f, 0, 1, &t->grass_slope))
         return false;
     if (t->height_min > t->height_max)
-        return fail(c, "terrain.height_max", "%g is below height_min %g: height_min is the height of black, "
+        return scene_fail(c, "terrain.height_max", "%g is below height_min %g: height_min is the height of black, "
                     "height_max of white", (double)t->height_max, (double)t->height_min);
     static const char *const METHODS[] = {"linear", "maxmip", NULL};
     int m;
-    if (!get_enum(c, tb, "terrain", "method", "method", METHODS, 1, &m))
+    if (!scene_get_enum(c, tb, "terrain", "method", "method", METHODS, 1, &m))
         return false;
     t->maxmip = m == 1;
     static const char *const NODATA[] = {"hole", "fill", NULL}, *const NORMALS[] = {"smooth", "patch", NULL};
-    if (!get_enum(c, tb, "terrain", "nodata", "nodata handling", NODATA, 0, &m))
+    if (!scene_get_enum(c, tb, "terrain", "nodata", "nodata handling", NODATA, 0, &m))
         return false;
     t->fill_nodata = m == 1;
-    if (!get_enum(c, tb, "terrain", "normals", "normals", NORMALS, 0, &m))
+    if (!scene_get_enum(c, tb, "terrain", "normals", "normals", NORMALS, 0, &m))
         return false;
     t->patch_normals = m == 1;
     static const char *const COLORS[] = {"layers", "elevation", NULL};
-    if (!get_enum(c, tb, "terrain", "colors", "terrain colouring", COLORS, 0, &m))
+    if (!scene_get_enum(c, tb, "terrain", "colors", "terrain colouring", COLORS, 0, &m))
         return false;
     t->elevation_ramp = m == 1;
     return true;
@@ -478,7 +478,7 @@ bool heightmap_parse(scene_ctx *c, const cJSON *root)
  * flat plate) is exaggerated up to that, at most ×20, unless the scene sets terrain.exaggeration. */
 static const double SNOW_ALTITUDE = 2500.0; /* metres: below it a DEM framed by "auto" gets no snow */
 
-bool terrain_frame(scene *s, err_t *err)
+bool scene_terrain_frame(scene *s, err_t *err)
 {
     struct scene_terrain *t = &s->terrain;
     heightfield_desc d = {.path = t->heightmap, .spacing = {t->spacing[0], t->spacing[1]}, .height_min = t->height_min,
@@ -512,7 +512,7 @@ bool terrain_frame(scene *s, err_t *err)
     return true;
 }
 
-void heightmap_defines(const scene *s, strbuf *out)
+void scene_heightmap_defines(const scene *s, strbuf *out)
 {
     sb_printf(out, "#define TERRAIN_MAXMIP %d\n", s->terrain.maxmip);
     if (s->terrain.patch_normals)
@@ -520,7 +520,7 @@ void heightmap_defines(const scene *s, strbuf *out)
 }
 
 /* The layered albedo (shaders/terrain/layers.glsl): which material each layer uses, and where. */
-void layer_uniforms(const scene *s, const uniform_sink *u)
+void scene_layer_uniforms(const scene *s, const uniform_sink *u)
 {
     uniform_i(u, "uElevationRamp", s->terrain.elevation_ramp);
     uniform_f(u, "uExaggeration", s->terrain.exaggeration > 0 ? s->terrain.exaggeration : 1.0f);
@@ -532,7 +532,7 @@ void layer_uniforms(const scene *s, const uniform_sink *u)
     enum { ROCK = 2 };
     int idx[4];
     for (int l = 0; l < 4; l++)
-        idx[l] = find_material(s, layers[l]);
+        idx[l] = scene_find_material(s, layers[l]);
     if (idx[ROCK] < 0) /* rock is the fallback layer: the first material */
         idx[ROCK] = 0;
     for (int l = 0; l < 4; l++)
@@ -540,7 +540,7 @@ void layer_uniforms(const scene *s, const uniform_sink *u)
 }
 
 /* The noise terrain's parameters and its distance bound (shaders/terrain/noise.glsl). */
-void noise_uniforms(const scene *s, const uniform_sink *u)
+void scene_noise_uniforms(const scene *s, const uniform_sink *u)
 {
     const struct scene_terrain *t = &s->terrain;
     const float QUINTIC_SLOPE = 30.0f / 16.0f; /* per unit on each axis: the quintic's steepest */
@@ -551,5 +551,5 @@ void noise_uniforms(const scene *s, const uniform_sink *u)
     uniform_i(u, "uNoiseOctaves", t->octaves);
     uniform_f(u, "uTerrainHeightMin", t->base);
     uniform_f(u, "uTerrainHeightMax", t->base + t->amplitude);
-    layer_uniforms(s, u);
+    scene_layer_uniforms(s, u);
 }

@@ -1,5 +1,5 @@
 // The terrain's layered albedo (needs common/material.glsl): rock, grass by slope, sand below and snow
-// above a height. Names from app/scene/scene_programs.c (layer_uniforms). The program declares
+// above a height. Names from app/scene/scene_programs.c (scene_layer_uniforms). The program declares
 // uTerrainHeightMin and uTerrainHeightMax, its surface's height range (metres).
 uniform float uSandLine;   // sand below this height (metres)
 uniform float uSnowLine;   // snow above this height (metres)
