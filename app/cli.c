@@ -10,6 +10,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 #include "gpu/gpu.h"
 #include "view/camera.h"
@@ -85,7 +86,7 @@ static const char USAGE_OPTIONS[] =
     "  --fps N               window: frame rate to hold while moving (lower internal resolution) [30];\n"
     "                        with --path: frames per second of the flight [30]\n"
     "  --print-variant       print the effects and #defines the scene compiles, then exit\n"
-    "  --list-scenes         list the shipped scenes\n"
+    "  --list-scenes         list the shipped scenes, each with its title\n"
     "  --backend B           auto | fragment | compute: how samples run (compute needs GL 4.3 and\n"
     "                        reaches all of a datacenter GPU); FATHOM_BACKEND=B too [auto: compute\n"
     "                        on a GPU, fragment on llvmpipe]\n"
@@ -427,13 +428,16 @@ static bool check_combinations(const cli_options *o, err_t *err)
         return err_set(err, "--interactive belongs to fathom bench");
     if (o->terrain_scale && !o->bench)
         return err_set(err, "--terrain-scale belongs to fathom bench");
+    if (o->has_frames && o->output && !o->path)
+        return err_set(err, "--frames counts the window's frames (or a flight's, with --path): an offline shot "
+                            "(--output without --path) is one image");
     if (o->strip_rows && !o->output)
         return err_set(err, "--strip-rows needs an offline shot: add --output FILE");
     if (o->has_camera && o->has_look_at && camera_degenerate(o->camera, o->look_at))
         return err_set(err, "--camera and --look-at are the same point: the camera needs a direction to look in");
     if (o->output) {
         const char *dot = strrchr(o->output, '.');
-        bool png = dot && !strcmp(dot, ".png"), exr = dot && !strcmp(dot, ".exr");
+        bool png = dot && !strcasecmp(dot, ".png"), exr = dot && !strcasecmp(dot, ".exr");
         if (!png && !exr)
             return err_set(err, "bad --output '%s': the file name must end in .png or .exr", o->output);
         if (o->aovs && !exr)
@@ -464,6 +468,7 @@ bool cli_parse(int argc, char **argv, cli_options *o, err_t *err)
             return false;
         first = 3;
     }
+    unsigned long seen = 0; /* the options with a value given so far, a bit each (WITH_VALUE's order) */
     for (int i = first; i < argc; i++) {
         const char *a = argv[i];
         if (set_flag(a, o))
@@ -492,13 +497,17 @@ bool cli_parse(int argc, char **argv, cli_options *o, err_t *err)
                                                  "--camera", "--look-at", "--fov", "--set", "--aov", "--frames",
                                                  "--runs", "--out", "--knob", "--name", "--strip-rows", "--fps", "--view", "--backend", "--truth",
                                                  "--path", "--tile"};
-        bool known = false;
-        for (size_t k = 0; k < sizeof WITH_VALUE / sizeof WITH_VALUE[0]; k++)
-            known |= !strcmp(name, WITH_VALUE[k]);
-        if (!known)
+        static const char *const REPEATABLE[] = {"--set", "--knob"};
+        size_t k = 0;
+        while (k < sizeof WITH_VALUE / sizeof WITH_VALUE[0] && strcmp(name, WITH_VALUE[k]))
+            k++;
+        if (k == sizeof WITH_VALUE / sizeof WITH_VALUE[0])
             return err_set(err, "unknown option '%s' (see fathom --help)", name);
         if (!val)
             return err_set(err, "option %s needs a value (see fathom --help)", name);
+        if ((seen >> k & 1) && strcmp(name, REPEATABLE[0]) && strcmp(name, REPEATABLE[1]))
+            return err_set(err, "%s is given twice (the second time '%s'): give it once", name, val);
+        seen |= 1ul << k;
         bool handled;
         if (!set_output_option(name, val, o, err, &handled))
             return false;

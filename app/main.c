@@ -3,6 +3,7 @@
  * Exit codes: 0 done, 1 failed (bad data or environment), 2 bad command line. */
 #include <stdio.h>
 #include <stdlib.h>
+#include <sys/stat.h>
 #include <string.h>
 
 #include "jobs/bench.h"
@@ -80,7 +81,10 @@ static bool answer_query(const cli_options *opt)
         printf("fathom %s\n", FATHOM_VERSION);
     } else if (opt->list_scenes || opt->list_formulas) {
         strbuf names = {0};
-        (opt->list_scenes ? scene_list : formula_list)(&names);
+        if (opt->list_scenes)
+            scene_list(&names, true);
+        else
+            formula_list(&names);
         fputs(names.data ? names.data : "", stdout);
         sb_free(&names);
     }
@@ -146,6 +150,10 @@ int main(int argc, char **argv)
     render_backend backend;
     if (opt.backend && render_parse_backend(opt.backend, &backend))
         render_request_backend(backend);
+    struct stat st;
+    if (opt.dem && !stat(opt.dem, &st) && S_ISDIR(st.st_mode))
+        return finish(err_set(&err, "--dem '%s' is a folder: give the elevation file in it (a GeoTIFF, .hgt, .asc, ...)",
+                              opt.dem), &err);
     if (opt.dem && !util_file_exists(opt.dem))
         return finish(err_set(&err, "--dem: file '%s' not found (a path from the folder you are in)", opt.dem), &err);
     static shot_desc shot; /* --scene SHOT.png: opt points into it */

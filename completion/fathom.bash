@@ -9,7 +9,7 @@ _fathom()
     fathom=${COMP_WORDS[0]}
     case $prev in
     --scene)
-        COMPREPLY=($(compgen -W "$("$fathom" --list-scenes 2>/dev/null)" -- "$cur") $(compgen -f -X '!*.@(json|fathom|png|exr)' -- "$cur"))
+        COMPREPLY=($(compgen -W "$("$fathom" --list-scenes 2>/dev/null | awk '{print $1}')" -- "$cur") $(compgen -f -X '!*.@(json|fathom|png|exr)' -- "$cur"))
         return ;;
     --formula | --help-formula | check-formula)
         COMPREPLY=($(compgen -W "$("$fathom" --list-formulas 2>/dev/null | awk '{print $1}')" -- "$cur") $(compgen -f -X '!*.glsl' -- "$cur"))

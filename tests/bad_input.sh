@@ -250,5 +250,29 @@ expect shader-error 1 "common/march.glsl:$line:" 40 -- env FATHOM_DATA_DIR="$tmp
 
 expect no-display 1 "no display to open a window on" 1 -- env -u DISPLAY -u WAYLAND_DISPLAY "$fathom" --frames 1
 
+# the command line's traps: an option given twice, --frames on a shot, a folder for a DEM, a formula
+# name that is neither shipped nor in the user's folder (the message names the folder)
+expect output-twice 2 "--output is given twice (the second time" 1 -- "$fathom" $out --output "$tmp/out.exr"
+expect scene-twice 2 "--scene is given twice (the second time 'menger')" 1 -- "$fathom" --scene csg --scene menger $out
+expect frames-with-output 2 "--frames counts the window's frames" 1 -- "$fathom" $out --frames 3
+expect dem-folder 1 "--dem '$tmp' is a folder: give the elevation file in it" 1 -- "$fathom" --dem "$tmp" $out
+expect formula-unknown-names-the-folder 1 "or put torus.glsl in $tmp/formulas (your formula folder" 1 -- \
+    env FATHOM_FORMULAS="$tmp/formulas" "$fathom" --formula torus $out
+# what works, and says what it is: an upper-case extension is a PNG (and reopens as a shot), the
+# formula help names keys as --set takes them, the scene list has titles
+if "$fathom" --size 16x9 --spp 1 --quiet --output "$tmp/UP.PNG" && [ "$(head -c 4 "$tmp/UP.PNG" | tail -c 3)" = PNG ] &&
+    "$fathom" --scene "$tmp/UP.PNG" --size 16x9 --spp 1 --quiet --output "$tmp/again.Exr" && [ -s "$tmp/again.Exr" ]; then
+    passed=$((passed + 1)); echo "ok   upper-case-extensions: UP.PNG written and reopened, again.Exr written"
+else
+    failed=$((failed + 1)); echo "FAIL upper-case-extensions: .PNG or .Exr refused"
+fi
+rm -f "$tmp/UP.PNG" "$tmp/again.Exr"
+if "$fathom" --help-formula menger_kifs | grep -q '^  fractal\.twist  *vec3' &&
+    "$fathom" --list-scenes | grep -q '^mandelbulb  *Mandelbulb, power 8'; then
+    passed=$((passed + 1)); echo "ok   help-formula names fractal.KEY; --list-scenes has titles"
+else
+    failed=$((failed + 1)); echo "FAIL help-formula without fractal. or --list-scenes without titles"
+fi
+
 echo "bad_input: $passed passed, $failed failed"
 [ "$failed" -eq 0 ]

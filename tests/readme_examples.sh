@@ -75,7 +75,7 @@ else
 fi
 # words about the program that are checked, not trusted: the key table's scenes are the first nine
 # of --list-scenes, and the formula list is --list-formulas (wherever a page quotes them)
-listed=$("$fathom" --list-scenes | head -n 9 | tr '\n' ',' | sed 's/,$//; s/,/, /g')
+listed=$("$fathom" --list-scenes | head -n 9 | awk '{print $1}' | tr '\n' ',' | sed 's/,$//; s/,/, /g')
 where=$(holding 'the first nine scenes of `--list-scenes`:')
 [ -n "$where" ] || fail "no page has the key table's 'the first nine scenes of \`--list-scenes\`: ...'"
 for p in $where; do

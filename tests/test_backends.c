@@ -80,7 +80,7 @@ static void every_scene_and_preset(void **st)
     if (!render_has_compute())
         skip(); /* a GL without compute shaders has the fragment path only */
     strbuf names = {0};
-    scene_list(&names);
+    scene_list(&names, false);
     size_t n = (size_t)BW * BH;
     float *aa = malloc(n * AOV * sizeof(float)), *ab = malloc(n * AOV * sizeof(float));
     float *ca = malloc(n * 4 * sizeof(float)), *cb = malloc(n * 4 * sizeof(float));

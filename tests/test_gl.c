@@ -31,7 +31,7 @@ static void variants_compile(void **st)
 {
     (void)st;
     strbuf names = {0};
-    scene_list(&names);
+    scene_list(&names, false);
     int compiled = 0;
     for (char *name = names.data; name && *name;) {
         char *nl = strchr(name, '\n');
@@ -960,7 +960,7 @@ static void no_nan_or_inf(void **st)
     enum { SW = 61, SH = 37, RANDOM_CAMERAS = 12 };
     static float aov[SW * SH * AOV], rgba[SW * SH * 4];
     strbuf names = {0};
-    scene_list(&names);
+    scene_list(&names, false);
     int renders = 0;
     for (char *name = names.data; name && *name;) {
         char *nl = strchr(name, '\n');

@@ -181,7 +181,7 @@ static void uploaded_uniforms_are_declared(void **st)
     (void)st;
     char *shaders = all_shaders();
     strbuf names = {0};
-    scene_list(&names);
+    scene_list(&names, false);
     int scenes = 0;
     for (char *line = strtok(names.data, "\n"); line; line = strtok(NULL, "\n"), scenes++) {
         scene s;

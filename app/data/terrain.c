@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 #include "data/dem.h"
 #include "data/image_io.h"
@@ -170,7 +171,7 @@ static bool read_image(const heightfield_desc *d, float lo, float hi, int *w, in
     if (!image_read_f32(d->path, 1, TERRAIN_MAX_SIDE, w, h, &c, &px, err))
         return false;
     const char *dot = strrchr(d->path, '.');
-    bool is_float = dot && (!strcmp(dot, ".exr") || !strcmp(dot, ".hdr") || !strcmp(dot, ".pfm"));
+    bool is_float = dot && (!strcasecmp(dot, ".exr") || !strcasecmp(dot, ".hdr") || !strcasecmp(dot, ".pfm"));
     if (!is_float && lo == 0 && hi == 0) {
         free(px);
         return err_set(err, "heightmap '%s' is an integer image: set terrain.height_min and terrain.height_max "

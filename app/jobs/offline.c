@@ -4,6 +4,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/stat.h>
 
 #include "gpu/aov.h"
@@ -65,7 +66,7 @@ static int exr_channels(unsigned aovs, const char *names[MAX_CHANNELS], int src[
 static bool is_png(const char *path)
 {
     const char *dot = strrchr(path, '.');
-    return dot && !strcmp(dot, ".png");
+    return dot && !strcasecmp(dot, ".png");
 }
 
 static image_writer *open_writer(const char *path, int width, int height, unsigned aovs, const char *description,

@@ -333,8 +333,9 @@ bool formula_load(const char *name_or_path, const char *dir, formula *f, err_t *
                 for (char *c = names.data; c && *c; c++)
                     if (*c == '\n')
                         *c = c[1] ? ' ' : '\0';
-                err_set(err, "unknown formula '%s' (known: %s); or give a .glsl file", name_or_path,
-                        names.data ? names.data : "none");
+                err_set(err, "unknown formula '%s' (known: %s); or give a .glsl file, or put %s.glsl in %s (your "
+                             "formula folder, $FATHOM_FORMULAS)", name_or_path, names.data ? names.data : "none",
+                        name_or_path, user);
                 sb_free(&names);
                 return false;
             }
@@ -403,10 +404,11 @@ void formula_list(strbuf *out)
 
 void formula_describe(const formula *f, strbuf *out)
 {
-    sb_printf(out, "formula %s (%s)\n  %s\n", f->name, f->file, f->summary);
-    sb_printf(out, "  %-14s int    %d [%d, %d]  iterations of the formula\n", "iterations", f->iterations,
+    sb_printf(out, "formula %s (%s)\n  %s\n  each key as --set KEY=VALUE takes it (a vec3 as x,y,z):\n", f->name, f->file,
+              f->summary);
+    sb_printf(out, "  fractal.%-14s int    %d [%d, %d]  iterations of the formula\n", "iterations", f->iterations,
               f->iterations_lo, f->iterations_hi);
-    sb_printf(out, "  %-14s float  %s  a sphere about the origin that holds the set\n", "bound_radius", f->bound);
+    sb_printf(out, "  fractal.%-14s float  %s  a sphere about the origin that holds the set\n", "bound_radius", f->bound);
     if (f->step > 0)
         sb_printf(out, "  (its estimate needs quality.step_factor <= %g)\n", (double)f->step);
     for (int i = 0; i < f->param_count; i++) {
@@ -418,7 +420,7 @@ void formula_describe(const formula *f, strbuf *out)
             snprintf(def, sizeof def, "%g,%g,%g", (double)q->def[0], (double)q->def[1], (double)q->def[2]);
         else
             snprintf(def, sizeof def, "%g", (double)q->def[0]);
-        sb_printf(out, "  %-14s %-6s %s", q->key, TYPE_NAMES[q->type], def);
+        sb_printf(out, "  fractal.%-14s %-6s %s", q->key, TYPE_NAMES[q->type], def);
         if (q->type != FORMULA_BOOL)
             sb_printf(out, " [%g, %g]", (double)q->lo, (double)q->hi);
         if (q->has_gap)

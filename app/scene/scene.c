@@ -13,10 +13,6 @@
 #include "scene/scene_parse.h"
 
 /* A block that holds another family's shape is a mistake, not something to ignore. */
-/* Shipped scenes by name: scenes/ first (the window's keys 1-9 take them in order), then each fractal
- * formula's own view in scenes/fractals/. */
-static const char *const SCENE_FOLDER[] = {"scenes", "scenes/fractals"};
-enum { SCENE_FOLDERS = sizeof SCENE_FOLDER / sizeof SCENE_FOLDER[0] };
 
 static bool check_family_blocks(scene_ctx *c, const cJSON *root, const program_def *p)
 {
@@ -233,7 +229,6 @@ bool scene_load_text(const char *text, const char *path, const char *const *sets
     return load_text(text, path, sets, set_count, s, true, NULL, err);
 }
 
-static bool scene_text(const char *path, char **text, err_t *err);
 
 bool scene_knob_applies(const scene *s, knob_id k)
 {
@@ -304,7 +299,7 @@ bool scene_load_params(const char *name_or_path, const char *const *sets, int se
 {
     char path[PATH_MAX_LEN];
     char *text;
-    if (!scene_locate(name_or_path, path, sizeof path, err) || !scene_text(path, &text, err))
+    if (!scene_locate(name_or_path, path, sizeof path, err) || !scene_read_text(path, &text, err))
         return false;
     bool ok = load_text(text, path, sets, set_count, s, true, params, err);
     free(text);
@@ -357,83 +352,11 @@ static bool load_text(const char *text, const char *path, const char *const *set
 }
 
 /* Scene texts a shot or preset carried (scene_provide_text), by the path the scene had. */
-enum { PROVIDED_MAX = 8 };
-static struct {
-    char path[PROVIDED_MAX][PATH_MAX_LEN];
-    char *text[PROVIDED_MAX];
-    int count;
-} provided;
-
-static const char *provided_text(const char *path)
-{
-    for (int i = 0; i < provided.count; i++)
-        if (!strcmp(provided.path[i], path))
-            return provided.text[i];
-    return NULL;
-}
-
-void scene_provide_text(const char *path, const char *text)
-{
-    for (int i = 0; i < provided.count; i++)
-        if (!strcmp(provided.path[i], path)) {
-            free(provided.text[i]);
-            provided.text[i] = util_strdup(text);
-            return;
-        }
-    if (provided.count == PROVIDED_MAX) { /* the oldest goes */
-        free(provided.text[0]);
-        memmove(&provided.path[0], &provided.path[1], sizeof provided.path[0] * (PROVIDED_MAX - 1));
-        memmove(&provided.text[0], &provided.text[1], sizeof provided.text[0] * (PROVIDED_MAX - 1));
-        provided.count--;
-    }
-    snprintf(provided.path[provided.count], PATH_MAX_LEN, "%s", path);
-    provided.text[provided.count++] = util_strdup(text);
-}
-
-bool scene_locate(const char *name_or_path, char *out, size_t n, err_t *err)
-{
-    if (strchr(name_or_path, '/') || strstr(name_or_path, ".json")) {
-        if (!util_file_exists(name_or_path) && !provided_text(name_or_path))
-            return err_set(err, "scene file '%s' not found: check the path, or pass a name from --list-scenes",
-                           name_or_path);
-        snprintf(out, n, "%s", name_or_path);
-        return true;
-    }
-    bool found = false;
-    for (int i = 0; i < SCENE_FOLDERS && !found; i++) {
-        snprintf(out, n, "%s/%s/%s.json", util_data_dir(), SCENE_FOLDER[i], name_or_path);
-        found = util_file_exists(out);
-    }
-    if (!found) {
-        strbuf names = {0};
-        scene_list(&names);
-        for (char *p = names.data; p && *p; p++)
-            if (*p == '\n')
-                *p = p[1] ? ' ' : '\0';
-        err_set(err, "unknown scene '%s' (known: %s); pass a name or a path to a .json scene file", name_or_path,
-                names.data ? names.data : "none");
-        sb_free(&names);
-        return false;
-    }
-    return true;
-}
-
-/* The scene's text: the one a shot carried for this path, else the file's. */
-static bool scene_text(const char *path, char **text, err_t *err)
-{
-    const char *carried = provided_text(path);
-    if (carried) {
-        *text = util_strdup(carried);
-        return true;
-    }
-    return util_read_file(path, text, NULL, err);
-}
-
 bool scene_load(const char *name_or_path, const char *const *sets, int set_count, scene *s, err_t *err)
 {
     char path[PATH_MAX_LEN];
     char *text;
-    if (!scene_locate(name_or_path, path, sizeof path, err) || !scene_text(path, &text, err))
+    if (!scene_locate(name_or_path, path, sizeof path, err) || !scene_read_text(path, &text, err))
         return false;
     bool ok = scene_load_text(text, path, sets, set_count, s, err);
     free(text);
@@ -568,36 +491,3 @@ void scene_uniforms(const scene *s, const uniform_sink *u)
     if (p->uniforms)
         p->uniforms(s, u);
 }
-
-static int cmp_str(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }
-
-/* The scenes of one folder, sorted, one a line. */
-static void list_folder(const char *dir, strbuf *out)
-{
-    DIR *d = opendir(dir);
-    if (!d)
-        return;
-    char *names[256];
-    int n = 0;
-    for (struct dirent *e; (e = readdir(d)) && n < 256;) {
-        size_t len = strlen(e->d_name);
-        if (len > 5 && !strcmp(e->d_name + len - 5, ".json"))
-            names[n++] = strndup(e->d_name, len - 5);
-    }
-    closedir(d);
-    qsort(names, (size_t)n, sizeof names[0], cmp_str);
-    for (int i = 0; i < n; i++) {
-        sb_printf(out, "%s\n", names[i]);
-        free(names[i]);
-    }
-}
-
-void scene_list(strbuf *out)
-{
-    for (int i = 0; i < SCENE_FOLDERS; i++) {
-        char dir[PATH_MAX_LEN];
-        snprintf(dir, sizeof dir, "%s/%s", util_data_dir(), SCENE_FOLDER[i]);
-        list_folder(dir, out);
-    }
-}
-

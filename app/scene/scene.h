@@ -212,7 +212,8 @@ bool scene_needs_double(const scene *s, double distance, const struct camera *c,
  * window shows only those. */
 bool scene_knob_applies(const scene *s, knob_id k);
 
-/* Lists scene names under <data>/scenes into out (one per line). */
-void scene_list(strbuf *out);
+/* Lists the shipped scenes' names into out, one a line in --list-scenes order (scenes/, then
+ * scenes/fractals/); with titles, each name padded and followed by the scene's title. */
+void scene_list(strbuf *out, bool titles);
 
 #endif

@@ -76,4 +76,8 @@ bool scene_fractal_frame(scene *s, err_t *err);
 /* --set overrides (scene_set.c): "a.b.0.c=value" applied to the parsed JSON tree. */
 bool scene_apply_set(cJSON *root, const char *kv, err_t *err);
 
+/* The scene's text: the one a shot carried for this path (scene_provide_text), else the file's
+ * (scene_files.c). */
+bool scene_read_text(const char *path, char **text, err_t *err);
+
 #endif

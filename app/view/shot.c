@@ -10,6 +10,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/stat.h>
 
 #include "data/image_io.h"
@@ -296,5 +297,5 @@ bool shot_is_preset(const char *name)
 bool shot_is_image(const char *name)
 {
     const char *dot = strrchr(name, '.');
-    return dot && (!strcmp(dot, ".png") || !strcmp(dot, ".exr"));
+    return dot && (!strcasecmp(dot, ".png") || !strcasecmp(dot, ".exr"));
 }

@@ -208,7 +208,7 @@ static bool panel_apply(const panel_actions *act)
 static void list_scene_names(void)
 {
     strbuf list = {0};
-    scene_list(&list);
+    scene_list(&list, false);
     for (char *line = list.data; line && *line && app.scene_count < MAX_SCENES;) {
         char *nl = strchr(line, '\n');
         snprintf(app.names[app.scene_count++], SCENE_NAME_MAX, "%.*s", (int)(nl ? nl - line : (long)strlen(line)), line);
