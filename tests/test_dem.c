@@ -479,6 +479,13 @@ static void dem_scene_frames_any_dem(void **st)
     assert_near(s.terrain.exaggeration, 20, 1e-4); /* 800 m relief over 3000 km: at the cap */
     assert_true(s.cam_position[1] > 1900 * 20);
     scene_free(&s);
+    /* ... unless the scene or the command line sets it: 1 is true scale, not "not set" */
+    const char *true_scale[] = {set, "terrain.exaggeration=1"};
+    if (!scene_load("dem", true_scale, 2, &s, &e))
+        fail_msg("%s", e.msg);
+    assert_near(s.terrain.exaggeration, 1, 0);
+    assert_true(s.cam_look_at[1] >= 1100 && s.cam_look_at[1] < 5000); /* framed at true heights (x20: > 22,000) */
+    scene_free(&s);
     assert_false(scene_load_text("{\"program\": \"csg\", \"camera\": \"auto\", \"objects\": []}", "/tmp/x.json", NULL, 0,
                                  &s, &e));
     assert_true(strstr(e.msg, "camera: expected an object") != NULL);

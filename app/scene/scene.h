@@ -131,6 +131,7 @@ typedef struct scene {
     struct scene_terrain {
         char heightmap[PATH_MAX_LEN];
         float spacing[2], height_min, height_max, exaggeration;
+        bool exaggeration_set; /* the scene (or an override) gives it: "camera": "auto" keeps it */
         bool maxmip;      /* method: "maxmip" (exact, hierarchical) or "linear" (the lab's search) */
         bool fill_nodata; /* nodata: "hole" (rays pass) or "fill" (GDALFillNodata) */
         bool patch_normals; /* normals: "smooth" (vertex normals blended across the cell) or "patch" (exact) */

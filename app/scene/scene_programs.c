@@ -442,6 +442,7 @@ bool scene_heightmap_parse(scene_ctx *c, const cJSON *root)
     }
     t->spacing[0] = sp[0];
     t->spacing[1] = sp[1];
+    t->exaggeration_set = cJSON_HasObjectItem(tb, "exaggeration"); /* 1 is true scale, not "not set" */
     if (!scene_get_num(c, tb, "terrain", "height_min", 0, -1e5f, 1e5f, &t->height_min) ||
         !scene_get_num(c, tb, "terrain", "height_max", 0, -1e5f, 1e5f, &t->height_max) ||
         !scene_get_num(c, tb, "terrain", "exaggeration", 1, 0.01f, 100, &t->exaggeration) ||
@@ -487,7 +488,7 @@ bool scene_terrain_frame(scene *s, err_t *err)
     if (!heightfield_probe(&d, size, range, spacing, err))
         return false;
     double R = fmax(size[0], size[1]), relief = fmax(range[1] - range[0], 1e-3 * R);
-    if (t->exaggeration == 1 && relief < 0.02 * R) { /* continental DEMs look flat at true scale */
+    if (!t->exaggeration_set && relief < 0.02 * R) { /* continental DEMs look flat at true scale */
         double ex = fmin(0.02 * R / relief, 20);
         t->exaggeration = (float)ex;
         range[0] *= ex, range[1] *= ex, relief *= ex;
