@@ -453,6 +453,9 @@ static void set_overrides(void **st)
     expect_error(MINIMAL, bad_preset, 1, "unknown preset 'ultra'");
     const char *bad_mode[] = {"effects.fog=maybe"};
     expect_error(MINIMAL, bad_mode, 1, "effects.fog: unknown mode 'maybe' (known: auto, on, off)");
+    /* a material's name mistyped: no new, unused material (it was accepted, silently) */
+    const char *bad_material[] = {"materials.b.roughness=0.1"};
+    expect_error(MINIMAL, bad_material, 1, "the scene has no material 'b' (its materials: a)");
 }
 
 static void effects_follow_content(void **st)

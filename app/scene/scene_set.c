@@ -57,6 +57,17 @@ static cJSON *override_value(const char *key, const char *v)
     return j;
 }
 
+/* --set materials.NAME.KEY=… where the scene has no material NAME: refused with the names it has. */
+static bool unknown_material(const cJSON *materials, const char *kv, const char *name, err_t *err)
+{
+    strbuf names = {0};
+    for (const cJSON *m = materials->child; m; m = m->next)
+        sb_printf(&names, "%s%s", names.data ? ", " : "", m->string);
+    err_set(err, "--set %s: the scene has no material '%s' (its materials: %s)", kv, name, names.data ? names.data : "none");
+    sb_free(&names);
+    return false;
+}
+
 bool scene_apply_set(cJSON *root, const char *kv, err_t *err)
 {
     const char *eq = strchr(kv, '=');
@@ -91,6 +102,8 @@ bool scene_apply_set(cJSON *root, const char *kv, err_t *err)
                     cJSON_AddItemToObject(node, seg, override_value(full, eq + 1));
                 return true;
             }
+            if (!next && node == cJSON_GetObjectItemCaseSensitive(root, "materials"))
+                return unknown_material(node, kv, seg, err); /* a typo would make a new, unused material */
             if (!next)
                 next = cJSON_AddObjectToObject(node, seg);
             node = next;
