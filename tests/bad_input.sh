@@ -62,7 +62,7 @@ expect backend-env-bad 1 "FATHOM_BACKEND='vulkan' is not a backend" 1 -- env FAT
 expect backend-bad 2 "bad --backend 'cuda': use auto, fragment or compute" 1 -- "$fathom" --backend cuda $out
 expect unknown-set-key 1 "materials.glass.iro: unknown key 'iro'" 1 -- "$fathom" --set materials.glass.iro=1.3 $out
 expect bad-set-value 1 "materials.glass.ior: expected a number from 1 to 4 (from the override materials.glass.ior=9)" 1 -- "$fathom" --set materials.glass.ior=9 $out
-expect unwritable-output 1 "folder '$tmp/no/such/dir' does not exist" 1 -- "$fathom" --output "$tmp/no/such/dir/out.png" --size 33x21 --quiet
+expect unwritable-output 1 "folder '$tmp/no/such/dir' does not exist: make it (mkdir -p '$tmp/no/such/dir')" 1 -- "$fathom" --output "$tmp/no/such/dir/out.png" --size 33x21 --quiet
 
 # ---- hostile files ------------------------------------------------------------------------------
 # a 68-byte PNG whose header claims 200000x200000 (zlib data for 10 bytes): refused before allocating

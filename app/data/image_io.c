@@ -451,9 +451,11 @@ bool image_can_write(const char *path, err_t *err)
         strcpy(dir, "/");
     else
         snprintf(dir, sizeof dir, "%.*s", (int)(slash - path), path);
+    if (access(dir, W_OK) != 0 && errno == ENOENT)
+        return err_set(err, "cannot write '%s': folder '%s' does not exist: make it (mkdir -p '%s') or choose another "
+                            "--output path", path, dir, dir);
     if (access(dir, W_OK) != 0)
-        return err_set(err, "cannot write '%s': folder '%s' %s; choose another --output path", path, dir,
-                       errno == ENOENT ? "does not exist" : "is not writable");
+        return err_set(err, "cannot write '%s': folder '%s' is not writable; choose another --output path", path, dir);
     struct stat st;
     if (stat(path, &st) == 0) {
         if (!S_ISREG(st.st_mode))
