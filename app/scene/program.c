@@ -1,3 +1,4 @@
+/* program — the registry of scene programs (program.h). */
 #include "scene/program.h"
 
 #include <assert.h>
@@ -5,20 +6,12 @@
 
 #include "util.h"
 
-
 static const program_def PROGRAMS[PROGRAM_COUNT] = {
-#define X(id, name, map, family, parse, defines, uniforms, bench)                                               \
-    [PROGRAM_##id] = {name, map, family, parse, defines, uniforms, bench},
+#define X(id, name, map, block, family, parse, frame, frame_from, adaptive, defines, uniforms, bench)                 \
+    [PROGRAM_##id] = {name, map, block, family, parse, frame, frame_from, adaptive, defines, uniforms, bench},
     PROGRAM_LIST(X)
 #undef X
 };
-
-const char *program_family_block(program_family f)
-{
-    static const char *const BLOCKS[] = {[FAMILY_CSG] = "objects", [FAMILY_FRACTAL] = "fractal",
-                                         [FAMILY_TERRAIN] = "terrain"};
-    return BLOCKS[f];
-}
 
 const program_def *program_get(program_kind p)
 {

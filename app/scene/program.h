@@ -2,14 +2,25 @@
  *
  * A program supplies only its shape (`vec2 map(vec3 p)`) and optionally its colouring and its own
  * marcher (see the contract at the top of shaders/common/contract.glsl); everything else is shared.
- * PROGRAM_LIST is the one place a program is described. Adding one is a row here, its GLSL file,
- * and its block parser (app/scene/scene_programs.c). Columns:
+ * PROGRAM_LIST is the one place a program is described: adding one is a row here, its GLSL file and
+ * the hooks the row names (its block parser, and the uniforms, #defines and framing it has; the
+ * parsed values live in its part of the scene struct, scene.h). Every other place that differs by
+ * program reads the row: which block a scene file gives its shape in (and the error for another
+ * program's block), whether "camera": "auto" frames it, how fast the window flies, the panel's
+ * first section, the bench's sweeps. Columns:
  *   ID        enum suffix (PROGRAM_ID)
  *   name      "program" in scene files, --scene names, the `PROGRAM_name` #define
  *   map       its GLSL under shaders/ (NULL: generated from the scene: csg's CSG tree, the fractal's
  *             #include of its formula file, shaders/fractal/NAME.glsl or the user's: formula.h)
- *   family    which block holds its shape: CSG "objects", FRACTAL "fractal", TERRAIN "terrain"
+ *   block     the scene file's block that holds its shape (and the panel's first section)
+ *   family    what kind of field it is: CSG (exact distances of solids: coverage AA applies),
+ *             FRACTAL (a formula: iterations, deep zoom, check-formula), TERRAIN (a ground: layers
+ *             by slope and height, walking)
  *   parse     reads that block into the scene (and writes map() for a generated program)
+ *   frame     "camera": "auto": frames the camera from the shape's extent (NULL: the scene gives
+ *             its camera), and what it frames from, for the message when it cannot
+ *   adaptive  the window flies at a speed proportional to the distance to the surface (a fractal's
+ *             detail at every scale), else at a fixed speed
  *   defines   what it adds to the #define preamble (NULL: nothing)
  *   uniforms  its named uniforms (NULL: none)
  *   bench     its own bench sweeps, "key=v1,v2,…" separated by ';' (NULL: none)
@@ -21,10 +32,14 @@
 
 /* clang-format off */
 #define PROGRAM_LIST(X)                                                                                                 \
-    X(CSG,        "csg",        NULL,                      FAMILY_CSG,     scene_csg_parse,        NULL,            NULL,               NULL) \
-    X(FRACTAL,    "fractal",    NULL,                      FAMILY_FRACTAL, scene_fractal_parse,    scene_fractal_defines, scene_fractal_uniforms,   NULL) \
-    X(TERRAIN,    "terrain",    "terrain/terrain.glsl",    FAMILY_TERRAIN, scene_heightmap_parse,  scene_heightmap_defines, scene_layer_uniforms,   "terrain.method=linear,maxmip") \
-    X(NOISE,      "noise",      "terrain/noise.glsl",      FAMILY_TERRAIN, scene_noise_parse,      NULL,            scene_noise_uniforms,     NULL)
+    X(CSG,     "csg",     NULL,                   "objects", FAMILY_CSG,     scene_csg_parse,       NULL, NULL, false,                \
+      NULL,                    NULL,                    NULL)                                                            \
+    X(FRACTAL, "fractal", NULL,                   "fractal", FAMILY_FRACTAL, scene_fractal_parse,   scene_fractal_frame,           \
+      "the formula's bound", true, scene_fractal_defines, scene_fractal_uniforms, NULL)                                   \
+    X(TERRAIN, "terrain", "terrain/terrain.glsl", "terrain", FAMILY_TERRAIN, scene_heightmap_parse, scene_terrain_frame,           \
+      "the DEM", false, scene_heightmap_defines, scene_layer_uniforms, "terrain.method=linear,maxmip")                     \
+    X(NOISE,   "noise",   "terrain/noise.glsl",   "terrain", FAMILY_TERRAIN, scene_noise_parse,     NULL, NULL, false,                \
+      NULL,                    scene_noise_uniforms,    NULL)
 /* clang-format on */
 
 typedef enum program_kind {
@@ -36,17 +51,17 @@ typedef enum program_kind {
 
 typedef enum program_family { FAMILY_CSG, FAMILY_FRACTAL, FAMILY_TERRAIN } program_family;
 
-/* Where each family's shape lives in a scene file. */
-const char *program_family_block(program_family f);
-
 struct scene;
 struct strbuf;
 struct uniform_sink;
 struct scene_ctx;
 struct cJSON;
+struct err_t;
 
 /* The programs' hooks named in PROGRAM_LIST: block parsers, #defines, uniforms (scene_programs.c). */
 bool scene_csg_parse(struct scene_ctx *c, const struct cJSON *root); /* scene_csg.c: "objects" → map() */
+bool scene_fractal_frame(struct scene *s, struct err_t *err);
+bool scene_terrain_frame(struct scene *s, struct err_t *err);
 bool scene_fractal_parse(struct scene_ctx *c, const struct cJSON *root);
 bool scene_heightmap_parse(struct scene_ctx *c, const struct cJSON *root);
 bool scene_noise_parse(struct scene_ctx *c, const struct cJSON *root);
@@ -57,9 +72,12 @@ void scene_layer_uniforms(const struct scene *s, const struct uniform_sink *u);
 void scene_noise_uniforms(const struct scene *s, const struct uniform_sink *u);
 
 typedef struct program_def {
-    const char *name, *map_file;
+    const char *name, *map_file, *block;
     program_family family;
     bool (*parse)(struct scene_ctx *c, const struct cJSON *root);
+    bool (*frame)(struct scene *s, struct err_t *err);
+    const char *frame_from;
+    bool adaptive;
     void (*defines)(const struct scene *s, struct strbuf *out);
     void (*uniforms)(const struct scene *s, const struct uniform_sink *u);
     const char *bench;

@@ -12,22 +12,21 @@
 #include "data/droplets.h"
 #include "scene/scene_parse.h"
 
-/* A block that holds another family's shape is a mistake, not something to ignore. */
-
-static bool check_family_blocks(scene_ctx *c, const cJSON *root, const program_def *p)
+/* A block that holds another program's shape is a mistake, not something to ignore. */
+static bool check_shape_blocks(scene_ctx *c, const cJSON *root, const program_def *p)
 {
-    for (int f = FAMILY_CSG; f <= FAMILY_TERRAIN; f++) {
-        const char *block = program_family_block((program_family)f);
-        if ((program_family)f == p->family || !cJSON_GetObjectItemCaseSensitive(root, block))
+    for (int k = 0; k < PROGRAM_COUNT; k++) {
+        const char *block = program_get((program_kind)k)->block;
+        if (!strcmp(block, p->block) || !cJSON_GetObjectItemCaseSensitive(root, block))
             continue;
         strbuf readers = {0};
-        for (int k = 0; k < PROGRAM_COUNT; k++)
-            if (program_get((program_kind)k)->family == (program_family)f)
-                sb_printf(&readers, "%s%s", readers.len ? ", " : "", program_name((program_kind)k));
-        bool r = scene_fail(c, block, "a %s scene has no \"%s\" block (its shape is the \"%s\" block; only %s read \"%s\")",
-                      p->name, block, program_family_block(p->family), readers.data, block);
+        for (int r = 0; r < PROGRAM_COUNT; r++)
+            if (!strcmp(program_get((program_kind)r)->block, block))
+                sb_printf(&readers, "%s%s", readers.len ? ", " : "", program_name((program_kind)r));
+        bool ok = scene_fail(c, block, "a %s scene has no \"%s\" block (its shape is the \"%s\" block; only %s read \"%s\")",
+                             p->name, block, p->block, readers.data, block);
         sb_free(&readers);
-        return r;
+        return ok;
     }
     return true;
 }
@@ -114,7 +113,7 @@ static bool parse_root(scene_ctx *c, cJSON *root)
         return r;
     }
     const program_def *p = program_get(s->program);
-    if (!check_family_blocks(c, root, p))
+    if (!check_shape_blocks(c, root, p))
         return false;
     if (!scene_parse_camera(c, root) || !scene_parse_fog(c, root) || !scene_parse_environment(c, root) || !scene_parse_lights(c, root) ||
         !scene_parse_quality(c, root) || !scene_parse_effects(c, root) || !scene_parse_droplets(c, root))
@@ -335,7 +334,7 @@ static bool load_text(const char *text, const char *path, const char *const *set
         ok = scene_apply_set(root, sets[i], err); /* its errors name the override already */
     if (ok) {
         ok = parse_root(&c, root) &&
-             (!s->cam_auto || (s->program == PROGRAM_FRACTAL ? scene_fractal_frame(s, err) : scene_terrain_frame(s, err)));
+             (!s->cam_auto || program_get(s->program)->frame(s, err));
         if (!ok && set_count > 0 && blame)
             blame_override(text, path, sets, set_count, err);
     }

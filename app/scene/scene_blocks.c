@@ -130,15 +130,14 @@ bool scene_parse_droplets(scene_ctx *c, const cJSON *root)
 bool scene_parse_camera(scene_ctx *c, const cJSON *root)
 {
     scene *s = c->s;
-    bool fractal = program_is_fractal(s->program);
+    const program_def *p = program_get(s->program);
     const cJSON *cam = cJSON_GetObjectItemCaseSensitive(root, "camera");
     static const double cam_pos[3] = {0, 1, 5}, cam_at[3] = {0, 0, 0};
     if (cJSON_IsString(cam)) { /* "auto": framed from the terrain's extent once it is known (scene.c) */
-        if (strcmp(cam->valuestring, "auto") || (s->program != PROGRAM_TERRAIN && s->program != PROGRAM_FRACTAL))
-            return scene_fail(c, "camera", "expected an object with position and look_at%s",
-                        s->program == PROGRAM_TERRAIN   ? ", or \"auto\" (framed from the DEM)"
-                        : s->program == PROGRAM_FRACTAL ? ", or \"auto\" (framed from the formula's bound)"
-                                                        : "");
+        if (strcmp(cam->valuestring, "auto") || !p->frame)
+            return scene_fail(c, "camera", "expected an object with position and look_at%s%s%s",
+                              p->frame ? ", or \"auto\" (framed from " : "", p->frame ? p->frame_from : "",
+                              p->frame ? ")" : "");
         s->cam_auto = true;
         cam = NULL;
     }
@@ -149,9 +148,9 @@ bool scene_parse_camera(scene_ctx *c, const cJSON *root)
         const cJSON *adaptive = cJSON_GetObjectItemCaseSensitive(cam, "adaptive_speed");
         if (adaptive && !cJSON_IsBool(adaptive))
             return scene_fail(c, "camera.adaptive_speed", "expected true or false");
-        s->adaptive_speed = adaptive ? cJSON_IsTrue(adaptive) : fractal;
+        s->adaptive_speed = adaptive ? cJSON_IsTrue(adaptive) : p->adaptive;
     } else {
-        s->adaptive_speed = fractal;
+        s->adaptive_speed = p->adaptive;
     }
     if (!scene_get_dvec3(c, cam, "camera", "position", cam_pos, -CAMERA_MAX_COORD, CAMERA_MAX_COORD, s->cam_position) ||
         !scene_get_dvec3(c, cam, "camera", "look_at", cam_at, -CAMERA_MAX_COORD, CAMERA_MAX_COORD, s->cam_look_at) ||

@@ -128,7 +128,7 @@ static void panel_model_of(int w, int h, panel_model *m)
     double dist = camera_distance(cam->position, app.fly.pivot);
     dist = dist > 0 ? dist : 1;
     *m = (panel_model){.params = &app.s.params, .scene_title = s->title[0] ? s->title : s->name,
-                       .program_block = program_family_block(program_get(s->program)->family),
+                       .program_block = program_get(s->program)->block,
                        .fov_deg = glm_deg(cam->fov_y), .camera_mode = app.fly.mode,
                        .can_walk = s->terrain.heightmap[0] != 0, .ms_per_sample = app.cost.sample_ms,
                        .samples = render_samples(), .spp = s->quality.spp, .width = w, .height = h,
