@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include <cmocka.h>
 
@@ -119,29 +120,35 @@ static void programs_registry(void **st)
 /* ---- uniforms: every name the scene module uploads is declared by some shader ---------------------- */
 
 /* Every shader file, concatenated: each .glsl under shaders/ and its folders (one level). */
+/* Every .glsl and .frag under shaders/ and its folders (one level: common, csg, fractal, shapes, ...). */
+static void read_shaders(const char *dir, bool folders, strbuf *all)
+{
+    DIR *d = opendir(dir);
+    assert_non_null(d);
+    for (struct dirent *e; (e = readdir(d));) {
+        size_t n = strlen(e->d_name);
+        char path[PATH_MAX_LEN * 2], *text;
+        snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
+        struct stat st;
+        if (folders && e->d_name[0] != '.' && stat(path, &st) == 0 && S_ISDIR(st.st_mode))
+            read_shaders(path, false, all);
+        if (n < 5 || (strcmp(e->d_name + n - 5, ".glsl") && strcmp(e->d_name + n - 5, ".frag")))
+            continue;
+        err_t err;
+        if (!util_read_file(path, &text, NULL, &err))
+            fail_msg("%s", err.msg);
+        sb_append(all, text);
+        free(text);
+    }
+    closedir(d);
+}
+
 static char *all_shaders(void)
 {
-    static const char *const FOLDERS[] = {"", "common", "fractal", "terrain", "csg"};
     strbuf all = {0};
-    for (size_t f = 0; f < sizeof FOLDERS / sizeof FOLDERS[0]; f++) {
-        char dir[PATH_MAX_LEN];
-        snprintf(dir, sizeof dir, "%s/shaders/%s", util_data_dir(), FOLDERS[f]);
-        DIR *d = opendir(dir);
-        assert_non_null(d);
-        for (struct dirent *e; (e = readdir(d));) {
-            size_t n = strlen(e->d_name);
-            if (n < 5 || (strcmp(e->d_name + n - 5, ".glsl") && strcmp(e->d_name + n - 5, ".frag")))
-                continue;
-            char path[PATH_MAX_LEN * 2], *text;
-            err_t err;
-            snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
-            if (!util_read_file(path, &text, NULL, &err))
-                fail_msg("%s", err.msg);
-            sb_append(&all, text);
-            free(text);
-        }
-        closedir(d);
-    }
+    char dir[PATH_MAX_LEN];
+    snprintf(dir, sizeof dir, "%s/shaders", util_data_dir());
+    read_shaders(dir, true, &all);
     return all.data;
 }
 

@@ -39,7 +39,9 @@
     X(TERRAIN, "terrain", "terrain/terrain.glsl", "terrain", FAMILY_TERRAIN, scene_heightmap_parse, scene_terrain_frame,           \
       "the DEM", false, scene_heightmap_defines, scene_layer_uniforms, "terrain.method=linear,maxmip")                     \
     X(NOISE,   "noise",   "terrain/noise.glsl",   "terrain", FAMILY_TERRAIN, scene_noise_parse,     NULL, NULL, false,                \
-      NULL,                    scene_noise_uniforms,    NULL)
+      NULL,                    scene_noise_uniforms,    NULL)                                                            \
+    X(TORUS,   "torus",   "shapes/torus.glsl",    "torus",   FAMILY_CSG,     scene_torus_parse,     NULL, NULL, false,                \
+      NULL,                    scene_torus_uniforms,    "torus.minor=0.05,0.15,0.3")
 /* clang-format on */
 
 typedef enum program_kind {
@@ -70,6 +72,8 @@ void scene_heightmap_defines(const struct scene *s, struct strbuf *out);
 void scene_fractal_uniforms(const struct scene *s, const struct uniform_sink *u);
 void scene_layer_uniforms(const struct scene *s, const struct uniform_sink *u);
 void scene_noise_uniforms(const struct scene *s, const struct uniform_sink *u);
+bool scene_torus_parse(struct scene_ctx *c, const struct cJSON *root);
+void scene_torus_uniforms(const struct scene *s, const struct uniform_sink *u);
 
 typedef struct program_def {
     const char *name, *map_file, *block;

@@ -81,9 +81,18 @@ static unsigned derive_effects(const scene *s)
 static bool parse_root(scene_ctx *c, cJSON *root)
 {
     scene *s = c->s;
-    static const char *const keys[] = {"title", "program", "camera", "environment", "lights", "fog",
-                                       "materials", "objects", "fractal", "terrain", "quality", "effects",
-                                       "droplets", NULL};
+    /* the blocks every program reads, then each program's own shape block (PROGRAM_LIST) */
+    const char *keys[16 + PROGRAM_COUNT] = {"title", "program", "camera", "environment", "lights", "fog",
+                                            "materials", "quality", "effects", "droplets"};
+    int n = 10;
+    for (int k = 0; k < PROGRAM_COUNT; k++) {
+        int i = 0;
+        while (i < n && strcmp(keys[i], program_get((program_kind)k)->block))
+            i++;
+        if (i == n)
+            keys[n++] = program_get((program_kind)k)->block;
+    }
+    keys[n] = NULL;
     if (!scene_check_keys(c, root, "", keys))
         return false;
     const char *title = NULL, *prog = NULL;

@@ -128,6 +128,11 @@ typedef struct scene {
 
     scene_fractal fractal;
 
+    struct scene_torus { /* program torus: its "torus" block */
+        float major, minor;
+        int material;
+    } torus;
+
     struct scene_terrain {
         char heightmap[PATH_MAX_LEN];
         float spacing[2], height_min, height_max, exaggeration;

@@ -554,3 +554,31 @@ void scene_noise_uniforms(const scene *s, const uniform_sink *u)
     uniform_f(u, "uTerrainHeightMax", t->base + t->amplitude);
     scene_layer_uniforms(s, u);
 }
+
+/* ---- torus: one primitive, the smallest program (shaders/shapes/torus.glsl) ----------------------- */
+
+bool scene_torus_parse(scene_ctx *c, const cJSON *root)
+{
+    struct scene_torus *t = &c->s->torus;
+    const cJSON *tb = cJSON_GetObjectItemCaseSensitive(root, "torus");
+    static const char *const keys[] = {"major", "minor", "material", NULL};
+    const char *material;
+    if (!tb)
+        return scene_fail(c, "torus", "missing: the torus program draws the \"torus\" block, e.g. "
+                                      "{\"major\": 1, \"minor\": 0.25, \"material\": \"gold\"}");
+    if (!scene_check_keys(c, tb, "torus", keys) || !scene_get_num(c, tb, "torus", "major", 1, 1e-3f, 1e3f, &t->major) ||
+        !scene_get_num(c, tb, "torus", "minor", 0.25f, 1e-4f, 1e3f, &t->minor) ||
+        !scene_get_str(c, tb, "torus", "material", NULL, &material))
+        return false;
+    if (t->minor > t->major)
+        return scene_fail(c, "torus.minor", "is larger than torus.major: the tube would cross the axis");
+    t->material = material ? scene_find_material(c->s, material) : 0; /* none named: the first */
+    return t->material >= 0 || scene_fail(c, "torus.material", "unknown material '%s'", material);
+}
+
+void scene_torus_uniforms(const scene *s, const uniform_sink *u)
+{
+    uniform_f(u, "uTorusMajor", s->torus.major);
+    uniform_f(u, "uTorusMinor", s->torus.minor);
+    uniform_i(u, "uTorusMaterial", s->torus.material);
+}
