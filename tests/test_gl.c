@@ -21,6 +21,7 @@
 #include "reference.h"
 #include "gpu/render.h"
 #include "gpu/render_probe.h"
+#include "gpu/render_resource.h"
 #include "scene/scene.h"
 
 #include "gltest.h"
@@ -1212,6 +1213,48 @@ static void banded_shot_matches_whole(void **st)
 
 /* ---- a broken shader on reload keeps the last good program and says where it broke -------------- */
 
+/* Each GPU resource kind keeps its promise (render_resource.h): a failure halfway through its upload
+ * (injected after its first GL object: FATHOM_RESOURCE_FAULT) fails the scene and leaves the kind
+ * holding nothing; the same scene then loads whole, and the kind holds what it needs. */
+static void resource_kinds_keep_their_promises(void **st)
+{
+    (void)st;
+    static const struct {
+        const render_resource *kind;
+        const char *scene; /* a shipped one, or NULL: CSG_LIST_MIN spheres (the primitive list) */
+    } CASES[] = {{&res_textures, "csg"}, {&res_envmap, "csg"}, {&res_csg_list, NULL},
+                 {&res_heightfield, "jacksboro"}, {&res_droplets, "spray"}};
+    strbuf spheres = {0};
+    sb_append(&spheres, "{\"program\": \"csg\", \"quality\": {\"spp\": 1}, \"materials\": {\"m\": {}}, \"objects\": [");
+    for (int k = 0; k < CSG_LIST_MIN; k++)
+        sb_printf(&spheres, "%s{\"shape\": \"sphere\", \"radius\": 0.1, \"position\": [%d, 0, 0], \"material\": \"m\"}",
+                  k ? ", " : "", k);
+    sb_append(&spheres, "]}");
+    for (size_t i = 0; i < sizeof CASES / sizeof CASES[0]; i++) {
+        scene s;
+        err_t e;
+        if (!CASES[i].scene)
+            load_text(spheres.data, NULL, 0, &s);
+        else if (!scene_load(CASES[i].scene, (const char *const[]){"quality.spp=1"}, 1, &s, &e))
+            fail_msg("%s", e.msg);
+        render_release_scene(); /* nothing to reuse: each kind uploads */
+        setenv("FATHOM_RESOURCE_FAULT", CASES[i].kind->name, 1);
+        bool failed = !render_set_scene(&s, NULL, &e);
+        unsetenv("FATHOM_RESOURCE_FAULT");
+        int held_after_failure = CASES[i].kind->held();
+        bool loaded = render_set_scene(&s, NULL, &e);
+        fprintf(stderr, "  %-20s (%s): failed halfway %s, then held %d GL objects; loaded whole %s, holding %d\n",
+                CASES[i].kind->name, CASES[i].scene ? CASES[i].scene : "32 spheres", failed ? "yes" : "NO",
+                held_after_failure, loaded ? "yes" : "NO",
+                CASES[i].kind->held());
+        assert_true(failed);
+        assert_int_equal(held_after_failure, 0);
+        assert_true(loaded && CASES[i].kind->held() > 0);
+        scene_free(&s);
+    }
+    sb_free(&spheres);
+}
+
 static void reload_keeps_last_good_program(void **st)
 {
     (void)st;
@@ -1524,6 +1567,7 @@ int main(void)
         cmocka_unit_test(thin_slab_normals),
         cmocka_unit_test(relief_edge_has_no_blotches),
         cmocka_unit_test(reload_keeps_last_good_program),
+        cmocka_unit_test(resource_kinds_keep_their_promises),
         cmocka_unit_test(grazing_ground_depth),
         cmocka_unit_test(adaptive_sampling),
     };

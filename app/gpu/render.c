@@ -10,7 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "gpu/aov.h"
+#include "view/aov.h"
 #include "gpu/render_programs.h"
 #include "gpu/render_resource.h"
 #include "gpu/render_scene.h"
@@ -408,12 +408,12 @@ static void sample_rows(int y0, int y1)
     glUniform1ui(loc("uFxRuntime"), state->runtime_effects);
     glUniform1i(loc("uSampleIndex"), state->samples); /* the path tracer's random numbers */
     glUniform1i(loc("uAdaptive"), adaptive ? 1 : 0);
-    glUniform1i(loc("uEdgeMask"), RENDER_UNIT_EDGE_MASK);
+    glUniform1i(loc("uEdgeMask"), render_scene_units_end());
     int k = first ? state->first_jitter : state->samples; /* Halton point k; 0 is the pixel centre */
     bool jitter = (render_scene_current()->effects & state->runtime_effects & (1u << EFFECT_AA)) && k > 0;
     glUniform2f(loc("uJitter"), jitter ? halton(k, 2) - 0.5f : 0.0f, jitter ? halton(k, 3) - 0.5f : 0.0f);
     render_scene_bind();
-    glActiveTexture(GL_TEXTURE0 + RENDER_UNIT_EDGE_MASK);
+    glActiveTexture(GL_TEXTURE0 + (GLenum)render_scene_units_end());
     glBindTexture(GL_TEXTURE_2D, state->mask_tex);
     glActiveTexture(GL_TEXTURE0);
     if (state->backend == BACKEND_COMPUTE)

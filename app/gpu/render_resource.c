@@ -2,8 +2,18 @@
 #include "gpu/render_resource.h"
 
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+
+bool render_resource_fault(const char *name, err_t *err)
+{
+    const char *fault = getenv("FATHOM_RESOURCE_FAULT");
+    if (!fault || strcmp(fault, name))
+        return false;
+    err_set(err, "%s: a failure injected halfway (FATHOM_RESOURCE_FAULT)", name);
+    return true;
+}
 
 void render_file_key(const char *path, char *key, size_t n)
 {

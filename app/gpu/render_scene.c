@@ -6,7 +6,8 @@
 
 #include "gpu/render_resource.h"
 
-/* Upload order: a failure leaves the later kinds as they were. */
+/* Upload order (and unit order: the material textures first, at 0): a failure leaves the later kinds
+ * as they were. */
 static const render_resource *const RESOURCES[] = {&res_textures, &res_heightfield, &res_csg_list, &res_droplets,
                                                    &res_envmap};
 enum { RESOURCE_COUNT = sizeof RESOURCES / sizeof RESOURCES[0] };
@@ -63,15 +64,23 @@ void render_scene_uniforms(GLuint prog, const scene *s)
                    !strcmp(state.scene.terrain.heightmap, s->terrain.heightmap);
     if (!current)
         return;
-    for (int i = 0; i < RESOURCE_COUNT; i++)
-        RESOURCES[i]->uniforms(s, &u);
+    for (int i = 0, unit = 0; i < RESOURCE_COUNT; unit += RESOURCES[i++]->units)
+        RESOURCES[i]->uniforms(s, &u, unit);
 }
 
 void render_scene_bind(void)
 {
-    for (int i = 0; i < RESOURCE_COUNT; i++)
-        RESOURCES[i]->bind();
+    for (int i = 0, unit = 0; i < RESOURCE_COUNT; unit += RESOURCES[i++]->units)
+        RESOURCES[i]->bind(unit);
     glActiveTexture(GL_TEXTURE0);
+}
+
+int render_scene_units_end(void)
+{
+    int unit = 0;
+    for (int i = 0; i < RESOURCE_COUNT; i++)
+        unit += RESOURCES[i]->units;
+    return unit;
 }
 
 void render_scene_release(void)

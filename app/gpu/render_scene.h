@@ -17,6 +17,8 @@ const scene *render_scene_current(void); /* NULL before the first scene */
  * sizes (another scene, a probe's, gets only its own values). */
 void render_scene_uniforms(GLuint prog, const scene *s);
 void render_scene_bind(void);
+/* The first texture unit after the resource kinds' (render_resource.h): free for the renderer's own. */
+int render_scene_units_end(void);
 void render_scene_release(void); /* frees every resource; no scene is current */
 void render_scene_shutdown(void);
 

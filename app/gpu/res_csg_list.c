@@ -11,12 +11,12 @@ static struct {
 
 static void release(void)
 {
-    if (state.list_tex) {
-        glDeleteTextures(1, &state.list_tex);
-        glDeleteTextures(1, &state.nodes_tex);
-    }
+    glDeleteTextures(1, &state.list_tex); /* each on its own: a half-made upload holds one */
+    glDeleteTextures(1, &state.nodes_tex);
     memset(&state, 0, sizeof state);
 }
+
+static int held(void) { return (state.list_tex != 0) + (state.nodes_tex != 0); }
 
 /* texels RGBA texels, row-major in rows CSG_TEXTURE_WIDTH wide (shaders/csg/list.glsl). */
 static GLuint texel_texture(const float *data, int texels)
@@ -44,25 +44,30 @@ static bool set(const scene *s, err_t *err)
     if (s->csg_list_count == 0)
         return true;
     state.list_tex = texel_texture(s->csg_list, s->csg_list_count * CSG_LIST_TEXELS);
-    state.nodes_tex = texel_texture(s->csg_nodes, s->csg_node_count * CSG_NODE_TEXELS);
-    if (!state.list_tex || !state.nodes_tex)
+    err_t fault;
+    state.nodes_tex = render_resource_fault(res_csg_list.name, &fault)
+                          ? 0
+                          : texel_texture(s->csg_nodes, s->csg_node_count * CSG_NODE_TEXELS);
+    if (!state.list_tex || !state.nodes_tex) {
+        release(); /* nothing of s is held */
         return err_set(err, "%s: out of memory for %d primitives", s->path, s->csg_list_count);
+    }
     return true;
 }
 
-static void uniforms(const scene *s, const uniform_sink *u)
+static void uniforms(const scene *s, const uniform_sink *u, int unit)
 {
     (void)s;
-    uniform_i(u, "uCsgList", RENDER_UNIT_CSG_LIST);
-    uniform_i(u, "uCsgNodes", RENDER_UNIT_CSG_NODES);
+    uniform_i(u, "uCsgList", unit);
+    uniform_i(u, "uCsgNodes", unit + 1);
 }
 
-static void bind(void)
+static void bind(int unit)
 {
-    glActiveTexture(GL_TEXTURE0 + RENDER_UNIT_CSG_LIST);
+    glActiveTexture(GL_TEXTURE0 + (GLenum)unit);
     glBindTexture(GL_TEXTURE_2D, state.list_tex);
-    glActiveTexture(GL_TEXTURE0 + RENDER_UNIT_CSG_NODES);
+    glActiveTexture(GL_TEXTURE0 + (GLenum)unit + 1);
     glBindTexture(GL_TEXTURE_2D, state.nodes_tex);
 }
 
-const render_resource res_csg_list = {"csg primitive list", set, uniforms, bind, release};
+const render_resource res_csg_list = {"csg primitive list", set, 2, uniforms, bind, release, held};

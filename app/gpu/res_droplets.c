@@ -20,12 +20,18 @@ static struct {
 
 static void release(void)
 {
-    if (state.tex[0]) {
-        glDeleteTextures(3, state.tex);
-        glDeleteBuffers(3, state.buf);
-    }
+    glDeleteTextures(3, state.tex); /* 0 names are ignored: a half-made upload is freed too */
+    glDeleteBuffers(3, state.buf);
     droplets_free(&state.drops);
     memset(&state, 0, sizeof state);
+}
+
+static int held(void)
+{
+    int n = 0;
+    for (int i = 0; i < 3; i++)
+        n += (state.tex[i] != 0) + (state.buf[i] != 0);
+    return n;
 }
 
 /* Texels of the second buffer: the grid's cell offsets, or the BVH's nodes (2 texels each). */
@@ -68,6 +74,7 @@ static bool set(const scene *s, err_t *err)
     }
     const droplets *d = &state.drops;
     if (!texture_buffer(GL_RGBA32F, d->spheres, sizeof(float) * 4 * (size_t)d->count, &state.buf[0], &state.tex[0]) ||
+        render_resource_fault(res_droplets.name, err) ||
         !(d->nodes ? texture_buffer(GL_RGBA32UI, d->nodes, sizeof(uint32_t) * 4 * cells, &state.buf[1], &state.tex[1])
                    : texture_buffer(GL_R32UI, d->cells, sizeof(uint32_t) * cells, &state.buf[1], &state.tex[1])) ||
         !texture_buffer(GL_R32UI, d->index, sizeof(uint32_t) * (d->refs ? d->refs : 1), &state.buf[2], &state.tex[2])) {
@@ -83,13 +90,13 @@ static bool set(const scene *s, err_t *err)
 }
 
 /* The units always (the shaders declare the samplers), the grid when loaded. */
-static void uniforms(const scene *s, const uniform_sink *u)
+static void uniforms(const scene *s, const uniform_sink *u, int unit)
 {
     (void)s;
-    uniform_i(u, "uDroplets", RENDER_UNIT_DROPLETS);
-    uniform_i(u, "uDropletCells", RENDER_UNIT_DROPLET_CELLS);
-    uniform_i(u, "uDropletIndex", RENDER_UNIT_DROPLET_INDEX);
-    uniform_i(u, "uDropletNodes", RENDER_UNIT_DROPLET_NODES);
+    uniform_i(u, "uDroplets", unit);
+    uniform_i(u, "uDropletCells", unit + 1);
+    uniform_i(u, "uDropletIndex", unit + 2);
+    uniform_i(u, "uDropletNodes", unit + 3);
     if (!state.tex[0])
         return;
     const droplets *d = &state.drops;
@@ -99,17 +106,17 @@ static void uniforms(const scene *s, const uniform_sink *u)
     uniform_iv(u, "uDropletDims", 3, 1, d->dims);
 }
 
-static void bind(void)
+static void bind(int unit)
 {
     for (int i = 0; i < 3; i++) {
-        glActiveTexture(GL_TEXTURE0 + RENDER_UNIT_DROPLETS + (GLenum)i);
+        glActiveTexture(GL_TEXTURE0 + (GLenum)(unit + i));
         glBindTexture(GL_TEXTURE_BUFFER, state.tex[i]);
     }
-    glActiveTexture(GL_TEXTURE0 + RENDER_UNIT_DROPLET_NODES); /* the BVH's nodes, in the cells' buffer */
+    glActiveTexture(GL_TEXTURE0 + (GLenum)unit + 3); /* the BVH's nodes, in the cells' buffer */
     glBindTexture(GL_TEXTURE_BUFFER, state.tex[1]);
 }
 
-const render_resource res_droplets = {"droplets", set, uniforms, bind, release};
+const render_resource res_droplets = {"droplets", set, 4, uniforms, bind, release, held};
 
 const droplets *res_droplets_loaded(double *read_s, double *grid_s)
 {

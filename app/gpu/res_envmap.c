@@ -23,14 +23,13 @@ static struct {
 
 static void release(void)
 {
-    if (state.tex)
-        glDeleteTextures(1, &state.tex);
-    if (state.cdf_tex) {
-        glDeleteTextures(1, &state.cdf_tex);
-        glDeleteBuffers(1, &state.cdf_buf);
-    }
+    glDeleteTextures(1, &state.tex); /* a 0 name is ignored */
+    glDeleteTextures(1, &state.cdf_tex);
+    glDeleteBuffers(1, &state.cdf_buf);
     memset(&state, 0, sizeof state);
 }
+
+static int held(void) { return (state.tex != 0) + (state.cdf_tex != 0) + (state.cdf_buf != 0); }
 
 /* The solid angle of the rectangle [x0, x1] × [y0, y1] on the plane at distance 1 from the eye: the
  * corners of F(x, y) = atan(x y / √(1 + x² + y²)), the solid angle of [0, x] × [0, y]. */
@@ -129,7 +128,7 @@ static bool set(const scene *s, err_t *err)
     state.tex = texture_load_cube(s->cubemap, &state.size, err);
     if (!state.tex)
         return false;
-    if (!make_distribution(state.size < ENV_CELLS ? state.size : ENV_CELLS, err)) {
+    if (render_resource_fault(res_envmap.name, err) || !make_distribution(state.size < ENV_CELLS ? state.size : ENV_CELLS, err)) {
         release();
         return false;
     }
@@ -138,21 +137,21 @@ static bool set(const scene *s, err_t *err)
 }
 
 /* The units, the mip count that rough reflections blur over, and the sky's distribution. */
-static void uniforms(const scene *s, const uniform_sink *u)
+static void uniforms(const scene *s, const uniform_sink *u, int unit)
 {
     (void)s;
-    uniform_i(u, "uEnvMap", RENDER_UNIT_ENVMAP);
-    uniform_i(u, "uEnvCdf", RENDER_UNIT_ENV_CDF);
+    uniform_i(u, "uEnvMap", unit);
+    uniform_i(u, "uEnvCdf", unit + 1); /* the path tracer's sky distribution */
     uniform_f(u, "uEnvMaxLod", state.size > 0 ? log2f((float)state.size) : 0.0f);
     uniform_i(u, "uEnvCells", state.cells);
 }
 
-static void bind(void)
+static void bind(int unit)
 {
-    glActiveTexture(GL_TEXTURE0 + RENDER_UNIT_ENVMAP);
+    glActiveTexture(GL_TEXTURE0 + (GLenum)unit);
     glBindTexture(GL_TEXTURE_CUBE_MAP, state.tex);
-    glActiveTexture(GL_TEXTURE0 + RENDER_UNIT_ENV_CDF);
+    glActiveTexture(GL_TEXTURE0 + (GLenum)unit + 1);
     glBindTexture(GL_TEXTURE_BUFFER, state.cdf_tex);
 }
 
-const render_resource res_envmap = {"cube map", set, uniforms, bind, release};
+const render_resource res_envmap = {"cube map", set, 2, uniforms, bind, release, held};

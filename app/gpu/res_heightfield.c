@@ -23,14 +23,14 @@ static struct {
 
 static void release(void)
 {
-    if (state.height_tex) {
-        glDeleteTextures(1, &state.height_tex);
-        glDeleteTextures(1, &state.height_max_tex);
-        glDeleteTextures(1, &state.height_top_tex);
-        heightfield_free(&state.hf);
-    }
+    glDeleteTextures(1, &state.height_tex); /* each on its own: 0 names are ignored */
+    glDeleteTextures(1, &state.height_max_tex);
+    glDeleteTextures(1, &state.height_top_tex);
+    heightfield_free(&state.hf);
     memset(&state, 0, sizeof state);
 }
+
+static int held(void) { return (state.height_tex != 0) + (state.height_max_tex != 0) + (state.height_top_tex != 0); }
 
 enum { TILE_ENV_MAX = 1 << 16 };
 
@@ -184,7 +184,8 @@ static bool set(const scene *s, err_t *err)
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     heightfield_drop_pyramid(hf); /* on the GPU now */
-    if (glGetError() == GL_OUT_OF_MEMORY) {
+    err_t fault;
+    if (glGetError() == GL_OUT_OF_MEMORY || render_resource_fault(res_heightfield.name, &fault)) {
         int W = hf->width, H = hf->height;
         double mb = 4.0 * (double)t->hx * t->hy * layers / 1048576.0;
         release();
@@ -199,16 +200,16 @@ static bool set(const scene *s, err_t *err)
     return true;
 }
 
-/* The loaded heightfield's grid (shaders/terrain/terrain.glsl); nothing without one. */
-static void uniforms(const scene *s, const uniform_sink *u)
+/* Its units (always), and the loaded heightfield's grid (shaders/terrain/terrain.glsl) when it holds one. */
+static void uniforms(const scene *s, const uniform_sink *u, int unit)
 {
     (void)s;
+    uniform_i(u, "uHeight", unit);
+    uniform_i(u, "uHeightMax", unit + 1);
+    uniform_i(u, "uHeightMaxTop", unit + 2); /* the pyramid's upper levels, above its tiles */
     if (!state.height_tex)
         return;
     const heightfield *hf = &state.hf;
-    uniform_i(u, "uHeight", RENDER_UNIT_HEIGHT);
-    uniform_i(u, "uHeightMax", RENDER_UNIT_HEIGHT_MAX);
-    uniform_i(u, "uHeightMaxTop", RENDER_UNIT_HEIGHT_TOP);
     const struct terrain_tiles *t = &state.tiles;
     uniform_iv(u, "uTerrainTile", 2, 1, (const int[]){t->hx, t->hy});
     uniform_i(u, "uTerrainTilesX", t->tiles_x);
@@ -228,17 +229,17 @@ static void uniforms(const scene *s, const uniform_sink *u)
 }
 
 
-static void bind(void)
+static void bind(int unit)
 {
-    glActiveTexture(GL_TEXTURE0 + RENDER_UNIT_HEIGHT);
+    glActiveTexture(GL_TEXTURE0 + (GLenum)unit);
     glBindTexture(GL_TEXTURE_2D_ARRAY, state.height_tex);
-    glActiveTexture(GL_TEXTURE0 + RENDER_UNIT_HEIGHT_MAX);
+    glActiveTexture(GL_TEXTURE0 + (GLenum)unit + 1);
     glBindTexture(GL_TEXTURE_2D_ARRAY, state.height_max_tex);
-    glActiveTexture(GL_TEXTURE0 + RENDER_UNIT_HEIGHT_TOP);
+    glActiveTexture(GL_TEXTURE0 + (GLenum)unit + 2);
     glBindTexture(GL_TEXTURE_2D, state.height_top_tex);
 }
 
-const render_resource res_heightfield = {"heightfield", set, uniforms, bind, release};
+const render_resource res_heightfield = {"heightfield", set, 3, uniforms, bind, release, held};
 
 const heightfield *res_heightfield_loaded(int *tiles_x, int *tiles_y)
 {

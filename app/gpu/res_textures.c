@@ -38,8 +38,9 @@ static bool set(const scene *s, err_t *err)
             }
         if (!state.tex[i]) {
             int w = 0;
-            state.tex[i] = s->texture_linear[i] ? texture_load_height(s->textures[i], &w, err)
-                                                : texture_load_2d(s->textures[i], err);
+            state.tex[i] = i == 1 && render_resource_fault(res_textures.name, err) ? 0 /* as a read that failed */
+                           : s->texture_linear[i]                                  ? texture_load_height(s->textures[i], &w, err)
+                                                                                  : texture_load_2d(s->textures[i], err);
             state.width[i] = w;
             ok = state.tex[i] != 0;
         }
@@ -49,25 +50,29 @@ static bool set(const scene *s, err_t *err)
     for (int j = 0; j < SCENE_MAX_TEXTURES; j++)
         if (old[j])
             glDeleteTextures(1, &old[j]);
+    if (!ok) { /* nothing of s is held: the textures read before the one that failed go too */
+        glDeleteTextures(SCENE_MAX_TEXTURES, state.tex);
+        memset(&state, 0, sizeof state);
+    }
     return ok;
 }
 
 /* Units, and the relief heightmaps' widths (a relief step is one texel). */
-static void uniforms(const scene *s, const uniform_sink *u)
+static void uniforms(const scene *s, const uniform_sink *u, int unit)
 {
     static const char *const names[SCENE_MAX_TEXTURES] = {"uTex0", "uTex1", "uTex2", "uTex3"};
     for (int i = 0; i < SCENE_MAX_TEXTURES; i++)
-        uniform_i(u, names[i], i);
+        uniform_i(u, names[i], unit + i);
     float texels[SCENE_MAX_MATERIALS];
     for (int i = 0; i < s->material_count; i++)
         texels[i] = s->materials[i].relief >= 0 ? (float)state.width[s->materials[i].relief] : 1.0f;
     uniform_fv(u, "uMatReliefTexels", 1, s->material_count, texels);
 }
 
-static void bind(void)
+static void bind(int unit)
 {
     for (int i = 0; i < SCENE_MAX_TEXTURES; i++) {
-        glActiveTexture(GL_TEXTURE0 + (GLenum)i);
+        glActiveTexture(GL_TEXTURE0 + (GLenum)(unit + i));
         glBindTexture(GL_TEXTURE_2D, state.tex[i]);
     }
 }
@@ -78,4 +83,12 @@ static void release(void)
     memset(&state, 0, sizeof state);
 }
 
-const render_resource res_textures = {"textures", set, uniforms, bind, release};
+static int held(void)
+{
+    int n = 0;
+    for (int i = 0; i < SCENE_MAX_TEXTURES; i++)
+        n += state.tex[i] != 0;
+    return n;
+}
+
+const render_resource res_textures = {"textures", set, SCENE_MAX_TEXTURES, uniforms, bind, release, held};
