@@ -12,7 +12,6 @@
 #include <string.h>
 #include <strings.h>
 
-#include "gpu/gpu.h"
 #include "view/camera.h"
 #include "view/path.h"
 #include "scene/quality.h"
@@ -386,9 +385,9 @@ static bool check_combinations(const cli_options *o, err_t *err)
                             "poster.png poster.tile-*.png");
     if (o->tile_count && (!o->output || o->path || o->bench || o->stitch))
         return err_set(err, "--tile renders one tile of an offline shot: give --output (and no --path)");
-    if (o->tile_count && o->tile_count > (o->height ? o->height : GPU_DEFAULT_HEIGHT) / 2)
+    if (o->tile_count && o->tile_count > (o->height ? o->height : FATHOM_DEFAULT_HEIGHT) / 2)
         return err_set(err, "--tile %d/%d: at most %d tiles for an image %d rows tall (2 rows a tile at least)",
-                       o->tile_index, o->tile_count, (o->height ? o->height : GPU_DEFAULT_HEIGHT) / 2, o->height ? o->height : GPU_DEFAULT_HEIGHT);
+                       o->tile_index, o->tile_count, (o->height ? o->height : FATHOM_DEFAULT_HEIGHT) / 2, o->height ? o->height : FATHOM_DEFAULT_HEIGHT);
     if (o->path && (o->bench || !o->output))
         return err_set(err, "--path renders a flight's frames: give --output with a %%d for the frame number, e.g. "
                             "--output out/frame_%%04d.png");

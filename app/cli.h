@@ -1,4 +1,5 @@
-/* cli — the command line, parsed into an options struct. Pure: no I/O but the error text.
+/* cli — the command line, parsed into an options struct. No GL. cli_parse reads no file (it only
+ * resolves --formula FILE to an absolute path, realpath); cli_apply_shot reads the shot it opens.
  *
  *   fathom [options]              explorer window (or an offline shot with --output)
  *   fathom bench [options]        what accuracy costs: knob sweeps, presets, effects (time and error)

@@ -15,6 +15,9 @@ extern "C" {
 
 enum { ERR_MSG_MAX = 2048, PATH_MAX_LEN = 1024 };
 
+/* The image (and window) size when none is given: --size's default. */
+enum { FATHOM_DEFAULT_WIDTH = 1280, FATHOM_DEFAULT_HEIGHT = 720 };
+
 typedef struct err_t {
     char msg[ERR_MSG_MAX];
 } err_t;

@@ -3,7 +3,7 @@
 #ifndef FATHOM_TEST_GLTEST_H
 #define FATHOM_TEST_GLTEST_H
 
-#include "gpu/aov.h"
+#include "view/aov.h"
 #include "view/camera.h"
 #include "reference.h"
 #include "scene/scene.h"

@@ -7,6 +7,8 @@
 #  3. No function in app/ or shaders/ is longer than 80 lines (style.md, rule 16).
 #  4. Every source file that a comment, README.md or docs/ cites (app/..., shaders/..., tests/...,
 #     a bare NAME.c/.h/.glsl/.frag/.vert) exists.
+#  6. The pure library (CMakeLists.txt's fathom_pure: no GL, tested under the sanitizers) includes no
+#     gpu/ or window/ header.
 #  5. Every global function in app/*.c carries its module's prefix: the file name's first word and '_'
 #     (scene_json.c: scene_, res_csg_list.c: res_), or one of the few names below that a module owns
 #     for its types (quality.c: knob_ and preset_, the QUALITY_KNOBS table's rows and presets).
@@ -103,5 +105,14 @@ for f in $(find app -name '*.c' | sort); do
 $bad"
 done
 
-[ $fail = 0 ] && echo "layers: ok ($(wc -l <"$edges") includes, every layer downwards, no cycle, no long function, every cited file exists, every global function prefixed)"
+# 6. the pure library includes nothing of the GL layers
+pure=$(awk '/add_library\(fathom_pure STATIC/ {f = 1; next} f && /\)/ {print; exit} f' CMakeLists.txt | tr -d ')' | tr ' ' '\n' | grep '\.c$')
+[ -n "$pure" ] || say "CMakeLists.txt has no fathom_pure source list to check"
+for f in $pure; do
+    grep -n '^[[:space:]]*#[[:space:]]*include[[:space:]]*"\(gpu\|window\)/' "$f" |
+        sed "s#^#$f:#; s#\$# (the pure library includes no GL header)#" | while IFS= read -r l; do echo "layers: $l"; done
+    grep -q '^[[:space:]]*#[[:space:]]*include[[:space:]]*"\(gpu\|window\)/' "$f" && fail=1
+done
+
+[ $fail = 0 ] && echo "layers: ok ($(wc -l <"$edges") includes, every layer downwards, no cycle, no long function, every cited file exists, every global function prefixed, the pure library free of GL headers)"
 exit $fail

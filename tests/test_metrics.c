@@ -14,7 +14,7 @@
 #include "check.h"
 #include "jobs/gnuplot.h"
 #include "jobs/metrics.h"
-#include "gpu/aov.h"
+#include "view/aov.h"
 
 enum { W = 5, H = 3, N = W * H };
 

@@ -15,7 +15,7 @@
 typedef struct GLFWwindow GLFWwindow;
 
 /* The size of a window and of an image when none is given (--size): every default size is this one. */
-enum { GPU_DEFAULT_WIDTH = 1280, GPU_DEFAULT_HEIGHT = 720 };
+enum { GPU_DEFAULT_WIDTH = FATHOM_DEFAULT_WIDTH, GPU_DEFAULT_HEIGHT = FATHOM_DEFAULT_HEIGHT };
 
 typedef struct gpu_desc {
     bool headless;

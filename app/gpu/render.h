@@ -17,7 +17,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "gpu/aov.h"
+#include "view/aov.h"
 #include "view/camera.h"
 #include "scene/scene.h"
 #include "util.h"

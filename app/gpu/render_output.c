@@ -9,7 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "gpu/aov.h"
+#include "view/aov.h"
 #include "gpu/render_programs.h"
 #include "gpu/render_scene.h"
 #include "gpu/render_state.h"

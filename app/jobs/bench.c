@@ -14,7 +14,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "gpu/aov.h"
+#include "view/aov.h"
 #include "jobs/bench_plot.h"
 #include "jobs/bench_report.h"
 #include "jobs/bench_sweeps.h"

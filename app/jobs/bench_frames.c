@@ -11,7 +11,7 @@
 #include <unistd.h>
 
 #include "data/droplets.h"
-#include "gpu/aov.h"
+#include "view/aov.h"
 #include "gpu/gpu.h"
 #include "gpu/render.h"
 #include "jobs/metrics.h"

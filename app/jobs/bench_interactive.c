@@ -16,7 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "gpu/aov.h"
+#include "view/aov.h"
 #include "view/camera.h"
 #include "gpu/gpu.h"
 #include "data/image_io.h"

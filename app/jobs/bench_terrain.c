@@ -13,7 +13,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "gpu/aov.h"
+#include "view/aov.h"
 #include "jobs/bench.h"
 #include "gpu/gpu.h"
 #include "gpu/render.h"

@@ -4,7 +4,7 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "gpu/aov.h"
+#include "view/aov.h"
 #include "util.h"
 
 static bool hits(const image_view *v, int x, int y)

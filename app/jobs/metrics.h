@@ -19,7 +19,7 @@
 typedef struct image_view {
     int width, height;
     const uint8_t *srgb; /* RGBA 8-bit, rows top first */
-    const float *aov;    /* AOV_FLOATS a pixel (gpu/aov.h): depth at [3] (+inf on a miss), steps at [4] */
+    const float *aov;    /* AOV_FLOATS a pixel (view/aov.h): depth at [3] (+inf on a miss), steps at [4] */
 } image_view;
 
 typedef struct metrics {

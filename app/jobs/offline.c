@@ -7,7 +7,7 @@
 #include <strings.h>
 #include <sys/stat.h>
 
-#include "gpu/aov.h"
+#include "view/aov.h"
 #include "cli.h"
 #include "gpu/gpu.h"
 #include "data/image_io.h"

@@ -7,7 +7,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "gpu/aov.h"
+#include "view/aov.h"
 #include "gpu/render.h"
 #include "gpu/render_probe.h"
 #include "window/panel.h"
