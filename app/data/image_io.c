@@ -1,7 +1,7 @@
 /* image_io — see image_io.h. The atomic-write protocol (a temporary file beside the target, removed on
  * a fatal signal; close, fsync, decode it all again, rename) is here for every format. PNG files are
- * written and checked here with libpng, and clean PNG and JPEG files read with libpng and
- * libjpeg-turbo; everything else goes to OpenImageIO in fathom_image.so, loaded on first use
+ * written and checked, and clean PNG and JPEG files read, by image_codecs.c (libpng, libjpeg-turbo);
+ * everything else goes to OpenImageIO in fathom_image.so, loaded on first use
  * (data/lazy.h, data/image_oiio.h): its ~260 libraries cost 0.2 s, which a run of the shipped scenes
  * writing PNG files never pays. */
 #include "data/image_io.h"
@@ -9,8 +9,6 @@
 #include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
-#include <png.h>
-#include <setjmp.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -19,8 +17,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include <jpeglib.h> /* after stdio.h: it uses FILE */
-
+#include "data/image_codecs.h"
 #include "data/image_oiio.h"
 #include "data/lazy.h"
 
@@ -99,167 +96,13 @@ int image_remove_stale_temps(const char *path)
     return removed;
 }
 
-/* ---- PNG through libpng ----------------------------------------------------------------------------- */
-
-typedef struct png_io {
-    png_structp png;
-    png_infop info;
-    FILE *f;
-    char why[256]; /* libpng's message */
-} png_io;
-
-static void png_fail(png_structp png, png_const_charp msg)
-{
-    png_io *io = png_get_error_ptr(png);
-    int saved = errno;
-    if (io->f && ferror(io->f) && saved) /* libpng says only "Write Error": say why (a full disk) */
-        snprintf(io->why, sizeof io->why, "%s (is the disk full?)", strerror(saved));
-    else
-        snprintf(io->why, sizeof io->why, "%s", msg);
-    png_longjmp(png, 1);
-}
-
-static void png_quiet(png_structp png, png_const_charp msg)
-{
-    (void)png;
-    (void)msg;
-}
-
-static bool is_png(const char *path)
-{
-    const char *dot = strrchr(path, '.');
-    return dot && !strcasecmp(dot, ".png");
-}
-
-static const int PNG_COLOR[5] = {0, PNG_COLOR_TYPE_GRAY, PNG_COLOR_TYPE_GRAY_ALPHA, PNG_COLOR_TYPE_RGB,
-                                 PNG_COLOR_TYPE_RGBA};
-
-/* Opens tmp and writes the header and the text entries; false with io->why. */
-static bool png_begin(png_io *io, const char *tmp, int width, int height, int channels, const char *const *texts)
-{
-    io->f = fopen(tmp, "wb");
-    if (!io->f) {
-        snprintf(io->why, sizeof io->why, "%s", strerror(errno));
-        return false;
-    }
-    io->png = png_create_write_struct(PNG_LIBPNG_VER_STRING, io, png_fail, png_quiet);
-    io->info = io->png ? png_create_info_struct(io->png) : NULL;
-    if (!io->info) {
-        snprintf(io->why, sizeof io->why, "out of memory");
-        return false;
-    }
-    if (setjmp(png_jmpbuf(io->png)))
-        return false;
-    png_init_io(io->png, io->f);
-    png_set_IHDR(io->png, io->info, (png_uint_32)width, (png_uint_32)height, 8, PNG_COLOR[channels],
-                 PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-    png_set_sRGB(io->png, io->info, PNG_sRGB_INTENT_PERCEPTUAL);
-    for (int i = 0; texts && texts[i]; i += 2)
-        if (texts[i + 1]) { /* tEXt chunks: the bytes as they are (OpenImageIO reads them back) */
-            png_text t = {.compression = PNG_TEXT_COMPRESSION_NONE, .key = (png_charp)texts[i],
-                          .text = (png_charp)texts[i + 1], .text_length = strlen(texts[i + 1])};
-            png_set_text(io->png, io->info, &t, 1);
-        }
-    png_write_info(io->png, io->info);
-    return true;
-}
-
-static bool png_rows(png_io *io, int rows, int width, int channels, const uint8_t *pixels)
-{
-    if (setjmp(png_jmpbuf(io->png)))
-        return false;
-    for (int y = 0; y < rows; y++)
-        png_write_row(io->png, pixels + (size_t)y * (size_t)width * (size_t)channels);
-    return true;
-}
-
-/* Ends the image and closes the file (write errors surface at the flush); false with io->why. */
-static bool png_end(png_io *io)
-{
-    volatile bool ok = true;
-    if (setjmp(png_jmpbuf(io->png)))
-        ok = false;
-    else
-        png_write_end(io->png, NULL);
-    png_destroy_write_struct(&io->png, &io->info);
-    ok = ok && fflush(io->f) == 0;
-    if (!ok && !io->why[0])
-        snprintf(io->why, sizeof io->why, "%s", strerror(errno));
-    if (fclose(io->f) != 0 && ok) {
-        snprintf(io->why, sizeof io->why, "%s", strerror(errno));
-        ok = false;
-    }
-    io->f = NULL;
-    return ok;
-}
-
-static void png_drop(png_io *io)
-{
-    if (io->png)
-        png_destroy_write_struct(&io->png, &io->info);
-    if (io->f)
-        fclose(io->f);
-    io->f = NULL;
-}
-
-/* Opens path for libpng to read; false (io holding what it made) when it cannot. */
-static bool png_open_read(const char *path, png_io *io)
-{
-    io->f = fopen(path, "rb");
-    io->png = io->f ? png_create_read_struct(PNG_LIBPNG_VER_STRING, io, png_fail, png_quiet) : NULL;
-    io->info = io->png ? png_create_info_struct(io->png) : NULL;
-    return io->info != NULL;
-}
-
-static void png_close_read(png_io *io)
-{
-    if (io->png)
-        png_destroy_read_struct(&io->png, &io->info, NULL);
-    if (io->f)
-        fclose(io->f);
-    io->f = NULL;
-}
-
-/* Decodes every row: a truncated or corrupt file fails here. */
-static bool png_verify(const char *file, int width, int height, int channels, char *why, size_t n)
-{
-    png_io io = {0};
-    bool opened = png_open_read(file, &io);
-    uint8_t *row = malloc((size_t)width * (size_t)channels);
-    volatile bool ok = opened && row;
-    if (!ok) {
-        /* nothing to read with */
-    } else if (setjmp(png_jmpbuf(io.png))) {
-        ok = false;
-    } else {
-        png_init_io(io.png, io.f);
-        png_read_info(io.png, io.info);
-        if (png_get_image_width(io.png, io.info) != (png_uint_32)width ||
-            png_get_image_height(io.png, io.info) != (png_uint_32)height ||
-            png_get_channels(io.png, io.info) != channels || png_get_bit_depth(io.png, io.info) != 8) {
-            snprintf(io.why, sizeof io.why, "it reads back as %ux%u with %d channels",
-                     png_get_image_width(io.png, io.info), png_get_image_height(io.png, io.info),
-                     png_get_channels(io.png, io.info));
-            ok = false;
-        }
-        for (int y = 0; ok && y < height; y++)
-            png_read_row(io.png, row, NULL);
-        if (ok)
-            png_read_end(io.png, NULL);
-    }
-    snprintf(why, n, "%s", io.why[0] ? io.why : !io.f ? strerror(errno) : "out of memory");
-    png_close_read(&io);
-    free(row);
-    return ok;
-}
-
 /* ---- the writer ------------------------------------------------------------------------------------- */
 
 struct image_writer {
     char path[PATH_MAX_LEN], tmp[TEMP_MAX];
     int width, height, channels, next_row;
     oiio_writer *oiio; /* everything but a PNG; NULL: png */
-    png_io png;
+    image_png png;
 };
 
 static bool oiio_close(oiio_writer *w, err_t *err)
@@ -274,7 +117,7 @@ static void discard(image_writer *w)
     if (w->oiio)
         oiio_close(w->oiio, &ignored);
     else
-        png_drop(&w->png);
+        image_png_drop(&w->png);
     remove(w->tmp);
     clear_temp();
     free(w);
@@ -293,8 +136,8 @@ image_writer *image_writer_open_text(const char *path, int width, int height, in
         err_set(err, "cannot write '%.64s...': the path is longer than %d bytes", path, PATH_MAX_LEN - 1);
         return NULL;
     }
-    bool png = is_png(path) && !f32;
-    if (is_png(path) && (channels < 1 || channels > 4 || width < 1 || height < 1)) {
+    bool png = image_is_png(path) && !f32;
+    if (image_is_png(path) && (channels < 1 || channels > 4 || width < 1 || height < 1)) {
         err_set(err, "cannot write '%s': a PNG of %dx%d with %d channels", path, width, height, channels);
         return NULL;
     }
@@ -318,7 +161,7 @@ image_writer *image_writer_open_text(const char *path, int width, int height, in
     }
     close(fd);
     set_temp(w->tmp);
-    bool ok = png ? png_begin(&w->png, w->tmp, width, height, channels, texts)
+    bool ok = png ? image_png_begin(&w->png, w->tmp, width, height, channels, texts)
                   : (w->oiio = open_fn(path, w->tmp, width, height, channels, f32, names, texts, err)) != NULL;
     if (!ok) {
         if (png)
@@ -339,7 +182,7 @@ bool image_writer_rows(image_writer *w, int rows, const void *pixels, err_t *err
                 lazy_symbol(LAZY_IMAGE, "oiio_writer_rows", err));
         if (!f || !f(w->oiio, w->next_row, rows, pixels, err))
             return false;
-    } else if (!png_rows(&w->png, rows, w->width, w->channels, pixels)) {
+    } else if (!image_png_rows(&w->png, rows, w->width, w->channels, pixels)) {
         return err_set(err, "cannot write '%s': %s", w->path, w->png.why);
     }
     w->next_row += rows;
@@ -365,7 +208,7 @@ static bool close_and_check(image_writer *w, err_t *err)
     if (w->oiio) {
         closed = oiio_close(w->oiio, err);
         w->oiio = NULL;
-    } else if (!(closed = png_end(&w->png))) {
+    } else if (!(closed = image_png_end(&w->png))) {
         err_set(err, "%s", w->png.why);
     }
     errno = 0;
@@ -373,9 +216,9 @@ static bool close_and_check(image_writer *w, err_t *err)
         return err_set(err, "%s", strerror(errno));
     if (!closed)
         return false;
-    if (is_png(w->path)) {
+    if (image_is_png(w->path)) {
         char why[256];
-        return png_verify(w->tmp, w->width, w->height, w->channels, why, sizeof why) ||
+        return image_png_verify(w->tmp, w->width, w->height, w->channels, why, sizeof why) ||
                err_set(err, "the file did not read back after writing (disk full or file too large?): %s", why);
     }
     err_t why;
@@ -468,145 +311,13 @@ bool image_can_write(const char *path, err_t *err)
     return true;
 }
 
-/* ---- reading: clean PNG and JPEG files here, anything else (or anything odd) through OpenImageIO ---- */
-
-/* A decoded image: c channels of 8- or 16-bit values (native order), rows top first. */
-typedef struct decoded {
-    int w, h, c, bits;
-    void *px;
-} decoded;
-
-/* Taken here only while small: anything larger goes to OpenImageIO, whose reader checks it against the
- * machine's memory first. */
-enum { FAST_MAX_PIXELS = 1 << 26 };
-
-static bool fast_size_ok(int w, int h, int max_side)
-{
-    return w > 0 && h > 0 && w <= max_side && h <= max_side && (long)w * h <= FAST_MAX_PIXELS;
-}
-
-/* An 8- or 16-bit grey, grey+alpha, RGB or RGBA PNG without a transparency chunk; false leaves it to
- * OpenImageIO (which also words the errors). u8 takes 8-bit files only. */
-static bool png_decode(const char *path, int max_side, bool u8, decoded *d)
-{
-    png_io io = {0};
-    bool opened = png_open_read(path, &io);
-    png_bytep *volatile rows = NULL; /* volatile: read again after libpng's longjmp */
-    d->px = NULL;
-    volatile bool ok = opened;
-    if (!ok) {
-        /* nothing to read with */
-    } else if (setjmp(png_jmpbuf(io.png))) {
-        ok = false;
-    } else {
-        png_init_io(io.png, io.f);
-        png_read_info(io.png, io.info);
-        int type = png_get_color_type(io.png, io.info), bits = png_get_bit_depth(io.png, io.info);
-        d->w = (int)png_get_image_width(io.png, io.info);
-        d->h = (int)png_get_image_height(io.png, io.info);
-        ok = (bits == 8 || (bits == 16 && !u8)) && !(type & PNG_COLOR_MASK_PALETTE) &&
-             !png_get_valid(io.png, io.info, PNG_INFO_tRNS) && fast_size_ok(d->w, d->h, max_side) &&
-             png_get_interlace_type(io.png, io.info) == PNG_INTERLACE_NONE;
-        if (ok) {
-            if (bits == 16)
-                png_set_swap(io.png); /* PNG is big-endian */
-            d->c = png_get_channels(io.png, io.info);
-            d->bits = bits;
-            size_t row = (size_t)d->w * (size_t)d->c * (size_t)(bits / 8);
-            d->px = malloc(row * (size_t)d->h);
-            rows = malloc(sizeof *rows * (size_t)d->h);
-            ok = d->px && rows;
-            for (int y = 0; ok && y < d->h; y++)
-                rows[y] = (png_bytep)d->px + row * (size_t)y;
-            if (ok) {
-                png_read_image(io.png, rows);
-                png_read_end(io.png, NULL);
-            }
-        }
-    }
-    png_close_read(&io);
-    free(rows);
-    if (!ok) {
-        free(d->px);
-        d->px = NULL;
-    }
-    return ok;
-}
-
-typedef struct jpeg_fail {
-    struct jpeg_error_mgr mgr;
-    jmp_buf jump;
-    bool warned; /* a corrupt stream libjpeg decodes on regardless: left to OpenImageIO */
-} jpeg_fail;
-
-static void jpeg_on_error(j_common_ptr c) { longjmp(((jpeg_fail *)c->err)->jump, 1); }
-
-static void jpeg_on_message(j_common_ptr c, int level)
-{
-    if (level < 0)
-        ((jpeg_fail *)c->err)->warned = true;
-}
-
-/* A grey or colour (YCbCr, RGB) baseline or progressive JPEG, as libjpeg-turbo decodes it by default
- * (what OpenImageIO's reader asks of it too); false leaves it to OpenImageIO. */
-static bool jpeg_decode(const char *path, int max_side, decoded *d)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return false;
-    struct jpeg_decompress_struct j;
-    jpeg_fail fail = {0};
-    j.err = jpeg_std_error(&fail.mgr);
-    fail.mgr.error_exit = jpeg_on_error;
-    fail.mgr.emit_message = jpeg_on_message;
-    d->px = NULL;
-    volatile bool ok = false;
-    if (!setjmp(fail.jump)) {
-        jpeg_create_decompress(&j);
-        jpeg_stdio_src(&j, f);
-        jpeg_read_header(&j, TRUE);
-        bool colour = j.jpeg_color_space == JCS_YCbCr || j.jpeg_color_space == JCS_RGB;
-        if ((colour || j.jpeg_color_space == JCS_GRAYSCALE) &&
-            fast_size_ok((int)j.image_width, (int)j.image_height, max_side)) {
-            j.out_color_space = colour ? JCS_RGB : JCS_GRAYSCALE;
-            jpeg_start_decompress(&j);
-            d->w = (int)j.output_width, d->h = (int)j.output_height, d->c = j.output_components, d->bits = 8;
-            size_t row = (size_t)d->w * (size_t)d->c;
-            d->px = malloc(row * (size_t)d->h);
-            while (d->px && j.output_scanline < j.output_height) {
-                JSAMPROW r = (JSAMPROW)d->px + row * j.output_scanline;
-                jpeg_read_scanlines(&j, &r, 1);
-            }
-            if (d->px)
-                jpeg_finish_decompress(&j);
-            ok = d->px && !fail.warned;
-        }
-    }
-    jpeg_destroy_decompress(&j);
-    fclose(f);
-    if (!ok) {
-        free(d->px);
-        d->px = NULL;
-    }
-    return ok;
-}
-
-static bool fast_decode(const char *path, int max_side, bool u8, decoded *d)
-{
-    const char *dot = strrchr(path, '.');
-    if (!dot)
-        return false;
-    if (!strcasecmp(dot, ".png"))
-        return png_decode(path, max_side, u8, d);
-    if (!strcasecmp(dot, ".jpg") || !strcasecmp(dot, ".jpeg"))
-        return jpeg_decode(path, max_side, d);
-    return false;
-}
+/* ---- reading: clean PNG and JPEG files by image_codecs.c, anything else (or anything odd) through
+ * OpenImageIO ---- */
 
 /* The file's channels as `want` channels (0: as many as the file has), as image_io.cpp's reader maps
  * them: grey fills colour, a missing alpha is one, a grey file's second channel is alpha. Floats are
  * OpenImageIO's conversion, v · (1 / max). Frees d->px. */
-static void *convert(decoded *d, int want, bool f32, int *channels_out)
+static void *convert(image_decoded *d, int want, bool f32, int *channels_out)
 {
     int nc = want > 0 ? want : d->c, nread = nc < d->c ? nc : d->c;
     if (d->c == 2 && nc >= 3)
@@ -635,8 +346,8 @@ static void *convert(decoded *d, int want, bool f32, int *channels_out)
 bool image_read_u8(const char *path, int channels, int max_side, int *width, int *height, uint8_t **pixels,
                    err_t *err)
 {
-    decoded d;
-    if (fast_decode(path, max_side, true, &d)) {
+    image_decoded d;
+    if (image_fast_decode(path, max_side, true, &d)) {
         *width = d.w, *height = d.h;
         *pixels = convert(&d, channels, false, NULL);
         return true;
@@ -655,8 +366,8 @@ bool image_read_text(const char *path, const char *key, char **value, err_t *err
 bool image_read_f32(const char *path, int channels, int max_side, int *width, int *height, int *channels_out,
                     float **pixels, err_t *err)
 {
-    decoded d;
-    if (fast_decode(path, max_side, false, &d)) {
+    image_decoded d;
+    if (image_fast_decode(path, max_side, false, &d)) {
         *width = d.w, *height = d.h;
         *pixels = convert(&d, channels, true, channels_out);
         return true;
