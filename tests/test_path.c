@@ -6,7 +6,9 @@
  *    even where the keys are unevenly spaced along a curve; with uneven speeds the speed never
  *    drops below 0 (no backing up) and changes smoothly;
  *  - a straight line at constant speed is the line itself (hand-worked: p(t) = p0 + v t);
- *  - path files round trip; bad files give one clear error; frame ranges and output patterns parse. */
+ *  - path files round trip; bad files give one clear error; frame ranges and output patterns parse;
+ *  - a recorded flight whose spline cuts through a box the camera flew over gets keys from the camera's
+ *    trail until it clears the box (view/route.h); a trail that cannot clear it takes the key back. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -19,6 +21,7 @@
 
 #include "check.h"
 #include "view/path.h"
+#include "view/route.h"
 
 static const double DEG = 3.14159265358979323846 / 180.0;
 
@@ -358,6 +361,62 @@ static void frames_and_names(void **st)
     assert_false(path_frame_name("%0400d.png", 1, name, 16, &e));
 }
 
+/* A box of half-side 1 at the origin: the exact distance, in the probe's form. */
+static void box_probe(void *ctx, const double *pts, int n, float *out)
+{
+    (void)ctx;
+    for (int i = 0; i < n; i++) {
+        double q[3], outside = 0, inside = -1e9;
+        for (int k = 0; k < 3; k++) {
+            q[k] = fabs(pts[3 * i + k]) - 1.0;
+            outside += q[k] > 0 ? q[k] * q[k] : 0;
+            inside = fmax(inside, q[k]);
+        }
+        out[i] = (float)(sqrt(outside) + fmin(inside, 0.0));
+    }
+}
+
+static void camera_at(path_camera *c, double x, double y, double z)
+{
+    *c = (path_camera){.position = {x, y, z}, .yaw = 0, .pitch = 0, .fov_deg = 50};
+}
+
+/* Keys at x = −3 and x = +3 on either side of the box: the camera flew over it (a half circle 2.5 m
+ * high: the slide rule's way), but the spline between the two keys goes straight through. */
+static void recorded_flight_clears_the_box(void **st)
+{
+    (void)st;
+    enum { TRAIL = 200, MAX = 64 };
+    path_camera keys[MAX], trail[TRAIL];
+    camera_at(&keys[0], -3, 0, 0);
+    for (int i = 0; i < TRAIL; i++) {
+        double a = 3.14159265358979 * (i + 1) / (TRAIL + 1);
+        camera_at(&trail[i], -3 * cos(a), 2.5 * sin(a), 0);
+    }
+    camera_at(&keys[1], 3, 0, 0);
+    keys[1].time = path_next_key_time(keys, 1, keys[1].position, 2.0);
+    int n = 2;
+    assert_true(route_first_dip(keys, n, 0, keys[1].time, box_probe, NULL) >= 0); /* straight through */
+    int added = route_clear(keys, &n, MAX, trail, TRAIL, 2.0, box_probe, NULL);
+    fprintf(stderr, "  %d keys added from the trail\n", added);
+    assert_true(added >= 1 && added <= ROUTE_MAX_ADDED && n == 2 + added);
+    assert_true(route_first_dip(keys, n, 0, keys[n - 1].time, box_probe, NULL) < 0);
+    for (int i = 1; i < n; i++)
+        assert_true(keys[i].time > keys[i - 1].time);
+    assert_near(keys[n - 1].position[0], 3, 0); /* the user's key stays last */
+    /* no trail, or one that runs through the box itself, cannot clear it: the key is taken back */
+    for (int i = 0; i < TRAIL; i++)
+        camera_at(&trail[i], -3 + 6.0 * (i + 1) / (TRAIL + 1), 0, 0);
+    for (int k = 0; k < 2; k++) {
+        camera_at(&keys[0], -3, 0, 0), camera_at(&keys[1], 3, 0, 0);
+        keys[1].time = path_next_key_time(keys, 1, keys[1].position, 2.0);
+        n = 2;
+        assert_int_equal(route_clear(keys, &n, MAX, trail, k ? TRAIL : 0, 2.0, box_probe, NULL), -1);
+        assert_int_equal(n, 1);
+        assert_near(keys[0].position[0], -3, 0);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -365,6 +424,7 @@ int main(void)
         cmocka_unit_test(unit_quaternions_no_flip),  cmocka_unit_test(constant_speed_by_arc_length),
         cmocka_unit_test(straight_line_is_exact),    cmocka_unit_test(file_round_trip_and_errors),
         cmocka_unit_test(recorded_keys),             cmocka_unit_test(frames_and_names),
+        cmocka_unit_test(recorded_flight_clears_the_box),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

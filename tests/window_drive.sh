@@ -82,6 +82,23 @@ check "panel: the typed edit changes the image" '! cmp -s $(ls "$tmp/panel"/fath
 check "panel: the preset records the edit" 'grep -q "\"sets\":\[\"fractal.power=5\"\]" "$tmp/edited"'
 check "panel: Ctrl+Z takes it back" 'grep -q "\"sets\":\[\]" "$tmp/undone"'
 
+# N records a flight the camera slid around the glass sphere (W into it, then W and D: along its
+# surface). The spline through the two keys pressed cuts through it (render --path refuses that, the
+# control below); the window adds keys from the way the camera flew, and the flight renders whole.
+drive flight --scene csg --camera 0,0.7,3 --look-at 0,0.7,0.4 -- \
+    "key n" "keydown w" "sleep 3" "keydown d" "sleep 5" "keyup d" "keyup w" "key n" "sleep 2"
+f=$FATHOM_VIEWS_DIR/csg.flight.json
+keys=$(grep -c '"time"' "$f" 2>/dev/null)
+check "flight: N twice around the glass sphere keeps $keys keys (2 pressed, the rest along the way flown)" \
+    '[ "${keys:-0}" -gt 2 ]'
+"$fathom" render --path "$f" --output "$tmp/flight/f_%04d.png" --size 8x8 --quiet 2>"$tmp/flight.err"
+check "flight: it renders whole ($(ls "$tmp/flight"/f_*.png 2>/dev/null | wc -l) frames)" \
+    '[ ! -s "$tmp/flight.err" ] && [ -s "$tmp/flight/f_0000.png" ]'
+{ echo '{ "keys": ['; grep '"time"' "$f" | sed -n '1p' | sed 's/}$/},/; s/},,$/},/'; grep '"time"' "$f" | tail -n 1 | sed 's/},$/}/'; echo '] }'; } \
+    >"$tmp/two-keys.json"
+check "flight: the two keys pressed alone cut through the sphere (render --path refuses them)" \
+    '! "$fathom" render --path "$tmp/two-keys.json" --output "$tmp/flight/g_%04d.png" --size 8x8 --quiet 2>/dev/null'
+
 # a user's scene, its preset saved, the folder moved: the preset still opens (and renders)
 mkdir -p "$tmp/mine"
 cat >"$tmp/mine/ball.json" <<'EOF'

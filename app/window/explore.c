@@ -221,7 +221,8 @@ static void flight_requests(void)
 {
     const scene *s = &app.s.scene;
     if (app.ask.add_key)
-        recorder_add(&app.flight, s->name, &app.fly.cam, flycam_speed(&app.fly, s), app.message, sizeof app.message);
+        recorder_add(&app.flight, s->name, &app.fly.cam, flycam_speed(&app.fly, s), flycam_probe, (void *)s, app.message,
+                     sizeof app.message);
     if (app.ask.clear_keys)
         recorder_clear(&app.flight, s->name, app.message, sizeof app.message);
     if (app.ask.toggle_play)
@@ -412,8 +413,10 @@ static void loop(GLFWwindow *win)
             glfwWaitEventsTimeout(IDLE_WAIT_S);
             continue;
         }
-        if (!recorder_play(&app.flight, dt, &app.fly.cam, app.message, sizeof app.message))
+        if (!recorder_play(&app.flight, dt, &app.fly.cam, app.message, sizeof app.message)) {
             flycam_move(&app.fly, win, &app.s.scene, app.panel, dt, w, h);
+            recorder_follow(&app.flight, &app.fly.cam);
+        }
         bool asked = handle_requests(); /* every one runs, each applying what was asked: no short-circuit */
         asked = panel_apply(&act) || asked;
         asked = views_and_presets(win, &act, w, h) || asked;

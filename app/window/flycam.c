@@ -85,14 +85,17 @@ static camera_input read_input(flycam *f, GLFWwindow *w, bool panel_open, bool *
     return in;
 }
 
-/* The distance bound at n points (double, world): relative to the renderer's origin (a deep zoom's).
- * ctx: the scene. */
-static void probe_distances(void *ctx, const double *points, int n, float *out)
+/* Relative to the renderer's origin (a deep zoom's), in chunks of PROBE_MAX points. */
+void flycam_probe(void *ctx, const double *points, int n, float *out)
 {
     float p[PROBE_MAX * 3] = {0}, d[PROBE_MAX * 2];
     double origin[3];
     err_t e;
-    assert(n <= PROBE_MAX);
+    if (n > PROBE_MAX) {
+        flycam_probe(ctx, points, PROBE_MAX, out);
+        flycam_probe(ctx, points + 3 * PROBE_MAX, n - PROBE_MAX, out + PROBE_MAX);
+        return;
+    }
     render_origin(origin);
     for (int i = 0; i < 3 * n; i++)
         p[i] = (float)(points[i] - origin[i % 3]);
@@ -121,7 +124,7 @@ static void slide_to(flycam *f, const scene *s, const double before[3], double t
 {
     if (memcmp(before, target, sizeof(double) * 3))
         camera_slide(before, target, s->quality.step_factor, camera_resolution(before, s->fractal.deep_now),
-                     probe_distances, (void *)s, NULL);
+                     flycam_probe, (void *)s, NULL);
     memcpy(f->cam.position, target, sizeof f->cam.position);
 }
 
@@ -175,7 +178,7 @@ void flycam_move(flycam *f, GLFWwindow *win, const scene *s, bool panel_open, fl
     bool orbit_press;
     camera_input in = read_input(f, win, panel_open, &orbit_press);
     float d;
-    probe_distances((void *)s, f->cam.position, 1, &d);
+    flycam_probe((void *)s, f->cam.position, 1, &d);
     f->surface_distance = fabsf(d);
     if (f->mode == CAMERA_WALK && !s->terrain.heightmap[0])
         f->mode = CAMERA_FLY; /* walking needs a ground */
@@ -192,7 +195,7 @@ void flycam_move(flycam *f, GLFWwindow *win, const scene *s, bool panel_open, fl
         camera_travel_rule r = {.speed = f->speed, .sensitivity = MOUSE_SENSITIVITY, .per_distance = s->adaptive_speed,
                                 .min_distance = MIN_ADAPTIVE_DISTANCE, .step_factor = s->quality.step_factor,
                                 .deep = s->fractal.deep_now};
-        camera_travel(&f->cam, &in, dt, &r, probe_distances, (void *)s);
+        camera_travel(&f->cam, &in, dt, &r, flycam_probe, (void *)s);
     }
     camera_clamp_range(f->cam.position, s->cam_look_at, s->quality.max_dist);
 }

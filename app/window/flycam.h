@@ -37,6 +37,8 @@ bool flycam_cursor_free(const flycam *f, bool panel_open);
 void flycam_move(flycam *f, struct GLFWwindow *win, const scene *s, bool panel_open, float dt, int w, int h);
 /* The world point seen at window pixel (x, y) of a w × h window (from the top), by the image on show. */
 bool flycam_point_under(const flycam *f, int x, int y, int w, int h, double out[3]);
+/* The renderer's distance bound at n points (xyz each, world): ctx is the scene (camera_probe_fn). */
+void flycam_probe(void *ctx, const double *points, int n, float *out);
 /* The HUD's line on how the camera moves. */
 void flycam_describe(const flycam *f, const scene *s, strbuf *out);
 /* "flying", "orbiting" or "walking". */

@@ -5,13 +5,37 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "view/route.h"
 #include "view/views.h"
 
 void recorder_free(recorder *r)
 {
     path_free(&r->flight);
     r->key_count = 0;
+    r->trail_count = 0;
     r->playing = false;
+}
+
+static path_camera key_of(const camera *c)
+{
+    path_camera k = {.yaw = c->yaw, .pitch = c->pitch, .fov_deg = glm_deg(c->fov_y)};
+    memcpy(k.position, c->position, sizeof k.position);
+    return k;
+}
+
+void recorder_follow(recorder *r, const camera *c)
+{
+    if (r->key_count == 0 || r->playing)
+        return;
+    const double *last = r->trail_count ? r->trail[r->trail_count - 1].position : r->keys[r->key_count - 1].position;
+    if (!memcmp(last, c->position, sizeof c->position))
+        return;
+    if (r->trail_count == RECORDER_TRAIL_MAX) { /* full: every other point, the way's shape kept */
+        for (int i = 0; i < RECORDER_TRAIL_MAX / 2; i++)
+            r->trail[i] = r->trail[2 * i + 1];
+        r->trail_count = RECORDER_TRAIL_MAX / 2;
+    }
+    r->trail[r->trail_count++] = key_of(c);
 }
 
 void recorder_load(recorder *r, const char *scene_name, char *message, size_t n)
@@ -43,7 +67,8 @@ void recorder_clear(recorder *r, const char *scene_name, char *message, size_t n
     snprintf(message, n, "flight cleared (%s removed)", file);
 }
 
-void recorder_add(recorder *r, const char *scene_name, const camera *c, double speed, char *message, size_t n)
+void recorder_add(recorder *r, const char *scene_name, const camera *c, double speed, camera_probe_fn probe,
+                  void *ctx, char *message, size_t n)
 {
     char file[PATH_MAX_LEN];
     err_t e;
@@ -57,24 +82,30 @@ void recorder_add(recorder *r, const char *scene_name, const camera *c, double s
         return;
     }
     path_camera *k = &r->keys[r->key_count];
+    *k = key_of(c);
     k->time = path_next_key_time(r->keys, r->key_count, c->position, speed);
-    memcpy(k->position, c->position, sizeof k->position);
-    k->yaw = c->yaw;
-    k->pitch = c->pitch;
-    k->fov_deg = glm_deg(c->fov_y);
     r->key_count++;
     if (r->key_count < 2) {
+        r->trail_count = 0;
         snprintf(message, n, "keyframe 1 at t = 0 s: fly on and press N again");
         return;
     }
+    int added = route_clear(r->keys, &r->key_count, RECORDER_MAX_KEYS, r->trail, r->trail_count, speed, probe, ctx);
+    if (added < 0) { /* the trail is kept: a key further on may still route around */
+        snprintf(message, n, "keyframe not added: the spline to here would pass through a surface, and the way you "
+                             "flew has no keys that clear it; add a key where you turned (N), then this one");
+        return;
+    }
+    r->trail_count = 0;
     strbuf text = {0};
     path_text_from_cameras(r->keys, r->key_count, &text);
     path_free(&r->flight);
     bool ok = path_parse(text.data, file, &r->flight, &e) && util_write_text_atomic(file, text.data, "the flight", &e);
     sb_free(&text);
     if (ok)
-        snprintf(message, n, "keyframe %d at t = %.1f s, saved to %s (L plays; render it with fathom render --path)",
-                 r->key_count, k->time, file);
+        snprintf(message, n, "keyframe %d at t = %.1f s%s, saved to %s (L plays; render it with fathom render --path)",
+                 r->key_count, r->keys[r->key_count - 1].time,
+                 added ? " (and keys along the way you flew, so the spline stays clear of the scene)" : "", file);
     else
         snprintf(message, n, "%s", e.msg);
 }
