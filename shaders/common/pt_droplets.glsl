@@ -24,12 +24,8 @@ void dropletSurface(inout Walk W, int id, vec3 p, vec3 nOut, bool entering)
 bool throughLiquid(inout Walk W, out Hit h)
 {
     vec4 s = droplet(W.dropIn);
-    float t0, tOut;
-    sphereRoots(W.ro, W.rd, s, t0, tOut);
-    tOut = max(tOut, 0.0);
-    h = Hit(false, 0.0, -1.0, 0, false, 0);
-    if (map(s.xyz).x < s.w)
-        h = castRay(W.ro, W.rd, tOut, W.side, W.pathT);
+    float tOut;
+    liquidChord(W.dropIn, W.ro, W.rd, W.side, W.pathT, tOut, h);
     W.throughput *= exp(-uDropletAbsorption * (h.hit ? h.t : tOut));
     if (h.hit) {
         W.dropIn = -1;

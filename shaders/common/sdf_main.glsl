@@ -33,6 +33,7 @@
 #endif
 #if FX_DROPLETS
 #include "common/droplets.glsl"
+#include "common/liquid.glsl"
 #endif
 #if INTEGRATOR // quality.integrator = 1: the path tracer instead of the model's path below
 #include "common/pathtrace.glsl"
@@ -144,13 +145,8 @@ void recordFirst(inout Path P, float t, vec3 n)
 bool insideDroplet(inout Path P, inout Hit h)
 {
     vec4 s = droplet(P.dropIn);
-    float t0, tOut;
-    sphereRoots(P.ro, P.rd, s, t0, tOut);
-    tOut = max(tOut, 0.0);
-    h.hit = false;
-    if (map(s.xyz).x < s.w)
-        h = castRay(P.ro, P.rd, tOut, P.side, P.pathT);
-    if (h.hit) {
+    float tOut;
+    if (liquidChord(P.dropIn, P.ro, P.rd, P.side, P.pathT, tOut, h)) {
         P.throughput *= exp(-uDropletAbsorption * h.t); // a surface in the liquid, seen through it
         return true;
     }
