@@ -15,6 +15,14 @@ struct Material {
     vec3 absorption, emission;
 };
 
+// Materials made by name, not by the struct's argument order: a clear dielectric that transmits (a
+// droplet's liquid), and none at all (a point in fog: the phase function stands in for the BRDF).
+Material dielectricMaterial(float roughness, float ior, vec3 absorption)
+{
+    return Material(vec3(0.0), 0.0, roughness, 1.0, ior, absorption, vec3(0.0));
+}
+Material noMaterial() { return Material(vec3(0.0), 0.0, 1.0, 0.0, 1.0, vec3(0.0), vec3(0.0)); }
+
 #if FX_TEXTURES || FX_RELIEF
 uniform sampler2D uTex0, uTex1, uTex2, uTex3;
 #endif

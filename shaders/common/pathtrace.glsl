@@ -69,7 +69,7 @@ struct Walk {
     vec3 throughput, radiance;
     float side;       // +1 outside solids, −1 inside glass
     float pathT;      // path length so far: thresholds grow with it
-    float dirPdf;     // how the segment's direction was drawn (discsMet): 0 nothing scattered it yet
+    DirPdf dir;       // how the segment's direction was drawn (pt_sampling.glsl)
     Rng rng;
 #if FX_DROPLETS
     int dropIn;       // the droplet the path is in (−1: air)
@@ -86,7 +86,8 @@ Walk startWalk(Ray ray, Rng rng)
     W.throughput = vec3(1.0);
     W.radiance = vec3(0.0);
     W.side = 1.0;
-    W.pathT = W.dirPdf = 0.0;
+    W.pathT = 0.0;
+    W.dir = DirPdf(DIR_UNSCATTERED, 0.0);
     W.rng = rng;
 #if FX_DROPLETS
     W.dropIn = fxOn(FX_DROPLETS_BIT) ? dropletAt(ray.o, -1) : -1;
@@ -114,15 +115,15 @@ bool scatterInFog(inout Walk W, float reach, bool last)
     float tf = fogFreeFlight(worldApprox(W.ro).y, W.rd.y, -log(1.0 - rand01(W.rng)));
     if (tf < 0.0 || tf >= reach)
         return false;
-    W.radiance += W.throughput * discsMet(W.ro, W.rd, tf, W.dirPdf);
+    W.radiance += W.throughput * discsMet(W.ro, W.rd, tf, W.dir);
     vec3 q = W.ro + W.rd * tf;
     W.pathT += tf;
     W.throughput *= uFogColor; // the albedo: what is not absorbed
-    Material none = Material(vec3(0.0), 0.0, 1.0, 0.0, 1.0, vec3(0.0), vec3(0.0));
+    Material none = noMaterial();
     W.radiance += W.throughput * nextEvent(q, vec3(0.0), -W.rd, none, 0.0, last, W.pathT, W.rng);
     float z = 1.0 - 2.0 * rand01(W.rng), r = sqrt(max(0.0, 1.0 - z * z)), phi = 2.0 * PI * rand01(W.rng);
     turn(W, q, vec3(r * cos(phi), r * sin(phi), z), vec3(0.0));
-    W.dirPdf = 1.0 / (4.0 * PI);
+    W.dir = dirSampled(1.0 / (4.0 * PI));
     return true;
 }
 #endif
@@ -132,8 +133,8 @@ void meetSky(inout Walk W)
 {
     float w = 1.0; // the camera's view, or after glass (no shadow ray passes it)
 #if FX_ENVMAP
-    if (W.dirPdf > 0.0 && skySampled())
-        w = powerWeight(W.dirPdf, envPdf(W.rd));
+    if (W.dir.kind == DIR_SAMPLED && skySampled())
+        w = powerWeight(W.dir.density, envPdf(W.rd));
 #endif
     W.radiance += W.throughput * environment(W.rd) * w;
 }
@@ -141,7 +142,7 @@ void meetSky(inout Walk W)
 // Glass at p (outward normal n): reflect or refract with the probability of the exact Fresnel split.
 void crossGlass(inout Walk W, vec3 p, vec3 n, Material m, float eps)
 {
-    W.dirPdf = W.dirPdf == 0.0 ? 0.0 : -1.0; // a delta: lights met after it are weighted 1
+    W.dir = dirAfterDelta(W.dir); // lights met after it are weighted 1
     bool entering = dot(W.rd, n) < 0.0;
     vec3 nf = entering ? n : -n;
     float eta = entering ? 1.0 / m.ior : m.ior;
@@ -165,7 +166,7 @@ bool reflectOff(inout Walk W, vec3 p, vec3 n, Material m, float eps, bool last)
     if (pdf <= 0.0)
         return false;
     W.throughput *= pathBrdf(nf, v, l, m) / pdf;
-    W.dirPdf = pdf;
+    W.dir = dirSampled(pdf);
     turn(W, p, l, nf * (SURFACE_OFFSET_K * eps));
     return true;
 }
@@ -213,7 +214,7 @@ PathSample tracePathSample(Ray ray, vec2 pixel)
             continue;
         }
 #endif
-        W.radiance += W.throughput * discsMet(W.ro, W.rd, min(h.hit ? h.t : 1e30, tDrop), W.dirPdf);
+        W.radiance += W.throughput * discsMet(W.ro, W.rd, min(h.hit ? h.t : 1e30, tDrop), W.dir);
 #if FX_DROPLETS
         if (tDrop < end) { // a droplet before the scene's surface
             vec3 p = W.ro + W.rd * tDrop, nOut = normalize(p - droplet(drop).xyz);

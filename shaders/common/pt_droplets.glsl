@@ -6,7 +6,7 @@
 void dropletSurface(inout Walk W, int id, vec3 p, vec3 nOut, bool entering)
 {
     W.dropEvents++;
-    W.dirPdf = W.dirPdf == 0.0 ? 0.0 : -1.0; // a delta, as glass
+    W.dir = dirAfterDelta(W.dir); // as glass
     vec3 n = entering ? nOut : -nOut;        // faces the coming ray
     float eta = entering ? 1.0 / uDropletIor : uDropletIor;
     if (rand01(W.rng) < fresnelDielectric(max(-dot(W.rd, n), 0.0), eta)) {

@@ -138,14 +138,12 @@ vec3 nextEvent(vec3 p, vec3 n, vec3 v, Material m, float pSpec, bool last, float
 
 // What the path's segment from o along d meets of the soft lights' discs before `reach` (its
 // surface, its scattering point in fog, or 1e30): each disc whose cone holds d and whose light is
-// nearer. pdf: the density the direction was sampled with at a surface or in fog (weighted against
-// next-event estimation there); −1 after glass (no shadow ray passes it: weight 1); 0 before
-// anything scattered the path (lights unseen).
-vec3 discsMet(vec3 o, vec3 d, float reach, float pdf)
+// nearer, weighted by how d was drawn (DirPdf).
+vec3 discsMet(vec3 o, vec3 d, float reach, DirPdf dir)
 {
     vec3 sum = vec3(0.0);
 #if NUM_LIGHTS > 0
-    if (pdf == 0.0)
+    if (dir.kind == DIR_UNSCATTERED)
         return sum;
     for (int i = 0; i < NUM_LIGHTS; i++) {
         if (uLightShadow[i] != 2)
@@ -157,7 +155,7 @@ vec3 discsMet(vec3 o, vec3 d, float reach, float pdf)
         if (dist >= reach || dot(d - c, d - c) > 2.0 * oneMinusCos)
             continue;
         float pdfLight = 1.0 / (2.0 * PI * oneMinusCos);
-        sum += E * pdfLight * (pdf > 0.0 ? powerWeight(pdf, pdfLight) : 1.0); // Le = E/Ω
+        sum += E * pdfLight * (dir.kind == DIR_SAMPLED ? powerWeight(dir.density, pdfLight) : 1.0); // Le = E/Ω
     }
 #endif
     return sum;

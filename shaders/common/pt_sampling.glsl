@@ -21,6 +21,19 @@ float rand01(inout Rng r)
 }
 
 // A unit vector about n: (t, b, n) orthonormal (Duff et al., "Building an orthonormal basis, revisited", JCGT 2017).
+// How a path segment's direction was drawn, which decides how the lights and the sky it meets are
+// weighted: DIR_UNSCATTERED (the camera's own ray: lights are not seen), DIR_DELTA (after glass or a
+// droplet's surface, which no shadow ray passes: weight 1), DIR_SAMPLED (drawn with `density` at a
+// surface or in fog: weighted against next-event estimation there).
+const int DIR_UNSCATTERED = 0, DIR_DELTA = 1, DIR_SAMPLED = 2;
+struct DirPdf {
+    int kind;
+    float density; // DIR_SAMPLED only
+};
+DirPdf dirSampled(float density) { return DirPdf(DIR_SAMPLED, density); }
+// A delta scattering (a mirror-like split): the camera's ray stays the camera's.
+DirPdf dirAfterDelta(DirPdf d) { return DirPdf(d.kind == DIR_UNSCATTERED ? DIR_UNSCATTERED : DIR_DELTA, 0.0); }
+
 vec3 aboutNormal(vec3 n, vec3 local)
 {
     float s = n.z >= 0.0 ? 1.0 : -1.0;

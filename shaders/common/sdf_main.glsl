@@ -183,7 +183,7 @@ void enterDroplet(inout Path P, int id, float tDrop)
     vec3 dirIn = P.rd;
     float F = dropletCross(P.rd, nOut, true);
     P.radiance += P.throughput * F * environment(reflect(dirIn, nOut));
-    Material liquid = Material(vec3(0.0), 0.0, uDropletRoughness, 1.0, uDropletIor, uDropletAbsorption, vec3(0.0));
+    Material liquid = dielectricMaterial(uDropletRoughness, uDropletIor, uDropletAbsorption);
     vec3 F0 = vec3(pow((uDropletIor - 1.0) / (uDropletIor + 1.0), 2.0));
     P.radiance += P.throughput * directLight(p, nOut, v, liquid, F0, T);
     P.throughput *= 1.0 - F;
