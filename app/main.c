@@ -104,6 +104,30 @@ static bool help_formula(const char *name, err_t *err)
     return true;
 }
 
+/* The kind of offline shot the command line asks for: size, AOVs, bands, quiet. */
+static offline_desc shot_of(const cli_options *opt)
+{
+    return (offline_desc){.width = opt->width, .height = opt->height, .aovs = opt->aovs, .strip_rows = opt->strip_rows,
+                          .quiet = opt->quiet};
+}
+
+/* The jobs' own descriptions of what the command line asks (jobs never see cli_options). */
+static flight_desc flight_of(const cli_options *o)
+{
+    return (flight_desc){.path = o->path, .output = o->output, .scene = o->scene, .sets = o->sets,
+                         .set_count = o->set_count, .spp = o->spp, .fps = o->fps, .has_frames = o->has_frames,
+                         .frame_first = o->frame_first, .frame_last = o->frame_last, .shot = shot_of(o)};
+}
+
+static bench_desc bench_of(const cli_options *o)
+{
+    return (bench_desc){.scene = o->scene, .sets = o->sets, .set_count = o->set_count, .width = o->width,
+                        .height = o->height, .runs = o->runs, .knobs = o->knobs, .knob_count = o->knob_count,
+                        .out = o->out, .name = o->name, .quick = o->quick, .full = o->full, .quiet = o->quiet,
+                        .path_truth = o->path_truth, .frame_times = o->frame_times, .interactive = o->interactive,
+                        .terrain_scale = o->terrain_scale, .fps = o->fps};
+}
+
 /* One offline shot (or one tile of it) of s as the command line asks. */
 static bool render_shot(const cli_options *opt, const scene *s, err_t *err)
 {
@@ -124,7 +148,7 @@ static bool render_shot(const cli_options *opt, const scene *s, err_t *err)
     }
     strbuf description = {0};
     camera cam = opt->has_view ? opt->view : camera_look_at_deg(eye, at, fov);
-    offline_desc d = offline_shot(opt, s, cam, opt->output, sets, nsets, &description);
+    offline_desc d = offline_shot(shot_of(opt), s, cam, opt->output, sets, nsets, &description);
     char tile[PATH_MAX_LEN];
     bool ok = true;
     if (opt->tile_count) { /* tile I of N goes to OUTPUT.tile-I-of-N.EXT */
@@ -170,12 +194,17 @@ int main(int argc, char **argv)
         return finish(help_formula(opt.help_formula, &err), &err);
     if (opt.stitch)
         return finish(offline_stitch(opt.output, opt.inputs, opt.input_count, opt.quiet, &err), &err);
-    if (opt.path)
-        return finish(flight_render(&opt, &err), &err);
-    if (opt.bench)
-        return finish(bench_run(&opt, &err), &err);
+    if (opt.path) {
+        flight_desc f = flight_of(&opt);
+        return finish(flight_render(&f, &err), &err);
+    }
+    if (opt.bench) {
+        bench_desc b = bench_of(&opt);
+        return finish(bench_run(&b, &err), &err);
+    }
     if (opt.check_formula)
-        return finish(check_formula_run(&opt, &err), &err);
+        return finish(check_formula_run(&(check_desc){.scene = opt.scene, .sets = opt.sets, .set_count = opt.set_count}, &err),
+                      &err);
     if (!opt.output && !opt.print_variant)
         return finish(explore_run(&opt, &err), &err);
     scene s;

@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #include "view/aov.h"
+#include "cli.h"
 #include "jobs/bench_plot.h"
 #include "jobs/bench_report.h"
 #include "jobs/bench_sweeps.h"
@@ -39,7 +40,7 @@ typedef struct ref_view {
 } ref_view;
 
 static struct {
-    const cli_options *opt;
+    const bench_desc *opt;
     int w, h;
     ref_view views[VIEWS];
     bench_row rows[MAX_ROWS];
@@ -60,7 +61,7 @@ static void progress(const char *what)
     fflush(stderr);
 }
 
-bool bench_load(const cli_options *opt, const char *const *extra, int n_extra, scene *s, err_t *err)
+bool bench_load(const bench_desc *opt, const char *const *extra, int n_extra, scene *s, err_t *err)
 {
     const char *sets[2 * CLI_MAX_SETS];
     int n = 0;
@@ -416,8 +417,11 @@ static bool make_out(const char *out, bool *created, err_t *err)
     return true;
 }
 
-bool bench_run(const cli_options *opt, err_t *err)
+bool bench_run(const bench_desc *desc, err_t *err)
 {
+    bench_desc d = *desc; /* its zero fields: the defaults */
+    d.runs = d.runs ? d.runs : d.quick ? 3 : d.full ? 9 : 5;
+    const bench_desc *opt = &d;
     memset(&B, 0, sizeof B);
     B.opt = opt;
     B.w = opt->width ? opt->width : opt->quick ? QUICK_WIDTH : opt->full ? FULL_WIDTH : DEFAULT_WIDTH;

@@ -13,28 +13,28 @@
 
 #include <stdbool.h>
 
-#include "cli.h"
+#include "jobs/bench_desc.h"
 #include "scene/scene.h"
 #include "view/camera.h"
 #include "util.h"
 
-bool bench_run(const cli_options *opt, err_t *err);
+bool bench_run(const bench_desc *opt, err_t *err);
 
 /* bench --frame-times (bench_frames.c): whole-process start-up times, then each preset's frame time
  * (one sample per pixel) at the start view at w × h, on both backends side by side. */
-bool bench_frame_times(const cli_options *opt, int w, int h, err_t *err);
+bool bench_frame_times(const bench_desc *opt, int w, int h, err_t *err);
 
 /* For the bench's files: the scene with the command line's --set, then `extra` more; and the time (ms)
  * of all of s's samples from cam at w × h (wall clock around glFinish). */
-bool bench_load(const cli_options *opt, const char *const *extra, int n_extra, scene *s, err_t *err);
+bool bench_load(const bench_desc *opt, const char *const *extra, int n_extra, scene *s, err_t *err);
 double bench_image_ms(const scene *s, const camera *cam, int w, int h);
 
 /* bench --interactive (bench_interactive.c): a scripted flight at window size w × h under the window's
  * resolution controller; prints frame times, internal size, moving-frame error and time to converge. */
-bool bench_interactive(const cli_options *opt, int w, int h, err_t *err);
+bool bench_interactive(const bench_desc *opt, int w, int h, err_t *err);
 
 /* bench --terrain-scale (bench_terrain.c): load time, peak memory, frame time and height samples per
  * pixel of generated DEMs from 256² up (--knob side=N1,N2,...), for maxmip and linear. */
-bool bench_terrain_scale(const cli_options *opt, int w, int h, err_t *err);
+bool bench_terrain_scale(const bench_desc *opt, int w, int h, err_t *err);
 
 #endif

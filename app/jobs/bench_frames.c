@@ -55,7 +55,7 @@ static double process_ms(char *const *argv)
 
 /* Start-up as a user meets it: whole-process times of `fathom --version` and of a 64x36 shot of the
  * scene, taken in turn (the image and DEM libraries load only when a run needs them: data/lazy.h). */
-static void startup_times(const cli_options *opt)
+static void startup_times(const bench_desc *opt)
 {
     char dir[] = "/tmp/fathom-bench-startup-XXXXXX", shot[sizeof dir + 16];
     if (!mkdtemp(dir))
@@ -86,7 +86,7 @@ static void startup_times(const cli_options *opt)
 
 /* Each preset's frame time (one sample per pixel) at the start view: what the window costs, on both
  * backends side by side where the GL has compute shaders. */
-bool bench_frame_times(const cli_options *opt, int w, int h, err_t *err)
+bool bench_frame_times(const bench_desc *opt, int w, int h, err_t *err)
 {
     startup_times(opt);
     if (!gpu_open(&(gpu_desc){.headless = true}, err))

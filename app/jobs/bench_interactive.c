@@ -124,7 +124,7 @@ static double one_sample(void)
 }
 
 /* --out DIR: what the window shows, as DIR/SCENE-WHAT.png (RGBA8 → RGB). */
-static bool save(const cli_options *opt, const scene *s, const char *what, uint8_t *rgba, int w, int h, err_t *err)
+static bool save(const bench_desc *opt, const scene *s, const char *what, uint8_t *rgba, int w, int h, err_t *err)
 {
     if (!opt->out)
         return true;
@@ -149,7 +149,7 @@ static double rmse(const uint8_t *a, const uint8_t *b, size_t pixels)
 
 /* One run of the bench: the flight's buffers and what it measured. */
 typedef struct interactive_run {
-    const cli_options *opt;
+    const bench_desc *opt;
     const scene *s;
     int w, h, fps;
     size_t n; /* pixels of the window */
@@ -282,7 +282,7 @@ static void run_free(interactive_run *R)
     free(R->aov);
 }
 
-bool bench_interactive(const cli_options *opt, int w, int h, err_t *err)
+bool bench_interactive(const bench_desc *opt, int w, int h, err_t *err)
 {
     scene s;
     if (!scene_load(opt->scene, opt->sets, opt->set_count, &s, err))

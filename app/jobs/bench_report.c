@@ -64,7 +64,7 @@ void bench_safe_name(const char *s, char *out, size_t n)
         snprintf(out, n, "bench");
 }
 
-void bench_prefix(const cli_options *o, char *out, size_t n)
+void bench_prefix(const bench_desc *o, char *out, size_t n)
 {
     const char *s = o->name ? o->name : o->scene, *slash = strrchr(s, '/'), *base = slash ? slash + 1 : s;
     const char *dot = strrchr(base, '.');
@@ -85,7 +85,7 @@ const char *bench_run_prefix(const bench_results *r)
 static const char *scene_label(const bench_results *r)
 {
     static char p[BENCH_PREFIX_MAX];
-    cli_options o = {.scene = r->opt->scene};
+    bench_desc o = {.scene = r->opt->scene};
     bench_prefix(&o, p, sizeof p);
     return p;
 }
@@ -165,7 +165,7 @@ bool bench_same_value(const char *a, const char *b)
 
 static void summary_header(const bench_results *r, FILE *f)
 {
-    const cli_options *o = r->opt;
+    const bench_desc *o = r->opt;
     const metrics *c = r->conv;
     fprintf(f, "# What accuracy costs: %s\n\n", bench_run_prefix(r));
     strbuf sets = {0};
@@ -353,7 +353,7 @@ static void diff_colour(double e, uint8_t out[3])
         out[c] = (uint8_t)lround(255 * (STOPS[i][c] + f * (STOPS[i + 1][c] - STOPS[i][c])));
 }
 
-void bench_write_difference(const cli_options *opt, int w, int h, const char *knob, const char *value,
+void bench_write_difference(const bench_desc *opt, int w, int h, const char *knob, const char *value,
                             const uint8_t *test, const uint8_t *ref, char *name, size_t n)
 {
     char prefix[BENCH_PREFIX_MAX], k[sizeof ((bench_row *)0)->knob], v[sizeof ((bench_row *)0)->value];

@@ -7,7 +7,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "cli.h"
+#include "jobs/bench_desc.h"
 #include "jobs/metrics.h"
 #include "scene/scene.h"
 
@@ -49,7 +49,7 @@ typedef struct effect_row {
 } effect_row;
 
 typedef struct bench_results {
-    const cli_options *opt;
+    const bench_desc *opt;
     const scene *base; /* the scene as loaded, before any sweep */
     int w, h, views, ref_spp;
     float view_turn_deg;
@@ -64,7 +64,7 @@ typedef struct bench_results {
  * extension (a preset's "../../x.json" is "x"), made safe by bench_safe_name: letters, digits, '-',
  * '_' and '.' (not first); anything else '_'. Never a path, never empty. */
 enum { BENCH_PREFIX_MAX = 64 };
-void bench_prefix(const cli_options *o, char *out, size_t n);
+void bench_prefix(const bench_desc *o, char *out, size_t n);
 void bench_safe_name(const char *s, char *out, size_t n);
 /* This run's PREFIX (one run at a time), and OUT/PREFIX-name opened as a new temporary file beside it
  * (util_atomic: renamed over it when whole). */
@@ -75,7 +75,7 @@ void bench_print(const bench_results *r);
 /* With --out, where a setting's w × h image (RGBA8) differs from the reference's (view 1):
  * OUT/PREFIX-diff-KNOB-VALUE.png, the largest channel's difference per pixel in a ramp that darkens
  * nowhere; its file name into name (empty when not written: said on stderr, the report goes on). */
-void bench_write_difference(const cli_options *opt, int w, int h, const char *knob, const char *value,
+void bench_write_difference(const bench_desc *opt, int w, int h, const char *knob, const char *value,
                             const uint8_t *test, const uint8_t *ref, char *name, size_t n);
 /* With --out: the CSV files (PREFIX-knobs.csv, PREFIX-effects.csv); then, after bench_plot_write (their
  * plots go inline), the markdown summary and the HTML report. */

@@ -132,7 +132,7 @@ static bool one_side(int n, const char *dir, int w, int h, int runs, const char 
     return true;
 }
 
-bool bench_terrain_scale(const cli_options *opt, int w, int h, err_t *err)
+bool bench_terrain_scale(const bench_desc *opt, int w, int h, err_t *err)
 {
     const char *sides = "256,1024,4096,8192,16384,32768";
     for (int i = 0; i < opt->knob_count; i++) {

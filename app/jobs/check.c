@@ -248,10 +248,10 @@ void check_describe(const scene *s, const formula_check *c, strbuf *out)
                     "least that (an expression of the parameters) or bound the loops by FRACTAL_ITERATIONS");
 }
 
-bool check_formula_run(const cli_options *opt, err_t *err)
+bool check_formula_run(const check_desc *d, err_t *err)
 {
     scene s;
-    if (!scene_load(opt->scene, opt->sets, opt->set_count, &s, err))
+    if (!scene_load(d->scene, d->sets, d->set_count, &s, err))
         return false;
     if (!gpu_open(&(gpu_desc){.headless = true}, err)) {
         scene_free(&s);

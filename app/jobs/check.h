@@ -19,7 +19,6 @@
 
 #include <stdbool.h>
 
-#include "cli.h"
 #include "scene/scene.h"
 #include "util.h"
 
@@ -48,8 +47,15 @@ bool check_formula(const scene *s, unsigned seed, formula_check *out, err_t *err
 /* The report as text, one finding a line. */
 void check_describe(const scene *s, const formula_check *c, strbuf *out);
 
-/* `fathom check-formula NAME|FILE [--set ...]`: opens a headless context, checks, prints the report;
- * false (with err) when the formula fails or cannot be loaded. */
-bool check_formula_run(const cli_options *opt, err_t *err);
+/* What `fathom check-formula NAME|FILE [--set ...]` checks: the scene (the fractal one, its formula
+ * set by an override) and the overrides. */
+typedef struct check_desc {
+    const char *scene;
+    const char *const *sets;
+    int set_count;
+} check_desc;
+/* Opens a headless context, checks, prints the report; false (with err) when the formula fails or
+ * cannot be loaded. */
+bool check_formula_run(const check_desc *d, err_t *err);
 
 #endif

@@ -40,7 +40,7 @@ static bool frame_done(const char *file)
 }
 
 /* The scene for one frame: the command line's overrides, then the path's parameter tracks. */
-static bool frame_scene(const cli_options *opt, const path *p, const path_sample *smp, scene *s, const char **sets,
+static bool frame_scene(const flight_desc *opt, const path *p, const path_sample *smp, scene *s, const char **sets,
                         int *nsets, char (*track)[PATH_PARAM_NAME + 32], err_t *err)
 {
     int n = 0;
@@ -61,7 +61,7 @@ static bool frame_scene(const cli_options *opt, const path *p, const path_sample
 
 /* The camera must never enter a solid (or a fractal's set): map() along the path, at 4 points a
  * frame, in the first frame's scene. A path that dips inside is refused with where and when. */
-static bool check_clearance(const cli_options *opt, const path *p, int first, int last, int fps, err_t *err)
+static bool check_clearance(const flight_desc *opt, const path *p, int first, int last, int fps, err_t *err)
 {
     enum { PER_FRAME = 4, MAX_POINTS = 1 << 17 };
     long long want = (long long)(last - first) * PER_FRAME + 1;
@@ -103,7 +103,7 @@ static bool check_clearance(const cli_options *opt, const path *p, int first, in
 
 /* The frames to render, [*first, *last]: --frames or the whole path; a range reaching past the end is
  * cut there (a farm's last chunk), one starting past it is refused. */
-static bool frame_range(const cli_options *opt, const path *p, int fps, int *first, int *last, err_t *err)
+static bool frame_range(const flight_desc *opt, const path *p, int fps, int *first, int *last, err_t *err)
 {
     int last_frame = (int)floor(path_duration(p) * fps + 1e-9);
     *first = opt->has_frames ? opt->frame_first : 0;
@@ -112,7 +112,7 @@ static bool frame_range(const cli_options *opt, const path *p, int fps, int *fir
         return err_set(err, "--frames %d-%d: the path '%s' ends at frame %d (%.3f s at %d frames a second)", *first,
                        *last, opt->path, last_frame, path_duration(p), fps);
     if (*last > last_frame) { /* a farm's last chunk may reach past the end: render what there is */
-        if (!opt->quiet)
+        if (!opt->shot.quiet)
             fprintf(stderr, "frames %d-%d: the path ends at frame %d; rendering %d-%d\n", *first, *last, last_frame,
                     *first, last_frame);
         *last = last_frame;
@@ -121,7 +121,7 @@ static bool frame_range(const cli_options *opt, const path *p, int fps, int *fir
 }
 
 typedef struct flight_state {
-    const cli_options *opt;
+    const flight_desc *opt;
     const path *p;
     int fps, rendered, skipped;
     bool loaded; /* s holds the scene for every frame (a path without parameter tracks) */
@@ -134,17 +134,17 @@ typedef struct flight_state {
 /* Frame f to its file, unless a file is there already (resume). */
 static bool render_frame(flight_state *F, int f, err_t *err)
 {
-    const cli_options *opt = F->opt;
+    const flight_desc *opt = F->opt;
     char name[PATH_MAX_LEN];
     if (!path_frame_name(opt->output, f, name, sizeof name, err))
         return false;
     if (frame_done(name)) {
         F->skipped++;
-        if (!opt->quiet)
+        if (!opt->shot.quiet)
             fprintf(stderr, "frame %d: %s is there, skipped\n", f, name);
         return true;
     }
-    if (exists(name) && !opt->quiet)
+    if (exists(name) && !opt->shot.quiet)
         fprintf(stderr, "frame %d: %s does not decode or is not fathom's: rendered again\n", f, name);
     double t = F->p->keys[0].time + (double)f / F->fps;
     path_sample smp;
@@ -158,7 +158,7 @@ static bool render_frame(flight_state *F, int f, err_t *err)
                   .pitch = (float)smp.pitch,
                   .fov_y = (float)(smp.fov_deg * 3.14159265358979323846 / 180.0)};
     strbuf description = {0};
-    offline_desc d = offline_shot(opt, &F->s, cam, name, F->sets, F->nsets, &description);
+    offline_desc d = offline_shot(opt->shot, &F->s, cam, name, F->sets, F->nsets, &description);
     d.quiet = true;
     double tf = util_now();
     bool ok = image_can_write(name, err) && offline_render_current(&d, err);
@@ -167,13 +167,13 @@ static bool render_frame(flight_state *F, int f, err_t *err)
         scene_free(&F->s);
     if (ok) {
         F->rendered++;
-        if (!opt->quiet)
+        if (!opt->shot.quiet)
             fprintf(stderr, "frame %d (t = %.3f s): %s, %.2f s\n", f, t, name, util_now() - tf);
     }
     return ok;
 }
 
-bool flight_render(const cli_options *opt, err_t *err)
+bool flight_render(const flight_desc *opt, err_t *err)
 {
     path p;
     if (!path_load(opt->path, &p, err))
@@ -195,7 +195,7 @@ bool flight_render(const cli_options *opt, err_t *err)
     }
     ok = render_init(err) && check_clearance(opt, &p, first, last, F.fps, err);
     int stale = image_remove_stale_temps(name); /* what a killed run left half-written */
-    if (stale && !opt->quiet)
+    if (stale && !opt->shot.quiet)
         fprintf(stderr, "removed %d temporary file%s a killed run left\n", stale, stale > 1 ? "s" : "");
     double t0 = util_now();
     for (int f = first; ok && f <= last; f++)
@@ -203,7 +203,7 @@ bool flight_render(const cli_options *opt, err_t *err)
     if (F.loaded)
         scene_free(&F.s);
     double secs = util_now() - t0;
-    if (ok && !opt->quiet)
+    if (ok && !opt->shot.quiet)
         fprintf(stderr, "flight %s: %d frames rendered, %d skipped (already there), %.1f s: %.1f frames a minute (%s)\n",
                 opt->path, F.rendered, F.skipped, secs, F.rendered ? 60.0 * F.rendered / secs : 0.0, gpu_describe());
     render_shutdown();

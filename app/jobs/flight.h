@@ -9,9 +9,21 @@
 
 #include <stdbool.h>
 
-#include "cli.h"
+#include "jobs/offline.h"
 #include "util.h"
 
-bool flight_render(const cli_options *opt, err_t *err);
+/* What to fly: the path file, the scene and overrides every frame starts from, the frames (all of them
+ * unless has_frames), the frame rate (0: 30) and the output pattern (one %d); each frame is `shot`'s
+ * kind of offline shot (size, AOVs, bands, quiet), at spp samples (0: the scene's). */
+typedef struct flight_desc {
+    const char *path, *output, *scene;
+    const char *const *sets;
+    int set_count, spp, fps;
+    bool has_frames;
+    int frame_first, frame_last;
+    offline_desc shot;
+} flight_desc;
+
+bool flight_render(const flight_desc *d, err_t *err);
 
 #endif

@@ -202,17 +202,13 @@ offline_desc offline_desc_defaults(const offline_desc *d)
     return o;
 }
 
-offline_desc offline_shot(const cli_options *opt, const scene *s, camera cam, const char *output,
-                          const char *const *sets, int nsets, strbuf *description)
+offline_desc offline_shot(offline_desc base, const scene *s, camera cam, const char *output, const char *const *sets,
+                          int nsets, strbuf *description)
 {
-    offline_desc d = offline_desc_defaults(&(offline_desc){.scene = s,
-                                                           .cam = cam,
-                                                           .width = opt->width,
-                                                           .height = opt->height,
-                                                           .output = output,
-                                                           .aovs = opt->aovs,
-                                                           .strip_rows = opt->strip_rows,
-                                                           .quiet = opt->quiet});
+    base.scene = s;
+    base.cam = cam;
+    base.output = output;
+    offline_desc d = offline_desc_defaults(&base);
     const char *formulas[SHOT_FORMULA_MAX];
     scene_formula_files(s, formulas);
     shot_describe_fractal(s->path, sets, nsets, formulas, &d.cam, d.width, d.height, description);

@@ -48,11 +48,11 @@ bool offline_stitch(const char *output, const char *const *tiles, int n, bool qu
 /* d with its zero fields given their defaults. */
 offline_desc offline_desc_defaults(const offline_desc *d);
 
-/* One shot as the command line asks it (size, AOVs, bands, quiet; spp from s) of s from cam into
- * output, with the description the file keeps (scene, the overrides `sets` it was loaded with, camera,
- * size): the single shot and every frame of a flight are set up here. Free *description after use. */
-offline_desc offline_shot(const cli_options *opt, const scene *s, camera cam, const char *output,
-                          const char *const *sets, int nsets, strbuf *description);
+/* One shot as `base` asks it (size, AOVs, bands, quiet; zero: the defaults; spp from s) of s from cam
+ * into output, with the description the file keeps (scene, the overrides `sets` it was loaded with,
+ * camera, size): the single shot and every frame of a flight are set up here. Free *description. */
+offline_desc offline_shot(offline_desc base, const scene *s, camera cam, const char *output, const char *const *sets,
+                          int nsets, strbuf *description);
 
 /* Renders and writes d->output. Opens and closes its own headless context. */
 bool offline_render(const offline_desc *d, err_t *err);
