@@ -209,6 +209,20 @@ static void panel_params(void **st)
     assert_null(params_find(&l, "quality.droplet_lod"));   /* no droplets here */
     assert_null(params_find(&l, "quality.binary_steps"));  /* nor the lab's search */
     assert_non_null(params_find(&l, "fractal.glow"));
+    /* the palette's colours in their order (the knobs a scene does not use were removed by moving the
+     * last parameter into their place: the panel listed the palette 2, 0, 1) */
+    const char *const ORDERED[] = {"mandelbox", "mandelbulb", "menger", "sierpinski"};
+    for (size_t k = 0; k < sizeof ORDERED / sizeof ORDERED[0]; k++) {
+        param_list o = {0};
+        scene t;
+        if (!scene_load_params(ORDERED[k], NULL, 0, &t, &o, &e))
+            fail_msg("%s", e.msg);
+        const scene_param *c0 = params_find(&o, "fractal.palette.0"), *c1 = params_find(&o, "fractal.palette.1"),
+                          *c2 = params_find(&o, "fractal.palette.2");
+        assert_true(c0 && c1 && c2 && c0 < c1 && c1 < c2);
+        params_free(&o);
+        scene_free(&t);
+    }
     p = params_find(&l, "lights.0.intensity");
     assert_true(p && p->type == PARAM_FLOAT);
     p = params_find(&l, "effects.fog");

@@ -264,9 +264,11 @@ static void finish_params(const scene *s, param_list *l)
     for (int k = 0; k < KNOB_COUNT; k++) {
         const knob_def *d = knob_get_def((knob_id)k);
         if (!scene_knob_applies(s, (knob_id)k)) { /* nothing about what the scene does not use */
-            for (int i = 0; i < l->count; i++)
+            for (int i = 0; i < l->count;) /* the rest keep the order the parser met them in */
                 if (!strncmp(l->items[i].key, "quality.", 8) && !strcmp(l->items[i].key + 8, d->name))
-                    l->items[i] = l->items[--l->count];
+                    memmove(&l->items[i], &l->items[i + 1], sizeof *l->items * (size_t)(--l->count - i));
+                else
+                    i++;
             continue;
         }
         scene_param p = {.type = d->type == KNOB_INT ? PARAM_INT : PARAM_FLOAT, .lo = d->min, .hi = d->max,

@@ -335,5 +335,3 @@ bool scene_parse_effects(scene_ctx *c, const cJSON *root)
     }
     return true;
 }
-
-/* An effect is compiled in when the scene's content calls for it ("auto"), then "on"/"off" force it. */

@@ -321,10 +321,11 @@ bool scene_fractal_parse(scene_ctx *c, const cJSON *root)
     ok = ok && (formula_load(name, c->s->dir, &fr->formula, c->err) || fail_formula(c, "fractal.formula"));
     const formula *f = &fr->formula;
     fr->steps[0] = fr->steps[1] = 1;
-    ok = ok && fractal_common(c, use, fr) &&
+    /* in the panel's order: the formula's own parameters first, then the colours */
+    ok = ok &&
          scene_get_int(c, use, "fractal", "iterations", f->iterations, f->iterations_lo, f->iterations_hi, &fr->iterations) &&
          formula_block(c, use, "fractal", common, f, fr->values, fr->iterations) && hybrid_block(c, use, fr) &&
-         step_loop(c, use, fr) && trap_and_bound(c, use, fr) && precision(c, use, fr);
+         step_loop(c, use, fr) && trap_and_bound(c, use, fr) && precision(c, use, fr) && fractal_common(c, use, fr);
     cJSON_Delete(empty);
     if (ok) {
         default_material(c->s);

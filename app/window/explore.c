@@ -120,6 +120,19 @@ static bool views_and_presets(GLFWwindow *win, const panel_actions *act, int w, 
 
 /* ---- the panel ---------------------------------------------------------------------------------- */
 
+/* The panel's title: the scene file's, and when overrides (the command line's, a view's, the panel's)
+ * change the scene, that they do (a title such as "power 8" says what the file draws). */
+static const char *panel_title(const scene *s)
+{
+    static char title[sizeof s->title + 64];
+    const char *base = s->title[0] ? s->title : s->name;
+    int changes = app.s.base_count + app.s.edits.now.count;
+    if (changes == 0)
+        return base;
+    snprintf(title, sizeof title, "%s (the file's title; %d override%s in force)", base, changes, changes == 1 ? "" : "s");
+    return title;
+}
+
 static void panel_model_of(int w, int h, panel_model *m)
 {
     const scene *s = &app.s.scene;
@@ -127,7 +140,7 @@ static void panel_model_of(int w, int h, panel_model *m)
     camera_basis b = camera_get_basis(cam);
     double dist = camera_distance(cam->position, app.fly.pivot);
     dist = dist > 0 ? dist : 1;
-    *m = (panel_model){.params = &app.s.params, .scene_title = s->title[0] ? s->title : s->name,
+    *m = (panel_model){.params = &app.s.params, .scene_title = panel_title(s),
                        .program_block = program_get(s->program)->block,
                        .fov_deg = glm_deg(cam->fov_y), .camera_mode = app.fly.mode,
                        .can_walk = s->terrain.heightmap[0] != 0, .ms_per_sample = app.cost.sample_ms,

@@ -51,7 +51,7 @@ void on_key(GLFWwindow *window, int key, int scancode, int action, int mods)
     state.imgui_key(window, key, scancode, action, mods);
 }
 
-/* Turns the control's new value into an override (and an undo step when the user took hold of it). */
+/* Turns the control's new value into an override (the window makes the undo step: edit_started). */
 void edited(const param_list *l, const scene_param *p, const double v[3], panel_actions *out)
 {
     params_override(l, p, v, out->set, sizeof out->set);
@@ -296,10 +296,11 @@ void view_section(const panel_model *m, panel_actions *out)
         ImGui::TextWrapped("%s", m->unresolved);
         ImGui::PopStyleColor();
     }
-    if (m->cursor_info)
-        ImGui::TextUnformatted(m->cursor_info);
+    if (m->cursor_info) /* wrapped: a DEM's line is wider than the panel */
+        ImGui::TextWrapped("%s", m->cursor_info);
     float exposure = m->exposure;
-    if (ImGui::SliderFloat("exposure", &exposure, 0.05f, 20.0f, "%.2f", ImGuiSliderFlags_Logarithmic))
+    /* a drag field: a slider's grab sat on its own value at 1.00, the middle of the log range */
+    if (ImGui::DragFloat("exposure", &exposure, 0.01f, 0.05f, 20.0f, "%.2f", ImGuiSliderFlags_Logarithmic))
         out->exposure_changed = true, out->exposure = exposure;
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip("display only: the image keeps its samples");

@@ -2,8 +2,9 @@
  * backends) behind a C interface, like image_io.cpp for OpenImageIO. It owns no scene state: each
  * frame the window hands it a model (the scene's tunable parameters as scene/params.h lists them,
  * the camera, what the image costs) and it hands back what the user did. Every control is generated
- * from the parameter list — a section per block, a control per key, its range from the parser —
- * so nothing here names a scene key. GL and GLFW. */
+ * from the parameter list — a section per block, a control per key, its range from the parser; all
+ * it knows of the keys is that the program's block and "quality" open first, that "camera" has a
+ * section of its own and that a key ending in "direction" is a unit vector. GL and GLFW. */
 #ifndef FATHOM_PANEL_H
 #define FATHOM_PANEL_H
 
