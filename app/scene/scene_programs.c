@@ -476,9 +476,11 @@ bool scene_heightmap_parse(scene_ctx *c, const cJSON *root)
 
 /* "camera": "auto": a view across the DEM from above its southern edge, and what follows from its
  * size: the far distance, haze over its width, sand and snow by the height range, textures that
- * repeat every 24 texels. A DEM whose relief is under 2 % of its width (a continent, at true scale a
- * flat plate) is exaggerated up to that, at most ×20, unless the scene sets terrain.exaggeration. */
+ * repeat every 24 texels. A DEM whose relief is under RELIEF_SHOWN of its width (a continent, at true
+ * scale a flat plate) is exaggerated up to that, at most ×20, unless the scene sets
+ * terrain.exaggeration (the Himalaya's 5 arc-minute grid: ×9.6, where ×4.8 read as a green plain). */
 static const double SNOW_ALTITUDE = 2500.0; /* metres: below it a DEM framed by "auto" gets no snow */
+static const double RELIEF_SHOWN = 0.04;    /* of the DEM's width: a flatter one is exaggerated to it */
 
 bool scene_terrain_frame(scene *s, err_t *err)
 {
@@ -489,8 +491,8 @@ bool scene_terrain_frame(scene *s, err_t *err)
     if (!heightfield_probe(&d, size, range, spacing, err))
         return false;
     double R = fmax(size[0], size[1]), relief = fmax(range[1] - range[0], 1e-3 * R);
-    if (!t->exaggeration_set && relief < 0.02 * R) { /* continental DEMs look flat at true scale */
-        double ex = fmin(0.02 * R / relief, 20);
+    if (!t->exaggeration_set && relief < RELIEF_SHOWN * R) { /* continental DEMs look flat at true scale */
+        double ex = fmin(RELIEF_SHOWN * R / relief, 20);
         t->exaggeration = (float)ex;
         range[0] *= ex, range[1] *= ex, relief *= ex;
     }
