@@ -35,14 +35,17 @@ done | sed 's/[[:space:]]*#.*$//' | awk -F '\t' '
     END { for (i = 0; i < n; i++) print src[order[i]] "\t" order[i] }' >"$tmp/commands"
 tab=$(printf '\t')
 while IFS="$tab" read -r from line; do
-    cmd=$(echo "$line" | sed -E 's/--size [0-9]+x[0-9]+/--size 32x18/; s/--spp [0-9]+/--spp 1/')
+    cmd=$(echo "$line" | sed -E 's/--size [0-9]+x[0-9]+/--size 32x18/; s/--spp [0-9]+/--spp 1/; s/--runs [0-9]+/--runs 1/')
     case "$cmd" in
     build/fathom\ check-formula*) ;; # a report: it takes no size, frames or output
-    build/fathom\ bench*) cmd="$cmd --runs 1 --quiet"; echo "$cmd" | grep -q -- --size || cmd="$cmd --size 32x18" ;;
+    build/fathom\ bench*) cmd="$cmd --quiet" # options are given once: only what the example lacks is added
+        echo "$cmd" | grep -q -- --runs || cmd="$cmd --runs 1"
+        echo "$cmd" | grep -q -- --size || cmd="$cmd --size 32x18" ;;
     build/fathom*--output* | build/fathom*--print-variant* | build/fathom*--list-scenes* | build/fathom*--help* | \
         build/fathom*--list-formulas*)
         echo "$cmd" | grep -q -- --size || cmd="$cmd --size 32x18"
-        echo "$cmd" | grep -q -- --output && cmd="$cmd --quiet --spp 1" ;;
+        echo "$cmd" | grep -q -- --output && cmd="$cmd --quiet"
+        echo "$cmd" | grep -q -- --output && ! echo "$cmd" | grep -q -- --spp && cmd="$cmd --spp 1" ;;
     build/fathom*)
         if command -v xvfb-run >/dev/null; then cmd="xvfb-run -a $cmd --frames 1 --size 64x36"; else
             echo "skip (no xvfb-run) $from: $line"; continue; fi ;;
@@ -108,6 +111,22 @@ for p in $where; do
     else
         fail "$p: the --print-variant sample differs:"; head -10 "$tmp/variant.diff"
     fi
+done
+# every path file a page shows (a ```json block with "keys") is one fathom renders: its first frame, tiny
+for p in $pages; do
+    awk '/^```json/ {f = 1; n++; next} /^```/ {f = 0} f { print > (dir "/block-" n ".json") }' dir="$tmp" n=0 "$src/$p"
+    for b in "$tmp"/block-*.json; do
+        [ -f "$b" ] || continue
+        if grep -q '"keys"' "$b"; then
+            if (cd "$work" && "$fathom" render --path "$b" --scene csg --frames 0-0 --output "$tmp/path_%04d.png" \
+                --size 16x9 --quiet >"$tmp/out" 2>&1); then
+                ok "$p: its path file example renders ($(grep -c '"time"' "$b") keys)"
+            else
+                fail "$p: its path file example is refused:"; sed 's/^/     | /' "$tmp/out" | tail -3
+            fi
+        fi
+        rm -f "$b" "$tmp"/path_*.png
+    done
 done
 echo "readme_examples: $passed passed, $failed failed"
 [ "$failed" -eq 0 ] && [ "$passed" -gt 0 ]
