@@ -14,6 +14,7 @@
 
 #include "scene/overrides.h"
 #include "scene/params.h"
+#include "scene/formula.h"
 #include "scene/scene.h"
 #include "view/shot.h"
 #include "view/views.h"
@@ -751,6 +752,60 @@ static void formula_step_declarations(void **st)
     }
 }
 
+/* Every shipped formula's declared range ends are accepted, typed as --help-formula prints them (%g),
+ * and a step past either end is refused: 1.2 was below (double)1.2f, and "from 1.2 to 4" refused 1.2.
+ * An end a formula's own requirement (@require) forbids with the other defaults is left out, named. */
+static void formula_range_ends(void **st)
+{
+    (void)st;
+    strbuf names = {0};
+    formula_list(&names);
+    int ends = 0, outside = 0, required = 0;
+    for (char *name = strtok(names.data, "\n"); name; name = strtok(NULL, "\n")) {
+        if (!strncmp(name, "note:", 5))
+            continue;
+        formula f;
+        err_t e;
+        if (!formula_load(name, NULL, &f, &e))
+            fail_msg("%s", e.msg);
+        for (int i = 0; i < f.param_count; i++) {
+            const formula_param *q = &f.params[i];
+            if (q->type == FORMULA_BOOL)
+                continue;
+            double span = (double)q->hi - (double)q->lo, step = span > 0 ? 1e-3 * span : 1e-3;
+            const double values[4] = {q->lo, q->hi, (double)q->lo - step, (double)q->hi + step};
+            for (int k = 0; k < 4; k++) {
+                char kv[160], v[48], scene_name[96];
+                /* the ends as --help-formula prints them (what a user types), the steps past them exact */
+                snprintf(v, sizeof v, q->type == FORMULA_INT ? "%.0f" : k < 2 ? "%g" : "%.9g", values[k]);
+                if (q->type >= FORMULA_VEC3)
+                    snprintf(kv, sizeof kv, "fractal.%s=%s,%s,%s", q->key, v, v, v);
+                else
+                    snprintf(kv, sizeof kv, "fractal.%s=%s", q->key, v);
+                snprintf(scene_name, sizeof scene_name, "fractal.formula=%s", name);
+                const char *sets[] = {scene_name, kv};
+                scene sc;
+                bool ok = scene_load("fractal", sets, 2, &sc, &e);
+                if (ok)
+                    scene_free(&sc);
+                if (k < 2 && !ok && strstr(e.msg, "(formula ")) { /* its @require, with the other defaults */
+                    required++;
+                    continue;
+                }
+                if (k < 2 && !ok)
+                    fail_msg("%s: the range end %s is refused: %s", name, kv, e.msg);
+                if (k >= 2 && ok)
+                    fail_msg("%s: %s, past the declared range, is accepted", name, kv);
+                k < 2 ? ends++ : outside++;
+            }
+        }
+    }
+    fprintf(stderr, "  %d range ends accepted, %d values past them refused, %d ends left to a requirement\n", ends,
+            outside, required);
+    assert_true(ends > 40 && outside == ends + required);
+    sb_free(&names);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -765,6 +820,7 @@ int main(void)
         cmocka_unit_test(syntax_error_has_line_and_column),
         cmocka_unit_test(value_errors_name_the_key),
         cmocka_unit_test(set_overrides),
+        cmocka_unit_test(formula_range_ends),
         cmocka_unit_test(effects_follow_content),
         cmocka_unit_test(csg_codegen),
         cmocka_unit_test(big_csg_scenes),

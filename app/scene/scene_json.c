@@ -59,13 +59,25 @@ scene_param *scene_record_param(scene_ctx *c, const char *path, const char *key,
     return params_add(c->params, &p);
 }
 
+/* A finite number within [lo, hi], compared as the type it is stored in: a float's range ends are
+ * floats (1.2 is 1.2f as a float, and below (double)1.2f: the declared end was refused). */
+static bool in_range(const cJSON *v, double lo, double hi, bool as_float)
+{
+    if (!cJSON_IsNumber(v) || !isfinite(v->valuedouble))
+        return false;
+    if (!as_float)
+        return v->valuedouble >= lo && v->valuedouble <= hi;
+    float f = (float)v->valuedouble;
+    return isfinite(f) && f >= (float)lo && f <= (float)hi;
+}
+
 bool scene_get_num(scene_ctx *c, const cJSON *obj, const char *path, const char *key, float def, float lo,
                     float hi, float *out)
 {
     const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
     char p[512];
     scene_child_path(p, sizeof p, path, key);
-    if (v && (!cJSON_IsNumber(v) || !isfinite(v->valuedouble) || v->valuedouble < lo || v->valuedouble > hi)) {
+    if (v && !in_range(v, lo, hi, true)) {
         char range[128];
         snprintf(range, sizeof range, "%g to %g", (double)lo, (double)hi);
         return scene_fail(c, p, "expected a number from %s", range);
@@ -91,8 +103,8 @@ bool scene_get_int(scene_ctx *c, const cJSON *obj, const char *path, const char 
     return true;
 }
 
-bool scene_get_dvec3(scene_ctx *c, const cJSON *obj, const char *path, const char *key, const double def[3], double lo,
-               double hi, double out[3])
+static bool get_vec3_as(scene_ctx *c, const cJSON *obj, const char *path, const char *key, const double def[3],
+                        double lo, double hi, bool as_float, double out[3])
 {
     const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
     char p[512];
@@ -105,7 +117,7 @@ bool scene_get_dvec3(scene_ctx *c, const cJSON *obj, const char *path, const cha
         return scene_fail(c, p, "expected three numbers [x, y, z]");
     for (int i = 0; i < 3; i++) {
         const cJSON *e = cJSON_GetArrayItem(v, i);
-        if (!cJSON_IsNumber(e) || !isfinite(e->valuedouble) || e->valuedouble < lo || e->valuedouble > hi) {
+        if (!in_range(e, lo, hi, as_float)) {
             char range[128];
             snprintf(range, sizeof range, "%g to %g", lo, hi);
             return scene_fail(c, p, "expected three numbers, each from %s", range);
@@ -115,11 +127,17 @@ bool scene_get_dvec3(scene_ctx *c, const cJSON *obj, const char *path, const cha
     return true;
 }
 
+bool scene_get_dvec3(scene_ctx *c, const cJSON *obj, const char *path, const char *key, const double def[3], double lo,
+                     double hi, double out[3])
+{
+    return get_vec3_as(c, obj, path, key, def, lo, hi, false, out);
+}
+
 bool scene_get_vec3(scene_ctx *c, const cJSON *obj, const char *path, const char *key, const float def[3],
                      float lo, float hi, float out[3])
 {
     double d[3] = {def[0], def[1], def[2]}, v[3];
-    if (!scene_get_dvec3(c, obj, path, key, d, lo, hi, v))
+    if (!get_vec3_as(c, obj, path, key, d, lo, hi, true, v))
         return false;
     for (int i = 0; i < 3; i++)
         out[i] = (float)v[i];
