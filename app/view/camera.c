@@ -183,12 +183,19 @@ float camera_slide(const double from[3], double to[3], float step_factor, double
     return (float)(keep2 * slid / len);
 }
 
-int camera_travel(camera *c, const camera_input *in, float dt, const camera_travel_rule *r, camera_probe_fn probe,
-                  void *ctx)
+int camera_steps(float dt, float *step_dt)
 {
     int steps = (int)ceilf(dt / CAMERA_STEP_S - 1e-3f);
     steps = steps < 1 ? 1 : steps > CAMERA_MAX_STEPS ? CAMERA_MAX_STEPS : steps;
-    float step_dt = fminf(dt, CAMERA_STEP_S * (float)steps) / (float)steps;
+    *step_dt = fminf(dt, CAMERA_STEP_S * (float)steps) / (float)steps;
+    return steps;
+}
+
+int camera_travel(camera *c, const camera_input *in, float dt, const camera_travel_rule *r, camera_probe_fn probe,
+                  void *ctx)
+{
+    float step_dt;
+    int steps = camera_steps(dt, &step_dt);
     camera_input step = *in;
     for (int k = 0; k < steps; k++) {
         double before[3];

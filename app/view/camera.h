@@ -84,6 +84,9 @@ typedef struct camera_travel_rule {
 } camera_travel_rule;
 int camera_travel(camera *c, const camera_input *in, float dt, const camera_travel_rule *r, camera_probe_fn probe,
                   void *ctx);
+/* The steps a frame of dt seconds moves in, and each one's length (*step_dt): camera_travel's, for a
+ * caller that moves its own way (walking). */
+int camera_steps(float dt, float *step_dt);
 
 /* The position's resolution where the renderer works in float (deep = false) or in double (a deep
  * zoom): a few units in the last place of |p|, with room. */

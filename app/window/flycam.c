@@ -1,7 +1,6 @@
 /* flycam — the window's camera control (flycam.h). */
 #include "window/flycam.h"
 
-#include <assert.h>
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 #include <math.h>
@@ -157,8 +156,8 @@ static void walk(flycam *f, const scene *s, const camera_input *in, float dt)
     flat.move[1] = 0;
     float pitch = fmaxf(fminf(f->cam.pitch - in->look[1] * MOUSE_SENSITIVITY, CAMERA_MAX_PITCH), -CAMERA_MAX_PITCH);
     f->cam.pitch = 0; /* forward along the ground, wherever the eye looks */
-    int steps = (int)fminf(fmaxf(ceilf(dt / CAMERA_STEP_S - 1e-3f), 1.0f), (float)CAMERA_MAX_STEPS);
-    float step_dt = fminf(dt, CAMERA_STEP_S * (float)steps) / (float)steps;
+    float step_dt;
+    int steps = camera_steps(dt, &step_dt);
     for (int k = 0; k < steps; k++) {
         double before[3], target[3];
         memcpy(before, f->cam.position, sizeof before);
