@@ -96,6 +96,26 @@ bool util_atomic_open(util_atomic *a, const char *path, err_t *err)
     return err_set(err, "cannot write '%s': no free temporary name beside it", path);
 }
 
+bool util_fsync_path(const char *path, int flags)
+{
+    int fd = open(path, flags | O_CLOEXEC);
+    if (fd < 0)
+        return false;
+    bool ok = fsync(fd) == 0 || errno == EINVAL; /* EINVAL: a file system without fsync */
+    int saved = errno;
+    close(fd);
+    errno = saved;
+    return ok;
+}
+
+bool util_sync_folder_of(const char *path)
+{
+    char dir[PATH_MAX_LEN];
+    const char *slash = strrchr(path, '/');
+    snprintf(dir, sizeof dir, "%.*s", slash ? (int)(slash - path) + 1 : 1, slash ? path : ".");
+    return util_fsync_path(dir, O_RDONLY | O_DIRECTORY);
+}
+
 bool util_atomic_commit(util_atomic *a, err_t *err)
 {
     FILE *f = a->f;
@@ -111,6 +131,11 @@ bool util_atomic_commit(util_atomic *a, err_t *err)
         unlink(a->tmp);
         return err_set(err, "cannot write '%s': %s (is the disk full?)", a->path,
                        strerror(saved ? saved : EIO));
+    }
+    if (!util_sync_folder_of(a->path)) { /* the new name may not outlive a crash: no file, not a maybe */
+        saved = errno;
+        unlink(a->path);
+        return err_set(err, "cannot write '%s': its folder could not be synced to the disk: %s", a->path, strerror(saved));
     }
     return true;
 }

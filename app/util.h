@@ -47,6 +47,12 @@ bool util_write_text_atomic(const char *path, const char *text, const char *what
  * commit checks every write, flushes it to the disk and renames it over path (rename replaces a link
  * at path, it never writes through one); on any failure, and in abort, the temporary file is removed
  * and path is left as it was. */
+/* fsync of a file opened with flags (its bytes on the disk, not in a cache: a failure here, EIO or
+ * ENOSPC on some file systems, is the last chance to hear of it), and of the folder that holds path (a
+ * rename in it made durable); false with errno on failure. */
+bool util_fsync_path(const char *path, int flags);
+bool util_sync_folder_of(const char *path);
+
 typedef struct util_atomic {
     void *f; /* FILE *, for fprintf */
     char tmp[PATH_MAX_LEN + 48], path[PATH_MAX_LEN];

@@ -1,8 +1,9 @@
 #!/bin/sh
 # Bad input: each case must give one clear line on stderr (what, where, what to do), a non-zero exit
-# code, no output file, and no crash. Usage: bad_input.sh FATHOM SOURCE_DIR
+# code, no output file, and no crash. Usage: bad_input.sh FATHOM SOURCE_DIR [FAULT_SHIM]
 fathom=$1
 src=$2
+shim=$3
 tmp=$(mktemp -d)
 # on any exit (a failure, a ctest timeout's TERM, Ctrl+C): the small tmpfs below is unmounted first
 trap 'umount "$tmp/small" 2>/dev/null; rm -rf "$tmp"' EXIT
@@ -272,6 +273,41 @@ if "$fathom" --help-formula menger_kifs | grep -q '^  fractal\.twist  *vec3' &&
     passed=$((passed + 1)); echo "ok   help-formula names fractal.KEY; --list-scenes has titles"
 else
     failed=$((failed + 1)); echo "FAIL help-formula without fractal. or --list-scenes without titles"
+fi
+
+# the write protocol's own faults, injected (tests/fault_shim.c): a file's fsync, the rename, the
+# folder's fsync after it; each leaves no file (nor a temporary one) and exits non-zero, and a file
+# that was there before is kept as it was where the new one never replaced it
+if [ -n "$shim" ] && [ ! -f "$shim" ]; then
+    failed=$((failed + 1)); echo "FAIL write-faults: the shim $shim is not built (cmake --build B --target fault_shim)"
+elif [ -n "$shim" ]; then
+    mkdir -p "$tmp/faults"
+    for fault in fsync rename dirfsync; do
+        for ext in png exr; do
+            rm -rf "$tmp/faults"/* "$tmp/faults"/.[!.]*
+            expect "write-fault-$fault-$ext" 1 "cannot write '$tmp/faults/f.$ext'" 1 -- env LD_PRELOAD="$shim" \
+                FATHOM_TEST_FAULT=$fault ASAN_OPTIONS=detect_leaks=0:verify_asan_link_order=0 \
+                "$fathom" --output "$tmp/faults/f.$ext" --size 32x18 --spp 1 --quiet
+            left=$(ls -A "$tmp/faults")
+            [ -z "$left" ] || { failed=$((failed + 1)); echo "FAIL write-fault-$fault-$ext: left $left"; }
+        done
+        echo "the user's file" >"$tmp/faults/kept.png"
+        env LD_PRELOAD="$shim" FATHOM_TEST_FAULT=$fault ASAN_OPTIONS=detect_leaks=0:verify_asan_link_order=0 \
+            "$fathom" --output "$tmp/faults/kept.png" --size 32x18 --spp 1 --quiet 2>/dev/null
+        code=$?
+        if [ $code -ne 0 ] && { [ $fault = dirfsync ] || [ "$(cat "$tmp/faults/kept.png")" = "the user's file" ]; } &&
+            [ "$(ls -A "$tmp/faults")" = "$([ $fault = dirfsync ] || echo kept.png)" ]; then
+            passed=$((passed + 1)); echo "ok   write-fault-$fault-over-a-file: exit $code, $(ls -A "$tmp/faults" | wc -l) file(s) left"
+        else
+            failed=$((failed + 1)); echo "FAIL write-fault-$fault-over-a-file: exit $code, left: $(ls -A "$tmp/faults")"
+        fi
+        rm -f "$tmp/faults"/*
+    done
+    # the shim passes calls on when no fault is asked for: the same command writes its file
+    env LD_PRELOAD="$shim" ASAN_OPTIONS=detect_leaks=0:verify_asan_link_order=0 "$fathom" --output "$tmp/faults/ok.png" \
+        --size 32x18 --spp 1 --quiet && [ -s "$tmp/faults/ok.png" ] && passed=$((passed + 1)) &&
+        echo "ok   write-fault-none: the shim alone changes nothing" ||
+        { failed=$((failed + 1)); echo "FAIL write-fault-none: no file written through the shim"; }
 fi
 
 echo "bad_input: $passed passed, $failed failed"

@@ -189,18 +189,6 @@ bool image_writer_rows(image_writer *w, int rows, const void *pixels, err_t *err
     return true;
 }
 
-/* The bytes on the disk, not in a cache: a failure here (EIO, ENOSPC on some file systems) is the last
- * chance to hear of it. */
-static bool sync_file(const char *path, int flags)
-{
-    int fd = open(path, flags);
-    if (fd < 0)
-        return false;
-    bool ok = fsync(fd) == 0 || errno == EINVAL; /* EINVAL: a folder on a file system without fsync */
-    close(fd);
-    return ok;
-}
-
 /* Closes the file and reads it all back; false with err's message (no "cannot write" prefix). */
 static bool close_and_check(image_writer *w, err_t *err)
 {
@@ -212,7 +200,7 @@ static bool close_and_check(image_writer *w, err_t *err)
         err_set(err, "%s", w->png.why);
     }
     errno = 0;
-    if (closed && !sync_file(w->tmp, O_RDONLY))
+    if (closed && !util_fsync_path(w->tmp, O_RDONLY))
         return err_set(err, "%s", strerror(errno));
     if (!closed)
         return false;
@@ -246,10 +234,12 @@ bool image_writer_finish(image_writer *w, err_t *err)
         return false;
     }
     clear_temp();
-    char dir[PATH_MAX_LEN];
-    const char *slash = strrchr(w->path, '/');
-    snprintf(dir, sizeof dir, "%.*s", slash ? (int)(slash - w->path) + 1 : 1, slash ? w->path : ".");
-    sync_file(dir, O_RDONLY | O_DIRECTORY);
+    if (!util_sync_folder_of(w->path)) { /* the new name may not outlive a crash: no file, not a maybe */
+        err_set(err, "cannot write '%s': its folder could not be synced to the disk: %s", w->path, strerror(errno));
+        unlink(w->path);
+        free(w);
+        return false;
+    }
     free(w);
     return true;
 }
