@@ -154,6 +154,24 @@ static void median_interval_from_order_statistics(void **st)
     assert_near(metrics_median_interval(&one, 1, &lo, &hi), 3, 0);
     assert_near(lo, 3, 0);
     assert_near(hi, 3, 0);
+    /* every n from 2 to 120 against the definition, computed another way: each binomial term on its own
+     * from lgamma (not the recurrence), the largest k with 2 P(Bin(n, 1/2) <= k - 1) <= 0.05 */
+    static double many[120];
+    for (int n = 2; n <= 120; n++) {
+        for (int i = 0; i < n; i++)
+            many[i] = (double)((i * 127) % n + 1); /* 1 … n, shuffled (127: prime, above every n) */
+        int k = 1;
+        for (int j = 1; j < n; j++) {
+            double tail = 0;
+            for (int i = 0; i <= j - 1; i++)
+                tail += exp(lgamma(n + 1.0) - lgamma(i + 1.0) - lgamma(n - i + 1.0) - n * log(2.0));
+            if (2 * tail <= 0.05)
+                k = j;
+        }
+        metrics_median_interval(many, n, &lo, &hi);
+        if (lo != k || hi != n + 1 - k)
+            fail_msg("n = %d: [x(%g), x(%g)], not [x(%d), x(%d)]", n, lo, hi, k, n + 1 - k);
+    }
 }
 
 static void upscale_is_exact_on_flat_and_keeps_layout(void **st)
@@ -193,6 +211,21 @@ static void pareto_front(void **st)
     double lo[] = {9, 8, 4.5}, hi[] = {11, 10.5, 5.5}, err[] = {5, 6, 7};
     metrics_pareto(lo, hi, err, 3, f);
     assert_true(f[0] && !f[1] && f[2]);
+    /* ties, one case a call: the same error and measurably faster leaves the slower off; the same time
+     * and a lower error leaves the worse off; the same error and not measurably faster keeps both; a
+     * setting measured twice is on twice */
+    static const struct { double lo[2], hi[2], err[2]; bool on[2]; } TIES[] = {
+        {{1, 3}, {2, 4}, {5, 5}, {true, false}},
+        {{3, 3}, {4, 4}, {4, 5}, {true, false}},
+        {{1, 1.5}, {2, 2.5}, {5, 5}, {true, true}},
+        {{1, 1}, {2, 2}, {3, 3}, {true, true}},
+    };
+    for (size_t k = 0; k < sizeof TIES / sizeof TIES[0]; k++) {
+        bool g[2];
+        metrics_pareto(TIES[k].lo, TIES[k].hi, TIES[k].err, 2, g);
+        if (g[0] != TIES[k].on[0] || g[1] != TIES[k].on[1])
+            fail_msg("ties case %zu: front %d %d", k, g[0], g[1]);
+    }
 }
 
 
