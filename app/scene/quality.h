@@ -55,7 +55,7 @@ typedef enum knob_scope {
     X(hit_k,        FLOAT, "HIT_K",        1e-3,  1e3,    2,    1,       0.5,   0.25, 2,   0,    "8,4,2,1,0.5",           SCOPE_ANY,      \
       "hit threshold in pixel footprints: a ray stops within hit_k * t * pixel angle of a surface")                                       \
     X(refine,       INT,   "REFINE_STEPS", 0,   64,     0,    8,       12,    24,   1,   4,    "0,2,4,8,16",            SCOPE_REFINES,  \
-      "hits are surfaces: below the footprint threshold the march goes on to the zero crossing, located by up to this many regula-falsi steps (0: a ray within hit_k footprints has hit)") \
+      "hits are surfaces: below the footprint threshold the march goes on to the zero crossing, located by up to this many regula-falsi steps (0: a ray within hit_k footprints has hit; on a slow distance bound, the noise terrain's, it still goes on to the crossing)") \
     X(step_factor,  FLOAT, "STEP_FACTOR",  0.05,  1,      1,    1,       1,     1,    1,   0.05, "0.6,0.8,0.9,1",         SCOPE_ANY,      \
       "fraction of the distance bound taken per step (1 for exact distances)")                                                            \
     X(max_dist,     FLOAT, "MAX_DIST",     1e-2,  1e7,    100,  100,     100,   100,  0,   0,    NULL,                    SCOPE_ANY,      \
