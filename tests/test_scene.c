@@ -5,7 +5,9 @@
 #include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <math.h>
 #include <string.h>
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <cmocka.h>
@@ -241,6 +243,20 @@ static void panel_params(void **st)
     if (!scene_load("mandelbox", sets, 1, &t, &e)) /* a palette the file never had */
         fail_msg("%s: %s", kv, e.msg);
     assert_true(t.fractal.palette[1][1] == 0.5f && t.fractal.palette[0][0] == s.fractal.palette[0][0]);
+    scene_free(&t);
+    /* a value the slider gives, to all its digits: 0.123456789 reads back as the same float (with %g it
+     * was 0.123457), a number and a vector component both */
+    p = params_find(&l, "fractal.fold_limit");
+    params_override(&l, p, (const double[3]){0.123456789, 0, 0}, kv, sizeof kv);
+    char kv2[1024];
+    params_override(&l, params_find(&l, "fractal.palette.2"), (const double[3]){0.123456789, 0.987654321, 0.5}, kv2,
+                    sizeof kv2);
+    const char *digits[] = {kv, kv2};
+    if (!scene_load("mandelbox", digits, 2, &t, &e))
+        fail_msg("%s: %s", kv, e.msg);
+    assert_true(t.fractal.values[formula_find(&t.fractal.formula, "fold_limit") - t.fractal.formula.params][0] ==
+                0.123456789f);
+    assert_true(t.fractal.palette[2][0] == 0.123456789f && t.fractal.palette[2][1] == 0.987654321f);
     scene_free(&t);
     p = params_find(&l, "effects.fog");
     params_override(&l, p, (const double[3]){2, 0, 0}, kv, sizeof kv);
@@ -588,7 +604,7 @@ static void formula_declarations(void **st)
     assert_int_equal(f.iterations, 5);
     assert_int_equal(f.iterations_lo, 2);
     assert_int_equal(f.iterations_hi, 9);
-    assert_near(f.step, 0.75, 0);
+    assert_string_equal(f.step, "0.75");
     const formula_param *q = formula_find(&f, "swap_axes"); /* uSwapAxes: snake case */
     assert_non_null(q);
     assert_int_equal(q->type, FORMULA_BOOL);
@@ -606,17 +622,49 @@ static void formula_declarations(void **st)
     assert_string_equal(f.requires[0].lhs, "inner");
     assert_string_equal(f.requires[0].rhs, "outer");
     /* the bound, an expression of the parameters (in declared order) */
-    float v[8] = {-3, 3, 1, 0.1f, 0.9f, 0.5f, 1, 1.5f};
+    const float v[8][3] = {{-3}, {3}, {1}, {0.1f, -0.2f, 0.3f}, {0.9f, 0.5f, 0.1f}, {0.5f}, {1}, {1.5f}};
     double b;
     if (!formula_eval(&f, f.bound, v, 5, &b, &e))
         fail_msg("%s", e.msg);
     assert_near(b, 2.0 * 4.0 / 2.0 * 1.5, 1e-6);
-    assert_true(formula_eval(&f, "min(iterations, 3) + max(1, sqrt(16)) - -2", v, 5, &b, &e));
-    assert_near(b, 3 + 4 + 2, 0);
-    assert_false(formula_eval(&f, "radius * 2", v, 5, &b, &e));
-    assert_non_null(strstr(e.msg, "unknown name 'radius'"));
-    assert_false(formula_eval(&f, "2 * (scale", v, 5, &b, &e));
-    assert_false(formula_eval(&f, "1 / (scale + 3)", v, 5, &b, &e)); /* not a finite number */
+    /* the grammar: precedence, left to right, unary minus, functions, a vector's components */
+    static const struct { const char *text; double want; } GRAMMAR[] = {
+        {"min(iterations, 3) + max(1, sqrt(16)) - -2", 3 + 4 + 2},
+        {"size - inner * outer", 1.5 - 0.5 * 1}, /* a - b*c, not (a - b)*c */
+        {"size - inner - outer", 1.5 - 0.5 - 1}, /* left to right */
+        {"size / inner / 3", 1.5 / 0.5 / 3},
+        {"-scale * -2", -6},
+        {"-(size + 1) * 2", -5},
+        {"2 + 3 * 4 - 6 / 2", 11},
+        {"pow(2, 1 / (4 - 1))", 1.2599210498948732},
+        {"abs(scale) + seed.y + seed.z", 3 - 0.2 + 0.3},
+        {"seed", 0.1},
+        {"sqrt(seed.x * seed.x + seed.y * seed.y + seed.z * seed.z)", 0.37416573867739417},
+        {" ( size ) ", 1.5},
+    };
+    for (size_t k = 0; k < sizeof GRAMMAR / sizeof GRAMMAR[0]; k++) {
+        if (!formula_eval(&f, GRAMMAR[k].text, v, 5, &b, &e))
+            fail_msg("'%s': %s", GRAMMAR[k].text, e.msg);
+        if (fabs(b - GRAMMAR[k].want) > 1e-6)
+            fail_msg("'%s' = %.9g, not %.9g", GRAMMAR[k].text, b, GRAMMAR[k].want);
+    }
+    static const struct { const char *text, *why; } WRONG[] = {
+        {"radius * 2", "unknown name 'radius'"},
+        {"2 * (scale", "malformed"},
+        {"1 / (scale + 3)", "not a finite number"},
+        {"size.x", "'size' is a number: it has no .x"},
+        {"max(1)", "malformed"},
+        {"sqrt 4", "malformed"},
+        {"2 3", "malformed"},
+        {"", "malformed"},
+        {"pow(-1, 0.5)", "not a finite number"},
+    };
+    for (size_t k = 0; k < sizeof WRONG / sizeof WRONG[0]; k++) {
+        if (formula_eval(&f, WRONG[k].text, v, 5, &b, &e))
+            fail_msg("'%s' was taken (= %g)", WRONG[k].text, b);
+        if (!strstr(e.msg, WRONG[k].why))
+            fail_msg("'%s': '%s' does not say '%s'", WRONG[k].text, e.msg, WRONG[k].why);
+    }
     /* malformed declarations name the file and line */
     static const struct { const char *text, *want; } bad[] = {
         {"uniform float uX; // @param 1 [0, 1] x\n", "t.glsl: no '// @formula' line"},
@@ -690,9 +738,9 @@ static void formula_scenes(void **st)
     expect_error("{\"program\": \"nosuch\"}", NULL, 0, "or a formula's name: amazing_surf");
     /* the Mandelbulb's power as its file declares it: 0 and 1 have no bulb (issue 24's mutant accepted 0) */
     const char *power0[] = {"fractal.power=0"};
-    expect_error("{\"program\": \"mandelbulb\"}", power0, 1, "fractal.power: expected a number from 2 to 16");
+    expect_error("{\"program\": \"mandelbulb\"}", power0, 1, "fractal.power: expected a number from 3 to 16");
     const char *julia[] = {"fractal.julia=true", "fractal.julia_c=[0.1, 0.2, 0.3]", "fractal.iterations=65"};
-    expect_error("{\"program\": \"mandelbulb\"}", julia, 3, "fractal.iterations: expected a number from 1 to 64");
+    expect_error("{\"program\": \"mandelbulb\"}", julia, 3, "fractal.iterations: expected a number from 8 to 64");
     /* Julia sets and hybrids: step formulas only, and a hybrid's own keys are its formula's */
     const char *julia_menger[] = {"fractal.julia=true"};
     expect_error("{\"program\": \"menger\"}", julia_menger, 1, "julia, julia_c and steps belong to step formulas");
@@ -703,7 +751,7 @@ static void formula_scenes(void **st)
     const char *hybrid_key[] = {"fractal.hybrid.formula=mandelbulb", "fractal.hybrid.scale=2"};
     expect_error(BOX, hybrid_key, 2, "fractal.hybrid.scale: unknown key 'scale' (allowed here: formula, steps, power, bailout)");
     const char *hybrid_range[] = {"fractal.hybrid.formula=mandelbulb", "fractal.hybrid.power=40"};
-    expect_error(BOX, hybrid_range, 2, "fractal.hybrid.power: expected a number from 2 to 16");
+    expect_error(BOX, hybrid_range, 2, "fractal.hybrid.power: expected a number from 3 to 16");
     const char *hybrid[] = {"fractal.hybrid.formula=mandelbulb", "fractal.hybrid.power=6", "fractal.steps=2"};
     assert_true(load(BOX, hybrid, 3, &s, &e));
     assert_true(s.fractal.has_hybrid && s.fractal.steps[0] == 2 && s.fractal.steps[1] == 1);
@@ -773,11 +821,17 @@ static void formula_range_ends(void **st)
             if (q->type == FORMULA_BOOL)
                 continue;
             double span = (double)q->hi - (double)q->lo, step = span > 0 ? 1e-3 * span : 1e-3;
-            const double values[4] = {q->lo, q->hi, (double)q->lo - step, (double)q->hi + step};
-            for (int k = 0; k < 4; k++) {
+            /* the range's ends and a gap's (its ends are allowed: the gap is open), then steps past them
+             * (into the gap too) */
+            const double values[8] = {q->lo, q->hi, q->gap_lo, q->gap_hi, (double)q->lo - step, (double)q->hi + step,
+                                      (double)q->gap_lo + step, (double)q->gap_hi - step};
+            for (int j = 0; j < 8; j++) {
+                int k = j < 4 ? j % 2 : 2 + j % 2; /* k < 2: an end, else a step past one */
+                if (!q->has_gap && (j == 2 || j == 3 || j == 6 || j == 7))
+                    continue;
                 char kv[160], v[48], scene_name[96];
                 /* the ends as --help-formula prints them (what a user types), the steps past them exact */
-                snprintf(v, sizeof v, q->type == FORMULA_INT ? "%.0f" : k < 2 ? "%g" : "%.9g", values[k]);
+                snprintf(v, sizeof v, q->type == FORMULA_INT ? "%.0f" : k < 2 ? "%g" : "%.9g", values[j]);
                 if (q->type >= FORMULA_VEC3)
                     snprintf(kv, sizeof kv, "fractal.%s=%s,%s,%s", q->key, v, v, v);
                 else
@@ -804,6 +858,124 @@ static void formula_range_ends(void **st)
             outside, required);
     assert_true(ends > 40 && outside == ends + required);
     sb_free(&names);
+    /* a bool defaults to false as well as true, and takes both */
+    formula f;
+    err_t e;
+    if (!formula_parse("// @formula b\nuniform bool uFlip; // @param false flip\n", "b.glsl", &f, &e))
+        fail_msg("a bool defaulting to false: %s", e.msg);
+    assert_true(f.param_count == 1 && f.params[0].type == FORMULA_BOOL && f.params[0].def[0] == 0);
+    /* a @require is strict: min_radius equal to fixed_radius is refused, just below is taken */
+    scene sc;
+    const char *equal[] = {"fractal.formula=mandelbox", "fractal.min_radius=1", "fractal.fixed_radius=1"};
+    assert_false(scene_load("fractal", equal, 3, &sc, &e));
+    assert_non_null(strstr(e.msg, "min_radius must be below fixed_radius"));
+    const char *below[] = {"fractal.formula=mandelbox", "fractal.min_radius=0.999", "fractal.fixed_radius=1"};
+    if (!scene_load("fractal", below, 3, &sc, &e))
+        fail_msg("%s", e.msg);
+    scene_free(&sc);
+    /* a hybrid's bounding sphere holds both formulas' sets: the larger of their bounds */
+    const char *hybrid[2][2] = {{"fractal.formula=mandelbox", "fractal.hybrid.formula=mandelbulb"},
+                                {"fractal.formula=mandelbulb", "fractal.hybrid.formula=mandelbox"}};
+    for (int k = 0; k < 2; k++) {
+        if (!scene_load("fractal", hybrid[k], 2, &sc, &e))
+            fail_msg("%s", e.msg);
+        assert_near(sc.fractal.bound_radius, 2 * 3.0 / 1.0 * 1.7320508, 1e-4); /* the Mandelbox's at scale 2 */
+        scene_free(&sc);
+    }
+}
+
+/* What a formula's declarations do to a scene: @step is an expression of the parameters, and caps
+ * the step factor the shader is compiled with (a Julia set's or hybrid's is the scene's own); an int
+ * parameter's range end is taken; the switch to double precision comes DEEP_MARGIN (4) times above a
+ * float's resolution. */
+static void formula_steps_and_precision(void **st)
+{
+    (void)st;
+    scene s;
+    err_t e;
+    /* @step as an expression of a parameter, in a user's formula */
+    char dir[] = "/tmp/fathom-int-XXXXXX", path[64], stepped[64];
+    assert_non_null(mkdtemp(dir));
+    snprintf(stepped, sizeof stepped, "%s/stepped.glsl", dir);
+    static const char STEPPED[] = "// @formula a step factor that follows a parameter\n// @bound 1\n"
+                                  "// @step 0.9 - 0.3 * min(1, abs(size - 1))\nuniform float uSize; // @param 1 [0.5, 3] size\n"
+                                  "#include \"fractal/common.glsl\"\nreal formulaDE(real3 p, out float trap) { trap = 0.0; "
+                                  "return length(p) - 0.5; }\n";
+    int fd = open(stepped, O_WRONLY | O_CREAT | O_EXCL, 0600);
+    assert_true(fd >= 0 && write(fd, STEPPED, sizeof STEPPED - 1) == (ssize_t)(sizeof STEPPED - 1));
+    close(fd);
+    char stepped_set[96];
+    snprintf(stepped_set, sizeof stepped_set, "fractal.formula=%s", stepped);
+    static const struct { const char *size; double step; } STEPS[] = {{"1", 0.9}, {"1.5", 0.75}, {"3", 0.6}, {"0.75", 0.825}};
+    for (size_t k = 0; k < sizeof STEPS / sizeof STEPS[0]; k++) {
+        char size[48];
+        snprintf(size, sizeof size, "fractal.size=%s", STEPS[k].size);
+        const char *over[] = {stepped_set, size, "quality.step_factor=1"};
+        if (!scene_load("fractal", over, 3, &s, &e))
+            fail_msg("%s", e.msg);
+        assert_near(s.fractal.step, STEPS[k].step, 1e-6);
+        strbuf pre = {0};
+        scene_preamble(&s, &pre);
+        char want[64];
+        snprintf(want, sizeof want, "#define STEP_FACTOR %.9g\n", (double)(float)STEPS[k].step);
+        if (!strstr(pre.data, want))
+            fail_msg("size %s: the preamble lacks '%s'", STEPS[k].size, want);
+        sb_free(&pre);
+        scene_free(&s);
+    }
+    remove(stepped);
+    /* below the cap (the Mandelbulb's 0.9) the scene's own step factor stands; a Julia set keeps the scene's */
+    const char *lower[] = {"quality.step_factor=0.5"}, *julia[] = {"fractal.julia=true", "quality.step_factor=1"};
+    for (int k = 0; k < 2; k++) {
+        if (!scene_load("mandelbulb", k ? julia : lower, k ? 2 : 1, &s, &e))
+            fail_msg("%s", e.msg);
+        strbuf pre = {0};
+        scene_preamble(&s, &pre);
+        assert_non_null(strstr(pre.data, k ? "#define STEP_FACTOR 1\n" : "#define STEP_FACTOR 0.5\n"));
+        sb_free(&pre);
+        scene_free(&s);
+    }
+    /* an int parameter's ends are taken, a step past them refused */
+    snprintf(path, sizeof path, "%s/folds.glsl", dir);
+    fd = open(path, O_WRONLY | O_CREAT | O_EXCL, 0600);
+    assert_true(fd >= 0);
+    static const char TEXT[] = "// @formula an int parameter\n// @bound 1\nuniform int uFolds; // @param 3 [1, 8] folds\n"
+                               "#include \"fractal/common.glsl\"\nreal formulaDE(real3 p, out float trap) { trap = 0.0; "
+                               "return length(p) - 0.5; }\n";
+    assert_true(write(fd, TEXT, sizeof TEXT - 1) == (ssize_t)(sizeof TEXT - 1));
+    close(fd);
+    char formula_set[96];
+    snprintf(formula_set, sizeof formula_set, "fractal.formula=%s", path);
+    static const struct { const char *set; bool ok; } INTS[] = {
+        {"fractal.folds=8", true}, {"fractal.folds=1", true}, {"fractal.folds=9", false}, {"fractal.folds=0", false}};
+    for (size_t k = 0; k < sizeof INTS / sizeof INTS[0]; k++) {
+        const char *over[] = {formula_set, INTS[k].set};
+        bool ok = scene_load("fractal", over, 2, &s, &e);
+        if (ok != INTS[k].ok)
+            fail_msg("%s: %s", INTS[k].set, ok ? "taken" : e.msg);
+        if (ok)
+            scene_free(&s);
+    }
+    remove(path);
+    rmdir(dir);
+    /* double precision from DEEP_MARGIN times a float's resolution: a view at twice it needs double, one
+     * at 6 times does not (unless it already runs in double: twice the margin then) */
+    if (!scene_load("deep_zoom", NULL, 0, &s, &e))
+        fail_msg("%s", e.msg);
+    assert_true(s.fractal.deep_ok && s.fractal.precision == PRECISION_AUTO);
+    double eye[3] = {0, 0, 1.2}, at[3] = {0, 0, 0};
+    camera cam = camera_look_at_deg(eye, at, 45);
+    const int rows = 1080;
+    double pa = camera_pixel_angle(&cam, rows), hk = s.quality.hit_k, pr = PRECISION_REL, norm = camera_norm(eye);
+    static const struct { double times; bool now, want; } MARGIN[] = {{2, false, true}, {6, false, false}, {6, true, true},
+                                                                        {3.9, false, true}, {4.1, false, false}};
+    for (size_t k = 0; k < sizeof MARGIN / sizeof MARGIN[0]; k++) {
+        /* the distance at which the threshold hk·d·pa is `times` the resolution pr·(|eye| + d) */
+        double t = MARGIN[k].times, d = t * pr * norm / (hk * pa - t * pr);
+        if (scene_needs_double(&s, d, &cam, rows, MARGIN[k].now) != MARGIN[k].want)
+            fail_msg("at %g times a float's resolution (now %d): double %s", t, MARGIN[k].now, MARGIN[k].want ? "not chosen" : "chosen");
+    }
+    scene_free(&s);
 }
 
 int main(void)
@@ -821,6 +993,7 @@ int main(void)
         cmocka_unit_test(value_errors_name_the_key),
         cmocka_unit_test(set_overrides),
         cmocka_unit_test(formula_range_ends),
+        cmocka_unit_test(formula_steps_and_precision),
         cmocka_unit_test(effects_follow_content),
         cmocka_unit_test(csg_codegen),
         cmocka_unit_test(big_csg_scenes),

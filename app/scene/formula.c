@@ -203,9 +203,9 @@ static bool directive(formula *f, const char *line, const char *at, char *why, s
     } else if (!strncmp(at, "@bound", 6)) {
         snprintf(f->bound, sizeof f->bound, "%s", skip_space(at + 6));
     } else if (!strncmp(at, "@step", 5)) {
-        p = at + 5;
-        if (!numbers(&p, &f->step, 1) || f->step <= 0 || f->step > 1)
-            return snprintf(why, n, "expected @step FACTOR, above 0 and at most 1") < 0;
+        snprintf(f->step, sizeof f->step, "%s", skip_space(at + 5));
+        if (!f->step[0])
+            return snprintf(why, n, "expected @step FACTOR (an expression), above 0 and at most 1") < 0;
     } else if (!strncmp(at, "@require", 8)) {
         if (f->require_count == FORMULA_MAX_REQUIRES)
             return snprintf(why, n, "more than %d @require lines", FORMULA_MAX_REQUIRES) < 0;
@@ -409,8 +409,8 @@ void formula_describe(const formula *f, strbuf *out)
     sb_printf(out, "  fractal.%-14s int    %d [%d, %d]  iterations of the formula\n", "iterations", f->iterations,
               f->iterations_lo, f->iterations_hi);
     sb_printf(out, "  fractal.%-14s float  %s  a sphere about the origin that holds the set\n", "bound_radius", f->bound);
-    if (f->step > 0)
-        sb_printf(out, "  (its estimate needs quality.step_factor <= %g)\n", (double)f->step);
+    if (f->step[0])
+        sb_printf(out, "  (its estimate needs quality.step_factor <= %s: a larger one is capped at it)\n", f->step);
     for (int i = 0; i < f->param_count; i++) {
         const formula_param *q = &f->params[i];
         char def[64];
@@ -446,12 +446,13 @@ const formula_param *formula_find(const formula *f, const char *key)
     return NULL;
 }
 
-/* ---- expressions: recursive descent over + - * / ( ) numbers, names, abs sqrt min max ---- */
+/* ---- expressions: recursive descent over + - * / ( ) numbers, names (NAME.x .y .z: a vector's
+ * component), abs sqrt min max pow floor ---- */
 
 typedef struct expr {
     const char *p;
     const formula *f;
-    const float *values;
+    const float (*values)[3];
     int iterations;
     bool bad;
     char why[96];
@@ -494,24 +495,30 @@ static double atom(expr *e)
         e->bad = true;
         return 0;
     }
-    static const char *const FUNCS[] = {"abs", "sqrt", "min", "max"};
-    for (int k = 0; k < 4; k++)
+    static const char *const FUNCS[] = {"abs", "sqrt", "min", "max", "pow", "floor"};
+    for (int k = 0; k < 6; k++)
         if (!strcmp(name, FUNCS[k])) {
             if (!take(e, '(')) {
                 e->bad = true;
                 return 0;
             }
             double a = sum(e), b = 0;
-            if (k >= 2) /* min and max take two */
+            if (k >= 2 && k <= 4) /* min, max and pow take two */
                 e->bad |= !take(e, ','), b = sum(e);
             e->bad |= !take(e, ')');
-            return k == 0 ? fabs(a) : k == 1 ? sqrt(a) : k == 2 ? fmin(a, b) : fmax(a, b);
+            return k == 0 ? fabs(a) : k == 1 ? sqrt(a) : k == 2 ? fmin(a, b) : k == 3 ? fmax(a, b) : k == 4 ? pow(a, b) : floor(a);
         }
     if (!strcmp(name, "iterations"))
         return e->iterations;
+    int comp = -1; /* NAME.x .y .z: a vector's component; NAME alone its first */
+    if (e->p[0] == '.' && e->p[1] >= 'x' && e->p[1] <= 'z' && !isalnum((unsigned char)e->p[2]))
+        comp = e->p[1] - 'x', e->p += 2;
     for (int i = 0; i < e->f->param_count; i++)
-        if (!strcmp(e->f->params[i].key, name))
-            return e->values[i];
+        if (!strcmp(e->f->params[i].key, name)) {
+            if (comp >= 0 && e->f->params[i].type != FORMULA_VEC3 && e->f->params[i].type != FORMULA_COLOR)
+                snprintf(e->why, sizeof e->why, "'%s' is a number: it has no .%c", name, 'x' + comp), e->bad = true;
+            return e->values[i][comp > 0 ? comp : 0];
+        }
     snprintf(e->why, sizeof e->why, "unknown name '%s'", name);
     e->bad = true;
     return 0;
@@ -543,7 +550,7 @@ static double sum(expr *e)
     }
 }
 
-bool formula_eval(const formula *f, const char *text, const float *values, int iterations, double *out, err_t *err)
+bool formula_eval(const formula *f, const char *text, const float (*values)[3], int iterations, double *out, err_t *err)
 {
     expr e = {.p = text, .f = f, .values = values, .iterations = iterations};
     *out = sum(&e);

@@ -5,9 +5,12 @@
  *
  *   // @formula One line: what it is and whose (cite the paper or article).
  *   // @iterations 12 [1, 64]      FRACTAL_ITERATIONS (a loop bound): default and range
- *   // @bound 2 * size             radius of a sphere about the origin that holds the set, an
- *   //                             expression of the parameters (+ - * / ( ) abs sqrt min max)
- *   // @step 0.9                   the step factor its estimate needs (quality.step_factor)
+ *   // @bound 2 * size             radius of a sphere about the origin that holds the set at every
+ *   //                             value the ranges allow (check-formula checks it at their ends):
+ *   //                             an expression of the parameters (+ - * / ( ) abs sqrt min max
+ *   //                             pow floor, a vector's components c.x c.y c.z)
+ *   // @step 0.9                   the step factor its estimate needs: an expression (a rougher estimate
+ *   //                             at some values may need less); quality.step_factor is capped at it
  *   // @trap 0.4 1.1               the orbit trap's values (two expressions) spread over the palette
  *   // @loops iterations * 4       loop iterations one estimate runs, all its loops together (an
  *   //                             expression; default iterations + 1): what it spends of the loop
@@ -79,7 +82,7 @@ typedef struct formula {
     char summary[FORMULA_TEXT_MAX];
     int iterations, iterations_lo, iterations_hi;
     char bound[FORMULA_EXPR_MAX]; /* expression of the parameters */
-    float step;                   /* 0: not declared (1) */
+    char step[FORMULA_EXPR_MAX];  /* @step: an expression of the parameters ("": not declared, 1) */
     char trap[2][FORMULA_EXPR_MAX]; /* the orbit trap's range: expressions of the parameters */
     char loops[FORMULA_EXPR_MAX]; /* @loops: loop iterations one estimate runs (an expression) */
     bool step_formula;            /* formulaStep and the loop (@de), not its own formulaDE */
@@ -112,9 +115,10 @@ void formula_list(strbuf *out);
 /* --help-formula: the summary, and each parameter with its type, default, range and meaning. */
 void formula_describe(const formula *f, strbuf *out);
 
-/* Evaluates an expression over the parameters' values (values[i] is params[i]'s first component;
- * "iterations" is known too). False with a message on a malformed expression or an unknown name. */
-bool formula_eval(const formula *f, const char *expr, const float *values, int iterations, double *out, err_t *err);
+/* Evaluates an expression over the parameters' values (values[i] is params[i]'s; a name is its first
+ * component, NAME.x .y .z a vector's each; "iterations" is known too). False with a message on a
+ * malformed expression or an unknown name. */
+bool formula_eval(const formula *f, const char *expr, const float (*values)[3], int iterations, double *out, err_t *err);
 
 /* The parameter whose scene key is `key`, or NULL. */
 const formula_param *formula_find(const formula *f, const char *key);

@@ -399,7 +399,10 @@ void scene_preamble(const scene *s, strbuf *out)
     const program_def *p = program_get(s->program);
     sb_printf(out, "#define PROGRAM_%s 1\n", p->name);
     effect_preamble(s->effects, out);
-    quality_preamble(&s->quality, out);
+    quality q = s->quality; /* a formula's estimate is trusted to its @step (not a Julia set's or hybrid's) */
+    if (program_is_fractal(s->program) && !s->fractal.julia && !s->fractal.has_hybrid && s->fractal.step > 0)
+        q.step_factor = fminf(q.step_factor, s->fractal.step);
+    quality_preamble(&q, out);
     sb_printf(out, "#define NUM_LIGHTS %d\n#define NUM_MATERIALS %d\n#define MIRROR_ROUGHNESS %.9g\n"
                    "#define PRECISION_REL %.9g\n",
               s->light_count, s->material_count, (double)MIRROR_ROUGHNESS, (double)PRECISION_REL);

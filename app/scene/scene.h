@@ -89,6 +89,7 @@ typedef struct scene_fractal {
     bool deep_now;       /* this variant is compiled in double (PRECISION_DOUBLE) */
     int iterations;      /* iterations of the formula (Menger: levels of the sponge) */
     float bound_radius;  /* a sphere that holds the whole set (marching starts at it) */
+    float step;          /* the formula's @step at these values (1: none declared): caps quality.step_factor */
     float palette[3][3]; /* orbit-trap colours: near, middle, far */
     float glow;          /* glow strength; 0 = off */
     float glow_color[3];

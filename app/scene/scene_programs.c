@@ -113,14 +113,11 @@ static bool get_param(scene_ctx *c, const cJSON *use, const char *path, const fo
     return true;
 }
 
-/* Evaluates a formula's expression over its parameters' values (first components). */
+/* Evaluates a formula's expression over its parameters' values. */
 static bool eval(scene_ctx *c, const char *path, const formula *f, float (*values)[3], int iterations,
                  const char *expr, double *out)
 {
-    float first[FORMULA_MAX_PARAMS];
-    for (int i = 0; i < f->param_count; i++)
-        first[i] = values[i][0];
-    return formula_eval(f, expr, first, iterations, out, c->err) || fail_formula(c, path);
+    return formula_eval(f, expr, (const float(*)[3])values, iterations, out, c->err) || fail_formula(c, path);
 }
 
 /* The formula's @require lines over the values read. */
@@ -257,6 +254,12 @@ static bool trap_and_bound(scene_ctx *c, const cJSON *use, scene_fractal *fr)
         return scene_fail(c, "fractal", "formula %s's @loops %s gives %g: expected 1 to %d loop iterations an estimate",
                     f->name, f->loops, loops, FORMULA_LOOPS_MAX);
     fr->loops = (int)ceil(loops);
+    double step = 1;
+    if (f->step[0] && !eval(c, "fractal", f, fr->values, fr->iterations, f->step, &step))
+        return false;
+    if (!(step > 0 && step <= 1))
+        return scene_fail(c, "fractal", "formula %s's @step %s gives %g: expected above 0 and at most 1", f->name, f->step, step);
+    fr->step = (float)step;
     bound = fmax(bound, other);
     return scene_get_num(c, use, "fractal", "bound_radius", (float)fmin(fmax(bound, BOUND_MIN), BOUND_MAX), BOUND_MIN,
                    BOUND_MAX, &fr->bound_radius);

@@ -43,10 +43,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     case 3: {
         static formula f;
         if (formula_parse(text, "fuzz.glsl", &f, &err)) {
-            float v[FORMULA_MAX_PARAMS];
+            float v[FORMULA_MAX_PARAMS][3];
             double out;
             for (int i = 0; i < f.param_count; i++)
-                v[i] = f.params[i].def[0];
+                memcpy(v[i], f.params[i].def, sizeof v[i]);
             formula_eval(&f, f.bound, v, f.iterations, &out, &err);
             for (int i = 0; i < f.require_count; i++)
                 formula_eval(&f, f.requires[i].lhs, v, f.iterations, &out, &err);
