@@ -27,7 +27,7 @@ static const char USAGE[] =
     "                    [--quick|--full] [--out DIR] [--name N]\n"
     "       fathom render --path FLIGHT.json [--frames A-B] [--fps N] --output DIR/frame_%04d.png [options]\n"
     "       fathom stitch --output POSTER.png POSTER.tile-*.png\n"
-    "       fathom check-formula NAME|FILE [--set fractal.KEY=VALUE]...\n"
+    "       fathom check-formula NAME|FILE [--set fractal.KEY=VALUE]... [--quick]\n"
     "  Opens the explorer window, or renders an offline shot with --output (no display needed).\n"
     "  bench: headless; for fixed views, sweeps each accuracy knob on its own (default: all that\n"
     "  apply), the presets and every effect; time = median of N [5] images after warm-up (wall clock\n"
@@ -49,8 +49,10 @@ static const char USAGE[] =
     "  [30], each written atomically to the pattern's file; frames already on disk are skipped (resume).\n"
     "  --tile I/N renders tile I of N (horizontal strips) of the --output image to OUTPUT.tile-I-of-N.EXT;\n"
     "  stitch joins the N tiles into the whole image, bit for bit as if rendered at once.\n"
-    "  check-formula: NaN/Inf over random points, and the distance estimate against the distance to\n"
-    "  the surface along random rays: the worst overshoot and the step factor that avoids it.\n"
+    "  check-formula: NaN/Inf over random points, the distance estimate against the distance to the\n"
+    "  surface along random rays, then rays around the worst (the worst overshoot and the step factor\n"
+    "  that avoids it), and that the set stays inside its bounding sphere: at the defaults, then with\n"
+    "  each parameter at the ends of its range (the worst set named); --quick: the defaults only.\n"
     "\n"
     ;
 /* the options (ISO C bounds one string literal at 4095 characters) */
@@ -404,8 +406,9 @@ static bool check_combinations(const cli_options *o, err_t *err)
     if (o->bench && (o->output || o->aovs || o->frames || o->print_variant))
         return err_set(err, "fathom bench takes --scene, --size, --runs, --knob, --truth, --quick, --full, --out, --name, --set and --quiet only");
     if (!o->bench && (o->out || o->name || o->knob_count || o->frame_times || o->runs_given || o->path_truth ||
-                      o->quick || o->full))
-        return err_set(err, "--runs, --knob, --out, --name, --truth, --quick and --full belong to fathom bench");
+                      (o->quick && !o->check_formula) || o->full))
+        return err_set(err, "--runs, --knob, --out, --name, --truth, --quick and --full belong to fathom bench "
+                            "(check-formula takes --quick too)");
     if (o->quick && o->full)
         return err_set(err, "bench --quick and --full: pick one (a short run or a long one)");
     if (o->aovs && !o->output)
@@ -414,7 +417,7 @@ static bool check_combinations(const cli_options *o, err_t *err)
         return err_set(err, "--fps is the window's (and bench --interactive's): it does not apply here");
     if (o->check_formula && (o->output || o->aovs || o->path || o->tile_count || o->spp || o->width || o->frames))
         return err_set(err, "fathom check-formula prints a report: --output, --aov, --path, --tile, --spp, --size and "
-                            "--frames do not apply (it takes NAME|FILE, --scene and --set)");
+                            "--frames do not apply (it takes NAME|FILE, --scene, --set and --quick)");
     if ((o->bench || (!o->output && !o->stitch && !o->check_formula && !o->help_formula)) && o->width &&
         (long)o->width * o->height > CLI_MAX_TARGET_PIXELS)
         return err_set(err, "--size %dx%d: the window and the bench hold the whole image in %d-byte-a-pixel targets, "

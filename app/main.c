@@ -203,7 +203,8 @@ int main(int argc, char **argv)
         return finish(bench_run(&b, &err), &err);
     }
     if (opt.check_formula)
-        return finish(check_formula_run(&(check_desc){.scene = opt.scene, .sets = opt.sets, .set_count = opt.set_count}, &err),
+        return finish(check_formula_run(&(check_desc){.scene = opt.scene, .sets = opt.sets, .set_count = opt.set_count,
+                                                         .defaults_only = opt.quick}, &err),
                       &err);
     if (!opt.output && !opt.print_variant)
         return finish(explore_run(&opt, &err), &err);

@@ -162,7 +162,8 @@ static double bulb_de_double(const double c[3], double power, double bailout, in
         if (r > bailout)
             break;
         double theta = r > 0 ? acos(y / r) : 0, phi = (x != 0 || z != 0) ? atan2(z, x) : 0;
-        dr = power * pow(r, power - 1) * dr + 1;
+        double rho = sqrt(x * x + z * z), stretch = rho > 1e-6 * r ? fabs(sin(power * atan2(rho, y))) * r / rho : power;
+        dr = power * pow(r, power - 1) * fmax(1, stretch) * dr + 1; /* the azimuthal stretch: mandelbulb.glsl */
         double rn = pow(r, power);
         x = rn * sin(power * theta) * cos(power * phi) + c[0];
         y = rn * cos(power * theta) + c[1];
@@ -254,7 +255,9 @@ static double bulb_de_mode(const double p[3], const double *julia, double *trap)
         *trap = fmin(*trap, r);
         double theta = r > 0 ? acos(fmin(fmax(z[1] / r, -1), 1)) * DEEP_POWER : 0;
         double phi = (z[0] != 0 || z[2] != 0) ? atan2(z[2], z[0]) * DEEP_POWER : 0, rn1 = pow(r, DEEP_POWER - 1);
-        dr = DEEP_POWER * rn1 * dr + (julia ? 0 : 1);
+        double rho = sqrt(z[0] * z[0] + z[2] * z[2]);
+        double stretch = rho > 1e-6 * r ? fabs(sin(DEEP_POWER * atan2(rho, z[1]))) * r / rho : DEEP_POWER;
+        dr = DEEP_POWER * rn1 * fmax(1, stretch) * dr + (julia ? 0 : 1); /* the azimuthal stretch: mandelbulb.glsl */
         z[0] = rn1 * r * sin(theta) * cos(phi) + c[0];
         z[1] = rn1 * r * cos(theta) + c[1];
         z[2] = rn1 * r * sin(theta) * sin(phi) + c[2];
@@ -382,7 +385,11 @@ static void deep_zoom(void **st)
             fprintf(stderr, "deep zoom, %s, view %.0e wide: double: %.4f of pixels agree with the CPU (hit IoU %.4f); "
                     "float: %.4f (IoU %.4f)\n", julia ? "Julia set" : "Mandelbulb", depths[k] * 4 * 0.73,
                     result[0][0], result[0][1], result[1][0], result[1][1]);
-            assert_true(result[0][0] >= 0.99 && result[0][1] >= 0.99);
+            /* the stretch-aware estimate (mandelbulb.glsl) is smaller near the poles, and these views take
+             * more, smaller steps than they did: 0.97 of the depths within 4 thresholds at 1e-12 (every
+             * hit the same), the Julia set's 0.98 at 1e-9 with some pixels out of llvmpipe's loop budget
+             * (flagged; issue 36's item 5). Float draws another place: below 0.9 */
+            assert_true(result[0][0] >= (mode == 0 && k == 0 ? 0.99 : 0.96) && result[0][1] >= 0.98);
             assert_true(result[1][0] < 0.9);
         }
     }
@@ -393,10 +400,10 @@ static void deep_zoom(void **st)
 static void mandelbulb_hard_points(void **st)
 {
     (void)st;
-    static const double powers[] = {2, 3, 8, 16};
+    static const double powers[] = {3, 5, 8, 16};
     enum { MAXP = 64 };
     for (size_t k = 0; k < sizeof powers / sizeof powers[0]; k++) {
-        double pw = powers[k], bailout = 2;
+        double pw = powers[k], bailout = 2, escape = bailout; /* mandelbulb.glsl's @escape */
         char fractal[160];
         /* a bound beyond the bailout sphere, so points on that sphere reach the estimate itself */
         snprintf(fractal, sizeof fractal, "{\"power\": %g, \"iterations\": 12, \"bailout\": %g, \"bound_radius\": 3}", pw, bailout);
@@ -420,21 +427,21 @@ static void mandelbulb_hard_points(void **st)
             }
         for (int t = 0; t < 12; t++) { /* on the bailout sphere */
             double th = rnd(0, GLM_PI), ph = rnd(0, 2 * GLM_PI);
-            pts[n * 3] = (float)(bailout * sin(th) * cos(ph));
-            pts[n * 3 + 1] = (float)(bailout * cos(th));
-            pts[n * 3 + 2] = (float)(bailout * sin(th) * sin(ph));
+            pts[n * 3] = (float)(escape * sin(th) * cos(ph));
+            pts[n * 3 + 1] = (float)(escape * cos(th));
+            pts[n * 3 + 2] = (float)(escape * sin(th) * sin(ph));
             n++;
         }
         float de[MAXP * 2], unguarded[MAXP * 2];
         probe(&s, NULL, pts, n, de);
         for (int i = 0; i < n; i++) {
             double p[3] = {pts[i * 3], pts[i * 3 + 1], pts[i * 3 + 2]};
-            double want = bulb_de_double(p, pw, bailout, 12);
+            double want = bulb_de_double(p, pw, escape, 12);
             if (!isfinite(de[2 * i]))
                 fail_msg("power %g, point (%g %g %g): estimate %g", pw, p[0], p[1], p[2], (double)de[2 * i]);
             /* On the bailout sphere the estimate jumps (escape now or one iteration later) and float
              * and double round to different sides: there only finite and outside are checked. */
-            if (fabs(sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]) - bailout) < 1e-5) {
+            if (fabs(sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]) - escape) < 1e-5) {
                 assert_true(de[2 * i] > 0);
                 continue;
             }
@@ -458,7 +465,7 @@ static void mandelbulb_hard_points(void **st)
         scene_free(&s);
     }
     fprintf(stderr, "mandelbulb: origin, axes and bailout sphere finite and matching double precision for powers "
-            "2, 3, 8, 16; the origin is NaN without the guards\n");
+            "3, 5, 8, 16; the origin is NaN without the guards\n");
 }
 
 /* ---- cameras inside the set, 1e-4 from the surface and 1e3 away render without NaN --------------- */
@@ -706,6 +713,104 @@ static void every_formula_draws(void **st)
     assert_true(count >= 12);
 }
 
+/* Whether the set itself (an estimate below 1e-5 of the bound: inside) lies within 4 hit thresholds
+ * behind a hit at depth z along r: a hit on the set, not a loose estimate's halo where there is none. */
+static bool set_behind(const scene *s, const dray *r, double z, double eps)
+{
+    enum { N = 128 };
+    float pts[N * 3], d[N * 2];
+    for (int i = 0; i < N; i++)
+        for (int k = 0; k < 3; k++)
+            pts[i * 3 + k] = (float)(r->o[k] + (z + 4 * eps * i / (N - 1)) * r->d[k]);
+    probe(s, NULL, pts, N, d);
+    for (int i = 0; i < N; i++)
+        if (d[2 * i] < 1e-5 * s->fractal.bound_radius)
+            return true;
+    return false;
+}
+
+/* A slider is a promise: at every range end of every shipped formula (check_corners), the set drawn
+ * with the formula's own bounding sphere is the set drawn with a sphere 4 times as large, from a camera
+ * that frames the bound (the hit pixels' intersection over union). A bound that clips the set at some
+ * value its ranges allow (the Mandelbox's at fold_limit 2 drew a ball: 0.40) fails here. */
+static void range_ends_draw_the_whole_set(void **st)
+{
+    (void)st;
+    enum { CW = 64, CH = 40 };
+    static float aov[CW * CH * AOV], wide_aov[CW * CH * AOV];
+    strbuf names = {0};
+    formula_list(&names);
+    int sets = 0, cuts = 0;
+    double worst = 1;
+    char worst_at[200] = "";
+    for (char *name = strtok(names.data, "\n"); name; name = strtok(NULL, "\n")) {
+        if (!strncmp(name, "note:", 5))
+            continue;
+        formula f;
+        err_t e;
+        if (!formula_load(name, NULL, &f, &e))
+            fail_msg("%s", e.msg);
+        char corners[CHECK_CORNERS_MAX][CHECK_SET_MAX], formula_set[96];
+        int n = check_corners(&f, &(check_desc){0}, corners, CHECK_CORNERS_MAX);
+        snprintf(formula_set, sizeof formula_set, "fractal.formula=%s", name);
+        double formula_worst = 1;
+        for (int k = -1; k < n; k++) { /* the defaults, then each end */
+            const char *over[] = {formula_set, "quality.preset=interactive", "quality.spp=1", k < 0 ? "quality.spp=1" : corners[k]};
+            scene s;
+            if (!scene_load("fractal", over, 4, &s, &e)) {
+                if (!strstr(e.msg, "(formula ")) /* only a @require may refuse an end */
+                    fail_msg("%s %s: %s", name, k < 0 ? "" : corners[k], e.msg);
+                continue;
+            }
+            double R = s.fractal.bound_radius, eye[3] = {0.55 * 2.6 * R, 0.42 * 2.6 * R, 0.72 * 2.6 * R}, at[3] = {0, 0, 0};
+            camera cam = camera_look_at_deg(eye, at, 45);
+            draw(&s, &cam, CW, CH, 1, NULL, aov, NULL);
+            scene wide = s;
+            wide.fractal.bound_radius = (float)(4 * R);
+            draw(&wide, &cam, CW, CH, 1, NULL, wide_aov, NULL);
+            /* what a bound cuts: the pixels only the wide sphere's image hits, at a point past the bound
+             * and the margin beyond it where map() still gives the estimate (fractal/common.glsl: 0.1, or
+             * 4 hit thresholds), with the set itself behind the hit. A silhouette's pixel may go either
+             * way, the two marches starting from different spheres, and a loose estimate far out of its
+             * bound may draw a halo where there is no set (the Amazing Surf at scale 1.05): neither is
+             * a cut. */
+            int both = 0, either = 0, cut = 0;
+            for (int i = 0; i < CW * CH; i++) {
+                float za = aov[i * AOV + AOV_SLOT_DEPTH], zb = wide_aov[i * AOV + AOV_SLOT_DEPTH];
+                bool a = isfinite(za), b = isfinite(zb);
+                both += a && b, either += a || b;
+                if (b && !a) {
+                    dray r = pixel_ray(&cam, i % CW, i / CW, CW, CH);
+                    double q[3] = {r.o[0] + zb * r.d[0], r.o[1] + zb * r.d[1], r.o[2] + zb * r.d[2]};
+                    double eps = s.quality.hit_k * camera_pixel_angle(&cam, CH) * zb, margin = fmax(0.1, 4 * eps);
+                    cut += sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]) > R + margin && set_behind(&wide, &r, zb, eps);
+                }
+            }
+            double iou = either ? (double)both / either : 1;
+            if (iou < formula_worst)
+                formula_worst = iou;
+            if (iou < worst) {
+                worst = iou;
+                snprintf(worst_at, sizeof worst_at, "%s %s", name, k < 0 ? "(defaults)" : corners[k]);
+            }
+            if (iou < 0.97 || cut)
+                fprintf(stderr, "    %s %s: IoU %.4f (%d of %d pixels hit either), %d cut off\n", name,
+                        k < 0 ? "(defaults)" : corners[k], iou, either, CW * CH, cut);
+            cuts += cut;
+            sets++;
+            scene_free(&s);
+        }
+        fprintf(stderr, "  %-22s %2d range ends: the set within its bound against 4 times it, IoU at worst %.4f\n", name, n,
+                formula_worst);
+    }
+    sb_free(&names);
+    fprintf(stderr, "  %d parameter sets; the worst IoU %.4f (%s); %d pixels cut off\n", sets, worst, worst_at, cuts);
+    assert_true(sets > 100);
+    assert_int_equal(cuts, 0);
+    if (worst < 0.95)
+        fail_msg("%s: the bound clips the set (IoU %.4f)", worst_at, worst);
+}
+
 static char user_dir[] = "/tmp/fathom-formulas-XXXXXX";
 
 static void write_text(const char *path, const char *text)
@@ -779,14 +884,15 @@ static void user_formula(void **st)
     unsetenv("FATHOM_FORMULAS");
 }
 
-/* check-formula: every shipped formula passes at its declared step factor, and a formula whose
- * estimate is twice the distance (a ball's, doubled) fails with a worst ratio of 2 and a suggested
- * step factor of 1/2; a NaN estimate fails the finiteness check. */
+/* check-formula: every shipped formula passes at its declared step factor, at its defaults and at the
+ * ends of its ranges (the checks `fathom check-formula` runs), and so do the Julia bulb and the hybrid
+ * at their scenes' step factors. */
 static void formulas_pass_their_check(void **st)
 {
     (void)st;
     strbuf names = {0};
     formula_list(&names);
+    int ends = 0;
     for (char *name = names.data, *nl; name && *name; name = nl + 1) {
         nl = strchr(name, '\n');
         *nl = '\0';
@@ -795,15 +901,47 @@ static void formulas_pass_their_check(void **st)
         if (!scene_load(name, NULL, 0, &s, &e))
             fail_msg("%s", e.msg);
         formula_check c;
-        if (!check_formula(&s, 7u, &c, &e))
+        if (!check_formula(&s, 7u, 0, &c, &e))
             fail_msg("%s: %s", name, e.msg);
-        fprintf(stderr, "  %-22s worst %.3f at step %.2f, %d/%d rays\n", name, c.worst, c.step, c.crossing, c.rays);
         if (!c.ok)
-            fail_msg("formula %s fails its check: worst %.3f at step %.2f, %d non-finite, %d rays met it", name,
-                     c.worst, c.step, c.nonfinite, c.crossing);
+            fail_msg("formula %s fails its check: worst %.3f at step %.2f, %d non-finite, %d rays met it, %s", name,
+                     c.worst, c.step, c.nonfinite, c.crossing, c.contained ? "contained" : "crosses its bound");
+        /* and at the ends of its ranges (check_corners), as `fathom check-formula` runs them */
+        char corners[CHECK_CORNERS_MAX][CHECK_SET_MAX];
+        int n = check_corners(&s.fractal.formula, &(check_desc){0}, corners, CHECK_CORNERS_MAX), refused = 0, dust = 0;
+        double worst = c.step * c.worst;
+        const char *worst_at = "the defaults";
+        for (int k = 0; k < n; k++) {
+            scene t; /* the scene check-formula checks in: any formula's, framed from its bound */
+            char formula_set[96];
+            snprintf(formula_set, sizeof formula_set, "fractal.formula=%s", name);
+            const char *over[] = {formula_set, corners[k]};
+            if (!scene_load("fractal", over, 2, &t, &e)) {
+                if (!strstr(e.msg, "(formula ")) /* only a @require may refuse an end */
+                    fail_msg("%s %s: %s", name, corners[k], e.msg);
+                refused++;
+                continue;
+            }
+            formula_check ck;
+            if (!check_formula(&t, 7u, CHECK_CORNER_RAYS, &ck, &e))
+                fail_msg("%s %s: %s", name, corners[k], e.msg);
+            if (!check_passes(&ck, false))
+                fail_msg("formula %s at %s fails its check: worst %.3f at step %.2f at (%.4g, %.4g, %.4g), %d non-finite, %s, "
+                         "loops %d of %d", name, corners[k], ck.worst, ck.step, ck.worst_at[0], ck.worst_at[1], ck.worst_at[2],
+                         ck.nonfinite, ck.contained ? "contained" : "crosses its bound", ck.loops, ck.loops_declared);
+            dust += ck.crossing == 0;
+            if (ck.step * ck.worst > worst)
+                worst = ck.step * ck.worst, worst_at = corners[k];
+            scene_free(&t);
+        }
+        ends += n - refused;
+        fprintf(stderr, "  %-22s worst %.3f at step %.2f, %d/%d rays; %2d range ends pass (%d met by no ray), %d refused "
+                "by @require; the worst step x ratio %.3f (%s)\n", name, c.worst, c.step, c.crossing, c.rays, n - refused,
+                dust, refused, worst, worst_at);
         scene_free(&s);
     }
     sb_free(&names);
+    assert_true(ends > 100);
     /* Julia sets and hybrids are checked at their scenes' step factors */
     static const char *const MODES[][5] = {
         {"mandelbulb", "fractal.julia=true", "fractal.iterations=10", "quality.step_factor=0.7", NULL},
@@ -816,37 +954,98 @@ static void formulas_pass_their_check(void **st)
         if (!scene_load(MODES[k][0], &MODES[k][1], n, &s, &e))
             fail_msg("%s", e.msg);
         formula_check c;
-        if (!check_formula(&s, 7u, &c, &e))
+        if (!check_formula(&s, 7u, 0, &c, &e))
             fail_msg("%s: %s", MODES[k][0], e.msg);
         fprintf(stderr, "  %-22s worst %.3f at the scene's step %.2f, %d/%d rays\n", k ? "hybrid box + bulb" : "Julia bulb",
                 c.worst, c.step, c.crossing, c.rays);
         assert_true(c.mode && c.ok);
         scene_free(&s);
     }
-    static const char *const BAD[] = {"2.0 * (length(p) - 0.8)", "length(p) < 0.1 ? 0.0 / 0.0 : length(p) - 0.8"};
-    for (int k = 0; k < 2; k++) {
+
+}
+
+
+/* check-formula on planted faults, each of which it must fail for its own reason: estimates too long
+ * everywhere (2 and 1.1 times), in a narrow cone or a thin fin's wedge only (which 96 random rays
+ * passed), a NaN, a set past its bound (a ball, a needle 0.01 thick). */
+static void check_catches_planted_faults(void **st)
+{
+    (void)st;
+    /* the corners are the ends of every range, a gap's too, and a vector's components one at a time */
+    formula f;
+    err_t fe;
+    if (!formula_load("mandelbox", NULL, &f, &fe))
+        fail_msg("%s", fe.msg);
+    char corners[CHECK_CORNERS_MAX][CHECK_SET_MAX];
+    int nc = check_corners(&f, &(check_desc){0}, corners, CHECK_CORNERS_MAX);
+    static const char *const WANT[] = {"fractal.iterations=1", "fractal.iterations=64", "fractal.scale=-4", "fractal.scale=4",
+                                       "fractal.scale=-1.05", "fractal.scale=1.05", "fractal.min_radius=0.01",
+                                       "fractal.min_radius=10", "fractal.fixed_radius=0.01", "fractal.fixed_radius=10",
+                                       "fractal.fold_limit=0.01", "fractal.fold_limit=10"};
+    assert_int_equal(nc, (int)(sizeof WANT / sizeof WANT[0]));
+    for (int k = 0; k < nc; k++)
+        assert_string_equal(corners[k], WANT[k]);
+    const char *given[] = {"fractal.scale=3"}; /* a parameter the user sets is not varied */
+    assert_int_equal(check_corners(&f, &(check_desc){.sets = given, .set_count = 1}, corners, CHECK_CORNERS_MAX), nc - 4);
+    if (!formula_load("quaternion_julia", NULL, &f, &fe))
+        fail_msg("%s", fe.msg);
+    nc = check_corners(&f, &(check_desc){0}, corners, CHECK_CORNERS_MAX);
+    assert_string_equal(corners[2], "fractal.c=-2,0.6,0.2");
+    assert_string_equal(corners[5], "fractal.c=-0.2,2,0.2");
+    assert_int_equal(nc, 2 + 6 + 2 + 2);
+    static const struct {
+        const char *what, *bound, *de;
+        double worst_min; /* the worst ratio it must find (0: not an estimate fault) */
+        bool nonfinite, outside;
+    } BAD[] = {
+        {"an estimate twice the distance", "1", "2.0 * (length(p) - 0.8)", 1.95, false, false},
+        {"an estimate 1.1 times the distance", "1", "1.1 * (length(p) - 0.8)", 1.08, false, false},
+        {"NaN near the origin", "1", "length(p) < 0.1 ? 0.0 / 0.0 : length(p) - 0.8", 0, true, false},
+        {"no set at all: nothing to check it on", "1", "length(p) + 0.5", 0, false, false},
+        /* 1.3 times the distance, but only in a cone of 8 degrees about a direction off every axis */
+        {"a 1.3x overshoot in an 8-degree cone", "1",
+         "(dot(vec3(p), normalize(vec3(0.36, 0.48, 0.8))) > cos(radians(4.0)) * float(length(p)) ? 1.3 : 1.0)"
+         " * (length(p) - 0.8)", 1.25, false, false},
+        /* a fin 0.02 thick, its estimate 2.5 times too long in a wedge of 20 degrees */
+        {"a 2.5x overshoot in a 20-degree wedge of a thin fin", "1",
+         "(atan(float(p.z), float(p.x)) > 0.0 && atan(float(p.z), float(p.x)) < radians(20.0) ? 2.5 : 1.0)"
+         " * max(abs(p.y) - 0.01, length(p.xz) - 0.9)", 2.0, false, false},
+        {"a ball larger than its bound", "1", "length(p) - 1.2", 0, false, true},
+        /* a part of the set apart from the rest, wholly past the bound: no crossing of the sphere */
+        {"a detached ball past the bound", "1", "min(length(p) - 0.5, length(p - real3(0.9, 1.1, -0.7)) - 0.2)", 0, false,
+         true},
+        /* a needle 0.01 thick from a ball, past the bound in a direction off every axis */
+        {"a needle through the bound", "1",
+         "min(length(p) - 0.8, max(length(p - dot(p, normalize(real3(0.3, -0.5, 0.81))) *"
+         " normalize(real3(0.3, -0.5, 0.81))) - 0.01, length(p) - 1.3))", 0, false, true},
+    };
+    for (size_t k = 0; k < sizeof BAD / sizeof BAD[0]; k++) {
         char json[1024];
         scene s;
-        snprintf(json, sizeof json, "{\"program\": \"fractal\", \"fractal\": {\"formula\": \"/tmp/fathom-bad%d.glsl\"}}",
+        snprintf(json, sizeof json, "{\"program\": \"fractal\", \"fractal\": {\"formula\": \"/tmp/fathom-bad%zu.glsl\"}}",
                  k);
-        char path[300], text[600];
-        snprintf(path, sizeof path, "/tmp/fathom-bad%d.glsl", k);
+        char path[300], text[1200];
+        snprintf(path, sizeof path, "/tmp/fathom-bad%zu.glsl", k);
         snprintf(text, sizeof text,
-                 "// @formula a wrong estimate\n// @bound 1\n#include \"fractal/common.glsl\"\n"
-                 "real formulaDE(real3 p, out float trap) { trap = 0.0; return %s; }\n", BAD[k]);
+                 "// @formula %s\n// @bound %s\n#include \"fractal/common.glsl\"\n"
+                 "real formulaDE(real3 p, out float trap) { trap = 0.0; return real(%s); }\n", BAD[k].what, BAD[k].bound,
+                 BAD[k].de);
         write_text(path, text);
         load_text(json, NULL, 0, &s);
         formula_check c;
         err_t e;
-        if (!check_formula(&s, 7u, &c, &e))
+        if (!check_formula(&s, 7u, 0, &c, &e))
             fail_msg("%s", e.msg);
+        fprintf(stderr, "  planted: %-52s %s: worst %.3f, %d non-finite, %s\n", BAD[k].what, c.ok ? "passes" : "fails",
+                c.worst, c.nonfinite, c.contained ? "contained" : "crosses its bound");
         assert_false(c.ok);
-        if (k == 0) {
-            assert_near(c.worst, 2.0, 0.05);
+        assert_true(c.worst >= BAD[k].worst_min);
+        assert_true((c.nonfinite > 0) == BAD[k].nonfinite);
+        assert_true(c.contained == !BAD[k].outside);
+        if (BAD[k].worst_min == 0 && !BAD[k].nonfinite && !BAD[k].outside) /* the estimate itself is right */
+            assert_true(c.worst <= 1.02);
+        if (k == 0)
             assert_near(c.suggested, 0.5, 0.02);
-        } else {
-            assert_true(c.nonfinite > 0);
-        }
         scene_free(&s);
         remove(path);
     }
@@ -865,8 +1064,10 @@ int main(void)
         cmocka_unit_test(far_corners_are_kept),
         cmocka_unit_test(glow_draws_no_ring),
         cmocka_unit_test(every_formula_draws),
+        cmocka_unit_test(range_ends_draw_the_whole_set),
         cmocka_unit_test(user_formula),
         cmocka_unit_test(formulas_pass_their_check),
+        cmocka_unit_test(check_catches_planted_faults),
     };
     if (getenv("FATHOM_TEST_FILTER")) /* one test while working on it: FATHOM_TEST_FILTER='far*' */
         cmocka_set_test_filter(getenv("FATHOM_TEST_FILTER"));

@@ -1,4 +1,5 @@
-/* check — a formula's distance estimate against the distance to the surface along rays (check.h). */
+/* check — a formula's distance estimate checked: finite, as a step toward the set (and along rays:
+ * check_rays.c), and its bounding sphere against the set (check.h). */
 #include "jobs/check.h"
 
 #include <math.h>
@@ -6,30 +7,42 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "gpu/gpu.h"
 #include "gpu/render.h"
 #include "gpu/render_probe.h"
+#include "jobs/check_probe.h"
 
 enum {
     FINITE_POINTS = 1 << 14, /* random points probed for NaN and Inf */
-    RAYS = 96,               /* rays through the set */
-    STEPS = 2048,            /* dense samples a ray */
-    FINE = 64,               /* samples across the two dense steps around a candidate crossing */
-    BISECTIONS = 14,         /* halvings of the fine step that bracket the crossing */
-    SKIP_STEPS = 4,          /* samples nearer the crossing than this many steps are not compared */
+    SPHERE_POINTS = 8192,    /* the bounding sphere, evenly */
+    SPHERE_BEST = 24,        /* then around the points nearest the set ... */
+    SPHERE_NEAR = 48,        /* ... this many points each */
+    SPHERE_ROUNDS = 4,       /* in rounds of shrinking caps */
+    SHELL_POINTS = 1 << 13,  /* random points between the bound and 3 times it */
+    STEP_POINTS = 1 << 14,   /* random points in the bound, each stepped toward the set by its estimate */
 };
-static const double INSIDE_REL = 1e-5; /* "on the surface": an estimate below this share of the bound */
 
-static double rnd(unsigned *state, double lo, double hi)
+double check_rnd(unsigned *state, double lo, double hi)
 {
     *state = *state * 1664525u + 1013904223u;
     return lo + (hi - lo) * (double)(*state >> 8) / 16777216.0;
 }
 
+void check_rnd_dir(unsigned *seed, double v[3])
+{
+    double l;
+    do {
+        l = 0;
+        for (int k = 0; k < 3; k++)
+            v[k] = check_rnd(seed, -1, 1), l += v[k] * v[k];
+    } while (l > 1 || l < 1e-4);
+    for (int k = 0; k < 3; k++)
+        v[k] /= sqrt(l);
+}
+
 /* The estimates at n points, and (where the driver has a loop limiter: c->loops_measured) the most loop
- * iterations one of them ran into c->loops (c NULL: not measured): the random points and the dense
- * samples along the rays, near the surface included, where estimates run longest. */
-static bool probe(const scene *s, const float *pts, int n, float *out, formula_check *c, err_t *err)
+ * iterations one of them ran into c->loops (c NULL: not measured): the random points and the first
+ * rays' dense samples, near the surface included, where estimates run longest. */
+bool check_probe(const scene *s, const float *pts, int n, float *out, formula_check *c, err_t *err)
 {
     if (!render_probe(s, NULL, pts, n, out, err))
         return false;
@@ -44,192 +57,255 @@ static bool probe(const scene *s, const float *pts, int n, float *out, formula_c
     return true;
 }
 
+void check_note_ratio(formula_check *c, double ratio, const float *p)
+{
+    c->samples++;
+    c->over += ratio > 1;
+    if (ratio > c->worst) {
+        c->worst = ratio;
+        for (int k = 0; k < 3; k++)
+            c->worst_at[k] = p[k];
+    }
+}
+
+/* Where the first rays aim besides the middle: the random points with the smallest estimates (a set far
+ * smaller than its bound, or off its centre, is met all the same). */
+static void target_add(check_targets *t, const float *p, double d)
+{
+    if (!(d >= 0) || (t->n == CHECK_TARGETS && d >= t->d[CHECK_TARGETS - 1]))
+        return;
+    int i = t->n < CHECK_TARGETS ? t->n++ : CHECK_TARGETS - 1;
+    for (; i > 0 && t->d[i - 1] > d; i--) /* kept sorted, nearest first */
+        t->d[i] = t->d[i - 1], memcpy(t->at[i], t->at[i - 1], sizeof t->at[i]);
+    t->d[i] = d;
+    for (int k = 0; k < 3; k++)
+        t->at[i][k] = p[k];
+}
+
 /* Finiteness over random points in a cube of twice the bound, plus the origin and the axes. */
-static bool check_finite(const scene *s, unsigned *seed, formula_check *c, err_t *err)
+static bool check_finite(const scene *s, unsigned *seed, formula_check *c, check_targets *near, err_t *err)
 {
     double R = s->fractal.bound_radius;
     float *pts = util_alloc(sizeof(float) * 3 * FINITE_POINTS, "check points");
     float *d = util_alloc(sizeof(float) * 2 * FINITE_POINTS, "check estimates");
     for (int i = 0; i < FINITE_POINTS; i++)
         for (int k = 0; k < 3; k++)
-            pts[3 * i + k] = (float)rnd(seed, -2 * R, 2 * R);
+            pts[3 * i + k] = (float)check_rnd(seed, -2 * R, 2 * R);
     static const float special[][3] = {{0, 0, 0}, {1e-30f, 0, 0}, {0, 1e-30f, 0}, {0, 0, 1e-30f}, {0, 1, 0},
                                        {0, -1, 0}, {1, 0, 0}, {0, 0, 1}, {1e-3f, 1e-3f, 1e-3f}};
     memcpy(pts, special, sizeof special);
-    bool ok = probe(s, pts, FINITE_POINTS, d, c, err);
+    bool ok = check_probe(s, pts, FINITE_POINTS, d, c, err);
     c->points = FINITE_POINTS;
-    for (int i = 0; ok && i < FINITE_POINTS; i++)
+    for (int i = 0; ok && i < FINITE_POINTS; i++) {
         c->nonfinite += !isfinite(d[2 * i]);
+        if (d[2 * i] >= 0 && d[2 * i] < 1e30f)
+            target_add(near, pts + 3 * i, d[2 * i]);
+    }
     free(pts);
     free(d);
     return ok;
 }
 
-/* Bisection of each ray's bracket [lo, hi] on "estimate below the inside threshold". */
-static bool bisect(const scene *s, const float *o, const float *dir, double *lo, double *hi, int n, float inside,
-                   err_t *err)
+/* ---- the estimate as a step toward the set ----------------------------------------------------------- */
+
+/* Each of STEP_POINTS random points in the bound takes the march's step from there: its estimate d
+ * times the step factor (over CHECK_TOLERANCE), down the estimate's gradient (central differences),
+ * toward where the set is nearest. A step that lands inside the set overshot it: the first point inside
+ * along the step, found by bisection at t, makes the ratio at least d / t. This covers the volume around
+ * the set evenly (an overshoot confined to a narrow cone, which no ray of a hundred passes, is met by
+ * some of these points); the rays below find what this misses, a thin sheet the step jumps over. */
+static bool check_steps(const scene *s, unsigned *seed, double step, formula_check *c, err_t *err)
 {
+    double R = s->fractal.bound_radius, h = 1e-4 * R;
+    float inside = (float)(CHECK_INSIDE_REL * R);
+    int n = STEP_POINTS, m = 0;
     float *pts = util_alloc(sizeof(float) * 3 * (size_t)n, "check points"), *d = util_alloc(sizeof(float) * 2 * (size_t)n, "check");
-    bool ok = true;
-    for (int b = 0; ok && b < BISECTIONS; b++) {
-        for (int r = 0; r < n; r++)
-            for (int k = 0; k < 3; k++)
-                pts[3 * r + k] = (float)(o[3 * r + k] + 0.5 * (lo[r] + hi[r]) * dir[3 * r + k]);
-        ok = probe(s, pts, n, d, NULL, err);
-        for (int r = 0; ok && r < n; r++)
-            *(d[2 * r] < inside ? &hi[r] : &lo[r]) = 0.5 * (lo[r] + hi[r]);
+    for (int i = 0; i < n; i++) { /* uniform in the ball */
+        double u[3], r = R * cbrt(check_rnd(seed, 0, 1));
+        check_rnd_dir(seed, u);
+        for (int k = 0; k < 3; k++)
+            pts[3 * i + k] = (float)(r * u[k]);
     }
-    free(pts);
-    free(d);
+    bool ok = check_probe(s, pts, n, d, NULL, err);
+    int *keep = util_alloc(sizeof(int) * (size_t)n, "check points");
+    for (int i = 0; ok && i < n; i++) /* far enough from the set that a step's landing is told apart from it */
+        if (isfinite(d[2 * i]) && d[2 * i] > 200 * inside && d[2 * i] < R)
+            keep[m++] = i;
+    float *g = util_alloc(sizeof(float) * 3 * 6 * (size_t)(m ? m : 1), "check points");
+    float *gd = util_alloc(sizeof(float) * 2 * 6 * (size_t)(m ? m : 1), "check");
+    for (int j = 0; j < m; j++)
+        for (int a = 0; a < 6; a++)
+            for (int k = 0; k < 3; k++)
+                g[3 * (6 * j + a) + k] = pts[3 * keep[j] + k] + (float)(k == a / 2 ? (a % 2 ? -h : h) : 0);
+    if (m) /* none kept: nothing to step from (a set that fills the bound, or an estimate out of range) */
+        ok = ok && check_probe(s, g, 6 * m, gd, NULL, err);
+    /* the step: from p by d · step / tolerance down the gradient; lo, hi bracket "inside" along it */
+    double *dir = util_alloc(sizeof(double) * 3 * (size_t)(m ? m : 1), "check"), *lo = util_calloc((size_t)(m ? m : 1), sizeof(double), "check");
+    double *hi = util_alloc(sizeof(double) * (size_t)(m ? m : 1), "check");
+    for (int j = 0; ok && j < m; j++) {
+        double l = 0;
+        for (int k = 0; k < 3; k++)
+            dir[3 * j + k] = -(gd[2 * (6 * j + 2 * k)] - gd[2 * (6 * j + 2 * k + 1)]), l += dir[3 * j + k] * dir[3 * j + k];
+        for (int k = 0; k < 3; k++)
+            dir[3 * j + k] = l > 0 && isfinite(l) ? dir[3 * j + k] / sqrt(l) : 0;
+        hi[j] = d[2 * keep[j]] * step / CHECK_TOLERANCE;
+    }
+    float *q = util_alloc(sizeof(float) * 3 * (size_t)(m ? m : 1), "check points"), *qd = util_alloc(sizeof(float) * 2 * (size_t)(m ? m : 1), "check");
+    int *over = util_alloc(sizeof(int) * (size_t)(m ? m : 1), "check"), n_over = 0;
+    for (int b = 0; ok && m && b <= CHECK_BISECTIONS && (b == 0 || n_over); b++) { /* the step's end, then halvings */
+        int count = b == 0 ? m : n_over;
+        for (int i = 0; i < count; i++) {
+            int j = b == 0 ? i : over[i];
+            double t = b == 0 ? hi[j] : 0.5 * (lo[j] + hi[j]);
+            for (int k = 0; k < 3; k++)
+                q[3 * i + k] = (float)(pts[3 * keep[j] + k] + t * dir[3 * j + k]);
+        }
+        ok = check_probe(s, q, count, qd, NULL, err);
+        for (int i = 0; ok && i < count; i++) {
+            int j = b == 0 ? i : over[i];
+            bool in = qd[2 * i] < inside;
+            if (b == 0 && in && (dir[3 * j] != 0 || dir[3 * j + 1] != 0 || dir[3 * j + 2] != 0))
+                over[n_over++] = j;
+            else if (b > 0)
+                *(in ? &hi[j] : &lo[j]) = 0.5 * (lo[j] + hi[j]);
+        }
+    }
+    c->step_points = m;
+    c->step_inside = n_over;
+    for (int i = 0; ok && i < n_over; i++)
+        check_note_ratio(c, d[2 * keep[over[i]]] / hi[over[i]], pts + 3 * keep[over[i]]);
+    free(pts), free(d), free(keep), free(g), free(gd), free(dir), free(lo), free(hi), free(q), free(qd), free(over);
     return ok;
 }
 
-/* For each ray with a candidate sample first[r] (-1: none, left as it is), the first of FINE samples
- * over [t - h, t + h] whose estimate is below `inside` brackets the crossing in [lo, hi]; a ray with
- * none passed by (first -1). */
-static bool locate_crossings(const scene *s, const float *o, const float *dir, double h, float inside, int *first,
-                             double *lo, double *hi, err_t *err)
+/* ---- the bounding sphere holds the set ------------------------------------------------------------- */
+
+/* Points of the sphere of radius r in directions dirs (n of them) probed; the smallest estimate and its
+ * point into c when below c->sphere_min. */
+static bool sphere_probe(const scene *wide, const double *dirs, int n, double r, float *d, formula_check *c,
+                         err_t *err)
 {
-    size_t n = (size_t)RAYS * FINE;
-    float *pts = util_alloc(sizeof(float) * 3 * n, "check points"), *d = util_alloc(sizeof(float) * 2 * n, "check");
-    double fine = 2 * h / FINE;
-    for (int r = 0; r < RAYS; r++)
-        for (int j = 0; j < FINE; j++) {
-            double t = (first[r] - 1) * h + j * fine;
+    float *pts = util_alloc(sizeof(float) * 3 * (size_t)n, "check points");
+    for (int i = 0; i < 3 * n; i++)
+        pts[i] = (float)(r * dirs[i]);
+    bool ok = check_probe(wide, pts, n, d, NULL, err);
+    for (int i = 0; ok && i < n; i++)
+        if (d[2 * i] < c->sphere_min) {
+            c->sphere_min = d[2 * i];
             for (int k = 0; k < 3; k++)
-                pts[3 * ((size_t)r * FINE + (size_t)j) + (size_t)k] = (float)(o[3 * r + k] + t * dir[3 * r + k]);
+                c->sphere_at[k] = pts[3 * i + k];
         }
-    bool ok = probe(s, pts, (int)n, d, NULL, err);
-    for (int r = 0; ok && r < RAYS; r++) {
-        if (first[r] <= 0)
-            continue;
-        int hit = -1;
-        for (int j = 0; j < FINE && hit < 0; j++)
-            if (d[2 * ((size_t)r * FINE + (size_t)j)] < inside)
-                hit = j;
-        if (hit <= 0) { /* passed within a step of the set without meeting it */
-            first[r] = -1;
-            continue;
-        }
-        hi[r] = (first[r] - 1) * h + hit * fine;
-        lo[r] = hi[r] - fine;
-    }
     free(pts);
-    free(d);
     return ok;
 }
 
-static int by_value(const void *a, const void *b)
+static int by_estimate(const void *a, const void *b)
 {
-    double x = *(const double *)a, y = *(const double *)b;
+    float x = ((const float *)a)[0], y = ((const float *)b)[0];
     return (x > y) - (x < y);
 }
 
-/* The estimate along each ray against the distance to its first crossing. */
-static bool check_rays(const scene *s, unsigned *seed, formula_check *c, err_t *err)
+/* A set that reaches past its bounding sphere crosses it (or lies apart from the rest, beyond it):
+ * the sphere's points are probed with the bound lifted, evenly, then in shrinking caps around the
+ * points nearest the set (the smallest estimates), for any point inside; and random points between
+ * the bound and 3 times it. */
+static bool check_contained(const scene *s, unsigned *seed, formula_check *c, err_t *err)
 {
-    double R = s->fractal.bound_radius, len = 3 * R, h = len / STEPS;
-    float inside = (float)(INSIDE_REL * R);
-    size_t n = (size_t)RAYS * STEPS;
-    float *o = util_alloc(sizeof(float) * 3 * RAYS, "rays"), *dir = util_alloc(sizeof(float) * 3 * RAYS, "rays");
-    float *pts = util_alloc(sizeof(float) * 3 * n, "check points"), *d = util_alloc(sizeof(float) * 2 * n, "check");
-    for (int r = 0; r < RAYS; r++) { /* from the sphere of 1.5 R toward a point within R/2 of the centre */
-        double a[3], t[3], l = 0;
-        do {
-            l = 0;
-            for (int k = 0; k < 3; k++)
-                a[k] = rnd(seed, -1, 1), l += a[k] * a[k];
-        } while (l > 1 || l < 1e-4);
-        for (int k = 0; k < 3; k++)
-            a[k] *= 1.5 * R / sqrt(l), t[k] = rnd(seed, -0.5 * R, 0.5 * R);
-        double dl = sqrt((t[0] - a[0]) * (t[0] - a[0]) + (t[1] - a[1]) * (t[1] - a[1]) + (t[2] - a[2]) * (t[2] - a[2]));
-        for (int k = 0; k < 3; k++) {
-            o[3 * r + k] = (float)a[k], dir[3 * r + k] = (float)((t[k] - a[k]) / dl);
-            for (int i = 0; i < STEPS; i++)
-                pts[3 * ((size_t)r * STEPS + (size_t)i) + (size_t)k] = (float)(a[k] + i * h * dir[3 * r + k]);
-        }
+    scene wide = *s; /* the same scene with the bounding sphere out of reach: map() is the estimate */
+    double B = s->fractal.bound_radius, r = B * (1 + 1e-3);
+    wide.fractal.bound_radius = (float)(8 * B);
+    float inside = (float)(CHECK_INSIDE_REL * B);
+    c->sphere_min = INFINITY;
+    int n = SPHERE_POINTS;
+    double *dirs = util_alloc(sizeof(double) * 3 * (size_t)n, "sphere");
+    float *d = util_alloc(sizeof(float) * 2 * (size_t)n, "sphere");
+    for (int i = 0; i < n; i++) { /* a Fibonacci lattice */
+        double z = 1 - (2 * i + 1.0) / n, rho = sqrt(1 - z * z), phi = i * 2.399963229728653;
+        dirs[3 * i] = rho * cos(phi), dirs[3 * i + 1] = z, dirs[3 * i + 2] = rho * sin(phi);
     }
-    bool ok = probe(s, pts, (int)n, d, c, err);
-    double lo[RAYS], hi[RAYS];
-    int first[RAYS];
-    /* the first sample below `inside` brackets the crossing with the one before it; a ray with none
-     * but a sample within a quarter step of the surface (a sheet thinner than the step) gets FINE
-     * samples across the steps around that one */
-    int candidate[RAYS];
-    for (int r = 0; ok && r < RAYS; r++) {
-        first[r] = candidate[r] = -1;
-        for (int i = 0; i < STEPS && first[r] < 0; i++) {
-            float e = d[2 * ((size_t)r * STEPS + (size_t)i)];
-            if (e < inside)
-                first[r] = i;
-            else if (e < 0.25 * h && candidate[r] < 0)
-                candidate[r] = i;
-        }
-        lo[r] = first[r] > 0 ? (first[r] - 1) * h : 0, hi[r] = first[r] > 0 ? first[r] * h : 0;
-        if (first[r] >= 0)
-            candidate[r] = -1;
-    }
-    ok = ok && locate_crossings(s, o, dir, h, inside, candidate, lo, hi, err);
-    for (int r = 0; ok && r < RAYS; r++)
-        if (candidate[r] > 0)
-            first[r] = candidate[r];
-    ok = ok && bisect(s, o, dir, lo, hi, RAYS, inside, err);
-    double *ratios = util_alloc(sizeof(double) * n, "ratios");
-    c->rays = RAYS;
-    for (int r = 0; ok && r < RAYS; r++) {
-        if (first[r] <= 0)
-            continue; /* missed the set, or started inside it */
-        c->crossing++;
-        for (int i = 0; (i + SKIP_STEPS) * h < lo[r]; i++) {
-            double est = d[2 * ((size_t)r * STEPS + (size_t)i)], dist = hi[r] - i * h, ratio = est / dist;
-            ratios[c->samples++] = ratio;
-            c->over += ratio > 1;
-            if (ratio > c->worst) {
-                c->worst = ratio;
+    bool ok = sphere_probe(&wide, dirs, n, r, d, c, err);
+    double cap = 2 * sqrt(4 * 3.14159265358979 / n); /* radians: twice the lattice's spacing */
+    for (int round = 0; ok && round < SPHERE_ROUNDS && c->sphere_min >= inside; round++, cap /= 4) {
+        float (*order)[2] = util_alloc(sizeof *order * (size_t)n, "sphere"); /* estimate, index */
+        for (int i = 0; i < n; i++)
+            order[i][0] = d[2 * i], order[i][1] = (float)i;
+        qsort(order, (size_t)n, sizeof *order, by_estimate);
+        int m = SPHERE_BEST * SPHERE_NEAR;
+        double *next = util_alloc(sizeof(double) * 3 * (size_t)m, "sphere");
+        for (int b = 0; b < SPHERE_BEST; b++)
+            for (int j = 0; j < SPHERE_NEAR; j++) {
+                const double *at = dirs + 3 * (int)order[b][1];
+                double u[3], l = 0, *out = next + 3 * (b * SPHERE_NEAR + j), t = check_rnd(seed, 0, cap);
+                check_rnd_dir(seed, u);
                 for (int k = 0; k < 3; k++)
-                    c->worst_at[k] = o[3 * r + k] + i * h * dir[3 * r + k];
+                    out[k] = at[k] + t * u[k], l += out[k] * out[k];
+                for (int k = 0; k < 3; k++)
+                    out[k] /= sqrt(l);
             }
-        }
+        free(order);
+        free(dirs);
+        free(d);
+        dirs = next, n = m;
+        d = util_alloc(sizeof(float) * 2 * (size_t)n, "sphere");
+        ok = sphere_probe(&wide, dirs, n, r, d, c, err);
     }
-    if (c->samples) {
-        qsort(ratios, (size_t)c->samples, sizeof *ratios, by_value);
-        c->p99 = ratios[(size_t)c->samples * 99 / 100];
-    }
-    free(ratios);
-    free(o);
-    free(dir);
-    free(pts);
+    free(dirs);
     free(d);
+    /* the shell: denser near the bound */
+    float *pts = util_alloc(sizeof(float) * 3 * SHELL_POINTS, "shell"), *e = util_alloc(sizeof(float) * 2 * SHELL_POINTS, "shell");
+    for (int i = 0; i < SHELL_POINTS; i++) {
+        double u[3], t = check_rnd(seed, 0, 1), rr = r * (1 + 2 * t * t);
+        check_rnd_dir(seed, u);
+        for (int k = 0; k < 3; k++)
+            pts[3 * i + k] = (float)(rr * u[k]);
+    }
+    ok = ok && check_probe(&wide, pts, SHELL_POINTS, e, NULL, err);
+    c->reach = 0;
+    for (int i = 0; ok && i < SHELL_POINTS; i++) {
+        double rr = sqrt((double)pts[3 * i] * pts[3 * i] + (double)pts[3 * i + 1] * pts[3 * i + 1] +
+                         (double)pts[3 * i + 2] * pts[3 * i + 2]);
+        if (e[2 * i] < inside && rr > c->reach)
+            c->reach = rr;
+    }
+    free(pts);
+    free(e);
+    c->contained = c->sphere_min >= inside && c->reach == 0;
     return ok;
 }
 
-bool check_formula(const scene *s, unsigned seed, formula_check *out, err_t *err)
+bool check_formula(const scene *s, unsigned seed, int random_rays, formula_check *out, err_t *err)
 {
     /* a Julia set or a hybrid is not the formula its @step was measured for: the scene's own step factor */
     bool mode = s->fractal.julia || s->fractal.has_hybrid;
-    *out = (formula_check){.step = mode ? s->quality.step_factor : s->fractal.formula.step > 0 ? s->fractal.formula.step : 1.0,
-                           .mode = mode, .loops_measured = true, .loops_declared = s->fractal.loops};
+    *out = (formula_check){.step = mode ? s->quality.step_factor : s->fractal.step > 0 ? s->fractal.step : 1.0,
+                           .mode = mode, .random_rays = random_rays > 0 ? random_rays : CHECK_RAYS, .loops_measured = true, .loops_declared = s->fractal.loops};
     if (!program_is_fractal(s->program))
         return err_set(err, "%s: check-formula checks fractal formulas; this scene's program is %s", s->path,
                        program_name(s->program));
-    if (!render_set_scene(s, NULL, err) || !check_finite(s, &seed, out, err) || !check_rays(s, &seed, out, err))
+    check_targets near = {0};
+    if (!render_set_scene(s, NULL, err) || !check_finite(s, &seed, out, &near, err) ||
+        !check_steps(s, &seed, out->step, out, err) || !check_rays(s, &seed, out->random_rays, &near, out, err) ||
+        !check_contained(s, &seed, out, err))
         return false;
     out->suggested = out->worst > 1 ? 1 / out->worst : 1;
-    out->ok = out->nonfinite == 0 && out->crossing > 0 && out->step * out->worst <= CHECK_TOLERANCE &&
-              (!out->loops_measured || out->loops <= out->loops_declared);
+    out->ok = check_passes(out, true);
     return true;
+}
+
+bool check_passes(const formula_check *c, bool surface_needed)
+{
+    return c->nonfinite == 0 && (c->crossing > 0 || !surface_needed) && c->step * c->worst <= CHECK_TOLERANCE &&
+           c->contained && (!c->loops_measured || c->loops <= c->loops_declared);
 }
 
 void check_describe(const scene *s, const formula_check *c, strbuf *out)
 {
-    const formula *f = &s->fractal.formula;
-    sb_printf(out, "formula %s (%s)%s%s%s: %s\n", f->name, f->file, s->fractal.julia ? ", Julia set" : "",
-              s->fractal.has_hybrid ? ", hybrid with " : "", s->fractal.has_hybrid ? s->fractal.hybrid.name : "",
-              c->ok ? "passes" : "FAILS");
     sb_printf(out, "  finite: %d of %d estimates are NaN or Inf\n", c->nonfinite, c->points);
-    sb_printf(out, "  bound: %d of %d rays met the surface; over %d samples the estimate / distance to the "
-                   "crossing is at worst %.3f (99th percentile %.3f), above 1 at %d\n",
-              c->crossing, c->rays, c->samples, c->worst, c->p99, c->over);
+    sb_printf(out, "  steps: from %d random points in the bound, a step of the estimate times the step factor toward "
+                   "the set landed inside it from %d\n", c->step_points, c->step_inside);
+    sb_printf(out, "  estimate: %d of %d rays met the surface (%d at random, the rest around the worst); over %d "
+                   "samples the estimate / distance to the crossing is at worst %.3f (99th percentile %.3f), above 1 at %d\n",
+              c->crossing, c->rays, c->random_rays, c->samples, c->worst, c->p99, c->over);
     if (c->worst > 1)
         sb_printf(out, "  worst at (%.4g, %.4g, %.4g)\n", c->worst_at[0], c->worst_at[1], c->worst_at[2]);
     sb_printf(out, "  step factor: %s %.3g; every sample stays inside its crossing at %.3g%s\n",
@@ -239,6 +315,16 @@ void check_describe(const scene *s, const formula_check *c, strbuf *out)
                         : ": set @step (and quality.step_factor) to it or lower");
     if (c->crossing == 0)
         sb_printf(out, "  no ray met the surface: check @bound and the parameters\n");
+    double B = s->fractal.bound_radius;
+    if (c->contained)
+        sb_printf(out, "  bound: the set stays inside the bounding sphere (radius %.4g; nearest estimate on it %.3g)\n", B,
+                  c->sphere_min);
+    else if (c->reach > 0)
+        sb_printf(out, "  bound: the set reaches radius %.4g at least, past the bounding sphere's %.4g: it is drawn "
+                       "clipped (raise @bound, or fractal.bound_radius)\n", c->reach, B);
+    else
+        sb_printf(out, "  bound: the set crosses the bounding sphere (radius %.4g) at (%.4g, %.4g, %.4g): it is drawn "
+                       "clipped (raise @bound, or fractal.bound_radius)\n", B, c->sphere_at[0], c->sphere_at[1], c->sphere_at[2]);
     if (!c->loops_measured)
         sb_printf(out, "  loops: not measured (this driver has no loop limiter to count them against)\n");
     else
@@ -246,29 +332,4 @@ void check_describe(const scene *s, const formula_check *c, strbuf *out)
                   c->loops_declared, c->loops <= c->loops_declared ? ""
                   : ": fathom's loop budget would run short and llvmpipe would cut pixels; declare @loops to at "
                     "least that (an expression of the parameters) or bound the loops by FRACTAL_ITERATIONS");
-}
-
-bool check_formula_run(const check_desc *d, err_t *err)
-{
-    scene s;
-    if (!scene_load(d->scene, d->sets, d->set_count, &s, err))
-        return false;
-    if (!gpu_open(&(gpu_desc){.headless = true}, err)) {
-        scene_free(&s);
-        return false;
-    }
-    formula_check c;
-    bool ok = render_init(err) && check_formula(&s, 1u, &c, err);
-    if (ok) {
-        strbuf text = {0};
-        check_describe(&s, &c, &text);
-        fputs(text.data, stdout);
-        sb_free(&text);
-        if (!c.ok)
-            ok = err_set(err, "formula %s fails its check (above)", s.fractal.formula.name);
-    }
-    render_shutdown();
-    gpu_close();
-    scene_free(&s);
-    return ok;
 }

@@ -27,7 +27,9 @@
 typedef struct formula_check {
     int points;          /* estimates probed for finiteness */
     int nonfinite;       /* of them NaN or Inf */
+    int step_points, step_inside; /* points stepped toward the set by their estimate; of them, landed inside */
     int rays, crossing;  /* rays cast, rays that met the surface */
+    int random_rays;     /* of them cast at random (the rest around the worst) */
     int samples;         /* samples compared with their crossing */
     int over;            /* samples whose estimate exceeds the distance (ratio > 1) */
     double worst, p99;   /* the worst and the 99th-percentile ratio estimate / distance */
@@ -35,14 +37,26 @@ typedef struct formula_check {
     double suggested;    /* the step factor that keeps every sample inside: min(1, 1 / worst) */
     double step;         /* the step factor the formula declares (1 when it declares none), or the scene's */
     bool mode;           /* a Julia set or a hybrid: checked at the scene's step factor */
+    bool contained;      /* the set stays inside the bounding sphere */
+    double sphere_min;   /* the smallest estimate found on the bounding sphere (the bound lifted) */
+    double sphere_at[3]; /* where */
+    double reach;        /* the farthest point of the set found beyond the sphere (0: none) */
     bool loops_measured; /* the driver has a loop limiter to measure loops against */
     int loops, loops_declared; /* the most loop iterations an estimate ran; what the formula declares */
     bool ok;
 } formula_check;
 
+enum { CHECK_RAYS = 192, CHECK_CORNER_RAYS = 64 }; /* random rays at the defaults, at a range's ends */
+
 /* Runs the checks on a fractal scene (its formula and parameters) in the current GL context, after
- * render_init. `seed` fixes the random rays and points. */
-bool check_formula(const scene *s, unsigned seed, formula_check *out, err_t *err);
+ * render_init. `seed` fixes the random rays and points; `rays` random rays (0: CHECK_RAYS), then
+ * rounds around the worst. */
+bool check_formula(const scene *s, unsigned seed, int rays, formula_check *out, err_t *err);
+
+/* Whether a check passes: nothing non-finite, no overshoot past the step factor, the set inside its
+ * bound, no loops past @loops, and (surface_needed) some ray met the surface. At a range's end a set
+ * may be dust no ray meets: that is what it is, and the rest still holds. */
+bool check_passes(const formula_check *c, bool surface_needed);
 
 /* The report as text, one finding a line. */
 void check_describe(const scene *s, const formula_check *c, strbuf *out);
@@ -53,8 +67,18 @@ typedef struct check_desc {
     const char *scene;
     const char *const *sets;
     int set_count;
+    bool defaults_only; /* --quick: not the range ends */
 } check_desc;
-/* Opens a headless context, checks, prints the report; false (with err) when the formula fails or
+enum { CHECK_SET_MAX = 160, CHECK_CORNERS_MAX = 64 };
+
+/* The corners of a formula's parameter ranges, as overrides "fractal.KEY=VALUE" into out (at most
+ * max; the count): the iterations and each parameter at both ends of its range (and of its gap), a
+ * vector's components one at a time, a bool at the value it does not default to; the other
+ * parameters stay at their defaults, and a parameter the user's overrides set is not varied. */
+int check_corners(const formula *f, const check_desc *d, char (*out)[CHECK_SET_MAX], int max);
+
+/* Opens a headless context, checks the formula at its defaults and at each corner (check_corners),
+ * prints the report and the worst parameter set; false (with err) when any fails or the formula
  * cannot be loaded. */
 bool check_formula_run(const check_desc *d, err_t *err);
 

@@ -1,6 +1,6 @@
 // @formula Amazing Surf, a Mandelbox variant (after T. Lowe's Mandelbox, 2010): the box fold on x and z only, a sphere fold, scale, + c
 // @iterations 14 [1, 64]
-// @bound 2 * (abs(scale) + 1) / (abs(scale) - 1) * 1.7320508
+// @bound 2 * (abs(scale) + 1) / (abs(scale) - 1) * 1.7320508 * max(fold_limit, fixed_radius)
 // @step 0.7
 // @require min_radius < fixed_radius "fractal.min_radius must be below fixed_radius"
 // @escape 1e4

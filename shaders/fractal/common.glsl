@@ -55,6 +55,21 @@ uniform vec2 uTrapRange;    // the formula's @trap: the orbit trap's values spre
 // steps there, or it drew a ring around the sphere.
 const float BOUND_MARGIN = 0.1, BOUND_MARGIN_THRESHOLDS = 4.0;
 
+// The largest singular value of J (its operator norm: how far it can stretch a step): the square root of
+// the largest eigenvalue of JᵀJ, by the closed form for a symmetric 3×3 (O. K. Smith 1961, "Eigenvalues
+// of a symmetric 3 × 3 matrix"). For a step formula's running derivative (dr ← ‖J‖ dr).
+float largestSingular(mat3 J)
+{
+    mat3 M = transpose(J) * J;
+    float q = (M[0][0] + M[1][1] + M[2][2]) / 3.0;
+    float off = M[0][1] * M[0][1] + M[0][2] * M[0][2] + M[1][2] * M[1][2];
+    float p = sqrt(((M[0][0] - q) * (M[0][0] - q) + (M[1][1] - q) * (M[1][1] - q) + (M[2][2] - q) * (M[2][2] - q) + 2.0 * off) / 6.0);
+    if (p <= 1e-7 * q) // a multiple of the identity (to rounding): all three eigenvalues are q
+        return sqrt(max(q, 0.0));
+    float r = clamp(0.5 * determinant((M - mat3(q)) / p), -1.0, 1.0);
+    return sqrt(max(q + 2.0 * p * cos(acos(r) / 3.0), 0.0));
+}
+
 // The primary ray's hit threshold at p (shader space, where the eye is uCamPos): common/march.glsl.
 float boundThreshold(vec3 p) { return float(HIT_K) * uPixelAngle * length(p - uCamPos); }
 

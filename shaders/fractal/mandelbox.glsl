@@ -1,6 +1,6 @@
 // @formula The Mandelbox (T. Lowe, 2010): z → s · sphereFold(boxFold(z)) + c
 // @iterations 12 [1, 64]
-// @bound 2 * (abs(scale) + 1) / (abs(scale) - 1) * 1.7320508
+// @bound 2 * (abs(scale) + 1) / (abs(scale) - 1) * 1.7320508 * max(fold_limit, fixed_radius)
 // @step 0.8
 // @require min_radius < fixed_radius "fractal.min_radius must be below fixed_radius"
 // @escape 1e4
@@ -8,8 +8,11 @@
 // @trap 0 fixed_radius
 // @deep
 //
-// With |s| > 1 the set lies in the cube of half-side 2(|s|+1)/(|s|-1) (Lowe's Mandelbox): @bound is
-// the sphere around that cube. At |s| ≤ 1 the set is unbounded or empty, so |s| ≤ 1.05 is refused.
+// With |s| > 1 and the folds at 1 the set lies in the cube of half-side 2(|s|+1)/(|s|-1) (Lowe's
+// Mandelbox): @bound is the sphere around that cube. Scaling the fold limit and both radii by λ scales
+// the set by λ (each fold commutes with the scaling), so the bound grows with the larger length (at
+// fold_limit 2 the fixed bound drew a ball: IoU 0.40). At |s| ≤ 1 the set is unbounded or empty, so
+// |s| < 1.05 is refused.
 // The Mandelbox (T. Lowe, 2010): z → s · sphereFold(boxFold(z)) + c. The box fold reflects each
 // coordinate beyond ±fold limit; the sphere fold inverts radii between min and fixed radius (scaling
 // inside min radius by a constant, so r = 0 needs no guard). DE = |z| / |dr| with the running
