@@ -1,19 +1,29 @@
 /* check — `fathom check-formula NAME|FILE`: a formula's distance estimate checked before it is trusted,
- * with the shader's own map() probed on the GPU:
+ * with the shader's own map() probed on the GPU, at its defaults and at each end of each parameter's
+ * range (check_corners.c):
  *   - finite: no NaN or Inf over random points in and around its bounding sphere (and on the axes and
  *     at the origin, where guards matter);
- *   - a bound: along random rays through the set, the estimate at each sample against the distance to
- *     the ray's first crossing of the surface (found by dense stepping, then bisection on "estimate
- *     below a tiny threshold"). That distance is at least the true distance from the sample to the
- *     set, so an estimate above it overshoots: sphere tracing at step factor k tunnels when
- *     k · estimate > distance. The report gives the worst ratio, the share above 1, and the step
- *     factor that keeps every sample's step inside (1 / worst ratio).
- *   - its loops: at the same points, the loop iterations one estimate runs, measured against the
- *     driver's loop limiter (llvmpipe's; shaders/common/budget.glsl), against what it declares
- *     (@loops): the loop budget is spent by the declaration, so a formula that loops longer would be
- *     cut by the driver mid-image. Not measurable on a driver without a limiter (a GPU).
- * A formula passes when nothing is non-finite, its declared @step (1 when absent) times the worst
- * ratio stays within CHECK_TOLERANCE of 1, and no estimate loops more than it declares. */
+ *   - steps (check.c): random points in the bound each take the march's step (estimate × step factor)
+ *     down the estimate's gradient; one that lands inside the set overshot it, by at least the
+ *     estimate over the distance to the first point inside along the step (bisection). Even over the
+ *     volume: an overshoot confined to a narrow cone is met;
+ *   - rays (check_rays.c): along random rays through the set, then rounds of rays around the worst, the
+ *     estimate at each sample against the distance to the ray's first crossing of the surface (found by
+ *     dense stepping, then bisection on "estimate below a tiny threshold"). That distance is at least
+ *     the true distance from the sample to the set, so an estimate above it overshoots: sphere tracing
+ *     at step factor k tunnels when k · estimate > distance. Finds overshoots at a thin sheet, which a
+ *     step jumps over. The report gives the worst ratio, the share above 1, and the step factor that
+ *     keeps every sample's step inside (1 / worst ratio);
+ *   - the bound: the bounding sphere probed with the bound lifted (evenly, then in shrinking caps around
+ *     its points nearest the set) and random points in the shell beyond it: a set that reaches past
+ *     its bound is drawn clipped;
+ *   - its loops: at the random points and the first rays, the loop iterations one estimate runs,
+ *     measured against the driver's loop limiter (llvmpipe's; shaders/common/budget.glsl), against what
+ *     it declares (@loops): the loop budget is spent by the declaration, so a formula that loops longer
+ *     would be cut by the driver mid-image. Not measurable on a driver without a limiter (a GPU).
+ * A formula passes when nothing is non-finite, its @step (1 when absent) times the worst ratio stays
+ * within CHECK_TOLERANCE of 1, the set stays inside its bound, no estimate loops more than it declares
+ * and (at the defaults) some ray met the surface. */
 #ifndef FATHOM_CHECK_H
 #define FATHOM_CHECK_H
 
@@ -31,7 +41,7 @@ typedef struct formula_check {
     int rays, crossing;  /* rays cast, rays that met the surface */
     int random_rays;     /* of them cast at random (the rest around the worst) */
     int samples;         /* samples compared with their crossing */
-    int over;            /* samples whose estimate exceeds the distance (ratio > 1) */
+    int over;            /* samples whose estimate exceeds the distance (ratio > 1.005: past rounding) */
     double worst, p99;   /* the worst and the 99th-percentile ratio estimate / distance */
     double worst_at[3];  /* where the worst ratio was seen */
     double suggested;    /* the step factor that keeps every sample inside: min(1, 1 / worst) */

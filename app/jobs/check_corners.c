@@ -50,7 +50,7 @@ int check_corners(const formula *f, const check_desc *d, char (*out)[CHECK_SET_M
         if (p->type == FORMULA_COLOR || user_sets(d, p->key))
             continue;
         if (p->type == FORMULA_BOOL) {
-            n = add(out, n, max, p->key, p->def[0] ? "false" : "true");
+            n = add(out, n, max, p->key, p->def[0] != 0 ? "false" : "true");
             continue;
         }
         /* the ends (a gap's ends too); a vector's components one at a time, the others at their defaults */
