@@ -135,8 +135,8 @@ static bool check_steps(const scene *s, unsigned *seed, double step, formula_che
     for (int i = 0; ok && i < n; i++) /* far enough from the set that a step's landing is told apart from it */
         if (isfinite(d[2 * i]) && d[2 * i] > 200 * inside && d[2 * i] < R)
             keep[m++] = i;
-    float *g = util_alloc(sizeof(float) * 3 * 6 * (size_t)(m ? m : 1), "check points");
-    float *gd = util_alloc(sizeof(float) * 2 * 6 * (size_t)(m ? m : 1), "check");
+    float *g = util_alloc(sizeof(float) * 3 * 6 * (size_t)n, "check points");
+    float *gd = util_alloc(sizeof(float) * 2 * 6 * (size_t)n, "check");
     for (int j = 0; j < m; j++)
         for (int a = 0; a < 6; a++)
             for (int k = 0; k < 3; k++)
@@ -144,8 +144,8 @@ static bool check_steps(const scene *s, unsigned *seed, double step, formula_che
     if (m) /* none kept: nothing to step from (a set that fills the bound, or an estimate out of range) */
         ok = ok && check_probe(s, g, 6 * m, gd, NULL, err);
     /* the step: from p by d · step / tolerance down the gradient; lo, hi bracket "inside" along it */
-    double *dir = util_alloc(sizeof(double) * 3 * (size_t)(m ? m : 1), "check"), *lo = util_calloc((size_t)(m ? m : 1), sizeof(double), "check");
-    double *hi = util_alloc(sizeof(double) * (size_t)(m ? m : 1), "check");
+    double *dir = util_alloc(sizeof(double) * 3 * (size_t)n, "check"), *lo = util_calloc((size_t)n, sizeof(double), "check");
+    double *hi = util_alloc(sizeof(double) * (size_t)n, "check");
     for (int j = 0; ok && j < m; j++) {
         double l = 0;
         for (int k = 0; k < 3; k++)
@@ -154,8 +154,8 @@ static bool check_steps(const scene *s, unsigned *seed, double step, formula_che
             dir[3 * j + k] = l > 0 && isfinite(l) ? dir[3 * j + k] / sqrt(l) : 0;
         hi[j] = d[2 * keep[j]] * step / CHECK_TOLERANCE;
     }
-    float *q = util_alloc(sizeof(float) * 3 * (size_t)(m ? m : 1), "check points"), *qd = util_alloc(sizeof(float) * 2 * (size_t)(m ? m : 1), "check");
-    int *over = util_alloc(sizeof(int) * (size_t)(m ? m : 1), "check"), n_over = 0;
+    float *q = util_alloc(sizeof(float) * 3 * (size_t)n, "check points"), *qd = util_alloc(sizeof(float) * 2 * (size_t)n, "check");
+    int *over = util_alloc(sizeof(int) * (size_t)n, "check"), n_over = 0;
     for (int b = 0; ok && m && b <= CHECK_BISECTIONS && (b == 0 || n_over); b++) { /* the step's end, then halvings */
         int count = b == 0 ? m : n_over;
         for (int i = 0; i < count; i++) {
