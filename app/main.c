@@ -147,7 +147,9 @@ static bool render_shot(const cli_options *opt, const scene *s, err_t *err)
         sets[nsets++] = spp;
     }
     strbuf description = {0};
-    camera cam = opt->has_view ? opt->view : camera_look_at_deg(eye, at, fov);
+    camera cam = opt->has_view ? opt->view : scene_camera(s, eye, at, fov);
+    if (opt->has_view) /* a view or a shot keeps its pose; the lens is the scene's with the overrides */
+        cam.lens = scene_lens(s);
     offline_desc d = offline_shot(shot_of(opt), s, cam, opt->output, sets, nsets, &description);
     char tile[PATH_MAX_LEN];
     bool ok = true;

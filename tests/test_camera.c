@@ -380,6 +380,102 @@ static void deep_positions(void **st)
     assert_true(camera_resolution((double[3]){1, 0, 0}, false) > 1e-7);
 }
 
+/* Roll turns right toward up; camera_set_basis inverts camera_get_basis for every orientation,
+ * straight up and down included; look_at_up puts the image's top toward the given up. */
+static void roll_and_free_orientation(void **st)
+{
+    (void)st;
+    camera c = {.roll = (float)(GLM_PI / 2)};
+    camera_basis b = camera_get_basis(&c);
+    assert_near(b.right[1], 1.0, TOL); /* right is now the world's up */
+    assert_near(b.up[0], -1.0, TOL);
+    assert_near(b.forward[2], -1.0, TOL);
+    for (int i = 0; i < 300; i++) {
+        camera a = {.yaw = (float)i * 0.37f - 3.0f, .pitch = ((float)(i % 41) / 20.0f - 1.0f) * 1.5707963f,
+                    .roll = (float)(i % 29) * 0.21f - 3.0f};
+        camera_basis ba = camera_get_basis(&a);
+        camera r = {0};
+        camera_set_basis(&r, ba.forward, ba.up);
+        camera_basis br = camera_get_basis(&r);
+        for (int k = 0; k < 3; k++) {
+            assert_near(br.forward[k], ba.forward[k], 1e-5);
+            assert_near(br.right[k], ba.right[k], 1e-5);
+            assert_near(br.up[k], ba.up[k], 1e-5);
+        }
+    }
+    /* a Z-up camera looking straight down: pitch −90° exactly, the image's top toward −Z */
+    camera d = camera_look_at_up((double[3]){0, 5, 0}, (double[3]){0, 0, 0}, (double[3]){0, 0, -1}, 1.0f);
+    b = camera_get_basis(&d);
+    assert_near(b.forward[1], -1.0, TOL);
+    assert_near(b.up[2], -1.0, TOL);
+    assert_near(b.right[0], 1.0, TOL);
+    /* a level look with up tilted 30° to the right: roll −30° (the camera turned clockwise) */
+    camera t = camera_look_at_up((double[3]){0, 0, 0}, (double[3]){0, 0, -1}, (double[3]){sin(GLM_PI / 6), cos(GLM_PI / 6), 0}, 1.0f);
+    assert_near(t.roll, -GLM_PI / 6, TOL);
+    assert_near(t.pitch, 0.0, TOL);
+}
+
+/* Free flight turns about the camera's own axes: a roll then a yaw of 90° each turns toward what was
+ * the camera's up; the frame stays orthonormal over many small turns. */
+static void free_turns(void **st)
+{
+    (void)st;
+    camera c = {0};
+    camera_turn(&c, 0, 0, (float)(GLM_PI / 2)); /* right → world up */
+    camera_turn(&c, (float)(GLM_PI / 2), 0, 0); /* yaw left about the camera's up (world −X) */
+    camera_basis b = camera_get_basis(&c);
+    /* yawing left about up = −X from forward −Z: forward turns toward −right = −Y */
+    assert_near(b.forward[1], -1.0, 1e-5);
+    camera_input in = {.look = {3, -2}, .roll = 0.5f, .free = true};
+    for (int i = 0; i < 1000; i++)
+        camera_update(&c, &in, 0.01f, 0, 0.01f);
+    b = camera_get_basis(&c);
+    assert_near(glm_vec3_norm(b.forward), 1.0, 1e-5);
+    assert_near(glm_vec3_dot(b.forward, b.up), 0.0, 1e-5);
+    assert_near(glm_vec3_dot(b.right, b.up), 0.0, 1e-5);
+    /* the level camera keeps its roll while it looks around, and its pitch limit */
+    camera l = {.roll = 0.3f};
+    camera_input look = {.look = {50, 1e6f}};
+    camera_update(&l, &look, 0.0f, 1.0f, 0.01f);
+    assert_near(l.roll, 0.3, TOL);
+    assert_near(l.pitch, -CAMERA_MAX_PITCH, TOL);
+}
+
+/* camera_ray_from: the projections' closed forms (camera.h), an eye per half with stereo, nothing
+ * outside a fisheye's circle; the pixel angle per projection. */
+static void projections_rays(void **st)
+{
+    (void)st;
+    camera c = camera_look_at((double[3]){0, 0, 0}, (double[3]){0, 0, -1}, (float)(GLM_PI / 3));
+    double o[3];
+    vec3 d;
+    c.lens.projection = PROJECTION_EQUIRECTANGULAR;
+    assert_true(camera_ray_from(&c, 400, 200, 299.5f, 99.5f, o, d)); /* λ = 90°, φ = 0: +X */
+    assert_near(d[0], 1.0, 1e-5);
+    assert_near(camera_pixel_angle(&c, 200), GLM_PI / 200, TOL);
+    c.lens.projection = PROJECTION_FISHEYE;
+    assert_false(camera_ray_from(&c, 100, 100, 0, 0, o, d)); /* a corner: outside the circle */
+    assert_true(camera_ray_from(&c, 100, 100, 99, 49.5f, o, d)); /* the right edge: 90° × 0.99 off the axis */
+    assert_near(d[0], sin(0.99 * GLM_PI / 2), 1e-5);
+    c.lens = (camera_lens){.projection = PROJECTION_ORTHOGRAPHIC, .focus = 4};
+    assert_true(camera_ray_from(&c, 100, 50, 99.5f, 24.5f, o, d)); /* the right edge's centre */
+    assert_near(d[2], -1.0, TOL);
+    assert_near(o[0], 4 * tan(GLM_PI / 6) * 2, 1e-5); /* focus · tan(fov/2) · aspect */
+    assert_near(camera_footprint_t0(&c), 4.0, TOL);
+    c.lens = (camera_lens){.stereo = STEREO_SIDE_BY_SIDE, .eye_separation = 0.2f, .focus = 5};
+    camera_ray_from(&c, 200, 100, 49.5f, 49.5f, o, d); /* the left eye's centre aims at the focal point */
+    assert_near(o[0], -0.1, 1e-6);
+    assert_near(d[0] / -d[2], 0.1 / 5, 1e-5);
+    camera_ray_from(&c, 200, 100, 149.5f, 49.5f, o, d);
+    assert_near(o[0], 0.1, 1e-6);
+    int ew, eh;
+    c.lens.stereo = STEREO_TOP_BOTTOM;
+    camera_eye_size(&c, 200, 100, &ew, &eh);
+    assert_int_equal(ew, 200);
+    assert_int_equal(eh, 50);
+    assert_near(camera_pixel_angle(&c, 100), 2 * tan(GLM_PI / 6) / 50, TOL);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -388,6 +484,9 @@ int main(void)
         cmocka_unit_test(basis_is_orthonormal_and_level),
         cmocka_unit_test(rays_span_the_field_of_view),
         cmocka_unit_test(moving_and_turning),
+        cmocka_unit_test(roll_and_free_orientation),
+        cmocka_unit_test(free_turns),
+        cmocka_unit_test(projections_rays),
         cmocka_unit_test(slide_never_enters_a_solid),
         cmocka_unit_test(slide_never_stalls),
         cmocka_unit_test(deep_positions),

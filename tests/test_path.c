@@ -280,13 +280,19 @@ static void file_round_trip_and_errors(void **st)
          "keys.0.look_at: is the key's position"},
         {"{\"keys\": [{\"time\": 0, \"position\": [0, 0, 0], \"yaw\": 0, \"pitch\": 95},"
          "{\"time\": 1, \"position\": [1, 0, 0], \"yaw\": 0, \"pitch\": 0}]}",
-         "keys.0.pitch: expected a number from -89 to 89"},
+         "keys.0.pitch: expected a number from -90 to 90"},
         {"{\"keys\": [{\"time\": 0, \"position\": [0, 0, 0], \"yaw\": 0, \"pitch\": 0, \"set\": {\"a.b\": 1}},"
          "{\"time\": 1, \"position\": [1, 0, 0], \"yaw\": 0, \"pitch\": 0}]}",
          "keys.1.set: 0 parameters where key 0 has 1"},
-        {"{\"keys\": [{\"time\": 0, \"position\": [0, 0, 0], \"yaw\": 0, \"pitch\": 0, \"roll\": 3},"
+        {"{\"keys\": [{\"time\": 0, \"position\": [0, 0, 0], \"yaw\": 0, \"pitch\": 0, \"tilt\": 3},"
          "{\"time\": 1, \"position\": [1, 0, 0], \"yaw\": 0, \"pitch\": 0}]}",
-         "keys.0: unknown key 'roll'"},
+         "keys.0: unknown key 'tilt'"},
+        {"{\"keys\": [{\"time\": 0, \"position\": [0, 0, 0], \"yaw\": 0, \"pitch\": 0, \"up\": [0, 0, 1]},"
+         "{\"time\": 1, \"position\": [1, 0, 0], \"yaw\": 0, \"pitch\": 0}]}",
+         "keys.0.up: goes with look_at"},
+        {"{\"keys\": [{\"time\": 0, \"position\": [0, 0, 0], \"look_at\": [0, 0, -1], \"up\": [0, 0, 1]},"
+         "{\"time\": 1, \"position\": [1, 0, 0], \"yaw\": 0, \"pitch\": 0}]}",
+         "keys.0.up: is zero or along the view"},
         {"{\"keys\": [{\"time\": 0, \"position\": [0, 0, 0], \"yaw\": 0, \"pitch\": 0, \"set\": {\"a\": \"x\"}},"
          "{\"time\": 1, \"position\": [1, 0, 0], \"yaw\": 0, \"pitch\": 0}]}",
          "keys.0.set.a: expected a number"},
@@ -298,6 +304,46 @@ static void file_round_trip_and_errors(void **st)
             fail_msg("case %zu: got '%s', expected '%s'", i, e.msg, bad[i].want);
         assert_null(r.keys);
     }
+}
+
+/* Roll: a key's roll survives the quaternions (path_eval at the key, path_write and back), up with
+ * look_at gives the same orientation as yaw, pitch and roll, and halfway between roll 0 and 90° about
+ * the same view the path is at 45° (the short way round). */
+static void roll_keys(void **st)
+{
+    (void)st;
+    path p, q;
+    load("{\"keys\": [{\"time\": 0, \"position\": [0, 0, 0], \"yaw\": 20, \"pitch\": -30, \"roll\": 0},"
+         "{\"time\": 1, \"position\": [1, 0, 0], \"yaw\": 20, \"pitch\": -30, \"roll\": 90}]}", &q);
+    path_sample a;
+    path_eval(&q, 1, &a);
+    assert_near(a.roll, GLM_PI / 2, 1e-9);
+    assert_near(a.yaw, 20 * GLM_PI / 180, 1e-9);
+    path_eval(&q, 0.5, &a); /* one segment: a turn about the view alone */
+    assert_near(a.pitch, -30 * GLM_PI / 180, 1e-9);
+    assert_near(a.yaw, 20 * GLM_PI / 180, 1e-9);
+    assert_near(a.roll, GLM_PI / 4, 1e-9);
+    path_free(&q);
+    load("{\"keys\": [{\"time\": 0, \"position\": [0, 0, 0], \"yaw\": 20, \"pitch\": -30, \"roll\": 0},"
+         "{\"time\": 1, \"position\": [1, 0, 0], \"yaw\": 20, \"pitch\": -30, \"roll\": 90},"
+         "{\"time\": 2, \"position\": [2, 0, 0], \"look_at\": [2, -1, 0], \"up\": [0, 0, -1]}]}", &p);
+    path_eval(&p, 2, &a); /* straight down, the image's top toward -Z: yaw 0, roll 0 */
+    assert_near(a.pitch, -GLM_PI / 2, 1e-9);
+    assert_near(a.yaw, 0, 1e-9);
+    assert_near(a.roll, 0, 1e-9);
+    strbuf text = {0};
+    path_write(&p, &text);
+    load(text.data, &q);
+    for (double t = 0; t <= 2; t += 0.125) {
+        path_sample b;
+        path_eval(&p, t, &a);
+        path_eval(&q, t, &b);
+        assert_near(fabs(a.quat[0] * b.quat[0] + a.quat[1] * b.quat[1] + a.quat[2] * b.quat[2] + a.quat[3] * b.quat[3]),
+                    1, 1e-9);
+    }
+    sb_free(&text);
+    path_free(&q);
+    path_free(&p);
 }
 
 /* The window's recording: cameras → a path file → the same cameras at the keys, times by distance/speed */
@@ -423,7 +469,7 @@ int main(void)
         cmocka_unit_test(passes_through_keys),       cmocka_unit_test(continuous_at_keys),
         cmocka_unit_test(unit_quaternions_no_flip),  cmocka_unit_test(constant_speed_by_arc_length),
         cmocka_unit_test(straight_line_is_exact),    cmocka_unit_test(file_round_trip_and_errors),
-        cmocka_unit_test(recorded_keys),             cmocka_unit_test(frames_and_names),
+        cmocka_unit_test(recorded_keys), cmocka_unit_test(roll_keys),             cmocka_unit_test(frames_and_names),
         cmocka_unit_test(recorded_flight_clears_the_box),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

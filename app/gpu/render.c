@@ -262,6 +262,7 @@ void render_origin_uniforms(GLuint prog)
     glUniform3fv(glGetUniformLocation(prog, "uCamPos"), 1, eye);
     if (state->full_height > 0)
         glUniform1f(glGetUniformLocation(prog, "uPixelAngle"), camera_pixel_angle(&state->cam, state->full_height));
+    glUniform1f(glGetUniformLocation(prog, "uFootprintT0"), camera_footprint_t0(&state->cam));
     GLint o = glGetUniformLocation(prog, "uOrigin");
     if (o < 0) /* a float program: its positions are world positions */
         return;
@@ -329,6 +330,19 @@ static float halton(int i, int base)
 
 static GLint loc(const char *name) { return glGetUniformLocation(state->prog, name); }
 
+/* The projection, stereo and thin lens (view/camera.h): sample k's lens point is Halton (5, 7) point
+ * k + 1 (the shader shifts it per pixel). */
+static void lens_uniforms(int k)
+{
+    const camera_lens *l = &state->cam.lens;
+    glUniform1i(loc("uProjection"), (int)l->projection);
+    glUniform1i(loc("uStereo"), (int)l->stereo);
+    glUniform1f(loc("uEyeSeparation"), l->stereo ? l->eye_separation : 0.0f);
+    glUniform1f(loc("uFocus"), camera_focus(&state->cam));
+    glUniform1f(loc("uLensRadius"), l->aperture);
+    glUniform2f(loc("uLensSample"), halton(k + 1, 5), halton(k + 1, 7));
+}
+
 /* The fragment path: a full-screen triangle over rows [y0, y1), target 0 blended additively. */
 static void draw_rows(int y0, int y1, bool first)
 {
@@ -382,7 +396,8 @@ static void sample_rows(int y0, int y1)
 {
     assert(state->fbo && state->prog);
     /* the path tracer's noise is everywhere, not only on edges: every pixel takes every sample */
-    bool adaptive = state->adaptive && state->samples > 0 && !render_scene_current()->quality.integrator;
+    bool adaptive = state->adaptive && state->samples > 0 && !render_scene_current()->quality.integrator &&
+                    !(state->cam.lens.aperture > 0); /* nor is a lens's blur: it is wherever focus is not */
     if (adaptive && state->samples == 1 && state->band_done == 0)
         build_edge_mask();
     glBindFramebuffer(GL_FRAMEBUFFER, state->fbo);
@@ -405,6 +420,7 @@ static void sample_rows(int y0, int y1)
     glUniform3fv(loc("uCamRight"), 1, b.right);
     glUniform3fv(loc("uCamUp"), 1, b.up);
     glUniform1f(loc("uTanHalfFov"), tanf(0.5f * state->cam.fov_y));
+    lens_uniforms(state->samples);
     glUniform1ui(loc("uFxRuntime"), state->runtime_effects);
     glUniform1i(loc("uSampleIndex"), state->samples); /* the path tracer's random numbers */
     glUniform1i(loc("uAdaptive"), adaptive ? 1 : 0);

@@ -182,7 +182,7 @@ static bool make_references(const scene *base, metrics *convergence, double *ref
     scene ref;
     if (!bench_load(B.opt, ref_sets, B.opt->path_truth ? 7 : 4, &ref, err) || !render_set_scene(&ref, NULL, err))
         return false;
-    camera start = camera_look_at_deg(base->cam_position, base->cam_look_at, base->cam_fov_deg);
+    camera start = scene_camera(base, base->cam_position, base->cam_look_at, base->cam_fov_deg);
     for (int v = 0; v < VIEWS; v++) {
         /* turn the camera about the vertical through the look-at point */
         double a = glm_rad((float)v * VIEW_TURN_DEG), ca = cos(a), sa = sin(a);
@@ -192,7 +192,7 @@ static bool make_references(const scene *base, metrics *convergence, double *ref
         pos[0] = base->cam_look_at[0] + ca * d[0] + sa * d[2];
         pos[1] = base->cam_position[1];
         pos[2] = base->cam_look_at[2] - sa * d[0] + ca * d[2];
-        B.views[v].cam = v == 0 ? start : camera_look_at(pos, base->cam_look_at, start.fov_y);
+        B.views[v].cam = v == 0 ? start : scene_camera(base, pos, base->cam_look_at, base->cam_fov_deg);
         double ms = bench_image_ms(&ref, &B.views[v].cam, B.w, B.h);
         if (v == 0)
             *ref_ms = ms;

@@ -115,7 +115,7 @@ bool bench_frame_times(const bench_desc *opt, int w, int h, err_t *err)
         else if (d && p == 0)
             printf("  droplets     %d: read %.3f s, grid %.3f s (%dx%dx%d cells, %zu listings, %.1f MB)\n", d->count,
                    read_s, grid_s, d->dims[0], d->dims[1], d->dims[2], d->refs, (double)droplets_bytes(d) / 1e6);
-        camera cam = camera_look_at_deg(s.cam_position, s.cam_look_at, s.cam_fov_deg);
+        camera cam = scene_camera(&s, s.cam_position, s.cam_look_at, s.cam_fov_deg);
         double *ms = util_alloc(sizeof *ms * (size_t)opt->runs * 2, "bench timings");
         ok = time_backends(&s, &cam, w, h, nb, backends, ms, opt->runs, err);
         if (ok) {

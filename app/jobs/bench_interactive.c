@@ -40,7 +40,7 @@ static camera flight_camera(const scene *s, int frame)
     double f = (double)frame / (FLIGHT_FRAMES - 1), eye[3];
     for (int i = 0; i < 3; i++)
         eye[i] = s->cam_position[i] + DOLLY * f * (s->cam_look_at[i] - s->cam_position[i]);
-    camera c = camera_look_at_deg(eye, s->cam_look_at, s->cam_fov_deg);
+    camera c = scene_camera(s, eye, s->cam_look_at, s->cam_fov_deg);
     c.yaw += glm_rad(TURN_DEG) * (float)f;
     return c;
 }

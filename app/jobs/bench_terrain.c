@@ -98,7 +98,7 @@ static bool one_side(int n, const char *dir, int w, int h, int runs, const char 
             render_terrain_tiles(&tx, &ty);
         }
         if (ok) {
-            camera cam = camera_look_at_deg(s.cam_position, s.cam_look_at, s.cam_fov_deg);
+            camera cam = scene_camera(&s, s.cam_position, s.cam_look_at, s.cam_fov_deg);
             double *t = util_alloc(sizeof(double) * (size_t)runs, "bench timings");
             frame_ms(w, h, &cam);
             for (int r = 0; r < runs; r++)

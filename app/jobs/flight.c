@@ -153,10 +153,14 @@ static bool render_frame(flight_state *F, int f, err_t *err)
     if (!F->loaded && !frame_scene(opt, F->p, &smp, &F->s, F->sets, &F->nsets, F->track, err))
         return false;
     F->loaded = F->p->param_count == 0;
-    camera cam = {.position = {(float)smp.position[0], (float)smp.position[1], (float)smp.position[2]},
+    /* the position in double (a deep zoom's digits); the lens is the scene's at this frame ("set" may
+     * track camera.focus: a rack focus) */
+    camera cam = {.position = {smp.position[0], smp.position[1], smp.position[2]},
                   .yaw = (float)smp.yaw,
                   .pitch = (float)smp.pitch,
-                  .fov_y = (float)(smp.fov_deg * 3.14159265358979323846 / 180.0)};
+                  .roll = (float)smp.roll,
+                  .fov_y = (float)(smp.fov_deg * 3.14159265358979323846 / 180.0),
+                  .lens = scene_lens(&F->s)};
     strbuf description = {0};
     offline_desc d = offline_shot(opt->shot, &F->s, cam, name, F->sets, F->nsets, &description);
     d.quiet = true;

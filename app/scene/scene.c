@@ -504,3 +504,25 @@ void scene_uniforms(const scene *s, const uniform_sink *u)
     if (p->uniforms)
         p->uniforms(s, u);
 }
+
+camera_lens scene_lens(const scene *s)
+{
+    camera_lens l = s->cam_lens;
+    if (!(l.focus > 0))
+        l.focus = (float)camera_distance(s->cam_position, s->cam_look_at);
+    if (!(l.eye_separation > 0))
+        l.eye_separation = l.focus / 30.0f;
+    return l;
+}
+
+camera scene_camera(const scene *s, const double eye[3], const double at[3], float fov_deg)
+{
+    camera c = camera_look_at_up(eye, at, s->cam_up, glm_rad(fov_deg));
+    c.roll = remainderf(c.roll + glm_rad(s->cam_roll_deg), 2.0f * GLM_PIf);
+    c.lens = s->cam_lens;
+    if (!(c.lens.focus > 0))
+        c.lens.focus = (float)camera_distance(eye, at);
+    if (!(c.lens.eye_separation > 0))
+        c.lens.eye_separation = c.lens.focus / 30.0f;
+    return c;
+}

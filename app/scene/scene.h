@@ -29,6 +29,7 @@
 #include "scene/program.h"
 #include "scene/quality.h"
 #include "scene/uniforms.h"
+#include "view/camera.h"
 
 enum { CSG_LIST_MIN = 32, CSG_CODE_MAX = 256, CSG_LIST_MAX = 1 << 20 };
 /* The primitive list as the csg program reads it (shaders/csg/list.glsl): CSG_LIST_TEXELS RGBA texels a
@@ -103,6 +104,9 @@ typedef struct scene {
 
     double cam_position[3], cam_look_at[3]; /* double: a deep zoom's view (view/camera.h) */
     float cam_fov_deg;
+    double cam_up[3];    /* the direction the image's top faces (default +Y: a level horizon) */
+    float cam_roll_deg;  /* turned further about the view (camera.h's sign) */
+    camera_lens cam_lens; /* focus, eye_separation 0: not set (scene_lens) */
     bool cam_auto; /* "camera": "auto" (terrain): camera, distances, fog and layers framed from the DEM */
 
     float env_color[3];
@@ -214,6 +218,12 @@ void scene_uniforms(const scene *s, const uniform_sink *u);
 #define DEEP_MARGIN 4.0
 struct camera;
 bool scene_needs_double(const scene *s, double distance, const struct camera *c, int height, bool now);
+
+/* The scene's lens with what it leaves unset filled in: focus at the look-at distance, the eyes a
+ * thirtieth of the focus apart (the stereographers' 1/30 rule). */
+camera_lens scene_lens(const scene *s);
+/* A camera at eye looking at `at` with the scene's up, roll and lens (focus unset: |at − eye|). */
+camera scene_camera(const scene *s, const double eye[3], const double at[3], float fov_deg);
 
 /* Whether quality knob k has any effect in s (its scope, quality.h): the bench sweeps only those, the
  * window shows only those. */

@@ -127,6 +127,8 @@ bool scene_parse_droplets(scene_ctx *c, const cJSON *root)
 
 /* ---- camera and fog --------------------------------------------------------------------------- */
 
+static bool scene_parse_lens(scene_ctx *c, const cJSON *cam);
+
 bool scene_parse_camera(scene_ctx *c, const cJSON *root)
 {
     scene *s = c->s;
@@ -142,7 +144,8 @@ bool scene_parse_camera(scene_ctx *c, const cJSON *root)
         cam = NULL;
     }
     if (cam) {
-        static const char *const ckeys[] = {"position", "look_at", "fov", "adaptive_speed", NULL};
+        static const char *const ckeys[] = {"position", "look_at", "fov", "adaptive_speed", "up", "roll", "projection",
+                                            "aperture", "focus", "stereo", "eye_separation", NULL};
         if (!scene_check_keys(c, cam, "camera", ckeys))
             return false;
         const cJSON *adaptive = cJSON_GetObjectItemCaseSensitive(cam, "adaptive_speed");
@@ -158,6 +161,33 @@ bool scene_parse_camera(scene_ctx *c, const cJSON *root)
         return false;
     if (camera_degenerate(s->cam_position, s->cam_look_at))
         return scene_fail(c, "camera.look_at", "is the camera's position: the camera needs a point to look at");
+    return scene_parse_lens(c, cam);
+}
+
+/* The camera's up, roll and lens (view/camera.h); focus and eye separation 0 are "not set": the look-at
+ * distance and a thirtieth of the focus (scene_lens). */
+static bool scene_parse_lens(scene_ctx *c, const cJSON *cam)
+{
+    scene *s = c->s;
+    static const double y_up[3] = {0, 1, 0};
+    int projection = 0, stereo = 0;
+    if (!scene_get_dvec3(c, cam, "camera", "up", y_up, -1e6, 1e6, s->cam_up) ||
+        !scene_get_num(c, cam, "camera", "roll", 0, -180, 180, &s->cam_roll_deg) ||
+        !scene_get_enum(c, cam, "camera", "projection", "projection", CAMERA_PROJECTIONS, 0, &projection) ||
+        !scene_get_num(c, cam, "camera", "aperture", 0, 0, 1e6f, &s->cam_lens.aperture) ||
+        !scene_get_num(c, cam, "camera", "focus", 0, 0, 1e9f, &s->cam_lens.focus) ||
+        !scene_get_enum(c, cam, "camera", "stereo", "stereo", CAMERA_STEREOS, 0, &stereo) ||
+        !scene_get_num(c, cam, "camera", "eye_separation", 0, 0, 1e6f, &s->cam_lens.eye_separation))
+        return false;
+    s->cam_lens.projection = (camera_projection)projection;
+    s->cam_lens.stereo = (camera_stereo)stereo;
+    double d[3] = {s->cam_look_at[0] - s->cam_position[0], s->cam_look_at[1] - s->cam_position[1],
+                   s->cam_look_at[2] - s->cam_position[2]};
+    double n = camera_norm(s->cam_up), cx = d[1] * s->cam_up[2] - d[2] * s->cam_up[1],
+           cy = d[2] * s->cam_up[0] - d[0] * s->cam_up[2], cz = d[0] * s->cam_up[1] - d[1] * s->cam_up[0];
+    if (!(n > 0) || !(sqrt(cx * cx + cy * cy + cz * cz) > 1e-6 * n * camera_norm(d)))
+        return scene_fail(c, "camera.up", "is zero or along the view: give the direction the image's top should face, "
+                                          "e.g. [0, 1, 0]");
     return true;
 }
 

@@ -7,6 +7,10 @@
 
 static float clampf(float v, float lo, float hi) { return v < lo ? lo : v > hi ? hi : v; }
 
+const char *const CAMERA_PROJECTIONS[PROJECTION_COUNT + 1] = {"perspective", "orthographic", "equirectangular",
+                                                               "fisheye", NULL};
+const char *const CAMERA_STEREOS[STEREO_COUNT + 1] = {"none", "side-by-side", "top-bottom", NULL};
+
 double camera_distance(const double a[3], const double b[3])
 {
     double d[3] = {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
@@ -42,6 +46,22 @@ camera camera_look_at_deg(const double eye[3], const double target[3], float fov
     return camera_look_at(eye, target, glm_rad(fov_y_deg));
 }
 
+camera camera_look_at_up(const double eye[3], const double target[3], const double up[3], float fov_y)
+{
+    camera c = camera_look_at(eye, target, fov_y);
+    double d[3] = {target[0] - eye[0], target[1] - eye[1], target[2] - eye[2]}, len = camera_norm(d);
+    if (!up || !(len > 0) || (up[0] == 0 && up[2] == 0 && up[1] > 0))
+        return c;
+    vec3 f = {(float)(d[0] / len), (float)(d[1] / len), (float)(d[2] / len)}, u = {(float)up[0], (float)up[1], (float)up[2]}, r;
+    glm_vec3_cross(f, u, r);
+    if (!(glm_vec3_norm(r) > 1e-6f * glm_vec3_norm(u))) /* up along the view: the level camera */
+        return c;
+    glm_vec3_normalize(r);
+    glm_vec3_cross(r, f, u);
+    camera_set_basis(&c, f, u);
+    return c;
+}
+
 camera_basis camera_get_basis(const camera *c)
 {
     camera_basis b;
@@ -49,25 +69,79 @@ camera_basis camera_get_basis(const camera *c)
     b.forward[0] = -sy * cp;
     b.forward[1] = sp;
     b.forward[2] = -cy * cp;
-    /* right = forward × world-up, normalized: stays horizontal so the horizon never rolls */
-    b.right[0] = cy;
-    b.right[1] = 0;
-    b.right[2] = -sy;
-    glm_vec3_cross(b.right, b.forward, b.up);
+    /* the level right (horizontal: forward × world up) and up, then turned by the roll */
+    vec3 r0 = {cy, 0, -sy}, u0;
+    glm_vec3_cross(r0, b.forward, u0);
+    float cr = cosf(c->roll), sr = sinf(c->roll);
+    for (int i = 0; i < 3; i++) {
+        b.right[i] = cr * r0[i] + sr * u0[i];
+        b.up[i] = cr * u0[i] - sr * r0[i];
+    }
     return b;
+}
+
+void camera_set_basis(camera *c, vec3 forward, vec3 up)
+{
+    float cp = sqrtf(forward[0] * forward[0] + forward[2] * forward[2]);
+    c->pitch = atan2f(forward[1], cp);
+    if (cp > 1e-6f) {
+        c->yaw = atan2f(-forward[0], -forward[2]);
+        camera level = {.yaw = c->yaw, .pitch = c->pitch};
+        camera_basis b = camera_get_basis(&level);
+        vec3 right;
+        glm_vec3_cross(forward, up, right);
+        c->roll = atan2f(glm_vec3_dot(right, b.up), glm_vec3_dot(right, b.right));
+    } else { /* straight up or down: the level right is the camera's right, roll 0 */
+        vec3 right;
+        glm_vec3_cross(forward, up, right);
+        c->yaw = atan2f(-right[2], right[0]);
+        c->roll = 0;
+    }
+}
+
+/* v turned by angle a about the unit axis k (Rodrigues), in float. */
+static void turn(vec3 v, vec3 k, float a)
+{
+    glm_vec3_rotate(v, a, k);
+}
+
+void camera_turn(camera *c, float dyaw, float dpitch, float droll)
+{
+    camera_basis b = camera_get_basis(c);
+    /* yaw about the camera's up, then pitch about its (turned) right, then roll about its view */
+    turn(b.forward, b.up, dyaw);
+    turn(b.right, b.up, dyaw);
+    turn(b.forward, b.right, dpitch);
+    turn(b.up, b.right, dpitch);
+    turn(b.up, b.forward, -droll); /* about −forward: right turns toward up */
+    turn(b.right, b.forward, -droll);
+    /* orthonormal again (turns add up): right = forward × up, up = right × forward */
+    glm_vec3_normalize(b.forward);
+    glm_vec3_cross(b.forward, b.up, b.right);
+    glm_vec3_normalize(b.right);
+    glm_vec3_cross(b.right, b.forward, b.up);
+    camera_set_basis(c, b.forward, b.up);
 }
 
 void camera_update(camera *c, const camera_input *in, float dt, float speed, float sensitivity)
 {
     static const float FAST_FACTOR = 4.0f;
-    c->yaw -= in->look[0] * sensitivity;
-    c->pitch = clampf(c->pitch - in->look[1] * sensitivity, -CAMERA_MAX_PITCH, CAMERA_MAX_PITCH);
+    if (in->free) {
+        camera_turn(c, -in->look[0] * sensitivity, -in->look[1] * sensitivity, in->roll * CAMERA_ROLL_RATE * dt);
+    } else {
+        c->yaw -= in->look[0] * sensitivity;
+        c->pitch = clampf(c->pitch - in->look[1] * sensitivity, -CAMERA_MAX_PITCH, CAMERA_MAX_PITCH);
+        c->roll = remainderf(c->roll + in->roll * CAMERA_ROLL_RATE * dt, 2.0f * GLM_PIf);
+    }
     c->yaw = remainderf(c->yaw, 2.0f * GLM_PIf);
     camera_basis b = camera_get_basis(c);
     double step = (double)speed * (double)dt * (in->fast ? FAST_FACTOR : 1.0);
+    vec3 up = {0, 1, 0};
+    if (in->free)
+        glm_vec3_copy(b.up, up);
     for (int i = 0; i < 3; i++)
-        c->position[i] += step * ((double)(in->move[0] * b.right[i]) + (double)(in->move[2] * b.forward[i])) +
-                          (i == 1 ? step * (double)in->move[1] : 0.0);
+        c->position[i] += step * ((double)(in->move[0] * b.right[i]) + (double)(in->move[2] * b.forward[i]) +
+                                  (double)(in->move[1] * up[i]));
 }
 
 double camera_resolution(const double p[3], bool deep)
@@ -231,8 +305,8 @@ void camera_orbit(camera *c, const double pivot[3], float dyaw, float dpitch)
 {
     float pitch = clampf(c->pitch + dpitch, -CAMERA_MAX_PITCH, CAMERA_MAX_PITCH);
     dpitch = pitch - c->pitch;
-    camera_basis b = camera_get_basis(c);
-    double off[3], up[3] = {0, 1, 0}, right[3] = {b.right[0], b.right[1], b.right[2]};
+    /* about the level right axis: the roll stays as it is */
+    double off[3], up[3] = {0, 1, 0}, right[3] = {cos(c->yaw), 0, -sin(c->yaw)};
     for (int i = 0; i < 3; i++)
         off[i] = c->position[i] - pivot[i];
     /* a pitch up turns the view up about the camera's right axis: the camera goes down around the pivot */
@@ -252,15 +326,91 @@ void camera_clamp_range(double pos[3], const double centre[3], double max_distan
             pos[i] = centre[i] + (pos[i] - centre[i]) * (max_distance / d);
 }
 
-void camera_ray(const camera *c, int width, int height, float x, float y, vec3 dir)
+void camera_eye_size(const camera *c, int width, int height, int *eye_width, int *eye_height)
 {
-    camera_basis b = camera_get_basis(c);
-    float t = tanf(0.5f * c->fov_y);
-    float sx = (2.0f * (x + 0.5f) / (float)width - 1.0f) * t * (float)width / (float)height;
-    float sy = (2.0f * (y + 0.5f) / (float)height - 1.0f) * t;
-    for (int i = 0; i < 3; i++)
-        dir[i] = b.forward[i] + sx * b.right[i] + sy * b.up[i];
-    glm_vec3_normalize(dir);
+    *eye_width = c->lens.stereo == STEREO_SIDE_BY_SIDE ? width / 2 : width;
+    *eye_height = c->lens.stereo == STEREO_TOP_BOTTOM ? height / 2 : height;
 }
 
-float camera_pixel_angle(const camera *c, int height) { return 2.0f * tanf(0.5f * c->fov_y) / (float)height; }
+float camera_focus(const camera *c) { return c->lens.focus > 0 ? c->lens.focus : 1.0f; }
+
+bool camera_ray_from(const camera *c, int width, int height, float x, float y, double origin[3], vec3 dir)
+{
+    camera_basis b = camera_get_basis(c);
+    int w, h;
+    camera_eye_size(c, width, height, &w, &h);
+    float eye = 0; /* -1 left, +1 right, 0 none */
+    if (c->lens.stereo == STEREO_SIDE_BY_SIDE) {
+        eye = x >= (float)w ? 1.0f : -1.0f;
+        x -= x >= (float)w ? (float)w : 0.0f;
+    } else if (c->lens.stereo == STEREO_TOP_BOTTOM) { /* left eye on top: GL rows count up */
+        eye = y >= (float)h ? -1.0f : 1.0f;
+        y -= y >= (float)h ? (float)h : 0.0f;
+    }
+    float aspect = (float)w / (float)h, t = tanf(0.5f * c->fov_y), focus = camera_focus(c);
+    float sx = 2.0f * (x + 0.5f) / (float)w - 1.0f, sy = 2.0f * (y + 0.5f) / (float)h - 1.0f;
+    vec3 d, offset = {0, 0, 0}; /* d: the direction from the eye; offset: the ray's start from it */
+    bool sees = true;
+    switch (c->lens.projection) {
+    case PROJECTION_ORTHOGRAPHIC:
+        glm_vec3_copy(b.forward, d);
+        for (int i = 0; i < 3; i++)
+            offset[i] = (sx * aspect * b.right[i] + sy * b.up[i]) * focus * t;
+        break;
+    case PROJECTION_EQUIRECTANGULAR: {
+        float lon = GLM_PIf * sx, lat = 0.5f * GLM_PIf * sy;
+        for (int i = 0; i < 3; i++)
+            d[i] = cosf(lat) * (sinf(lon) * b.right[i] + cosf(lon) * b.forward[i]) + sinf(lat) * b.up[i];
+        /* omnidirectional stereo: the eye on a circle, at right angles to the ray's horizontal direction */
+        for (int i = 0; i < 3; i++)
+            offset[i] = eye * 0.5f * c->lens.eye_separation * (cosf(lon) * b.right[i] - sinf(lon) * b.forward[i]);
+        eye = 0;
+        break;
+    }
+    case PROJECTION_FISHEYE: {
+        float px = sx * aspect, r = sqrtf(px * px + sy * sy), th = 0.5f * GLM_PIf * r;
+        sees = r <= 1.0f;
+        float k = r > 0 ? sinf(th) / r : 0.5f * GLM_PIf;
+        for (int i = 0; i < 3; i++)
+            d[i] = cosf(th) * b.forward[i] + k * (px * b.right[i] + sy * b.up[i]);
+        break;
+    }
+    default:
+        for (int i = 0; i < 3; i++)
+            d[i] = b.forward[i] + sx * t * aspect * b.right[i] + sy * t * b.up[i];
+    }
+    glm_vec3_normalize(d);
+    if (eye != 0) { /* an eye beside the centre, aiming so that the focal plane has no disparity */
+        float along = c->lens.projection == PROJECTION_PERSPECTIVE ? focus / glm_vec3_dot(d, b.forward) : focus;
+        for (int i = 0; i < 3; i++) {
+            float e = eye * 0.5f * c->lens.eye_separation * b.right[i];
+            d[i] = d[i] * along + offset[i] - (offset[i] + e);
+            offset[i] += e;
+        }
+        glm_vec3_normalize(d);
+    }
+    glm_vec3_copy(d, dir);
+    for (int i = 0; i < 3; i++)
+        origin[i] = c->position[i] + (double)offset[i];
+    return sees;
+}
+
+void camera_ray(const camera *c, int width, int height, float x, float y, vec3 dir)
+{
+    double origin[3];
+    camera_ray_from(c, width, height, x, y, origin, dir);
+}
+
+float camera_pixel_angle(const camera *c, int height)
+{
+    int w, h;
+    camera_eye_size(c, height, height, &w, &h);
+    if (c->lens.projection == PROJECTION_EQUIRECTANGULAR || c->lens.projection == PROJECTION_FISHEYE)
+        return GLM_PIf / (float)h;
+    return 2.0f * tanf(0.5f * c->fov_y) / (float)h;
+}
+
+float camera_footprint_t0(const camera *c)
+{
+    return c->lens.projection == PROJECTION_ORTHOGRAPHIC ? camera_focus(c) : 0.0f;
+}

@@ -1,10 +1,31 @@
 /* camera — free-fly camera maths. Pure functions over a small struct (cglm), no GL, no input state.
  *
- * Conventions: right-handed, Y up. yaw = 0 looks down -Z; yaw grows turning left (counter-clockwise
- * seen from above); pitch > 0 looks up, clamped short of ±90° so the basis never degenerates.
- * Primary rays: pixel (x, y) counts from the bottom-left (GL's window origin), its centre at +0.5;
- *   dir = normalize(forward + sx * tan(fov/2) * aspect * right + sy * tan(fov/2) * up),
- *   sx = 2 (x + 0.5) / width - 1,  sy = 2 (y + 0.5) / height - 1,  aspect = width / height.
+ * Conventions: right-handed, Y up. The orientation is yaw about +Y, then pitch about the camera's
+ * level right axis, then roll about its view direction (R = Ry(yaw) Rx(pitch) Rz(roll) turning the
+ * frame right = +X, up = +Y, forward = −Z). yaw = 0 looks down −Z; yaw grows turning left
+ * (counter-clockwise seen from above); pitch > 0 looks up (the mouse stops it short of ±90°, a file
+ * may give ±90° exactly); roll > 0 turns the camera's right toward its up (counter-clockwise as the
+ * camera sees it: the world in the image turns clockwise). roll = 0 keeps the horizon level.
+ *
+ * Primary rays (shaders/common/camera.glsl does the same per sample): pixel (x, y) counts from the
+ * bottom-left (GL's window origin), its centre at +0.5; with stereo each eye is half the image (left
+ * eye: the left half, or the top half) and (x, y), width and height are the eye's. sx = 2 (x + 0.5) /
+ * width − 1, sy = 2 (y + 0.5) / height − 1, aspect = width / height, t = tan(fov/2):
+ *   perspective      dir = normalize(forward + sx t aspect right + sy t up), from the eye;
+ *   orthographic     dir = forward, from eye + (sx aspect right + sy up) · focus t: the plane at the
+ *                    focal distance is framed as the perspective camera frames it;
+ *   equirectangular  longitude λ = π sx (0 straight ahead, > 0 to the right), latitude φ = π sy / 2:
+ *                    dir = cos φ (sin λ right + cos λ forward) + sin φ up (360° × 180°, fov unused);
+ *   fisheye          equidistant, 180° across the height: r = |(sx aspect, sy)|, θ = r π/2 off the axis;
+ *                    pixels with r > 1 see nothing (fulldome / domemaster).
+ * A thin lens (aperture > 0): each sample's ray leaves a point of the lens disc (radius `aperture`,
+ * in the right/up plane through the eye) toward the point the pinhole ray meets at the focal
+ * distance (measured along forward; along the ray for equirectangular and fisheye), so the plane at
+ * the focal distance is sharp and a point at distance d spreads to a disc of radius
+ * aperture · |d − focus| / d on the focal plane (the circle of confusion).
+ * Stereo: the eyes sit at ∓eye_separation/2 along right and aim so that the focal plane has no
+ * disparity (off-axis, as a lens offset); for equirectangular, omnidirectional stereo: each ray's eye
+ * lies on the circle of radius eye_separation/2, at right angles to the ray's horizontal direction.
  * fov is the vertical field of view in radians.
  */
 #ifndef FATHOM_CAMERA_H
@@ -13,10 +34,32 @@
 #include <cglm/cglm.h>
 #include <stdbool.h>
 
+typedef enum camera_projection {
+    PROJECTION_PERSPECTIVE,
+    PROJECTION_ORTHOGRAPHIC,
+    PROJECTION_EQUIRECTANGULAR,
+    PROJECTION_FISHEYE,
+    PROJECTION_COUNT
+} camera_projection;
+typedef enum camera_stereo { STEREO_NONE, STEREO_SIDE_BY_SIDE, STEREO_TOP_BOTTOM, STEREO_COUNT } camera_stereo;
+/* The names files and the command line use, in enum order. */
+extern const char *const CAMERA_PROJECTIONS[PROJECTION_COUNT + 1];
+extern const char *const CAMERA_STEREOS[STEREO_COUNT + 1];
+
+/* How the camera images the world (see top); zero is today's pinhole perspective. */
+typedef struct camera_lens {
+    camera_projection projection;
+    float aperture;       /* thin lens radius (world units); 0: a pinhole, all sharp */
+    float focus;          /* focal distance (world units); 0: not set (callers set the look-at distance) */
+    camera_stereo stereo;
+    float eye_separation; /* world units, between the eyes */
+} camera_lens;
+
 typedef struct camera {
     double position[3]; /* double: a deep zoom resolves detail far below a float's step at |p| ~ 1 */
-    float yaw, pitch; /* radians */
+    float yaw, pitch, roll; /* radians */
     float fov_y;      /* radians */
+    camera_lens lens;
 } camera;
 
 typedef struct camera_basis {
@@ -27,8 +70,12 @@ typedef struct camera_basis {
 typedef struct camera_input {
     float move[3];     /* right, up, forward: each -1..1 */
     float look[2];     /* mouse delta in pixels: x right, y down */
+    float roll;        /* Q/E: -1..1, > 0 rolls the camera's right toward its up at CAMERA_ROLL_RATE */
     bool fast;         /* Shift */
+    bool free;         /* free flight: turns about the camera's own axes and up is its up; else the
+                          horizon stays as it is (yaw about the world's vertical, pitch limited) */
 } camera_input;
+#define CAMERA_ROLL_RATE 1.5f /* radians per second */
 
 #define CAMERA_MAX_PITCH 1.5533430f /* 89 degrees */
 /* Camera and look-at coordinates lie within ±CAMERA_MAX_COORD metres: beyond, a float cannot tell a
@@ -42,9 +89,19 @@ bool camera_degenerate(const double eye[3], const double target[3]);
 camera camera_look_at(const double eye[3], const double target[3], float fov_y);
 /* The same with the field of view in degrees (scene files and the command line speak degrees). */
 camera camera_look_at_deg(const double eye[3], const double target[3], float fov_y_deg);
+/* The same with the image's up toward `up` (a world direction, not along the view; NULL or +Y: level):
+ * roll follows from it, and pitch may be ±90° exactly (a Z-up camera looking along −Y). */
+camera camera_look_at_up(const double eye[3], const double target[3], const double up[3], float fov_y);
 camera_basis camera_get_basis(const camera *c);
+/* yaw, pitch and roll from a forward and up direction (unit, at right angles): camera_get_basis's
+ * inverse. Straight up or down, yaw takes the whole turn about the view and roll is 0. */
+void camera_set_basis(camera *c, vec3 forward, vec3 up);
+/* Turns the camera about its own axes: dyaw about its up, dpitch about its right, droll about its
+ * view (a free flight: no horizon kept, no pitch limit). Signs as camera_update's. */
+void camera_turn(camera *c, float dyaw, float dpitch, float droll);
 
-/* Moves and turns by one frame of input: speed in m/s, sensitivity in radians per pixel. */
+/* Moves and turns by one frame of input: speed in m/s, sensitivity in radians per pixel. Up/down moves
+ * along the world's vertical, or in free flight along the camera's up. */
 void camera_update(camera *c, const camera_input *in, float dt, float speed, float sensitivity);
 
 /* Safe flight that slides. The renderer's distance bound (times its step factor) around a point is
@@ -105,10 +162,22 @@ void camera_clamp_range(double pos[3], const double centre[3], double max_distan
 double camera_distance(const double a[3], const double b[3]);
 double camera_norm(const double a[3]);
 
-/* The unit primary-ray direction through pixel (x, y) of a width × height image (see top). */
+/* The unit primary-ray direction through pixel (x, y) of a width × height image (see top): the centre
+ * of the lens (or of the eye), no lens sample. */
 void camera_ray(const camera *c, int width, int height, float x, float y, vec3 dir);
+/* The same with the ray's origin; false where the pixel sees nothing (outside a fisheye's circle). */
+bool camera_ray_from(const camera *c, int width, int height, float x, float y, double origin[3], vec3 dir);
 
-/* Angle one pixel spans at the image centre: 2 tan(fov/2) / height. Hit thresholds scale with it. */
+/* One eye's image: the whole image, or half of it with stereo. */
+void camera_eye_size(const camera *c, int width, int height, int *eye_width, int *eye_height);
+
+/* Angle one pixel spans at the image centre: 2 tan(fov/2) / eye height (perspective and orthographic),
+ * π / eye height (equirectangular and fisheye). Hit thresholds scale with the footprint
+ * angle · (t + camera_footprint_t0): a pixel's width at distance t along its ray. */
 float camera_pixel_angle(const camera *c, int height);
+/* 0, or for orthographic the focal distance: its pixels are focus · angle wide from the start. */
+float camera_footprint_t0(const camera *c);
+/* The focal distance camera_ray_from and the shader use: lens.focus, or 1 where it is not set. */
+float camera_focus(const camera *c);
 
 #endif

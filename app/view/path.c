@@ -71,21 +71,41 @@ static void q_slerp(const double a[4], const double b[4], double u, double o[4])
     q_normalize(o);
 }
 
-/* The camera's orientation: yaw about +Y, then pitch about the camera's right axis (camera.h). */
-static void q_from_yaw_pitch(double yaw, double pitch, double q[4])
+/* The camera's orientation: yaw about +Y, then pitch about the camera's right axis, then roll about
+ * its view (camera.h). */
+static void q_from_angles(double yaw, double pitch, double roll, double q[4])
 {
     double qy[4] = {0, sin(yaw / 2), 0, cos(yaw / 2)}, qx[4] = {sin(pitch / 2), 0, 0, cos(pitch / 2)};
-    q_mul(qy, qx, q);
+    double qz[4] = {0, 0, sin(roll / 2), cos(roll / 2)}, qyx[4];
+    q_mul(qy, qx, qyx);
+    q_mul(qyx, qz, q);
 }
 
-/* yaw and pitch of the direction the quaternion turns −Z to */
-static void q_to_yaw_pitch(const double q[4], double *yaw, double *pitch)
+/* yaw, pitch and roll of a camera frame: its unit forward f and right r (camera_set_basis's rule:
+ * straight up or down, roll 0 and yaw the whole turn) */
+static void frame_angles(const double f[3], const double r[3], double *yaw, double *pitch, double *roll)
 {
-    /* f = q (0, 0, −1) q* */
+    double cp = sqrt(f[0] * f[0] + f[2] * f[2]);
+    *pitch = atan2(f[1], cp);
+    if (cp > 1e-9) {
+        *yaw = atan2(-f[0], -f[2]);
+        /* the level right r0 = (cos yaw, 0, −sin yaw) and up u0 = r0 × f; right = r0 cos roll + u0 sin roll */
+        double r0[3] = {cos(*yaw), 0, -sin(*yaw)};
+        double u0[3] = {r0[1] * f[2] - r0[2] * f[1], r0[2] * f[0] - r0[0] * f[2], r0[0] * f[1] - r0[1] * f[0]};
+        *roll = atan2(r[0] * u0[0] + r[1] * u0[1] + r[2] * u0[2], r[0] * r0[0] + r[2] * r0[2]);
+    } else {
+        *yaw = atan2(-r[2], r[0]);
+        *roll = 0;
+    }
+}
+
+/* forward = q (0, 0, −1) q*, right = q (1, 0, 0) q* */
+static void q_to_angles(const double q[4], double *yaw, double *pitch, double *roll)
+{
     double x = q[0], y = q[1], z = q[2], w = q[3];
     double f[3] = {-(2 * (x * z + w * y)), -(2 * (y * z - w * x)), -(1 - 2 * (x * x + y * y))};
-    *yaw = atan2(-f[0], -f[2]);
-    *pitch = asin(fmax(-1.0, fmin(1.0, f[1])));
+    double r[3] = {1 - 2 * (y * y + z * z), 2 * (x * y + w * z), 2 * (x * z - w * y)};
+    frame_angles(f, r, yaw, pitch, roll);
 }
 
 /* ---- the position spline ---- */
@@ -305,7 +325,7 @@ void path_eval(const path *p, double t, path_sample *out)
     double s = hermite(p->key_length[i], p->key_length[i + 1], m[i], m[i + 1], h, u) - p->key_length[i];
     segment_point(p, i, segment_u(p, i, s), out->position);
     segment_orientation(p, i, u, out->quat);
-    q_to_yaw_pitch(out->quat, &out->yaw, &out->pitch);
+    q_to_angles(out->quat, &out->yaw, &out->pitch, &out->roll);
     /* fov and parameter tracks */
     out->fov_deg = hermite(K[i].fov_deg, K[i + 1].fov_deg, track_tangent(p, i, &K[0].fov_deg, sizeof *K / sizeof(double)),
                            track_tangent(p, i + 1, &K[0].fov_deg, sizeof *K / sizeof(double)), h, u);
@@ -354,10 +374,64 @@ static bool vec3_of(const cJSON *o, const char *key, double v[3], const char *na
     return true;
 }
 
+static void cross(const double a[3], const double b[3], double o[3])
+{
+    o[0] = a[1] * b[2] - a[2] * b[1];
+    o[1] = a[2] * b[0] - a[0] * b[2];
+    o[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+/* The key's orientation: yaw and pitch, or look_at (with up: the image's top toward it), then roll. */
+static bool key_orientation(const cJSON *k, path_key *K, int i, const char *name, err_t *err)
+{
+    double yaw = 0, pitch = 0, roll = 0; /* set on every path below; GCC -O3 cannot see it */
+    bool has_angles = cJSON_GetObjectItemCaseSensitive(k, "yaw") || cJSON_GetObjectItemCaseSensitive(k, "pitch");
+    bool has_up = cJSON_GetObjectItemCaseSensitive(k, "up") != NULL;
+    if (cJSON_GetObjectItemCaseSensitive(k, "look_at")) {
+        double at[3], up[3] = {0, 1, 0}, f[3], r[3];
+        if (has_angles)
+            return err_set(err, "%s: keys.%d: give yaw and pitch or look_at, not both", name, i);
+        if (!vec3_of(k, "look_at", at, name, i, err) || (has_up && !vec3_of(k, "up", up, name, i, err)))
+            return false;
+        double l = dist(at, K->position);
+        if (!(l > 1e-9 * (1 + fabs(K->position[0]) + fabs(K->position[1]) + fabs(K->position[2]))))
+            return err_set(err, "%s: keys.%d.look_at: is the key's position: the camera needs a point to look at", name, i);
+        for (int c = 0; c < 3; c++)
+            f[c] = (at[c] - K->position[c]) / l;
+        cross(f, up, r);
+        double rl = sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]), ul = sqrt(up[0] * up[0] + up[1] * up[1] + up[2] * up[2]);
+        if (!(rl > 1e-6 * ul)) {
+            if (has_up)
+                return err_set(err, "%s: keys.%d.up: is zero or along the view: give the direction the image's top "
+                                    "should face", name, i);
+            double level[3] = {cos(atan2(-f[0], -f[2])), 0, -sin(atan2(-f[0], -f[2]))}; /* straight up or down */
+            memcpy(r, level, sizeof r);
+            rl = 1;
+        }
+        for (int c = 0; c < 3; c++)
+            r[c] /= rl;
+        frame_angles(f, r, &yaw, &pitch, &roll);
+        if (!has_up) /* the level camera, as before: pitch stops short of ±90° */
+            pitch = fmax(-CAMERA_MAX_PITCH, fmin(CAMERA_MAX_PITCH, pitch));
+    } else {
+        if (has_up)
+            return err_set(err, "%s: keys.%d.up: goes with look_at (with yaw and pitch, give roll)", name, i);
+        if (!num(k, "yaw", -1e4, 1e4, &yaw, name, i, err) || !num(k, "pitch", -90, 90, &pitch, name, i, err))
+            return false;
+        yaw *= DEG;
+        pitch *= DEG;
+    }
+    double more = 0;
+    if (cJSON_GetObjectItemCaseSensitive(k, "roll") && !num(k, "roll", -1e4, 1e4, &more, name, i, err))
+        return false;
+    q_from_angles(yaw, pitch, roll + more * DEG, K->quat);
+    return true;
+}
+
 static bool parse_key(path *p, const cJSON *k, int i, const char *name, err_t *err)
 {
     path_key *K = &p->keys[i];
-    static const char *const allowed[] = {"time", "position", "yaw", "pitch", "look_at", "fov", "set", NULL};
+    static const char *const allowed[] = {"time", "position", "yaw", "pitch", "roll", "look_at", "up", "fov", "set", NULL};
     if (!cJSON_IsObject(k))
         return err_set(err, "%s: keys.%d: expected an object with time, position and yaw/pitch or look_at", name, i);
     for (const cJSON *it = k->child; it; it = it->next) {
@@ -365,7 +439,7 @@ static bool parse_key(path *p, const cJSON *k, int i, const char *name, err_t *e
         for (const char *const *a = allowed; *a && !ok; a++)
             ok = it->string && !strcmp(it->string, *a);
         if (!ok)
-            return err_set(err, "%s: keys.%d: unknown key '%s' (allowed: time, position, yaw, pitch, look_at, fov, set)",
+            return err_set(err, "%s: keys.%d: unknown key '%s' (allowed: time, position, yaw, pitch, roll, look_at, up, fov, set)",
                            name, i, it->string ? it->string : "");
     }
     if (!num(k, "time", -PATH_MAX_TIME, PATH_MAX_TIME, &K->time, name, i, err) || !vec3_of(k, "position", K->position, name, i, err))
@@ -373,27 +447,8 @@ static bool parse_key(path *p, const cJSON *k, int i, const char *name, err_t *e
     if (i > 0 && !(K->time > K[-1].time))
         return err_set(err, "%s: keys.%d.time: %g is not after the previous key's %g; times must increase", name, i,
                        K->time, K[-1].time);
-    double yaw = 0, pitch = 0; /* set on every path below; GCC -O3 cannot see it */
-    bool has_angles = cJSON_GetObjectItemCaseSensitive(k, "yaw") || cJSON_GetObjectItemCaseSensitive(k, "pitch");
-    if (cJSON_GetObjectItemCaseSensitive(k, "look_at")) {
-        double at[3];
-        if (has_angles)
-            return err_set(err, "%s: keys.%d: give yaw and pitch or look_at, not both", name, i);
-        if (!vec3_of(k, "look_at", at, name, i, err))
-            return false;
-        double d[3] = {at[0] - K->position[0], at[1] - K->position[1], at[2] - K->position[2]}, l = dist(at, K->position);
-        if (!(l > 1e-9 * (1 + fabs(K->position[0]) + fabs(K->position[1]) + fabs(K->position[2]))))
-            return err_set(err, "%s: keys.%d.look_at: is the key's position: the camera needs a point to look at", name, i);
-        yaw = atan2(-d[0], -d[2]);
-        pitch = asin(d[1] / l);
-    } else {
-        if (!num(k, "yaw", -1e4, 1e4, &yaw, name, i, err) || !num(k, "pitch", -89, 89, &pitch, name, i, err))
-            return false;
-        yaw *= DEG;
-        pitch *= DEG;
-    }
-    pitch = fmax(-CAMERA_MAX_PITCH, fmin(CAMERA_MAX_PITCH, pitch));
-    q_from_yaw_pitch(yaw, pitch, K->quat);
+    if (!key_orientation(k, K, i, name, err))
+        return false;
     if (i > 0 && q_dot(K->quat, K[-1].quat) < 0) /* the short way round */
         for (int c = 0; c < 4; c++)
             K->quat[c] = -K->quat[c];
@@ -477,10 +532,11 @@ void path_write(const path *p, strbuf *out)
     sb_append(out, "{\n  \"keys\": [\n");
     for (int i = 0; i < p->count; i++) {
         const path_key *K = &p->keys[i];
-        double yaw, pitch;
-        q_to_yaw_pitch(K->quat, &yaw, &pitch);
-        sb_printf(out, "    {\"time\": %.17g, \"position\": [%.17g, %.17g, %.17g], \"yaw\": %.17g, \"pitch\": %.17g, \"fov\": %.17g",
-                  K->time, K->position[0], K->position[1], K->position[2], yaw / DEG, pitch / DEG, K->fov_deg);
+        double yaw, pitch, roll;
+        q_to_angles(K->quat, &yaw, &pitch, &roll);
+        sb_printf(out, "    {\"time\": %.17g, \"position\": [%.17g, %.17g, %.17g], \"yaw\": %.17g, \"pitch\": %.17g, "
+                       "\"roll\": %.17g, \"fov\": %.17g",
+                  K->time, K->position[0], K->position[1], K->position[2], yaw / DEG, pitch / DEG, roll / DEG, K->fov_deg);
         if (p->param_count) {
             sb_append(out, ", \"set\": {");
             for (int k = 0; k < p->param_count; k++)
@@ -506,9 +562,10 @@ void path_text_from_cameras(const path_camera *keys, int n, strbuf *out)
 {
     sb_append(out, "{\n  \"keys\": [\n");
     for (int i = 0; i < n; i++)
-        sb_printf(out, "    {\"time\": %.9g, \"position\": [%.9g, %.9g, %.9g], \"yaw\": %.9g, \"pitch\": %.9g, \"fov\": %.9g}%s\n",
+        sb_printf(out, "    {\"time\": %.9g, \"position\": [%.9g, %.9g, %.9g], \"yaw\": %.9g, \"pitch\": %.9g, "
+                       "\"roll\": %.9g, \"fov\": %.9g}%s\n",
                   keys[i].time, keys[i].position[0], keys[i].position[1], keys[i].position[2], keys[i].yaw / DEG,
-                  keys[i].pitch / DEG, keys[i].fov_deg, i + 1 < n ? "," : "");
+                  keys[i].pitch / DEG, keys[i].roll / DEG, keys[i].fov_deg, i + 1 < n ? "," : "");
     sb_append(out, "  ]\n}\n");
 }
 
@@ -517,7 +574,7 @@ void path_key_camera(const path *p, int i, path_camera *out)
     const path_key *K = &p->keys[i];
     out->time = K->time;
     memcpy(out->position, K->position, sizeof out->position);
-    q_to_yaw_pitch(K->quat, &out->yaw, &out->pitch);
+    q_to_angles(K->quat, &out->yaw, &out->pitch, &out->roll);
     out->fov_deg = K->fov_deg;
 }
 

@@ -6,7 +6,8 @@
  *       { "time": 0,   "position": [0, 1, 5], "yaw": 0, "pitch": -10, "fov": 50 },
  *       { "time": 2.5, "position": [3, 1, 2], "look_at": [0, 0, 0],
  *         "set": { "fractal.power": 9 } } ] }
- * Each key gives yaw/pitch (camera.h's convention) or look_at; fov defaults to the previous key's
+ * Each key gives yaw/pitch (camera.h's convention) or look_at (and "up": the direction the image's
+ * top faces, default +Y), and may add "roll" (degrees, camera.h's sign); fov defaults to the previous key's
  * (the first: 50). "set" holds numeric scene keys (as --set takes them); every key must list the same
  * ones. Times strictly increase; at least two keys.
  *
@@ -60,7 +61,7 @@ typedef struct path {
 typedef struct path_sample {
     double position[3];
     double quat[4];
-    double yaw, pitch; /* radians, from the quaternion's forward direction */
+    double yaw, pitch, roll; /* radians, from the quaternion's frame (camera.h's angles) */
     double fov_deg;
     double values[PATH_MAX_PARAMS];
 } path_sample;
@@ -77,12 +78,12 @@ double path_duration(const path *p);
 /* Arc length of the whole path (metres). */
 double path_length(const path *p);
 
-/* The path as a file path_parse reads back to the same keys (yaw and pitch written from the quaternions). */
+/* The path as a file path_parse reads back to the same keys (yaw, pitch and roll written from the quaternions). */
 void path_write(const path *p, strbuf *out);
 
 /* Recording (the window's N key): keys as cameras, turned into a path file's text. */
 typedef struct path_camera {
-    double time, position[3], yaw, pitch, fov_deg; /* yaw and pitch in radians */
+    double time, position[3], yaw, pitch, roll, fov_deg; /* angles in radians */
 } path_camera;
 #define PATH_KEY_GAP_MIN 0.5  /* seconds between recorded keys, at least … */
 #define PATH_KEY_GAP_MAX 10.0 /* … and at most */

@@ -110,6 +110,8 @@ void shot_describe_fractal(const char *scene_path, const char *const *sets, int 
     cJSON_AddRawToObject(c, "yaw", num);
     snprintf(num, sizeof num, "%.9g", (double)cam->pitch);
     cJSON_AddRawToObject(c, "pitch", num);
+    snprintf(num, sizeof num, "%.9g", (double)cam->roll);
+    cJSON_AddRawToObject(c, "roll", num);
     snprintf(num, sizeof num, "%.9g", (double)cam->fov_y);
     cJSON_AddRawToObject(c, "fov_y", num);
     cJSON *size = cJSON_AddArrayToObject(j, "size");
@@ -193,7 +195,9 @@ bool shot_parse(const char *text, const char *source, shot_desc *d, err_t *err)
               (!scene_text || cJSON_IsString(scene_text)) &&
               cJSON_GetArraySize(sets) <= SHOT_SET_MAX && cJSON_IsArray(pos) && cJSON_GetArraySize(pos) == 3 &&
               number(cJSON_GetObjectItemCaseSensitive(cam, "yaw"), -10, 10, &d->cam.yaw) &&
-              number(cJSON_GetObjectItemCaseSensitive(cam, "pitch"), -CAMERA_MAX_PITCH, CAMERA_MAX_PITCH, &d->cam.pitch) &&
+              number(cJSON_GetObjectItemCaseSensitive(cam, "pitch"), -1.5707964, 1.5707964, &d->cam.pitch) &&
+              (!cJSON_GetObjectItemCaseSensitive(cam, "roll") || /* shots before roll have none */
+               number(cJSON_GetObjectItemCaseSensitive(cam, "roll"), -10, 10, &d->cam.roll)) &&
               number(cJSON_GetObjectItemCaseSensitive(cam, "fov_y"), 1e-3, 3.1, &d->cam.fov_y) &&
               cJSON_IsArray(size) && number(cJSON_GetArrayItem(size, 0), 1, 16384, &w) &&
               number(cJSON_GetArrayItem(size, 1), 1, 16384, &h);

@@ -40,7 +40,8 @@ static void reset_camera(bool first)
     float fov = first && opt->has_fov ? opt->fov_deg : s->cam_fov_deg;
     const double *pos = first && opt->has_camera ? opt->camera : s->cam_position;
     const double *at = first && opt->has_look_at ? opt->look_at : s->cam_look_at;
-    camera cam = first && opt->has_view ? opt->view : camera_look_at_deg(pos, at, fov);
+    camera cam = first && opt->has_view ? opt->view : scene_camera(s, pos, at, fov);
+    cam.lens = first && opt->has_view ? scene_lens(s) : cam.lens;
     flycam_start(&app.fly, s, &cam, at);
     snprintf(app.preset_path, sizeof app.preset_path, "%s" SHOT_PRESET_EXT, s->name);
     char msg[ERR_MSG_MAX];
@@ -198,7 +199,7 @@ static bool panel_apply(const panel_actions *act)
         if (camera_degenerate(act->position, act->look_at)) {
             snprintf(app.message, sizeof app.message, "the look-at point is the camera's position: no direction to look in");
         } else {
-            app.fly.cam = camera_look_at_deg(act->position, act->look_at, act->fov_deg);
+            app.fly.cam = scene_camera(&app.s.scene, act->position, act->look_at, act->fov_deg);
             memcpy(app.fly.pivot, act->look_at, sizeof app.fly.pivot);
         }
     }
@@ -296,11 +297,38 @@ static bool handle_requests(void)
     return restart;
 }
 
+/* F: the lens focused on the point under the cursor (the window's centre while the mouse looks): the
+ * focal plane through it, as an override (undo takes it back, a preset keeps it). True when it took. */
+static bool focus_lens(int w, int h)
+{
+    if (!app.ask.focus)
+        return false;
+    app.ask.focus = false;
+    bool captured = !flycam_cursor_free(&app.fly, app.panel);
+    int x = captured ? w / 2 : (int)app.fly.mouse[0], y = captured ? h / 2 : (int)app.fly.mouse[1];
+    double p[3];
+    if (!flycam_point_under(&app.fly, x, y, w, h, p)) {
+        snprintf(app.message, sizeof app.message, "nothing under the cursor to focus on");
+        return false;
+    }
+    camera_basis b = camera_get_basis(&app.fly.cam);
+    double d = 0;
+    for (int i = 0; i < 3; i++)
+        d += (p[i] - app.fly.cam.position[i]) * (double)b.forward[i];
+    if (app.fly.cam.lens.projection == PROJECTION_EQUIRECTANGULAR || app.fly.cam.lens.projection == PROJECTION_FISHEYE)
+        d = camera_distance(p, app.fly.cam.position); /* their focus is along the ray */
+    char kv[64];
+    snprintf(kv, sizeof kv, "camera.focus=%.9g", fmax(d, 1e-30));
+    overrides_checkpoint(&app.s.edits);
+    return edit(kv);
+}
+
 /* One frame's sample. Moving (or restarted): one sample at the internal resolution the controller
  * picks for the target frame rate, stretched to the window. Still: full resolution, samples
  * accumulating up to the preset's spp in bands of about one frame's time. True while there is work. */
 static bool draw(int w, int h, bool restart, camera *shown, bool *moved)
 {
+    app.fly.cam.lens = scene_lens(&app.s.scene); /* the panel's and F's edits: projection, lens, stereo */
     *moved = memcmp(shown, &app.fly.cam, sizeof *shown) != 0;
     bool moving = *moved || restart;
     int aw, ah;
@@ -434,6 +462,7 @@ static void loop(GLFWwindow *win)
         asked = panel_apply(&act) || asked;
         asked = views_and_presets(win, &act, w, h) || asked;
         asked = fit_precision(h) || asked;
+        asked = focus_lens(w, h) || asked;
         restart = restart || asked;
         bool moved, refining = draw(w, h, restart, &shown, &moved);
         restart = false;

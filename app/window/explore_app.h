@@ -34,6 +34,7 @@ typedef struct explore_app {
     struct { /* what the keys asked, done in the frame's order */
         bool reload, screenshot, go_home, save_view, add_key, clear_keys, toggle_play;
         bool undo, redo, save_preset, copy_preset, paste_preset;
+        bool focus; /* F: focus the lens on the point under the cursor */
         int recall_view;   /* Ctrl+1…9: 1…9; 0 none */
         int pending_scene; /* a number key's scene; −1 none */
         int knob_step;     /* =/-: +1 or −1 */

@@ -64,6 +64,8 @@ static void plain_key(explore_app *a, GLFWwindow *w, int key, int mods)
     case GLFW_KEY_V: a->view = a->view == VIEW_DIFFERENCE ? VIEW_COLOR : VIEW_DIFFERENCE; break;
     case GLFW_KEY_O: a->fly.mode = a->fly.mode == CAMERA_ORBIT ? CAMERA_FLY : CAMERA_ORBIT; break;
     case GLFW_KEY_T: a->fly.mode = a->fly.mode == CAMERA_WALK ? CAMERA_FLY : CAMERA_WALK; break;
+    case GLFW_KEY_U: flycam_toggle_level(&a->fly); break;
+    case GLFW_KEY_F: a->ask.focus = true; break;
     case GLFW_KEY_HOME:
     case GLFW_KEY_BACKSPACE: a->ask.go_home = true; break;
     case GLFW_KEY_B: a->ask.save_view = true; break;

@@ -25,6 +25,7 @@ static const float WALK_SPEED = 1.4f;              /* m/s: walking (Shift: ×4, 
 void flycam_start(flycam *f, const scene *s, const camera *cam, const double look_at[3])
 {
     f->cam = *cam;
+    f->level = cam->roll == 0;
     f->start_speed = s->adaptive_speed ? DEFAULT_SPEED
                                        : START_SPEED_FRACTION * (float)camera_distance(s->cam_position, s->cam_look_at);
     f->speed = f->start_speed;
@@ -33,8 +34,17 @@ void flycam_start(flycam *f, const scene *s, const camera *cam, const double loo
 
 void flycam_home(flycam *f, const scene *s)
 {
-    camera cam = camera_look_at_deg(s->cam_position, s->cam_look_at, s->cam_fov_deg);
+    camera cam = scene_camera(s, s->cam_position, s->cam_look_at, s->cam_fov_deg);
     flycam_start(f, s, &cam, s->cam_look_at);
+}
+
+void flycam_toggle_level(flycam *f)
+{
+    f->level = !f->level;
+    if (f->level) { /* upright: the roll goes, the view's direction stays (within the pitch limit) */
+        f->cam.roll = 0;
+        f->cam.pitch = fmaxf(fminf(f->cam.pitch, CAMERA_MAX_PITCH), -CAMERA_MAX_PITCH);
+    }
 }
 
 bool flycam_cursor_free(const flycam *f, bool panel_open) { return panel_open || f->mode == CAMERA_ORBIT; }
@@ -52,6 +62,9 @@ static camera_input read_input(flycam *f, GLFWwindow *w, bool panel_open, bool *
     in.move[1] = keys ? (float)(glfwGetKey(w, GLFW_KEY_SPACE) - glfwGetKey(w, GLFW_KEY_C)) : 0;
     in.move[2] = keys ? (float)(glfwGetKey(w, GLFW_KEY_W) - glfwGetKey(w, GLFW_KEY_S)) : 0;
     in.fast = keys && (glfwGetKey(w, GLFW_KEY_LEFT_SHIFT) || glfwGetKey(w, GLFW_KEY_RIGHT_SHIFT));
+    in.roll = keys && f->mode == CAMERA_FLY ? (float)(glfwGetKey(w, GLFW_KEY_Q) - glfwGetKey(w, GLFW_KEY_E)) : 0;
+    f->level = f->level && in.roll == 0; /* rolling is free flight */
+    in.free = !f->level && f->mode == CAMERA_FLY;
     bool free = flycam_cursor_free(f, panel_open);
     int cursor = free ? GLFW_CURSOR_NORMAL : GLFW_CURSOR_DISABLED;
     if (glfwGetInputMode(w, GLFW_CURSOR) != cursor) {
@@ -112,9 +125,11 @@ bool flycam_point_under(const flycam *f, int x, int y, int w, int h, double out[
     if (!render_read_pixel(ax, ay, aov) || !isfinite(aov[AOV_SLOT_DEPTH]))
         return false;
     vec3 d;
-    camera_ray(&f->cam, aw, ah, (float)ax, (float)(ah - 1 - ay), d);
+    double o[3]; /* orthographic rays and stereo eyes start off the camera's position */
+    if (!camera_ray_from(&f->cam, aw, ah, (float)ax, (float)(ah - 1 - ay), o, d))
+        return false;
     for (int i = 0; i < 3; i++)
-        out[i] = f->cam.position[i] + (double)d[i] * (double)aov[AOV_SLOT_DEPTH];
+        out[i] = o[i] + (double)d[i] * (double)aov[AOV_SLOT_DEPTH];
     return true;
 }
 

@@ -23,6 +23,7 @@ typedef struct flycam {
     float scroll;             /* notches not yet applied */
     double mouse[2];
     bool mouse_valid, looking, orbiting;
+    bool level; /* the horizon is kept (yaw about the vertical, pitch limited); Q/E roll into free flight */
     int settle_frames; /* after the cursor was captured: frames whose mouse motion is not a look */
 } flycam;
 
@@ -33,6 +34,8 @@ void flycam_start(flycam *f, const scene *s, const camera *cam, const double loo
 void flycam_home(flycam *f, const scene *s);
 /* The cursor is free (the panel is open, or orbiting) or captured (the mouse looks). */
 bool flycam_cursor_free(const flycam *f, bool panel_open);
+/* U: back to a level horizon (roll 0), or free flight. */
+void flycam_toggle_level(flycam *f);
 /* One frame's move of dt seconds (the recorded flight is not playing). */
 void flycam_move(flycam *f, struct GLFWwindow *win, const scene *s, bool panel_open, float dt, int w, int h);
 /* The world point seen at window pixel (x, y) of a w × h window (from the top), by the image on show. */

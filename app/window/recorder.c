@@ -18,7 +18,7 @@ void recorder_free(recorder *r)
 
 static path_camera key_of(const camera *c)
 {
-    path_camera k = {.yaw = c->yaw, .pitch = c->pitch, .fov_deg = glm_deg(c->fov_y)};
+    path_camera k = {.yaw = c->yaw, .pitch = c->pitch, .roll = c->roll, .fov_deg = glm_deg(c->fov_y)};
     memcpy(k.position, c->position, sizeof k.position);
     return k;
 }
@@ -131,6 +131,7 @@ bool recorder_play(recorder *r, double dt, camera *c, char *message, size_t n)
     memcpy(c->position, smp.position, sizeof c->position);
     c->yaw = (float)smp.yaw;
     c->pitch = (float)smp.pitch;
+    c->roll = (float)smp.roll;
     c->fov_y = glm_rad((float)smp.fov_deg);
     if (r->play_t >= r->flight.keys[r->flight.count - 1].time) {
         r->playing = false;

@@ -1,7 +1,7 @@
 // Liquid droplets (the droplets paper, §3.2; app/data/droplets.h): analytic spheres read from a file, found
 // through a uniform grid walked in 3D-DDA order (Amanatides & Woo 1987). Sub-pixel droplets are not
 // traced: the ray goes straight through, dimmed by the droplet's mean transmittance (DROPLET_LOD).
-// Needs: fresnelDielectric (common/brdf.glsl), uPixelAngle (common/uniforms.glsl).
+// Needs: fresnelDielectric (common/brdf.glsl), footprintAt (common/uniforms.glsl).
 
 uniform samplerBuffer uDroplets;      // droplet i: centre xyz, radius w
 uniform usamplerBuffer uDropletIndex; // droplet numbers, cell after cell (BVH: in leaf order)
@@ -56,7 +56,7 @@ const bool DROPLET_LOD_ON = float(DROPLET_LOD) > 0.0;
 
 bool dropletIsSubPixel(float r, float pathT)
 {
-    return r < float(DROPLET_LOD) * uPixelAngle * pathT;
+    return r < float(DROPLET_LOD) * footprintAt(pathT);
 }
 
 // The first droplet other than `skip` among uDropletIndex[first .. last) that holds p, or −1.

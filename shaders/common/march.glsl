@@ -29,7 +29,7 @@ float positionFloor(float t)
 
 float hitEps(float t)
 {
-    return max(max(float(HIT_K) * uPixelAngle * t, HIT_EPS_MIN), positionFloor(t));
+    return max(max(float(HIT_K) * footprintAt(t), HIT_EPS_MIN), positionFloor(t));
 }
 
 #include "common/hit.glsl"
@@ -244,7 +244,7 @@ Hit castRay(vec3 ro, vec3 rd, float tmax, float side, float pathT)
         h.boundSteps += bound ? 1 : 0;
 #ifdef MARCH_COVERAGE
         if (coverTrack && !bound && !boundPrev && dist > fPrev && fPrev > 0.0) { // passed by at tPrev
-            float footprint = uPixelAngle * (pathT + tPrev);
+            float footprint = footprintAt(pathT + tPrev);
             if (fPrev / footprint < coverRatio) {
                 coverRatio = fPrev / footprint;
                 coverT = tPrev;

@@ -314,8 +314,9 @@ int shadeHit(inout Path P, Ray ray, Hit h, int bounce)
     // Where the neighbouring pixels' rays meet the tangent plane (texture filtering).
     float dn = dot(P.rd, nOut);
     dn = sign(dn) * max(abs(dn), 1e-3) + (dn == 0.0 ? 1e-3 : 0.0);
-    vec3 dpdx = T * (ray.dDdx - P.rd * dot(ray.dDdx, nOut) / dn);
-    vec3 dpdy = T * (ray.dDdy - P.rd * dot(ray.dDdy, nOut) / dn);
+    float Tf = T + uFootprintT0; // orthographic: a pixel is as wide at the start
+    vec3 dpdx = Tf * (ray.dDdx - P.rd * dot(ray.dDdx, nOut) / dn);
+    vec3 dpdy = Tf * (ray.dDdy - P.rd * dot(ray.dDdy, nOut) / dn);
     vec3 pSurface = p; // shadows and AO start on the real surface, not inside a relief
 #if FX_RELIEF
     reliefSurface(P, h, firstHit, pSurface, p, nOut);
@@ -434,6 +435,12 @@ vec3 coveredRadiance(Path P, Ray ray, vec3 radiance)
 void renderPixel(vec2 fragCoord, out vec4 color, out vec4 normalDepth, out vec4 aux)
 {
     Ray ray = primaryRay(fragCoord);
+    if (!ray.sees) { // outside a fisheye's circle: black, a miss
+        color = vec4(0.0, 0.0, 0.0, 1.0);
+        normalDepth = vec4(0.0, 0.0, 0.0, -1.0);
+        aux = vec4(0.0, ray.d);
+        return;
+    }
 #if INTEGRATOR
     PathSample S = tracePathSample(ray, fragCoord + uTileOffset); // seeded by the whole image's pixel
     color = vec4(S.radiance, 1.0);

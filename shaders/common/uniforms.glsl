@@ -5,7 +5,14 @@ uniform vec2 uTileOffset;   // where this render target's pixel (0,0) sits in it
 uniform vec3 uCamPos;
 uniform vec3 uCamForward, uCamRight, uCamUp; // orthonormal basis
 uniform float uTanHalfFov;  // tan(vertical fov / 2)
-uniform float uPixelAngle;  // 2 tan(fov/2) / height: the angle one pixel spans
+uniform float uPixelAngle;  // 2 tan(fov/2) / height: the angle one pixel spans (camera_pixel_angle)
+uniform float uFootprintT0; // 0, or orthographic: a pixel is uPixelAngle · (t + uFootprintT0) wide at t
+uniform int uProjection;    // app/view/camera.h's camera_projection
+uniform int uStereo;        // camera_stereo: 0 none, 1 side by side, 2 top-bottom
+uniform float uEyeSeparation, uFocus, uLensRadius; // world units
+uniform vec2 uLensSample;   // this sample's point of the unit square for the lens (Halton 5, 7)
+// A pixel's width at distance t along its ray: hit thresholds and levels of detail scale with it.
+float footprintAt(float t) { return uPixelAngle * (t + uFootprintT0); }
 uniform int uAdaptive;          // 1: only pixels the edge mask keeps take this sample (app/gpu/render.c)
 uniform sampler2D uEdgeMask;
 uniform vec2 uJitter;       // sub-pixel offset of this sample, pixels; (0,0) for the first

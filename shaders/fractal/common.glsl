@@ -71,7 +71,7 @@ float largestSingular(mat3 J)
 }
 
 // The primary ray's hit threshold at p (shader space, where the eye is uCamPos): common/march.glsl.
-float boundThreshold(vec3 p) { return float(HIT_K) * uPixelAngle * length(p - uCamPos); }
+float boundThreshold(vec3 p) { return float(HIT_K) * footprintAt(length(p - uCamPos)); }
 
 vec3 paletteColor(float t)
 {

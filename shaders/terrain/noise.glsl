@@ -87,7 +87,7 @@ float octaveWeight(float freq, float footprint, out float dWeight)
 vec4 fbm(vec3 p)
 {
     vec3 toEye = p - uCamPos;
-    float dist = length(toEye), footprint = max(uPixelAngle * dist, 1e-30);
+    float dist = length(toEye), footprint = max(footprintAt(dist), 1e-30);
     vec3 dDist = dist > 0.0 ? toEye / dist : vec3(0.0);
     vec4 sum = vec4(0.0);
     float amp = 0.5, freq = uNoiseFrequency;
@@ -117,7 +117,7 @@ vec4 fbm(vec3 p)
 // octave's slope along dir is at most its per-axis slope times |dx| + |dy| + |dz|, not √3).
 float fieldBound(vec3 p, vec3 dir, out bool filtered)
 {
-    float footprint = max(uPixelAngle * length(p - uCamPos), 1e-30), ball = footprint * BOUND_REACH;
+    float footprint = max(footprintAt(length(p - uCamPos)), 1e-30), ball = footprint * BOUND_REACH;
     bool along = dir != vec3(0.0);
     float yRate = along ? abs(dir.y) : 1.0, axes = along ? abs(dir.x) + abs(dir.y) + abs(dir.z) : 1.7320508;
     const float FADE = 1.0 / (OCTAVE_FADE_FULL - OCTAVE_FADE_GONE);
