@@ -17,6 +17,7 @@
 #include "scene/quality.h"
 #include "scene/scene.h"
 #include "data/image_io.h"
+#include "data/video.h"
 
 enum { MAX_IMAGE_SIDE = 16384, MAX_SPP = 1 << 16, DEFAULT_RUNS = 5, MAX_RUNS = 1000 };
 static const float MAX_FOV_DEG = 179.0f; /* vertical field of view; 180 degrees has no perspective */
@@ -26,6 +27,7 @@ static const char USAGE[] =
     "       fathom bench [--scene S] [--size WxH] [--runs N] [--knob NAME=v1,v2,...]... [--truth model|path]\n"
     "                    [--quick|--full] [--out DIR] [--name N]\n"
     "       fathom render --path FLIGHT.json [--frames A-B] [--fps N] --output DIR/frame_%04d.png [options]\n"
+    "       fathom render --path FLIGHT.json [--fps N] [--video LIST] --output flight.mp4 [options]\n"
     "       fathom stitch --output POSTER.png POSTER.tile-*.png\n"
     "       fathom check-formula NAME|FILE [--set fractal.KEY=VALUE]... [--quick]\n"
     "  Opens the explorer window, or renders an offline shot with --output (no display needed).\n"
@@ -82,7 +84,10 @@ static const char USAGE_OPTIONS[] =
     "  --frames N            window mode: render N frames, then exit (and say what they cost); with\n"
     "                        --path: frames A-B or N\n"
     "  --panel               window: start with the parameter panel open (F1 toggles it)\n"
-    "  --path FILE           a camera path (keyframes) to render frame by frame (with --output PATTERN)\n"
+    "  --path FILE           a camera path (keyframes) to render frame by frame (with --output PATTERN),\n"
+    "                        or to a video (--output NAME.mp4, .webm or .mkv; frames in NAME.mp4.frames/)\n"
+    "  --video LIST          the video's codec=h264|av1|vp9, crf=N (quality: lower is better) and\n"
+    "                        pix_fmt=yuv420p|yuv444p [h264 (webm: vp9), crf 18 (vp9: 6, av1: 3), yuv420p]\n"
     "  --tile I/N            render only tile I of N of the --output image (for posters and farms)\n"
     "  --fps N               window: frame rate to hold while moving (lower internal resolution) [30];\n"
     "                        with --path: frames per second of the flight [30]\n"
@@ -282,6 +287,8 @@ static bool set_output_option(const char *name, const char *val, cli_options *o,
     } else if (!strcmp(name, "--frames")) {
         o->has_frames = true;
         o->frames_arg = val; /* a count for the window, a range for --path: decided once all are read */
+    } else if (!strcmp(name, "--video")) {
+        o->video = val; /* checked with --output (its container) once all are read */
     } else if (!strcmp(name, "--path")) {
         o->path = val;
     } else if (!strcmp(name, "--tile")) {
@@ -379,6 +386,17 @@ static bool set_flag(const char *a, cli_options *o)
     return false;
 }
 
+/* A video output: a flight's, with --video's options good for its container. */
+static bool check_video(const cli_options *o, err_t *err)
+{
+    video_options vo;
+    bool video = o->output && video_is_file(o->output);
+    if ((o->video || video) && !(o->path && video))
+        return err_set(err, "a video is a flight's: give --path FLIGHT.json and --output NAME.mp4 (or .webm, .mkv)%s",
+                       o->video ? " with --video" : "");
+    return !o->video || video_options_parse(o->video, o->output, &vo, err);
+}
+
 /* Options that only make sense together. */
 static bool check_combinations(const cli_options *o, err_t *err)
 {
@@ -398,7 +416,7 @@ static bool check_combinations(const cli_options *o, err_t *err)
                             "flight (fathom --help)");
     if (o->path && (o->has_camera || o->has_look_at || o->has_fov || o->has_view))
         return err_set(err, "--path gives the camera for every frame: drop --camera, --look-at, --fov and --view");
-    if (o->path) {
+    if (o->path && !video_is_file(o->output)) {
         char name[PATH_MAX_LEN];
         if (!path_frame_name(o->output, 0, name, sizeof name, err))
             return false;
@@ -437,11 +455,14 @@ static bool check_combinations(const cli_options *o, err_t *err)
         return err_set(err, "--strip-rows needs an offline shot: add --output FILE");
     if (o->has_camera && o->has_look_at && camera_degenerate(o->camera, o->look_at))
         return err_set(err, "--camera and --look-at are the same point: the camera needs a direction to look in");
-    if (o->output) {
+    if (!check_video(o, err))
+        return false;
+    if (o->output && !video_is_file(o->output)) {
         const char *dot = strrchr(o->output, '.');
         bool png = dot && !strcasecmp(dot, ".png"), exr = dot && !strcasecmp(dot, ".exr");
         if (!png && !exr)
-            return err_set(err, "bad --output '%s': the file name must end in .png or .exr", o->output);
+            return err_set(err, "bad --output '%s': the file name must end in .png or .exr (a flight's: or .mp4, "
+                                ".webm, .mkv)", o->output);
         if (o->aovs && !exr)
             return err_set(err, "--aov channels need an EXR file: use --output %.*s.exr",
                            (int)(dot ? dot - o->output : (long)strlen(o->output)), o->output);
@@ -498,7 +519,7 @@ bool cli_parse(int argc, char **argv, cli_options *o, err_t *err)
         static const char *const WITH_VALUE[] = {"--scene", "--dem", "--formula", "--help-formula", "--output", "--size", "--spp", "--quality",
                                                  "--camera", "--look-at", "--fov", "--set", "--aov", "--frames",
                                                  "--runs", "--out", "--knob", "--name", "--strip-rows", "--fps", "--view", "--backend", "--truth",
-                                                 "--path", "--tile"};
+                                                 "--path", "--tile", "--video"};
         static const char *const REPEATABLE[] = {"--set", "--knob"};
         size_t k = 0;
         while (k < sizeof WITH_VALUE / sizeof WITH_VALUE[0] && strcmp(name, WITH_VALUE[k]))

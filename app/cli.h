@@ -57,6 +57,7 @@ typedef struct cli_options {
     bool render_word;           /* `fathom render ...`: an offline shot or flight, never the window */
     const char *inputs[4096];
     int input_count;
+    const char *video;  /* --video: a flight video's encoding (data/video.h), or NULL */
     int fps;            /* window: frame rate to hold while moving; 0: the default (30) */
     const char *backend; /* --backend auto|fragment|compute (NULL: FATHOM_BACKEND, else auto) */
     bool has_camera, has_look_at, has_fov;

@@ -114,7 +114,7 @@ static offline_desc shot_of(const cli_options *opt)
 /* The jobs' own descriptions of what the command line asks (jobs never see cli_options). */
 static flight_desc flight_of(const cli_options *o)
 {
-    return (flight_desc){.path = o->path, .output = o->output, .scene = o->scene, .sets = o->sets,
+    return (flight_desc){.path = o->path, .output = o->output, .video = o->video, .scene = o->scene, .sets = o->sets,
                          .set_count = o->set_count, .spp = o->spp, .fps = o->fps, .has_frames = o->has_frames,
                          .frame_first = o->frame_first, .frame_last = o->frame_last, .shot = shot_of(o)};
 }

@@ -17,6 +17,7 @@ _fathom()
     --quality) COMPREPLY=($(compgen -W "draft interactive final reference" -- "$cur")); return ;;
     --backend) COMPREPLY=($(compgen -W "auto fragment compute" -- "$cur")); return ;;
     --truth) COMPREPLY=($(compgen -W "model path" -- "$cur")); return ;;
+    --video) COMPREPLY=($(compgen -W "codec=h264 codec=av1 codec=vp9 crf= pix_fmt=yuv420p pix_fmt=yuv444p" -- "$cur")); return ;;
     --dem | --output | --path) COMPREPLY=($(compgen -f -- "$cur")); return ;;
     --out) COMPREPLY=($(compgen -d -- "$cur")); return ;;
     esac

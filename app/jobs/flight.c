@@ -6,9 +6,11 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include "gpu/gpu.h"
 #include "data/image_io.h"
+#include "jobs/flight_video.h"
 #include "jobs/offline.h"
 #include "view/path.h"
 #include "gpu/render.h"
@@ -177,11 +179,38 @@ static bool render_frame(flight_state *F, int f, err_t *err)
     return ok;
 }
 
+/* A video output: the frames go to its folder (flight_video.h); an empty folder is taken back on failure. */
+static bool frames_of_video(const flight_desc **opt, flight_desc *framed, char *pattern, size_t n, video_options *vo,
+                            err_t *err)
+{
+    if (!video_is_file((*opt)->output))
+        return true;
+    if (!flight_video_prepare((*opt)->output, (*opt)->video, pattern, n, vo, err))
+        return false;
+    *framed = **opt;
+    framed->output = pattern;
+    *opt = framed;
+    return true;
+}
+
+static void drop_empty_folder(const char *pattern)
+{
+    char folder[PATH_MAX_LEN];
+    if (pattern[0] && util_dirname(pattern, folder, sizeof folder))
+        rmdir(folder); /* only when empty: nothing rendered yet */
+}
+
 bool flight_render(const flight_desc *opt, err_t *err)
 {
     path p;
-    if (!path_load(opt->path, &p, err))
+    static flight_desc framed;
+    char pattern[PATH_MAX_LEN] = "";
+    const char *video = opt->output;
+    video_options vo;
+    if (!frames_of_video(&opt, &framed, pattern, sizeof pattern, &vo, err) || !path_load(opt->path, &p, err)) {
+        drop_empty_folder(pattern);
         return false;
+    }
     static flight_state F; /* big: the overrides' text */
     F = (flight_state){.opt = opt, .p = &p, .fps = opt->fps ? opt->fps : DEFAULT_FPS};
     int first, last;
@@ -190,10 +219,14 @@ bool flight_render(const flight_desc *opt, err_t *err)
     char name[PATH_MAX_LEN];
     path_sample smp;
     path_eval(&p, p.keys[0].time, &smp);
-    if (ok && (ok = frame_scene(opt, &p, &smp, &F.s, F.sets, &F.nsets, F.track, err)))
+    camera_lens lens = {0};
+    if (ok && (ok = frame_scene(opt, &p, &smp, &F.s, F.sets, &F.nsets, F.track, err))) {
+        lens = scene_lens(&F.s);
         scene_free(&F.s);
+    }
     ok = ok && path_frame_name(opt->output, first, name, sizeof name, err) && image_can_write(name, err);
     if (!ok || !gpu_open(&(gpu_desc){.headless = true}, err)) {
+        drop_empty_folder(pattern);
         path_free(&p);
         return false;
     }
@@ -212,6 +245,13 @@ bool flight_render(const flight_desc *opt, err_t *err)
                 opt->path, F.rendered, F.skipped, secs, F.rendered ? 60.0 * F.rendered / secs : 0.0, gpu_describe());
     render_shutdown();
     gpu_close();
+    if (!ok && pattern[0])
+        drop_empty_folder(pattern);
+    if (ok && pattern[0]) {
+        video_view view = {.equirectangular = lens.projection == PROJECTION_EQUIRECTANGULAR, .stereo = (int)lens.stereo};
+        ok = flight_video_assemble(video, pattern, (int)floor(path_duration(&p) * F.fps + 1e-9), F.fps, &vo, &view,
+                                   opt->shot.quiet, err);
+    }
     path_free(&p);
     return ok;
 }

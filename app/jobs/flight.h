@@ -3,7 +3,8 @@
  * Each frame is an offline shot (verified, atomic write; its file remembers scene, overrides and
  * camera, so `--scene frame.png` renders it again). A frame whose file already exists is skipped, so
  * a run killed part way (a crash, a pre-empted farm job) resumes where it stopped, and several
- * processes can share one range. One GL context serves every frame. */
+ * processes can share one range. One GL context serves every frame. An output ending in .mp4, .webm or
+ * .mkv is a video: the frames go to its folder and the video is made from them (jobs/flight_video.h). */
 #ifndef FATHOM_FLIGHT_H
 #define FATHOM_FLIGHT_H
 
@@ -17,6 +18,7 @@
  * kind of offline shot (size, AOVs, bands, quiet), at spp samples (0: the scene's). */
 typedef struct flight_desc {
     const char *path, *output, *scene;
+    const char *video; /* a video output's --video options, or NULL (jobs/flight_video.h) */
     const char *const *sets;
     int set_count, spp, fps;
     bool has_frames;
