@@ -50,6 +50,14 @@ expect bad-spp 2 "bad --spp '-1'" 1 -- "$fathom" --spp -1 --output "$tmp/out.png
 expect bad-fov 2 "bad --fov '400'" 1 -- "$fathom" --fov 400 --output "$tmp/out.png"
 expect bad-extension 2 "must end in .png or .exr" 1 -- "$fathom" --output "$tmp/out.jpg"
 expect unknown-option 2 "unknown option '--colour'" 1 -- "$fathom" --colour red
+# cameras and videos
+expect bad-projection 1 "camera.projection" 1 -- "$fathom" --set camera.projection=cylinder $out
+expect up-along-view 1 "camera.up: is zero or along the view" 1 -- "$fathom" --set camera.up=0,-1.1,-6.2 $out
+expect bad-aperture 1 "camera.aperture" 1 -- "$fathom" --set camera.aperture=-1 $out
+expect position-with-lens 1 "--aov position needs a pinhole camera" 1 -- "$fathom" --set camera.aperture=0.1 --aov position --output "$tmp/out.exr" --size 33x21 --quiet
+expect video-without-path 2 "a video is a flight's" 1 -- "$fathom" --output "$tmp/out.mp4"
+expect bad-video-crf 2 "bad --video crf='99'" 1 -- "$fathom" render --path "$src/docs/flight/csg.json" --output "$tmp/out.mp4" --video crf=99
+expect webm-h264 2 "a WebM file holds vp9 or av1" 1 -- "$fathom" render --path "$src/docs/flight/csg.json" --output "$tmp/out.webm" --video codec=h264
 # a GPU asked for by number never falls back to software quietly (this machine has no hardware EGL
 # device, or not 99 of them); a number that is not one is refused
 expect egl-device-missing 1 "FATHOM_EGL_DEVICE=99: no such hardware EGL device" 1 -- env FATHOM_EGL_DEVICE=99 "$fathom" $out

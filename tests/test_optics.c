@@ -12,10 +12,14 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include <cmocka.h>
 
+#include "cli.h"
+#include "data/image_io.h"
 #include "gltest.h"
+#include "jobs/offline.h"
 
 static const char *const ONE_SAMPLE[] = {"quality.spp=1", "effects.aa=off"};
 
@@ -360,12 +364,99 @@ static void lens_circle_of_confusion(void **st)
         }
 }
 
+/* ---- for compositors ------------------------------------------------------------------------------- */
+
+/* 16 numbers from an attribute's text (OpenImageIO prints a matrix with commas). */
+static void matrix_of(const char *path, const char *key, double m[16])
+{
+    char *text;
+    err_t e = {{0}};
+    if (!image_read_text(path, key, &text, &e))
+        fail_msg("%s: %s", key, e.msg);
+    const char *p = text;
+    for (int i = 0; i < 16; i++) {
+        while (*p == ',' || *p == ' ')
+            p++;
+        char *end;
+        m[i] = strtod(p, &end);
+        if (end == p)
+            fail_msg("%s: '%s' is not 16 numbers", key, text);
+        p = end;
+    }
+    free(text);
+}
+
+/* An EXR with the position AOV and the camera's matrices, from a rolled camera (and orthographic): every
+ * hit pixel's P lies on the sphere (the scene's own geometry), P through worldToNDC lands in that
+ * pixel's centre, and worldToCamera puts P at its depth along the view (+z, left-handed). */
+static void exr_position_and_camera(void **st)
+{
+    (void)st;
+    enum { XW = 81, XH = 51 };
+    static const double SP[][4] = {{0.3, 0.2, 0, 1.1}};
+    scene s;
+    spheres_scene(SP, 1, false, NULL, &s);
+    for (int ortho = 0; ortho < 2; ortho++) {
+        camera cam = cam_at(1.5, 1, 5, 0, 0, 0, 40);
+        cam.roll = 0.4f;
+        cam.lens = (camera_lens){.projection = ortho ? PROJECTION_ORTHOGRAPHIC : PROJECTION_PERSPECTIVE, .focus = 5};
+        const char *out = "fathom-test-optics.exr";
+        offline_desc d = {.scene = &s, .cam = cam, .width = XW, .height = XH, .spp = 1, .output = out,
+                          .aovs = AOV_DEPTH | AOV_POSITION, .quiet = true};
+        err_t e = {{0}};
+        if (!offline_render_current(&d, &e))
+            fail_msg("%s", e.msg);
+        double w2c[16], w2n[16];
+        matrix_of(out, "worldtocamera", w2c);
+        matrix_of(out, "worldtoNDC", w2n);
+        float *px;
+        int w, h, nc;
+        if (!image_read_f32(out, 0, 16384, &w, &h, &nc, &px, &e))
+            fail_msg("%s", e.msg);
+        unlink(out);
+        assert_int_equal(nc, 8); /* R G B A Z P.X P.Y P.Z */
+        double worst_surface = 0, worst_pixel = 0, worst_depth = 0;
+        int hits = 0;
+        camera_basis b = camera_get_basis(&cam);
+        for (int row = 0; row < h; row++)
+            for (int x = 0; x < w; x++) {
+                const float *q = px + ((size_t)row * (size_t)w + (size_t)x) * (size_t)nc;
+                if (isinf(q[4]))
+                    continue;
+                hits++;
+                double P[4] = {q[5], q[6], q[7], 1}, ndc[4] = {0}, c[4] = {0};
+                worst_surface = fmax(worst_surface, fabs(sqrt(pow(P[0] - SP[0][0], 2) + pow(P[1] - SP[0][1], 2) +
+                                                              pow(P[2] - SP[0][2], 2)) - SP[0][3]));
+                for (int k = 0; k < 4; k++)
+                    for (int j = 0; j < 4; j++) {
+                        ndc[k] += P[j] * w2n[4 * j + k];
+                        c[k] += P[j] * w2c[4 * j + k];
+                    }
+                worst_pixel = fmax(worst_pixel, hypot(ndc[0] / ndc[3] * w - (x + 0.5), ndc[1] / ndc[3] * h - (row + 0.5)));
+                double along = 0; /* the depth along the view, from the eye (orthographic: its plane) */
+                for (int i = 0; i < 3; i++)
+                    along += (P[i] - cam.position[i]) * b.forward[i];
+                worst_depth = fmax(worst_depth, fabs(c[2] - along));
+            }
+        free(px);
+        print_message("%s, rolled: %d hits; P off the sphere by %.2g at most, P through worldToNDC %.3f pixels from "
+                      "its pixel, worldToCamera z off by %.2g\n", ortho ? "orthographic" : "perspective", hits,
+                      worst_surface, worst_pixel, worst_depth);
+        assert_true(hits > XW * XH / 8);
+        assert_true(worst_surface < 2e-3);
+        assert_true(worst_pixel < 0.02);
+        assert_true(worst_depth < 1e-4);
+    }
+    scene_free(&s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(roll_turns_the_image),       cmocka_unit_test(orthographic_sphere),
         cmocka_unit_test(equirectangular_panorama),   cmocka_unit_test(fisheye_dome),
         cmocka_unit_test(stereo_disparity),           cmocka_unit_test(lens_circle_of_confusion),
+        cmocka_unit_test(exr_position_and_camera),
     };
     return cmocka_run_group_tests(tests, gl_setup, gl_teardown);
 }

@@ -118,6 +118,25 @@ static ImageSpec make_spec(int width, int height, int channels, bool f32, const 
     return spec;
 }
 
+/* A text entry as an attribute: "m44f:NAME" with 16 numbers is a 4×4 matrix (OpenEXR's worldToCamera
+ * and worldToNDC: OpenImageIO's worldtocamera and worldtoNDC), anything else a string. */
+static void text_attribute(ImageSpec &spec, const char *key, const char *value)
+{
+    if (std::strncmp(key, "m44f:", 5) != 0) {
+        spec.attribute(key, value);
+        return;
+    }
+    float m[16];
+    int used = 0;
+    for (int k = 0; k < 16; k++) {
+        int n = 0;
+        if (std::sscanf(value + used, "%f%n", &m[k], &n) != 1)
+            return; /* not 16 numbers: fathom's own text, so never */
+        used += n;
+    }
+    spec.attribute(key + 5, TypeMatrix44, m);
+}
+
 extern "C" oiio_writer *oiio_writer_open(const char *path, const char *tmp, int width, int height, int channels,
                                          bool f32, const char *const *names, const char *const *texts, err_t *err)
 {
@@ -129,7 +148,7 @@ extern "C" oiio_writer *oiio_writer_open(const char *path, const char *tmp, int 
         w->spec = make_spec(width, height, channels, f32, names);
         for (int i = 0; texts && texts[i]; i += 2)
             if (texts[i + 1])
-                w->spec.attribute(texts[i], texts[i + 1]);
+                text_attribute(w->spec, texts[i], texts[i + 1]);
         w->out = ImageOutput::create(path);
         if (!w->out) {
             err_set(err, "cannot write '%s': no image format for this file name (%s)", path, one_line(OIIO::geterror()).c_str());
@@ -205,7 +224,8 @@ extern "C" bool oiio_read_text(const char *path, const char *key, char **value, 
         auto in = ImageInput::open(path);
         if (!in)
             return err_set(err, "cannot read image '%s': %s", path, with_noise(OIIO::geterror(), noise).c_str());
-        std::string v = in->spec().get_string_attribute(key);
+        const ParamValue *p = in->spec().find_attribute(key);
+        std::string v = p && p->type() == TypeMatrix44 ? in->spec().metadata_val(*p) : std::string(in->spec().get_string_attribute(key));
         if (v.empty())
             return err_set(err, "image '%s' holds no fathom shot description (only PNG and EXR files fathom "
                                 "wrote do)", path);

@@ -148,6 +148,23 @@ void render_read_linear(float *rgba)
     flip_rows(rgba, state->height, (size_t)state->width * 4 * sizeof(float));
 }
 
+/* The position AOV (GL rows, bottom up, before the flip): the pixel's ray (the lens's or eye's centre:
+ * camera_ray_from) in the whole image, in double, to the depth. */
+static void aov_positions(float *aov8)
+{
+    for (int y = 0; y < state->height; y++)
+        for (int x = 0; x < state->width; x++) {
+            float *o = aov8 + ((size_t)y * (size_t)state->width + (size_t)x) * AOV_FLOATS;
+            double origin[3];
+            vec3 d;
+            bool sees = camera_ray_from(&state->cam, state->full_width, state->full_height, (float)(x + state->tile_x),
+                                        (float)(y + state->tile_y), origin, d);
+            float t = o[AOV_SLOT_DEPTH];
+            for (int i = 0; i < 3; i++)
+                o[AOV_SLOT_POSITION + i] = sees && isfinite(t) ? (float)(origin[i] + (double)d[i] * (double)t) : 0.0f;
+        }
+}
+
 void render_read_aovs(float *aov8)
 {
     size_t n = (size_t)state->width * (size_t)state->height;
@@ -174,6 +191,7 @@ void render_read_aovs(float *aov8)
     }
     for (int k = 0; k < NUM_TARGETS; k++)
         free(t[k]);
+    aov_positions(aov8);
     flip_rows(aov8, state->height, (size_t)state->width * AOV_FLOATS * sizeof(float));
 }
 

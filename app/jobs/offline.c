@@ -60,6 +60,11 @@ static int exr_channels(unsigned aovs, const char *names[MAX_CHANNELS], int src[
         names[nc] = "variance.B", src[nc++] = AOV_SLOT_VARIANCE + 2;
     }
     if (aovs & AOV_SAMPLES) names[nc] = "samples", src[nc++] = AOV_SLOT_SAMPLES;
+    if (aovs & AOV_POSITION) {
+        names[nc] = "P.X", src[nc++] = AOV_SLOT_POSITION;
+        names[nc] = "P.Y", src[nc++] = AOV_SLOT_POSITION + 1;
+        names[nc] = "P.Z", src[nc++] = AOV_SLOT_POSITION + 2;
+    }
     return nc;
 }
 
@@ -69,12 +74,30 @@ static bool is_png(const char *path)
     return dot && !strcasecmp(dot, ".png");
 }
 
+/* "m44f:NAME" text entries: the camera as OpenEXR's worldToCamera and worldToNDC (view/camera.h) for
+ * the whole image (a tile's too), which compositors read; NULL values where there is none. */
+static void camera_texts(const camera *cam, int width, int height, char out[2][400])
+{
+    float m[2][16];
+    bool ndc = camera_matrices(cam, width, height, m[0], m[1]);
+    for (int k = 0; k < 2; k++) {
+        size_t at = 0;
+        for (int i = 0; i < 16 && (k == 0 || ndc); i++)
+            at += (size_t)snprintf(out[k] + at, 400 - at, "%s%.9g", i ? " " : "", (double)m[k][i]);
+        out[k][at] = '\0';
+    }
+}
+
 static image_writer *open_writer(const char *path, int width, int height, unsigned aovs, const char *description,
-                                 const char *tile, err_t *err)
+                                 const char *tile, const camera *cam, int full_width, int full_height, err_t *err)
 {
     const char *names[MAX_CHANNELS];
     int src[MAX_CHANNELS];
-    const char *texts[] = {SHOT_KEY, description, TILE_KEY, tile, NULL};
+    char m[2][400] = {"", ""};
+    if (cam && !is_png(path))
+        camera_texts(cam, full_width, full_height, m);
+    const char *texts[] = {SHOT_KEY, description, TILE_KEY, tile, "m44f:worldtocamera", m[0][0] ? m[0] : NULL,
+                           "m44f:worldtoNDC", m[1][0] ? m[1] : NULL, NULL};
     if (is_png(path))
         return image_writer_open_text(path, width, height, 3, false, NULL, texts, err);
     return image_writer_open_text(path, width, height, exr_channels(aovs, names, src), true, names, texts, err);
@@ -122,7 +145,7 @@ static bool write_band(image_writer *w, const char *path, int width, int rows, u
 
 bool offline_write(const char *path, int width, int height, unsigned aovs, const char *description, err_t *err)
 {
-    image_writer *w = open_writer(path, width, height, aovs, description, NULL, err);
+    image_writer *w = open_writer(path, width, height, aovs, description, NULL, NULL, 0, 0, err);
     if (!w)
         return false;
     if (!write_band(w, path, width, height, aovs, err)) {
@@ -238,7 +261,8 @@ bool offline_render_current(const offline_desc *desc, err_t *err)
     strbuf described = {0};
     if (d->description)
         shot_note_renderer(d->description, renderer, &described);
-    image_writer *w = open_writer(d->output, d->width, rows, d->aovs, described.data, tile[0] ? tile : NULL, err);
+    image_writer *w = open_writer(d->output, d->width, rows, d->aovs, described.data, tile[0] ? tile : NULL, &d->cam,
+                                  d->width, d->height, err);
     sb_free(&described);
     if (!w)
         return false;
@@ -273,6 +297,9 @@ bool offline_render_current(const offline_desc *desc, err_t *err)
 
 bool offline_render(const offline_desc *d, err_t *err)
 {
+    if ((d->aovs & AOV_POSITION) && d->cam.lens.aperture > 0)
+        return err_set(err, "--aov position needs a pinhole camera: with camera.aperture > 0 each lens sample sees "
+                            "another point (render the pass with --set camera.aperture=0)");
     if (!image_can_write(d->output, err))
         return false;
     image_remove_stale_temps(d->output); /* what an earlier shot killed mid-write (SIGKILL) left */
@@ -388,7 +415,7 @@ bool offline_stitch(const char *output, const char *const *tiles, int n, bool qu
     err_t ignore;
     if (ok)
         image_read_text(t[0].file, SHOT_KEY, &shot, &ignore); /* the poster remembers the shot, as the tiles do */
-    image_writer *w = ok ? open_writer(output, t[0].width, t[0].height, t[0].aovs, shot, NULL, err) : NULL;
+    image_writer *w = ok ? open_writer(output, t[0].width, t[0].height, t[0].aovs, shot, NULL, NULL, 0, 0, err) : NULL;
     ok = ok && w;
     const char *names[MAX_CHANNELS];
     int src[MAX_CHANNELS];

@@ -414,3 +414,44 @@ float camera_footprint_t0(const camera *c)
 {
     return c->lens.projection == PROJECTION_ORTHOGRAPHIC ? camera_focus(c) : 0.0f;
 }
+
+bool camera_matrices(const camera *c, int width, int height, float world_to_camera[16], float world_to_ndc[16])
+{
+    camera_basis b = camera_get_basis(c);
+    const float *axes[3] = {b.right, b.up, b.forward};
+    float *m = world_to_camera;
+    for (int j = 0; j < 3; j++) { /* column j: the camera axis; the last row: −eye · axis */
+        double t = 0;
+        for (int i = 0; i < 3; i++) {
+            m[4 * i + j] = axes[j][i];
+            t += c->position[i] * (double)axes[j][i];
+        }
+        m[12 + j] = (float)-t;
+        m[4 * j + 3] = 0;
+    }
+    m[15] = 1;
+    int w, h;
+    camera_eye_size(c, width, height, &w, &h);
+    float ty = tanf(0.5f * c->fov_y), tx = ty * (float)w / (float)h;
+    bool ortho = c->lens.projection == PROJECTION_ORTHOGRAPHIC;
+    if (!ortho && c->lens.projection != PROJECTION_PERSPECTIVE)
+        return false;
+    /* camera (x, y, z, 1) → (X, Y, Z, W): perspective X/W = ½ + ½ x / (z tx), Y/W = ½ − ½ y / (z ty),
+     * W = z, Z = 1; orthographic the same with focus for z in the scale and W = 1, Z = z */
+    float s = ortho ? camera_focus(c) : 1.0f, p[16] = {0};
+    p[0] = 0.5f / (tx * s);
+    p[5] = -0.5f / (ty * s);
+    if (ortho) {
+        p[10] = 1, p[12] = 0.5f, p[13] = 0.5f, p[15] = 1;
+    } else {
+        p[8] = 0.5f, p[9] = 0.5f, p[11] = 1, p[14] = 1;
+    }
+    for (int r = 0; r < 4; r++) /* world_to_ndc = world_to_camera · p */
+        for (int k = 0; k < 4; k++) {
+            float v = 0;
+            for (int j = 0; j < 4; j++)
+                v += m[4 * r + j] * p[4 * j + k];
+            world_to_ndc[4 * r + k] = v;
+        }
+    return true;
+}

@@ -180,4 +180,13 @@ float camera_footprint_t0(const camera *c);
 /* The focal distance camera_ray_from and the shader use: lens.focus, or 1 where it is not set. */
 float camera_focus(const camera *c);
 
+/* The camera for compositors, as OpenEXR's worldToCamera and worldToNDC attributes hold it: Imath's
+ * row-vector matrices (p' = [x y z 1] · M, M[row][column] at m[4 row + column]). Camera space is
+ * OpenEXR's: left-handed, x right, y up, z along the view, the eye at the origin. NDC: x from 0 (left
+ * edge) to 1 (right), y from 0 (top) to 1 (bottom), after the divide by w (the depth along the view,
+ * perspective; 1, orthographic); z/w = 1/depth (perspective), depth (orthographic). Equirectangular and
+ * fisheye have no such matrix: false, and only world_to_camera is filled. With stereo, the centre's
+ * (the eyes sit ∓eye_separation/2 along x). width and height: the whole image (one eye's NDC spans it). */
+bool camera_matrices(const camera *c, int width, int height, float world_to_camera[16], float world_to_ndc[16]);
+
 #endif
