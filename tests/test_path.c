@@ -346,6 +346,65 @@ static void roll_keys(void **st)
     path_free(&p);
 }
 
+/* A deep zoom keeps its scale: from 2 m to 2e-12 m of a point in 10 s, the distance shrinks by the
+ * same factor every frame (10^-1.2 a second) and passes 2e-6 m at 5 s, where a plain segment is still
+ * about 1 m away; the zoom point moving 1e-13 between keys drifts in proportion to the distance left,
+ * so the camera stays within the distance of each moment's point. Easing: in-out passes halfway at
+ * half time and starts and stops at rest; out starts at twice the plain speed. */
+static void zoom_keeps_its_scale(void **st)
+{
+    (void)st;
+    path z, plain;
+    load("{\"keys\": [{\"time\": 0, \"position\": [0.3, 0.2, 2], \"look_at\": [0.3, 0.2, 0], \"zoom_to\": [0.3, 0.2, 0]},"
+         "{\"time\": 10, \"position\": [0.3000000000001, 0.2, 2e-12], \"look_at\": [0.3000000000001, 0.2, 0],"
+         " \"zoom_to\": [0.3000000000001, 0.2, 0]}]}", &z);
+    load("{\"keys\": [{\"time\": 0, \"position\": [0.3, 0.2, 2], \"look_at\": [0.3, 0.2, 0]},"
+         "{\"time\": 10, \"position\": [0.3000000000001, 0.2, 2e-12], \"look_at\": [0.3000000000001, 0.2, 0]}]}", &plain);
+    double worst = 0, prev = 2;
+    for (int f = 1; f <= 300; f++) { /* 30 frames a second */
+        path_sample a;
+        path_eval(&z, f / 30.0, &a);
+        double d = a.position[2]; /* the zoom points lie in z = 0 */
+        worst = fmax(worst, fabs(log(prev / d) / log(10) - 1.2 / 30));
+        prev = d;
+        /* the point's drift still to come is in proportion to the distance: never more than it */
+        assert_true(fabs(a.position[0] - 0.3000000000001) <= 0.6e-13 * d + 2e-16);
+    }
+    path_sample mid, lin, end;
+    path_eval(&z, 5, &mid);
+    path_eval(&plain, 5, &lin);
+    path_eval(&z, 10, &end);
+    print_message("zoom: every frame %.2f decades nearer (worst off by %.2g); at 5 s %.3g m away (a plain segment: %.3g m)\n",
+                  1.2 / 30, worst, mid.position[2], lin.position[2]);
+    assert_true(worst < 1e-9);
+    assert_near(mid.position[2], 2e-6, 1e-15);
+    assert_true(lin.position[2] > 0.5);
+    assert_true(end.position[0] == 0.3000000000001 && fabs(end.position[2] - 2e-12) < 1e-24);
+    strbuf text = {0};
+    path_write(&z, &text); /* zoom_to survives the file */
+    path_free(&z);
+    load(text.data, &z);
+    path_eval(&z, 5, &mid);
+    assert_near(mid.position[2], 2e-6, 1e-15);
+    sb_free(&text);
+    path_free(&z);
+    path_free(&plain);
+    path e;
+    load("{\"keys\": [{\"time\": 0, \"position\": [0, 0, 0], \"yaw\": 0, \"pitch\": 0, \"ease\": \"in-out\"},"
+         "{\"time\": 1, \"position\": [10, 0, 0], \"yaw\": 0, \"pitch\": 0, \"ease\": \"out\"},"
+         "{\"time\": 2, \"position\": [20, 0, 0], \"yaw\": 0, \"pitch\": 0}]}", &e);
+    path_sample a, b;
+    path_eval(&e, 0.5, &a);
+    assert_near(a.position[0], 5, 1e-6);
+    path_eval(&e, 0.01, &a); /* at rest: 3u^2 - 2u^3 of the way after 1 % of the time */
+    assert_true(a.position[0] < 0.01);
+    path_eval(&e, 0.99, &a);
+    assert_true(a.position[0] > 9.99);
+    path_eval(&e, 1.01, &b); /* out: 2u - u^2, twice the plain start */
+    assert_true(b.position[0] - 10 > 0.15);
+    path_free(&e);
+}
+
 /* The window's recording: cameras → a path file → the same cameras at the keys, times by distance/speed */
 static void recorded_keys(void **st)
 {
@@ -469,7 +528,7 @@ int main(void)
         cmocka_unit_test(passes_through_keys),       cmocka_unit_test(continuous_at_keys),
         cmocka_unit_test(unit_quaternions_no_flip),  cmocka_unit_test(constant_speed_by_arc_length),
         cmocka_unit_test(straight_line_is_exact),    cmocka_unit_test(file_round_trip_and_errors),
-        cmocka_unit_test(recorded_keys), cmocka_unit_test(roll_keys),             cmocka_unit_test(frames_and_names),
+        cmocka_unit_test(recorded_keys), cmocka_unit_test(roll_keys), cmocka_unit_test(zoom_keeps_its_scale),             cmocka_unit_test(frames_and_names),
         cmocka_unit_test(recorded_flight_clears_the_box),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

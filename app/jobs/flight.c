@@ -1,6 +1,7 @@
 /* flight — see flight.h. */
 #include "jobs/flight.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -61,8 +62,23 @@ static bool frame_scene(const flight_desc *opt, const path *p, const path_sample
     return scene_load(opt->scene, sets, n, s, err);
 }
 
+/* Whether a point float cannot tell from the surface is clear in double (a deep zoom's frames render
+ * in double): the distance there, probed relative to the point itself, above a double's resolution. */
+static bool clear_in_double(scene *deep, const double p[3], err_t *err, bool *clear)
+{
+    float zero[3] = {0, 0, 0}, d[2];
+    render_set_origin(p);
+    bool ok = render_probe(deep, NULL, zero, 1, d, err);
+    render_set_origin((double[3]){0, 0, 0});
+    *clear = ok && d[0] > 0 && (double)d[0] > 8 * DBL_EPSILON * (1 + fabs(p[0]) + fabs(p[1]) + fabs(p[2]));
+    return ok;
+}
+
 /* The camera must never enter a solid (or a fractal's set): map() along the path, at 4 points a
- * frame, in the first frame's scene. A path that dips inside is refused with where and when. */
+ * frame, in the first frame's scene. A path that dips inside is refused with where and when. Inside: a
+ * negative distance, or (a fractal's estimate, which need not turn negative in its set) one below
+ * float resolution at that point, unless the formula compiles in double (a deep zoom) and the point
+ * is clear there. */
 static bool check_clearance(const flight_desc *opt, const path *p, int first, int last, int fps, err_t *err)
 {
     enum { PER_FRAME = 4, MAX_POINTS = 1 << 17 };
@@ -70,11 +86,12 @@ static bool check_clearance(const flight_desc *opt, const path *p, int first, in
     int n = want > MAX_POINTS ? MAX_POINTS : (int)want;
     double t0 = p->keys[0].time + (double)first / fps, t1 = p->keys[0].time + (double)last / fps;
     float *pts = util_alloc(sizeof(float) * 3 * (size_t)n, "path clearance"), *d = util_alloc(sizeof(float) * 2 * (size_t)n, "path clearance");
+    double *at = util_alloc(sizeof(double) * 3 * (size_t)n, "path clearance");
     for (int i = 0; i < n; i++) {
         path_sample smp;
         path_eval(p, n > 1 ? t0 + (t1 - t0) * i / (n - 1) : t0, &smp);
         for (int k = 0; k < 3; k++)
-            pts[3 * i + k] = (float)smp.position[k];
+            pts[3 * i + k] = (float)(at[3 * i + k] = smp.position[k]);
     }
     scene s = {0};
     const char *sets[CLI_MAX_SETS + PATH_MAX_PARAMS + 1];
@@ -84,22 +101,29 @@ static bool check_clearance(const flight_desc *opt, const path *p, int first, in
     path_eval(p, t0, &smp);
     bool ok = frame_scene(opt, p, &smp, &s, sets, &nsets, track, err) && render_set_scene(&s, NULL, err) &&
               render_probe(&s, NULL, pts, n, d, err);
-    /* inside: a negative distance, or (a fractal's estimate, which need not turn negative in its set) one
-     * below float resolution at that point */
-    for (int i = 0; ok && i < n; i++)
-        if (d[2 * i] < 0 || d[2 * i] < PRECISION_REL * (1 + fabsf(pts[3 * i]) + fabsf(pts[3 * i + 1]) + fabsf(pts[3 * i + 2]))) {
+    scene deep = s;
+    deep.fractal.deep_now = true;
+    bool can_deep = s.program == PROGRAM_FRACTAL && s.fractal.deep_ok && render_has_fp64(), deep_set = false;
+    for (int i = 0; ok && i < n; i++) {
+        const double *q = at + 3 * i;
+        bool clear = d[2 * i] >= 0 && d[2 * i] >= PRECISION_REL * (1 + fabs(q[0]) + fabs(q[1]) + fabs(q[2]));
+        if (!clear && d[2 * i] >= 0 && can_deep && (deep_set || (deep_set = render_set_scene(&deep, NULL, err))))
+            ok = clear_in_double(&deep, q, err, &clear);
+        if (ok && !clear) {
             double t = n > 1 ? t0 + (t1 - t0) * i / (n - 1) : t0;
             int key = 0;
             while (key + 1 < p->count && p->keys[key + 1].time <= t)
                 key++;
-            ok = err_set(err, "path '%s': at t = %.3f s (frame %d) the camera is inside the scene's surface at (%.4g, "
-                              "%.4g, %.4g), between keys %d and %d: move them or add a key that goes around",
-                         opt->path, t, (int)floor((t - p->keys[0].time) * fps), (double)pts[3 * i],
-                         (double)pts[3 * i + 1], (double)pts[3 * i + 2], key, key + 1 < p->count ? key + 1 : key);
+            ok = err_set(err, "path '%s': at t = %.3f s (frame %d) the camera is inside the scene's surface at (%.17g, "
+                              "%.17g, %.17g), between keys %d and %d: move them or add a key that goes around",
+                         opt->path, t, (int)floor((t - p->keys[0].time) * fps), q[0], q[1], q[2], key,
+                         key + 1 < p->count ? key + 1 : key);
         }
+    }
     scene_free(&s);
     free(pts);
     free(d);
+    free(at);
     return ok;
 }
 

@@ -311,16 +311,58 @@ static void segment_orientation(const path *p, int i, double u, double out[4])
     memcpy(out, b[0], sizeof b[0]);
 }
 
+const char *const PATH_EASES[PATH_EASE_COUNT + 1] = {"none", "in", "out", "in-out", NULL};
+
+double path_ease_u(int ease, double u)
+{
+    switch (ease) {
+    case PATH_EASE_IN: return u * u;
+    case PATH_EASE_OUT: return 1 - (1 - u) * (1 - u);
+    case PATH_EASE_IN_OUT: return u * u * (3 - 2 * u);
+    default: return u;
+    }
+}
+
+/* A zoom segment's point at time fraction u (path.h): the distance to the zoom point geometric in u,
+ * the point moving in proportion to how much of that distance is gone, the direction by slerp. */
+static void zoom_point(const path *p, int i, double u, double out[3])
+{
+    const path_key *a = &p->keys[i], *b = &p->keys[i + 1];
+    double s0 = path_dist(a->position, a->zoom_to), s1 = path_dist(b->position, b->zoom_to);
+    double s = u <= 0 ? s0 : u >= 1 ? s1 : exp((1 - u) * log(s0) + u * log(s1));
+    double w = s0 != s1 ? (s0 - s) / (s0 - s1) : u, d0[3], d1[3], c = 0;
+    for (int k = 0; k < 3; k++) {
+        d0[k] = (a->position[k] - a->zoom_to[k]) / s0;
+        d1[k] = (b->position[k] - b->zoom_to[k]) / s1;
+        c += d0[k] * d1[k];
+    }
+    double angle = acos(fmax(-1.0, fmin(1.0, c))), k0 = 1 - u, k1 = u, len = 0, d[3];
+    if (angle > 1e-9) { /* slerp; nearly parallel: the straight blend, normalized below */
+        k0 = sin((1 - u) * angle) / sin(angle);
+        k1 = sin(u * angle) / sin(angle);
+    }
+    for (int k = 0; k < 3; k++) {
+        d[k] = k0 * d0[k] + k1 * d1[k];
+        len += d[k] * d[k];
+    }
+    len = sqrt(len);
+    for (int k = 0; k < 3; k++)
+        out[k] = a->zoom_to[k] + w * (b->zoom_to[k] - a->zoom_to[k]) + d[k] / len * s;
+}
+
 void path_eval(const path *p, double t, path_sample *out)
 {
     const path_key *K = p->keys;
     t = fmax(K[0].time, fmin(K[p->count - 1].time, t));
     int i = find_segment(p, t);
-    double h = K[i + 1].time - K[i].time, u = (t - K[i].time) / h;
-    /* position: arc length from the monotone cubic, then the curve at that length */
-    const double *m = p->speed;
-    double s = hermite(p->key_length[i], p->key_length[i + 1], m[i], m[i + 1], h, u) - p->key_length[i];
-    segment_point(p, i, segment_u(p, i, s), out->position);
+    double h = K[i + 1].time - K[i].time, u = path_ease_u(K[i].ease, (t - K[i].time) / h);
+    if (K[i].zoom && K[i + 1].zoom) {
+        zoom_point(p, i, u, out->position);
+    } else { /* arc length from the monotone cubic, then the curve at that length */
+        const double *m = p->speed;
+        double s = hermite(p->key_length[i], p->key_length[i + 1], m[i], m[i + 1], h, u) - p->key_length[i];
+        segment_point(p, i, segment_u(p, i, s), out->position);
+    }
     segment_orientation(p, i, u, out->quat);
     path_q_to_angles(out->quat, &out->yaw, &out->pitch, &out->roll);
     /* fov and parameter tracks */

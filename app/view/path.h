@@ -24,7 +24,16 @@
  *                (Shoemake, "Animating rotation with quaternion curves", SIGGRAPH 1985), its inner
  *                control points set from each key's turn rate (the mean of the adjacent segments'),
  *                so the turn rate is continuous in time however unevenly the keys are spaced;
- *   fov, "set"   cubic Hermite in time with Catmull–Rom tangents (C1, through the keys).
+ *   fov, "set"   cubic Hermite in time with Catmull–Rom tangents (C1, through the keys);
+ *   zooms        a segment whose two keys both give "zoom_to" (the point a deep zoom closes in on) keeps
+ *                its scale: the distance s to that point changes geometrically in time (s0 (s1/s0)^u:
+ *                the same fraction every frame, a constant apparent speed), the point itself moves from
+ *                one key's to the next in proportion to s0 − s (so it drifts across the view by a
+ *                bounded amount however deep), and the direction from it turns by slerp. A plain
+ *                segment through a 1e-12 zoom would spend nearly every frame at the wrong scale;
+ *   easing       "ease": "in", "out" or "in-out" on a key eases the segment that starts there (its
+ *                time fraction u becomes u², 1 − (1 − u)² or 3u² − 2u³, for every track): the camera
+ *                starts or stops there at rest ("none", the default: as above).
  */
 #ifndef FATHOM_PATH_H
 #define FATHOM_PATH_H
@@ -44,7 +53,14 @@ typedef struct path_key {
     double quat[4]; /* x, y, z, w: unit, sign-aligned with the previous key */
     double fov_deg;
     double values[PATH_MAX_PARAMS];
+    bool zoom;          /* zoom_to was given */
+    double zoom_to[3];  /* the point a zoom segment closes in on (see top) */
+    int ease;           /* path_ease: how the segment from this key starts and ends */
 } path_key;
+typedef enum path_ease { PATH_EASE_NONE, PATH_EASE_IN, PATH_EASE_OUT, PATH_EASE_IN_OUT, PATH_EASE_COUNT } path_ease;
+extern const char *const PATH_EASES[PATH_EASE_COUNT + 1];
+/* The eased time fraction (see top). */
+double path_ease_u(int ease, double u);
 
 typedef struct path {
     int count;

@@ -59,7 +59,7 @@ static bool key_orientation(const cJSON *k, path_key *K, int i, const char *name
         if (!vec3_of(k, "look_at", at, name, i, err) || (has_up && !vec3_of(k, "up", up, name, i, err)))
             return false;
         double l = path_dist(at, K->position);
-        if (!(l > 1e-9 * (1 + fabs(K->position[0]) + fabs(K->position[1]) + fabs(K->position[2]))))
+        if (camera_degenerate(K->position, at)) /* a deep zoom's key looks at a point 1e-12 away */
             return err_set(err, "%s: keys.%d.look_at: is the key's position: the camera needs a point to look at", name, i);
         for (int c = 0; c < 3; c++)
             f[c] = (at[c] - K->position[c]) / l;
@@ -93,10 +93,30 @@ static bool key_orientation(const cJSON *k, path_key *K, int i, const char *name
     return true;
 }
 
+/* "zoom_to" (a point apart from the key's position) and "ease" (path.h). */
+static bool key_zoom_ease(const cJSON *k, path_key *K, int i, const char *name, err_t *err)
+{
+    K->zoom = cJSON_GetObjectItemCaseSensitive(k, "zoom_to") != NULL;
+    if (K->zoom && !vec3_of(k, "zoom_to", K->zoom_to, name, i, err))
+        return false;
+    if (K->zoom && !(path_dist(K->position, K->zoom_to) > 1e-300))
+        return err_set(err, "%s: keys.%d.zoom_to: is the key's position: a zoom needs a distance to close in on", name, i);
+    const cJSON *e = cJSON_GetObjectItemCaseSensitive(k, "ease");
+    if (!e)
+        return true;
+    for (int m = 0; cJSON_IsString(e) && m < PATH_EASE_COUNT; m++)
+        if (!strcmp(e->valuestring, PATH_EASES[m])) {
+            K->ease = m;
+            return true;
+        }
+    return err_set(err, "%s: keys.%d.ease: expected \"none\", \"in\", \"out\" or \"in-out\"", name, i);
+}
+
 static bool parse_key(path *p, const cJSON *k, int i, const char *name, err_t *err)
 {
     path_key *K = &p->keys[i];
-    static const char *const allowed[] = {"time", "position", "yaw", "pitch", "roll", "look_at", "up", "fov", "set", NULL};
+    static const char *const allowed[] = {"time", "position", "yaw", "pitch", "roll", "look_at", "up", "fov", "set",
+                                          "zoom_to", "ease", NULL};
     if (!cJSON_IsObject(k))
         return err_set(err, "%s: keys.%d: expected an object with time, position and yaw/pitch or look_at", name, i);
     for (const cJSON *it = k->child; it; it = it->next) {
@@ -104,7 +124,7 @@ static bool parse_key(path *p, const cJSON *k, int i, const char *name, err_t *e
         for (const char *const *a = allowed; *a && !ok; a++)
             ok = it->string && !strcmp(it->string, *a);
         if (!ok)
-            return err_set(err, "%s: keys.%d: unknown key '%s' (allowed: time, position, yaw, pitch, roll, look_at, up, fov, set)",
+            return err_set(err, "%s: keys.%d: unknown key '%s' (allowed: time, position, yaw, pitch, roll, look_at, up, fov, set, zoom_to, ease)",
                            name, i, it->string ? it->string : "");
     }
     if (!num(k, "time", -PATH_MAX_TIME, PATH_MAX_TIME, &K->time, name, i, err) || !vec3_of(k, "position", K->position, name, i, err))
@@ -118,7 +138,8 @@ static bool parse_key(path *p, const cJSON *k, int i, const char *name, err_t *e
         for (int c = 0; c < 4; c++)
             K->quat[c] = -K->quat[c];
     K->fov_deg = i > 0 ? K[-1].fov_deg : 50;
-    if (cJSON_GetObjectItemCaseSensitive(k, "fov") && !num(k, "fov", 1, 179, &K->fov_deg, name, i, err))
+    if ((cJSON_GetObjectItemCaseSensitive(k, "fov") && !num(k, "fov", 1, 179, &K->fov_deg, name, i, err)) ||
+        !key_zoom_ease(k, K, i, name, err))
         return false;
     const cJSON *set = cJSON_GetObjectItemCaseSensitive(k, "set");
     int n = 0;
@@ -199,7 +220,12 @@ void path_write(const path *p, strbuf *out)
         path_q_to_angles(K->quat, &yaw, &pitch, &roll);
         sb_printf(out, "    {\"time\": %.17g, \"position\": [%.17g, %.17g, %.17g], \"yaw\": %.17g, \"pitch\": %.17g, "
                        "\"roll\": %.17g, \"fov\": %.17g",
-                  K->time, K->position[0], K->position[1], K->position[2], yaw / DEG, pitch / DEG, roll / DEG, K->fov_deg);
+                  K->time, K->position[0], K->position[1], K->position[2], yaw / DEG,
+                  fmax(-90.0, fmin(90.0, pitch / DEG)), roll / DEG, K->fov_deg);
+        if (K->zoom)
+            sb_printf(out, ", \"zoom_to\": [%.17g, %.17g, %.17g]", K->zoom_to[0], K->zoom_to[1], K->zoom_to[2]);
+        if (K->ease)
+            sb_printf(out, ", \"ease\": \"%s\"", PATH_EASES[K->ease]);
         if (p->param_count) {
             sb_append(out, ", \"set\": {");
             for (int k = 0; k < p->param_count; k++)
