@@ -79,7 +79,7 @@ static const char USAGE_OPTIONS[] =
     "  --view NAME           start from a view saved with B in the window (1-9), with its overrides\n"
     "  --set KEY=VALUE       override any scene parameter, e.g. --set materials.glass.ior=1.33,\n"
     "                        --set effects.fog=off, --set lights.0.intensity=40 (repeatable)\n"
-    "  --aov LIST            extra EXR channels: depth,normal,steps,exit,variance,samples,position\n"
+    "  --aov LIST            extra EXR channels: depth,normal,steps,exit,variance,samples,position,albedo\n"
     "                        (needs .exr output; the camera goes in as worldToCamera and worldToNDC)\n"
     "  --frames N            window mode: render N frames, then exit (and say what they cost); with\n"
     "                        --path: frames A-B or N\n"
@@ -182,7 +182,8 @@ static bool parse_aovs(const char *s, unsigned *mask)
 {
     static const struct { const char *name; aov_flag flag; } names[] = {
         {"depth", AOV_DEPTH}, {"normal", AOV_NORMAL}, {"steps", AOV_STEPS}, {"exit", AOV_EXIT},
-        {"variance", AOV_VARIANCE}, {"samples", AOV_SAMPLES}, {"position", AOV_POSITION}};
+        {"variance", AOV_VARIANCE}, {"samples", AOV_SAMPLES}, {"position", AOV_POSITION},
+        {"albedo", AOV_ALBEDO}};
     *mask = 0;
     const char *p = s;
     while (*p) {
@@ -349,7 +350,7 @@ static bool set_view_option(const char *name, const char *val, cli_options *o, e
         o->sets[o->set_count++] = val;
     } else if (!strcmp(name, "--aov")) {
         if (!parse_aovs(val, &o->aovs))
-            return err_set(err, "bad --aov '%s': expected a comma list of depth, normal, steps, exit, variance, samples, position", val);
+            return err_set(err, "bad --aov '%s': expected a comma list of depth, normal, steps, exit, variance, samples, position, albedo", val);
     } else if (!strcmp(name, "--truth")) {
         if (strcmp(val, "model") && strcmp(val, "path"))
             return err_set(err, "bad --truth '%s': use model (the reference preset) or path (the path tracer)", val);

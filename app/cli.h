@@ -33,7 +33,8 @@ typedef enum aov_flag {
     AOV_VARIANCE = 1u << 4, /* per channel, the variance of the pixel's mean over its samples */
     AOV_SAMPLES = 1u << 5,  /* how many samples the pixel took */
     AOV_POSITION = 1u << 6, /* world position of the first hit (P.X, P.Y, P.Z), 0 on a miss */
-    AOV_ALL = AOV_DEPTH | AOV_NORMAL | AOV_STEPS | AOV_EXIT | AOV_VARIANCE | AOV_SAMPLES | AOV_POSITION,
+    AOV_ALBEDO = 1u << 7,   /* the first hit's material colour (albedo.R/G/B), 0 on a miss */
+    AOV_ALL = AOV_DEPTH | AOV_NORMAL | AOV_STEPS | AOV_EXIT | AOV_VARIANCE | AOV_SAMPLES | AOV_POSITION | AOV_ALBEDO,
 } aov_flag;
 
 typedef struct cli_options {

@@ -12,6 +12,7 @@ layout(rgba32f) uniform image2D uAccum;       // target 0: accumulated radiance,
 layout(rgba32f) uniform image2D uNormalDepth; // target 1
 layout(rgba32f) uniform image2D uAux;         // target 2
 layout(rgba32f) uniform image2D uSquares;     // target 3: the radiance squared, summed (the variance AOV)
+layout(rgba32f) uniform image2D uAlbedo;      // target 4: the first hit's material colour
 uniform ivec4 uRect;       // the pixels of this dispatch: x, y (GL rows, from the bottom), width, height
 uniform int uFirstSample;  // 1: the image's first sample, which also writes the AOVs
 
@@ -21,8 +22,8 @@ void main()
     bool inside = all(lessThan(px, uRect.xy + uRect.zw));
     if (uAdaptive != 0 && texelFetch(uEdgeMask, px, 0).r < 0.5)
         return; // adaptive sampling: the centre sample is this pixel's mean already
-    vec4 color, normalDepth, aux;
-    renderPixel(vec2(px) + 0.5, color, normalDepth, aux);
+    vec4 color, normalDepth, aux, albedo;
+    renderPixel(vec2(px) + 0.5, color, normalDepth, aux, albedo);
     if (!inside)
         return;
     if (uFirstSample != 0) {
@@ -30,6 +31,7 @@ void main()
         imageStore(uNormalDepth, px, normalDepth);
         imageStore(uAux, px, aux);
         imageStore(uSquares, px, vec4(color.rgb * color.rgb, 0.0));
+        imageStore(uAlbedo, px, albedo);
     } else {
         imageStore(uAccum, px, imageLoad(uAccum, px) + color);
         imageStore(uSquares, px, imageLoad(uSquares, px) + vec4(color.rgb * color.rgb, 0.0));

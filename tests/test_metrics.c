@@ -36,7 +36,7 @@ static void identical_images(void **st)
     uint8_t a[N * 4];
     float aov[N * AOV_FLOATS];
     fill(a, aov, 100, 2.0f);
-    image_view v = {W, H, a, aov};
+    image_view v = {W, H, a, aov, 0};
     metrics m = metrics_compare(&v, &v, 0.01);
     assert_near(m.rmse, 0, 0);
     assert_true(isinf(m.psnr_db));
@@ -62,7 +62,7 @@ static void known_errors(void **st)
     aa[9 * AOV_FLOATS + 3] = INFINITY;
     ab[11 * AOV_FLOATS + 3] = INFINITY;
     aa[0 * AOV_FLOATS + 4] = 25; /* steps: one pixel 25, the rest 10 */
-    image_view va = {W, H, a, aa}, vb = {W, H, b, ab};
+    image_view va = {W, H, a, aa, 0}, vb = {W, H, b, ab, 0};
     metrics m = metrics_compare(&va, &vb, 0.005);
     assert_near(m.rmse, sqrt(1.0 / (3.0 * N)), 1e-12);
     assert_near(m.psnr_db, 20 * log10(1 / sqrt(1.0 / (3.0 * N))), 1e-9);
@@ -94,7 +94,7 @@ static void silhouette_iou_and_edge(void **st)
         aa[i * AOV_FLOATS + 3] = test ? 2.0f : INFINITY;
     }
     aa[(1 * SW + 4) * AOV_FLOATS + 4] = -7; /* ran out of steps */
-    image_view va = {SW, SH, a, aa}, vb = {SW, SH, b, ab};
+    image_view va = {SW, SH, a, aa, 0}, vb = {SW, SH, b, ab, 0};
     metrics m = metrics_compare(&va, &vb, 0.01);
     assert_near(m.iou, 9.0 / 13.0, 1e-12);
     assert_near(m.edge_max_px, sqrt(10.0), 1e-12);
@@ -120,7 +120,7 @@ static void edge_rmse_counts_silhouettes_only(void **st)
     }
     a[(2 * SW + 4) * 4] = 255;                                           /* the centre: red off by 1 */
     a[(2 * SW + 2) * 4] = a[(2 * SW + 2) * 4 + 1] = a[(2 * SW + 2) * 4 + 2] = 51; /* beside: 0.2 each */
-    image_view va = {SW, SH, a, aa}, vb = {SW, SH, b, ab};
+    image_view va = {SW, SH, a, aa, 0}, vb = {SW, SH, b, ab, 0};
     metrics m = metrics_compare(&va, &vb, 0.01);
     assert_int_equal(m.edge_pixels, 20);
     assert_near(m.edge_rmse, sqrt(3 * 0.04 / (3 * 20)), 1e-12);
@@ -182,7 +182,7 @@ static void upscale_is_exact_on_flat_and_keeps_layout(void **st)
     float aov[2 * AOV_FLOATS] = {0};
     aov[AOV_SLOT_DEPTH] = 1, aov[AOV_SLOT_STEPS] = 7;
     aov[AOV_FLOATS + AOV_SLOT_DEPTH] = 5, aov[AOV_FLOATS + AOV_SLOT_STEPS] = 9;
-    image_view v = {2, 1, in, aov};
+    image_view v = {2, 1, in, aov, 0};
     uint8_t *out;
     float *oa;
     metrics_upscale(&v, 4, 2, &out, &oa);

@@ -386,7 +386,7 @@ static void matrix_of(const char *path, const char *key, double m[16])
     free(text);
 }
 
-/* An EXR with the position AOV and the camera's matrices, from a rolled camera (and orthographic): every
+/* An EXR with the position and albedo AOVs and the camera's matrices, from a rolled camera (and orthographic): every
  * hit pixel's P lies on the sphere (the scene's own geometry), P through worldToNDC lands in that
  * pixel's centre, and worldToCamera puts P at its depth along the view (+z, left-handed). */
 static void exr_position_and_camera(void **st)
@@ -402,7 +402,7 @@ static void exr_position_and_camera(void **st)
         cam.lens = (camera_lens){.projection = ortho ? PROJECTION_ORTHOGRAPHIC : PROJECTION_PERSPECTIVE, .focus = 5};
         const char *out = "fathom-test-optics.exr";
         offline_desc d = {.scene = &s, .cam = cam, .width = XW, .height = XH, .spp = 1, .output = out,
-                          .aovs = AOV_DEPTH | AOV_POSITION, .quiet = true};
+                          .aovs = AOV_DEPTH | AOV_POSITION | AOV_ALBEDO, .quiet = true};
         err_t e = {{0}};
         if (!offline_render_current(&d, &e))
             fail_msg("%s", e.msg);
@@ -414,13 +414,15 @@ static void exr_position_and_camera(void **st)
         if (!image_read_f32(out, 0, 16384, &w, &h, &nc, &px, &e))
             fail_msg("%s", e.msg);
         unlink(out);
-        assert_int_equal(nc, 8); /* R G B A Z P.X P.Y P.Z */
-        double worst_surface = 0, worst_pixel = 0, worst_depth = 0;
+        assert_int_equal(nc, 11); /* R G B A Z P.X P.Y P.Z albedo.R albedo.G albedo.B */
+        double worst_surface = 0, worst_pixel = 0, worst_depth = 0, worst_albedo = 0;
         int hits = 0;
         camera_basis b = camera_get_basis(&cam);
         for (int row = 0; row < h; row++)
             for (int x = 0; x < w; x++) {
                 const float *q = px + ((size_t)row * (size_t)w + (size_t)x) * (size_t)nc;
+                for (int k = 8; k < 11; k++) /* the material's base colour on a hit, 0 on a miss */
+                    worst_albedo = fmax(worst_albedo, fabs(q[k] - (isinf(q[4]) ? 0.0 : 0.6)));
                 if (isinf(q[4]))
                     continue;
                 hits++;
@@ -446,6 +448,7 @@ static void exr_position_and_camera(void **st)
         assert_true(worst_surface < 2e-3);
         assert_true(worst_pixel < 0.02);
         assert_true(worst_depth < 1e-4);
+        assert_true(worst_albedo < 1e-6);
     }
     scene_free(&s);
 }

@@ -6,7 +6,8 @@
 #   - the Mandelbulb: W flies in (the speed follows the distance), S backs out again;
 #   - the panel: Enter opens it with its key=value field ready, typing fractal.power=5 there changes the
 #     image (two P screenshots differ) and the preset records the edit; Ctrl+Z takes it back;
-#   - a user's scene in a folder: its preset opens after the folder has moved (the scene travels in it).
+#   - a user's scene in a folder: its preset opens after the folder has moved (the scene travels in it);
+#   - Q rolls the camera, F focuses the lens on the point under the cursor, U levels the horizon.
 # Usage: window_drive.sh FATHOM   (needs xvfb-run and xdotool; exits 77, skipped, without them)
 fathom=$(realpath "$1")
 command -v xdotool >/dev/null && command -v xvfb-run >/dev/null || { echo "window_drive: needs xdotool and xvfb-run"; exit 77; }
@@ -67,6 +68,14 @@ b=$(apart "$tmp/csg-in" "$tmp/csg-out")
 check "csg: S backs away from it ($b m)" 'ge "$b" 0.5'
 s=$(apart "$tmp/csg-out" "$tmp/csg-side")
 check "csg: D slides sideways ($s m)" 'ge "$s" 0.5'
+
+# Q rolls (free flight), F focuses the lens on what is under the cursor (the centre while flying), U levels
+drive roll --scene csg --set camera.aperture=0.05 -- "keydown q" "sleep 1" "keyup q" "key f" "sleep 2" "save ../rolled" \
+    "key u" "sleep 1" "save ../level"
+r=$(sed 's/.*"roll":\([^,}]*\).*/\1/' "$tmp/rolled")
+check "Q rolls the camera (roll $r rad in the preset)" 'ge "$(awk -v r="$r" "BEGIN { print (r < 0 ? -r : r) }")" 0.3'
+check "F focuses on the point under the cursor (the preset sets camera.focus)" 'grep -q "camera.focus=" "$tmp/rolled"'
+check "U levels the horizon again" 'grep -q "\"roll\":0[,}]" "$tmp/level"'
 
 drive bulb --scene mandelbulb --camera 0.3,0.5,2.2 --look-at 0,0,0 -- \
     "keydown w" "sleep 4" "keyup w" "save ../bulb-in" "keydown s" "sleep 2" "keyup s" "save ../bulb-out"

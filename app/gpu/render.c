@@ -347,8 +347,8 @@ static void lens_uniforms(int k)
 static void draw_rows(int y0, int y1, bool first)
 {
     static const GLenum all[NUM_TARGETS] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
-                                            GL_COLOR_ATTACHMENT3};
-    static const GLenum sums_only[NUM_TARGETS] = {GL_COLOR_ATTACHMENT0, GL_NONE, GL_NONE, GL_COLOR_ATTACHMENT3};
+                                            GL_COLOR_ATTACHMENT3, GL_COLOR_ATTACHMENT4};
+    static const GLenum sums_only[NUM_TARGETS] = {GL_COLOR_ATTACHMENT0, GL_NONE, GL_NONE, GL_COLOR_ATTACHMENT3, GL_NONE};
     glDrawBuffers(NUM_TARGETS, first ? all : sums_only);
     glEnable(GL_SCISSOR_TEST);
     glScissor(0, y0, state->width, y1 - y0);
@@ -374,6 +374,7 @@ static void dispatch_rows(int y0, int y1, bool first)
     glUniform1i(loc("uNormalDepth"), 1);
     glUniform1i(loc("uAux"), 2);
     glUniform1i(loc("uSquares"), 3);
+    glUniform1i(loc("uAlbedo"), 4);
     glUniform1i(loc("uFirstSample"), first ? 1 : 0);
     GLint group[3]; /* sdf.comp's local size */
     glGetProgramiv(state->prog, GL_COMPUTE_WORK_GROUP_SIZE, group);
@@ -405,7 +406,7 @@ static void sample_rows(int y0, int y1)
     bool first = state->samples == 0;
     if (first && state->band_done == 0) {
         static const GLenum all[NUM_TARGETS] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
-                                                GL_COLOR_ATTACHMENT3};
+                                                GL_COLOR_ATTACHMENT3, GL_COLOR_ATTACHMENT4};
         glDrawBuffers(NUM_TARGETS, all);
         glClearColor(0, 0, 0, 0);
         glClear(GL_COLOR_BUFFER_BIT);

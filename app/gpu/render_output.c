@@ -177,6 +177,7 @@ void render_read_aovs(float *aov8)
         float *o = aov8 + i * AOV_FLOATS;
         memcpy(o, t[1] + i * 4, sizeof(float) * 4);
         memcpy(o + 4, t[2] + i * 4, sizeof(float) * 4);
+        memcpy(o + AOV_SLOT_ALBEDO, t[4] + i * 4, sizeof(float) * 3);
         if (o[AOV_SLOT_DEPTH] < 0.0f) /* the shader marks a miss with depth −1 */
             o[AOV_SLOT_DEPTH] = INFINITY;
         /* the variance of the mean from the sums of x and x² over n samples (in double: the two sums

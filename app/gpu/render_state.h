@@ -9,7 +9,7 @@
 #include "gpu/render.h"
 #include "view/camera.h"
 
-enum { NUM_TARGETS = 4 };
+enum { NUM_TARGETS = 5 }; /* radiance, normal and depth, steps and exit, radiance squared, albedo */
 
 typedef struct render_state {
     GLuint display_prog;

@@ -130,7 +130,8 @@ static bool measure(const char *knob_name, const char *value, const char *const 
         uint8_t *srgb;
         float *aov;
         read_back(w, h, &srgb, &aov);
-        image_view test = {w, h, srgb, aov}, ref = {B.w, B.h, B.views[v].srgb, B.views[v].aov};
+        double t0 = camera_footprint_t0(&B.views[v].cam);
+        image_view test = {w, h, srgb, aov, t0}, ref = {B.w, B.h, B.views[v].srgb, B.views[v].aov, t0};
         if (w != B.w || h != B.h) {
             uint8_t *up;
             float *up_aov;
@@ -139,7 +140,7 @@ static bool measure(const char *knob_name, const char *value, const char *const 
             free(aov);
             srgb = up;
             aov = up_aov;
-            test = (image_view){B.w, B.h, srgb, aov};
+            test = (image_view){B.w, B.h, srgb, aov, t0};
         }
         metrics m = metrics_compare(&test, &ref, camera_pixel_angle(&B.views[v].cam, B.h));
         if (v == 0 && wants_difference(knob_name))
@@ -223,7 +224,8 @@ static bool make_references(const scene *base, metrics *convergence, double *ref
     uint8_t *srgb;
     float *aov;
     read_back(B.w, B.h, &srgb, &aov);
-    image_view a = {B.w, B.h, B.views[0].srgb, B.views[0].aov}, b = {B.w, B.h, srgb, aov};
+    double t0 = camera_footprint_t0(&B.views[0].cam);
+    image_view a = {B.w, B.h, B.views[0].srgb, B.views[0].aov, t0}, b = {B.w, B.h, srgb, aov, t0};
     *convergence = metrics_compare(&a, &b, camera_pixel_angle(&B.views[0].cam, B.h));
     free(srgb);
     free(aov);

@@ -219,10 +219,10 @@ static void small_multiples(const bench_results *r, FILE *f, const char *dat, co
     static const char *const COLOURS[] = {"#1b9e77", "#d95f02", "#7570b3", "#e7298a", "#66a61e", "#e6ab02",
                                           "#a6761d", "#666666"};
     int cols = nk < 3 ? nk : 3, rows = (nk + cols - 1) / cols;
-    fprintf(f, "set terminal pngcairo size %d,%d font ',9'\nset output ", 380 * cols, 300 * rows + 55);
+    fprintf(f, "set terminal pngcairo size %d,%d font ',9'\nset output ", 380 * cols, 300 * rows + 70);
     gnuplot_string(f, png);
-    char title[512];
-    snprintf(title, sizeof title, "%s, %dx%d, %.40s: colour error against time, each knob swept alone from the %s "
+    char title[512]; /* each line fits two panels' width (a run of one knob and the presets) */
+    snprintf(title, sizeof title, "%s, %dx%d, %.40s:\ncolour error against time, each knob swept alone from the %s "
              "preset\nBetter: down and left. Ring: the preset's value. Bars: the time's 95 %% interval.\nCompare "
              "times within a panel (its settings were timed in turn); between panels the machine's load drifts.",
              bench_run_prefix(r), r->w, r->h, (const char *)glGetString(GL_RENDERER), preset_name(r->base->preset));

@@ -102,7 +102,8 @@ metrics metrics_compare(const image_view *test, const image_view *ref, double pi
         if (isinf(ta) != isinf(tr)) {
             flips++;
         } else if (!isinf(tr)) {
-            double fp = fabs(ta - tr) / (tr * pixel_angle);
+            double foot = (tr + ref->footprint_t0) * pixel_angle; /* 0: a ray that starts on the surface */
+            double fp = foot > 0 ? fabs(ta - tr) / foot : ta == tr ? 0.0 : INFINITY;
             depth_sum += fp;
             m.depth_max_fp = fmax(m.depth_max_fp, fp);
             m.depth_pixels++;

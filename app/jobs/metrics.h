@@ -20,6 +20,7 @@ typedef struct image_view {
     int width, height;
     const uint8_t *srgb; /* RGBA 8-bit, rows top first */
     const float *aov;    /* AOV_FLOATS a pixel (view/aov.h): depth at [3] (+inf on a miss), steps at [4] */
+    double footprint_t0; /* the reference's: a pixel is pixel_angle · (depth + this) wide (camera.h) */
 } image_view;
 
 typedef struct metrics {

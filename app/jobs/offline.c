@@ -18,7 +18,7 @@
 
 /* A band: about 2 Mpixel by default; at most 16 Mpixel whatever --strip-rows asks (GPU targets 52 bytes
  * a pixel, the readback about 140), so 16384 columns always render. */
-enum { BAR_WIDTH = 30, MAX_CHANNELS = 16, STRIP_PIXELS = 1 << 21, BAND_MAX_PIXELS = 1 << 24 };
+enum { BAR_WIDTH = 30, MAX_CHANNELS = 24, STRIP_PIXELS = 1 << 21, BAND_MAX_PIXELS = 1 << 24 };
 static const float EXPOSURE = 1.0f;
 
 static void progress(int done, int total, double elapsed)
@@ -64,6 +64,11 @@ static int exr_channels(unsigned aovs, const char *names[MAX_CHANNELS], int src[
         names[nc] = "P.X", src[nc++] = AOV_SLOT_POSITION;
         names[nc] = "P.Y", src[nc++] = AOV_SLOT_POSITION + 1;
         names[nc] = "P.Z", src[nc++] = AOV_SLOT_POSITION + 2;
+    }
+    if (aovs & AOV_ALBEDO) {
+        names[nc] = "albedo.R", src[nc++] = AOV_SLOT_ALBEDO;
+        names[nc] = "albedo.G", src[nc++] = AOV_SLOT_ALBEDO + 1;
+        names[nc] = "albedo.B", src[nc++] = AOV_SLOT_ALBEDO + 2;
     }
     return nc;
 }

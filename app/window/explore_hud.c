@@ -20,8 +20,12 @@ static void hud_details(const explore_app *a, int h, strbuf *t)
     const camera *c = &a->fly.cam;
     const scene *s = &a->s.scene;
     flycam_describe(&a->fly, s, t);
-    sb_printf(t, "pos %.10g %.10g %.10g  fov %.1f\n", c->position[0], c->position[1], c->position[2],
-              (double)glm_deg(c->fov_y));
+    sb_printf(t, "pos %.10g %.10g %.10g  fov %.1f  roll %.1f%s\n", c->position[0], c->position[1], c->position[2],
+              (double)glm_deg(c->fov_y), (double)glm_deg(c->roll), a->fly.level ? " (level)" : " (free flight: U levels)");
+    if (c->lens.projection || c->lens.stereo || c->lens.aperture > 0)
+        sb_printf(t, "%s%s%s  lens %.3g, focus %.4g (F: under the cursor)\n", CAMERA_PROJECTIONS[c->lens.projection],
+                  c->lens.stereo ? ", stereo " : "", c->lens.stereo ? CAMERA_STEREOS[c->lens.stereo] : "",
+                  (double)c->lens.aperture, (double)c->lens.focus);
     float d = a->fly.surface_distance, pa = camera_pixel_angle(c, h);
     double floor = s->fractal.deep_now ? camera_resolution(c->position, true)
                                        : (double)PRECISION_REL * (camera_norm(c->position) + (double)d);

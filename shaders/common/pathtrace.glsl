@@ -58,6 +58,7 @@ bool roulette(inout vec3 throughput, int bounce, inout Rng rng)
 struct PathSample {
     vec3 radiance, firstN, exitDir;
     float firstT;
+    vec3 firstAlbedo; // the first hit's material colour (the albedo AOV); 0 on a miss
     int steps;
     bool exhausted;
 };
@@ -176,7 +177,7 @@ bool reflectOff(inout Walk W, vec3 p, vec3 n, Material m, float eps, bool last)
 PathSample tracePathSample(Ray ray, vec2 pixel)
 {
     Rng rng = Rng(pcgHash(uint(pixel.x) ^ pcgHash(uint(pixel.y) ^ pcgHash(uint(uSampleIndex) * 9781u + 1u))));
-    PathSample S = PathSample(vec3(0.0), vec3(0.0), ray.d, -1.0, 0, false);
+    PathSample S = PathSample(vec3(0.0), vec3(0.0), ray.d, -1.0, vec3(0.0), 0, false);
     Walk W = startWalk(ray, rng);
     bool primary = true; // the next segment is the camera's: it gives the AOVs
     // a bounce is spent at a surface or in fog; droplet events spend DROPLET_EVENTS, which ends the loop
@@ -238,6 +239,8 @@ PathSample tracePathSample(Ray ray, vec2 pixel)
         float eps = hitEps(W.pathT);
         vec3 n = firstHit ? S.firstN : calcNormal(p, normalEps(eps, W.pathT), -W.rd); // outward
         Material m = getMaterial(h.mat, p, n, vec3(0.0), vec3(0.0));
+        if (firstHit)
+            S.firstAlbedo = m.albedo;
         if (W.side < 0.0) // the segment ran inside glass, from surface to surface: the offsets off each
             W.throughput *= exp(-m.absorption * distance(W.from, p)); // would cut a thin slab's length
         W.radiance += W.throughput * m.emission;

@@ -13,6 +13,8 @@
 //   2: primary-ray march steps (negative when the ray was left unresolved: its budget and the tail ran
 //      out before a hit or a miss; drawn as a miss),
 //      direction in which the path left the scene
+//   3 (the entry points): the radiance squared, summed (the variance AOV)
+//   4: the first hit's material colour (the albedo AOV; 0 on a miss)
 
 #include "common/uniforms.glsl"
 #include "common/camera.glsl"
@@ -74,6 +76,7 @@ struct Path {
     float side;             // +1 outside solids, −1 inside glass
     float firstT, primaryT; // the first hit's depth (−1: none) and the primary ray's (fog)
     vec3 firstN;
+    vec3 firstAlbedo; // the first hit's material colour (the albedo AOV); 0 on a miss
     int firstSteps, firstBoundSteps;
     bool firstExhausted;    // the primary ray ran out of steps (its hit is a best candidate)
     bool escaped;           // the path left the scene
@@ -107,6 +110,7 @@ Path startPath(Ray ray)
     P.firstT = -1.0;
     P.primaryT = float(MAX_DIST);
     P.firstN = vec3(0.0);
+    P.firstAlbedo = vec3(0.0);
     P.firstSteps = 0;
     P.firstBoundSteps = 0;
     P.firstExhausted = false;
@@ -322,6 +326,8 @@ int shadeHit(inout Path P, Ray ray, Hit h, int bounce)
     reliefSurface(P, h, firstHit, pSurface, p, nOut);
 #endif
     Material m = getMaterial(h.mat, p, nOut, dpdx, dpdy);
+    if (firstHit)
+        P.firstAlbedo = m.albedo;
     if (P.side < 0.0) // the segment just travelled was inside glass: surface to surface (the offsets
         P.throughput *= exp(-m.absorption * distance(P.from, p)); // off each face cut a thin slab's length by 20 %)
 #if FX_REFRACTION
@@ -432,13 +438,14 @@ vec3 coveredRadiance(Path P, Ray ray, vec3 radiance)
 // One sample of the pixel whose centre is fragCoord (gl_FragCoord's convention: pixel + 0.5): its
 // colour (alpha 1: one sample) and the AOVs of the centre ray's own path. The entry points (sdf.frag,
 // sdf.comp) write them to the targets.
-void renderPixel(vec2 fragCoord, out vec4 color, out vec4 normalDepth, out vec4 aux)
+void renderPixel(vec2 fragCoord, out vec4 color, out vec4 normalDepth, out vec4 aux, out vec4 albedo)
 {
     Ray ray = primaryRay(fragCoord);
     if (!ray.sees) { // outside a fisheye's circle: black, a miss
         color = vec4(0.0, 0.0, 0.0, 1.0);
         normalDepth = vec4(0.0, 0.0, 0.0, -1.0);
         aux = vec4(0.0, ray.d);
+        albedo = vec4(0.0);
         return;
     }
 #if INTEGRATOR
@@ -447,6 +454,7 @@ void renderPixel(vec2 fragCoord, out vec4 color, out vec4 normalDepth, out vec4 
     normalDepth = vec4(S.firstN, S.firstT);
     bool cut = loopOut || loopsWereCut(); // common/budget.glsl: flagged, as below
     aux = vec4(cut ? -float(S.steps) - 0.5 : S.exhausted ? -float(S.steps) : float(S.steps), S.exitDir);
+    albedo = vec4(S.firstAlbedo, 0.0);
     return;
 #endif
     Path P = startPath(ray);
@@ -464,4 +472,5 @@ void renderPixel(vec2 fragCoord, out vec4 color, out vec4 normalDepth, out vec4 
     bool loopsRanOut = loopOut || loopsWereCut();
     aux = vec4(loopsRanOut ? -float(P.firstSteps) - 0.5 : P.firstExhausted ? -float(P.firstSteps) : float(P.firstSteps),
                P.rd);
+    albedo = vec4(P.firstAlbedo, 0.0);
 }
