@@ -35,7 +35,7 @@ sleep 3
 for step in "$@"; do
     case $step in
     sleep*) eval "$step" ;;
-    wait*) i=0; while [ ! -s "${step#wait }" ] && [ $i -lt 150 ]; do sleep 0.2; i=$((i + 1)); done ;; # a slow frame
+    wait*) i=0; while [ ! -s "${step#wait }" ] && [ $i -lt 450 ]; do sleep 0.2; i=$((i + 1)); done ;; # slow frames: 90 s
     save*) xdotool key ctrl+s; sleep 1; cp "$(ls -t ./*.fathom | head -n 1)" "kept.tmp"; mv kept.tmp "${step#save }" ;;
     *) eval "xdotool $step"; sleep 0.5 ;;
     esac
@@ -101,6 +101,7 @@ f=$FATHOM_VIEWS_DIR/csg.flight.json
 keys=$(grep -c '"time"' "$f" 2>/dev/null)
 check "flight: N twice around the glass sphere keeps $keys keys (2 pressed, the rest along the way flown)" \
     '[ "${keys:-0}" -gt 2 ]'
+[ "${keys:-0}" -gt 2 ] || sed 's/^/     | /' "$tmp/flight/window.log"
 "$fathom" render --path "$f" --output "$tmp/flight/f_%04d.png" --size 8x8 --quiet 2>"$tmp/flight.err"
 check "flight: it renders whole ($(ls "$tmp/flight"/f_*.png 2>/dev/null | wc -l) frames)" \
     '[ ! -s "$tmp/flight.err" ] && [ -s "$tmp/flight/f_0000.png" ]'

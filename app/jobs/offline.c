@@ -79,30 +79,36 @@ static bool is_png(const char *path)
     return dot && !strcasecmp(dot, ".png");
 }
 
-/* "m44f:NAME" text entries: the camera as OpenEXR's worldToCamera and worldToNDC (view/camera.h) for
- * the whole image (a tile's too), which compositors read; NULL values where there is none. */
-static void camera_texts(const camera *cam, int width, int height, char out[2][400])
+/* The camera as OpenEXR's worldToCamera and worldToNDC (view/camera.h) for the whole image, which
+ * compositors read: CAMERA_KEY's text, "16 numbers;16 numbers" (the second empty where there is no
+ * such matrix), %.9g so each float is exact; a tile keeps it for the poster stitched from it. */
+#define CAMERA_KEY "fathom_camera"
+static void camera_text(const camera *cam, int width, int height, char out[800])
 {
     float m[2][16];
     bool ndc = camera_matrices(cam, width, height, m[0], m[1]);
-    for (int k = 0; k < 2; k++) {
-        size_t at = 0;
+    size_t at = 0;
+    for (int k = 0; k < 2; k++)
         for (int i = 0; i < 16 && (k == 0 || ndc); i++)
-            at += (size_t)snprintf(out[k] + at, 400 - at, "%s%.9g", i ? " " : "", (double)m[k][i]);
-        out[k][at] = '\0';
-    }
+            at += (size_t)snprintf(out + at, 800 - at, "%s%.9g", i ? " " : k ? ";" : "", (double)m[k][i]);
+    if (!ndc)
+        at += (size_t)snprintf(out + at, 800 - at, ";");
 }
 
+/* cam_text: camera_text's, or NULL (none, and a PNG takes none). */
 static image_writer *open_writer(const char *path, int width, int height, unsigned aovs, const char *description,
-                                 const char *tile, const camera *cam, int full_width, int full_height, err_t *err)
+                                 const char *tile, const char *cam_text, err_t *err)
 {
     const char *names[MAX_CHANNELS];
     int src[MAX_CHANNELS];
-    char m[2][400] = {"", ""};
-    if (cam && !is_png(path))
-        camera_texts(cam, full_width, full_height, m);
-    const char *texts[] = {SHOT_KEY, description, TILE_KEY, tile, "m44f:worldtocamera", m[0][0] ? m[0] : NULL,
-                           "m44f:worldtoNDC", m[1][0] ? m[1] : NULL, NULL};
+    char m[2][800] = {"", ""};
+    const char *semi = cam_text && !is_png(path) ? strchr(cam_text, ';') : NULL;
+    if (semi && (size_t)(semi - cam_text) < sizeof m[0]) {
+        snprintf(m[0], sizeof m[0], "%.*s", (int)(semi - cam_text), cam_text);
+        snprintf(m[1], sizeof m[1], "%s", semi + 1);
+    }
+    const char *texts[] = {SHOT_KEY, description, TILE_KEY, tile, CAMERA_KEY, semi ? cam_text : NULL,
+                           "m44f:worldtocamera", m[0][0] ? m[0] : NULL, "m44f:worldtoNDC", m[1][0] ? m[1] : NULL, NULL};
     if (is_png(path))
         return image_writer_open_text(path, width, height, 3, false, NULL, texts, err);
     return image_writer_open_text(path, width, height, exr_channels(aovs, names, src), true, names, texts, err);
@@ -150,7 +156,7 @@ static bool write_band(image_writer *w, const char *path, int width, int rows, u
 
 bool offline_write(const char *path, int width, int height, unsigned aovs, const char *description, err_t *err)
 {
-    image_writer *w = open_writer(path, width, height, aovs, description, NULL, NULL, 0, 0, err);
+    image_writer *w = open_writer(path, width, height, aovs, description, NULL, NULL, err);
     if (!w)
         return false;
     if (!write_band(w, path, width, height, aovs, err)) {
@@ -266,8 +272,9 @@ bool offline_render_current(const offline_desc *desc, err_t *err)
     strbuf described = {0};
     if (d->description)
         shot_note_renderer(d->description, renderer, &described);
-    image_writer *w = open_writer(d->output, d->width, rows, d->aovs, described.data, tile[0] ? tile : NULL, &d->cam,
-                                  d->width, d->height, err);
+    char cam_text[800];
+    camera_text(&d->cam, d->width, d->height, cam_text);
+    image_writer *w = open_writer(d->output, d->width, rows, d->aovs, described.data, tile[0] ? tile : NULL, cam_text, err);
     sb_free(&described);
     if (!w)
         return false;
@@ -416,11 +423,14 @@ bool offline_stitch(const char *output, const char *const *tiles, int n, bool qu
             sb_free(&missing);
         }
     }
-    char *shot = NULL;
+    char *shot = NULL, *cam = NULL;
     err_t ignore;
-    if (ok)
-        image_read_text(t[0].file, SHOT_KEY, &shot, &ignore); /* the poster remembers the shot, as the tiles do */
-    image_writer *w = ok ? open_writer(output, t[0].width, t[0].height, t[0].aovs, shot, NULL, NULL, 0, 0, err) : NULL;
+    if (ok) { /* the poster remembers the shot and (an EXR) the camera, as the tiles do */
+        image_read_text(t[0].file, SHOT_KEY, &shot, &ignore);
+        if (!is_png(output))
+            image_read_text(t[0].file, CAMERA_KEY, &cam, &ignore);
+    }
+    image_writer *w = ok ? open_writer(output, t[0].width, t[0].height, t[0].aovs, shot, NULL, cam, err) : NULL;
     ok = ok && w;
     const char *names[MAX_CHANNELS];
     int src[MAX_CHANNELS];
@@ -443,6 +453,7 @@ bool offline_stitch(const char *output, const char *const *tiles, int n, bool qu
         free(px);
     }
     free(shot);
+    free(cam);
     if (w && !ok)
         image_writer_abort(w);
     else if (w)

@@ -68,6 +68,25 @@ static bool reload_scene(err_t *err)
     return true;
 }
 
+/* An edit of camera.up or camera.roll turns the live camera too: its view's direction kept, its image's
+ * top as the scene now says (the start view follows with the scene). */
+static void apply_up_and_roll(const char *kv)
+{
+    if (strncmp(kv, "camera.up=", 10) && strncmp(kv, "camera.roll=", 12))
+        return;
+    const scene *s = &app.s.scene;
+    camera *c = &app.fly.cam;
+    camera_basis b = camera_get_basis(c);
+    double at[3];
+    for (int i = 0; i < 3; i++)
+        at[i] = c->position[i] + (double)b.forward[i];
+    camera turned = camera_look_at_up(c->position, at, s->cam_up, c->fov_y);
+    turned.roll = remainderf(turned.roll + glm_rad(s->cam_roll_deg), 2.0f * GLM_PIf);
+    turned.lens = c->lens;
+    *c = turned;
+    app.fly.level = c->roll == 0;
+}
+
 /* An edit (the panel's or a knob key's): its cost noted, the scene reloaded. True when it took. */
 static bool edit(const char *kv)
 {
@@ -78,6 +97,7 @@ static bool edit(const char *kv)
         return false;
     }
     loaded(false, false);
+    apply_up_and_roll(kv);
     snprintf(app.message, sizeof app.message, "%.300s", kv);
     return true;
 }
@@ -234,9 +254,11 @@ static void list_scene_names(void)
 static void flight_requests(void)
 {
     const scene *s = &app.s.scene;
-    if (app.ask.add_key)
+    if (app.ask.add_key) { /* the terminal hears it too: where the flight went, or why the key was not added */
         recorder_add(&app.flight, s->name, &app.fly.cam, flycam_speed(&app.fly, s), flycam_probe, (void *)s, app.message,
                      sizeof app.message);
+        fprintf(stderr, "fathom: %s\n", app.message);
+    }
     if (app.ask.clear_keys)
         recorder_clear(&app.flight, s->name, app.message, sizeof app.message);
     if (app.ask.toggle_play)
@@ -304,6 +326,11 @@ static bool focus_lens(int w, int h)
     if (!app.ask.focus)
         return false;
     app.ask.focus = false;
+    if (!(app.fly.cam.lens.aperture > 0)) { /* a pinhole is sharp everywhere (and orthographic's focus frames it) */
+        snprintf(app.message, sizeof app.message, "no lens to focus: give camera.aperture a radius first (the panel's "
+                                                  "camera section, or --set camera.aperture=0.05)");
+        return false;
+    }
     bool captured = !flycam_cursor_free(&app.fly, app.panel);
     int x = captured ? w / 2 : (int)app.fly.mouse[0], y = captured ? h / 2 : (int)app.fly.mouse[1];
     double p[3];
