@@ -38,38 +38,27 @@ static void progress(int done, int total, double elapsed)
 /* EXR channels: RGBA, then the requested AOVs; src[c] is the AOV slot of channel c >= 4. */
 static int exr_channels(unsigned aovs, const char *names[MAX_CHANNELS], int src[MAX_CHANNELS])
 {
+    static const struct {
+        unsigned flag;
+        int slot;
+        const char *names[3]; /* one channel, or three */
+    } AOVS[] = {
+        {AOV_DEPTH, AOV_SLOT_DEPTH, {"Z"}},
+        {AOV_NORMAL, AOV_SLOT_NORMAL, {"N.X", "N.Y", "N.Z"}},
+        {AOV_STEPS, AOV_SLOT_STEPS, {"steps"}},
+        {AOV_EXIT, AOV_SLOT_EXIT, {"exit.X", "exit.Y", "exit.Z"}},
+        {AOV_VARIANCE, AOV_SLOT_VARIANCE, {"variance.R", "variance.G", "variance.B"}},
+        {AOV_SAMPLES, AOV_SLOT_SAMPLES, {"samples"}},
+        {AOV_POSITION, AOV_SLOT_POSITION, {"P.X", "P.Y", "P.Z"}},
+        {AOV_ALBEDO, AOV_SLOT_ALBEDO, {"albedo.R", "albedo.G", "albedo.B"}},
+    };
     static const char *const RGBA[] = {"R", "G", "B", "A"};
     int nc = 0;
     for (; nc < 4; nc++)
         names[nc] = RGBA[nc];
-    if (aovs & AOV_DEPTH) names[nc] = "Z", src[nc++] = AOV_SLOT_DEPTH;
-    if (aovs & AOV_NORMAL) {
-        names[nc] = "N.X", src[nc++] = AOV_SLOT_NORMAL;
-        names[nc] = "N.Y", src[nc++] = AOV_SLOT_NORMAL + 1;
-        names[nc] = "N.Z", src[nc++] = AOV_SLOT_NORMAL + 2;
-    }
-    if (aovs & AOV_STEPS) names[nc] = "steps", src[nc++] = AOV_SLOT_STEPS;
-    if (aovs & AOV_EXIT) {
-        names[nc] = "exit.X", src[nc++] = AOV_SLOT_EXIT;
-        names[nc] = "exit.Y", src[nc++] = AOV_SLOT_EXIT + 1;
-        names[nc] = "exit.Z", src[nc++] = AOV_SLOT_EXIT + 2;
-    }
-    if (aovs & AOV_VARIANCE) {
-        names[nc] = "variance.R", src[nc++] = AOV_SLOT_VARIANCE;
-        names[nc] = "variance.G", src[nc++] = AOV_SLOT_VARIANCE + 1;
-        names[nc] = "variance.B", src[nc++] = AOV_SLOT_VARIANCE + 2;
-    }
-    if (aovs & AOV_SAMPLES) names[nc] = "samples", src[nc++] = AOV_SLOT_SAMPLES;
-    if (aovs & AOV_POSITION) {
-        names[nc] = "P.X", src[nc++] = AOV_SLOT_POSITION;
-        names[nc] = "P.Y", src[nc++] = AOV_SLOT_POSITION + 1;
-        names[nc] = "P.Z", src[nc++] = AOV_SLOT_POSITION + 2;
-    }
-    if (aovs & AOV_ALBEDO) {
-        names[nc] = "albedo.R", src[nc++] = AOV_SLOT_ALBEDO;
-        names[nc] = "albedo.G", src[nc++] = AOV_SLOT_ALBEDO + 1;
-        names[nc] = "albedo.B", src[nc++] = AOV_SLOT_ALBEDO + 2;
-    }
+    for (size_t a = 0; a < sizeof AOVS / sizeof AOVS[0]; a++)
+        for (int k = 0; k < 3 && (aovs & AOVS[a].flag) && AOVS[a].names[k]; k++)
+            names[nc] = AOVS[a].names[k], src[nc++] = AOVS[a].slot + k;
     return nc;
 }
 
