@@ -16,6 +16,7 @@
 #include "view/path.h"
 #include "scene/quality.h"
 #include "scene/scene.h"
+#include "scene/frag.h"
 #include "data/image_io.h"
 #include "data/video.h"
 
@@ -60,11 +61,12 @@ static const char USAGE[] =
 /* the options (ISO C bounds one string literal at 4095 characters) */
 static const char USAGE_OPTIONS[] =
     "  --scene NAME|FILE     scene to load: a name from scenes/ (csg), a scene file path, or a PNG/EXR\n"
-    "                        or .fathom preset fathom wrote (reopens its scene, overrides and view) [csg]\n"
+    "                        or .fathom preset fathom wrote (reopens its scene, overrides and view), or a\n"
+    "                        Fragmentarium DE fragment (.frag, unmodified: at its Default preset) [csg]\n"
     "  --dem FILE            open any DEM GDAL reads (GeoTIFF, .hgt, .asc, netCDF, VRT, ...) with a\n"
     "                        camera framed from its extent (the dem scene, with terrain.heightmap=FILE)\n"
-    "  --formula NAME|FILE   a fractal formula: a shipped or user name, or your own .glsl file (the\n"
-    "                        fractal scene framed from its bound, or --scene's with fractal.formula)\n"
+    "  --formula NAME|FILE   a fractal formula: a shipped or user name, your own .glsl file or a .frag\n"
+    "                        fragment (the fractal scene framed from its bound, or --scene's)\n"
     "  --help-formula NAME   the formula's parameters: type, default, range, meaning\n"
     "  --list-formulas       list the formulas (shipped, then ~/.config/fathom/formulas/)\n"
     "  --output FILE         render headless to FILE (.png 8-bit sRGB, .exr linear float) and exit\n"
@@ -76,7 +78,8 @@ static const char USAGE_OPTIONS[] =
     "  --camera X,Y,Z        camera position\n"
     "  --look-at X,Y,Z       point the camera looks at\n"
     "  --fov DEG             vertical field of view in degrees (0 < DEG < 179)\n"
-    "  --view NAME           start from a view saved with B in the window (1-9), with its overrides\n"
+    "  --view NAME           start from a view saved with B in the window (1-9), with its overrides;\n"
+    "                        for a fragment, one of its presets (--help-formula lists them)\n"
     "  --set KEY=VALUE       override any scene parameter, e.g. --set materials.glass.ior=1.33,\n"
     "                        --set effects.fog=off, --set lights.0.intensity=40 (repeatable)\n"
     "  --aov LIST            extra EXR channels: depth,normal,steps,exit,variance,samples,position,albedo\n"
@@ -214,7 +217,7 @@ static bool set_formula(const char *val, cli_options *o, err_t *err)
     if (o->set_count == CLI_MAX_SETS)
         return err_set(err, "too many --set options (at most %d)", CLI_MAX_SETS);
     char abs[PATH_MAX];
-    bool file = strchr(val, '/') || strstr(val, ".glsl");
+    bool file = strchr(val, '/') || strstr(val, ".glsl") || strstr(val, ".frag");
     if (file && !realpath(val, abs))
         return err_set(err, "--formula: file '%s' not found (a path from the folder you are in)", val);
     if (snprintf(o->formula_set, sizeof o->formula_set, "fractal.formula=%s", file ? abs : val) >=
@@ -230,6 +233,8 @@ static bool set_output_option(const char *name, const char *val, cli_options *o,
 {
     *handled = true;
     if (!strcmp(name, "--scene")) {
+        if (frag_is_fragment(val)) /* a Fragmentarium fragment is a formula of the fractal scene */
+            return set_formula(val, o, err);
         if (o->dem)
             return err_set(err, "--scene and --dem both name what to render: give one");
         o->scene = val;

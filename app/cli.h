@@ -19,7 +19,7 @@
 #include "view/shot.h"
 #include "util.h"
 
-enum { CLI_MAX_SETS = 64 };
+enum { CLI_MAX_SETS = 192 };
 /* The render targets hold 16 bytes a pixel (RGBA32F), and llvmpipe refuses a texture over 2 GB (an
  * assert fired at 11586x11586): the window and the bench, which hold the whole image, take at most this
  * many pixels; offline shots render in strips. */

@@ -15,6 +15,7 @@
 #include "jobs/offline.h"
 #include "gpu/render.h"
 #include "scene/scene.h"
+#include "scene/frag.h"
 #include "view/shot.h"
 #include "view/views.h"
 
@@ -43,9 +44,30 @@ static void print_variant(const scene *s)
     sb_free(&pre);
 }
 
+/* A fragment's preset (--view NAME, else its Default or first preset) as the starting view: its camera
+ * unless the command line gives one, its parameters under the command line's --set. */
+static bool apply_preset(cli_options *o, shot_desc *shot, err_t *err)
+{
+    const char *path = o->formula_set + strlen("fractal.formula=");
+    strbuf text = {0};
+    char *ignored = NULL, names[1][FRAG_PRESET_NAME_MAX];
+    if (!o->view_name && frag_presets(path, names, 1, err) == 0)
+        return true; /* no presets: framed from its bound */
+    bool ok = frag_preset_shot(path, o->view_name, &text, &ignored, err) &&
+              cli_apply_shot_text(o, text.data, path, shot, err);
+    if (ok && ignored && !o->quiet)
+        fprintf(stderr, "fathom: note: the preset's %s are the Fragmentarium renderer's own settings: fathom's "
+                        "lights, quality and effects stand for them\n", ignored);
+    free(ignored);
+    sb_free(&text);
+    return ok;
+}
+
 /* --view NAME: the saved view of the scene named on the command line. */
 static bool apply_view(cli_options *o, shot_desc *shot, err_t *err)
 {
+    if (o->formula && frag_is_fragment(o->formula))
+        return apply_preset(o, shot, err);
     char path[PATH_MAX_LEN], file[PATH_MAX_LEN], *text;
     if (!scene_locate(o->scene, path, sizeof path, err))
         return false;
@@ -99,9 +121,13 @@ static bool help_formula(const char *name, err_t *err)
         return false;
     strbuf text = {0};
     formula_describe(&f, &text);
+    char names[FRAG_PRESET_MAX][FRAG_PRESET_NAME_MAX];
+    int n = f.fragment ? frag_presets(f.file, names, FRAG_PRESET_MAX, err) : 0;
+    for (int i = 0; i < n; i++) /* a fragment's presets: --view NAME */
+        sb_printf(&text, "%s\"%s\"%s", i ? ", " : "  presets (--view NAME): ", names[i], i + 1 == n ? "\n" : "");
     fputs(text.data, stdout);
     sb_free(&text);
-    return true;
+    return n >= 0;
 }
 
 /* The kind of offline shot the command line asks for: size, AOVs, bands, quiet. */
@@ -187,8 +213,9 @@ int main(int argc, char **argv)
         return finish(false, &err);
     if (shot.notes) /* its formulas: changed since, or carried (view/shot.h) */
         fputs(shot.notes, stderr);
-    static shot_desc view; /* --view NAME: likewise */
-    if (opt.view_name && !apply_view(&opt, &view, &err))
+    static shot_desc view; /* --view NAME (a fragment: its preset, named or not): likewise */
+    if ((opt.view_name || (opt.formula && frag_is_fragment(opt.formula) && !opt.help_formula)) &&
+        !apply_view(&opt, &view, &err))
         return finish(false, &err);
     if (answer_query(&opt))
         return 0;

@@ -74,8 +74,11 @@ for p in $cited; do
     case $p in tests/probe.json | *NAME* | *FILE*) continue ;; esac # written by the GL tests; placeholders
     [ -e "$p" ] || say "'$p' is cited but does not exist (grep -rn '$p' to find where)"
 done
+# (a Fragmentarium include's name, DE-Raytracer.frag, is the host's file, not fathom's: app/scene/frag*.[ch]
+# and shaders/frag/ name them)
 names=$(grep -rhE '[A-Za-z0-9_]+\.(c|h|cpp|glsl|frag|vert)\b' app shaders --include='*.c' --include='*.h' \
-            --include='*.cpp' --include='*.glsl' --include='*.frag' --include='*.vert' | grep -v '^[[:space:]]*#[[:space:]]*include' |
+            --include='*.cpp' --include='*.glsl' --include='*.frag' --include='*.vert' --exclude='frag*.[ch]' \
+            --exclude-dir=frag | grep -v '^[[:space:]]*#[[:space:]]*include' |
         grep -oE '(^|[^A-Za-z0-9_/.<])[A-Za-z][A-Za-z0-9_]{2,}\.(c|h|cpp|glsl|frag|vert)\b' | sed 's/^[^A-Za-z]//' | sort -u)
 for n in $names; do
     case $n in program.glsl | NAME.* | FILE.*) continue ;; esac # the generated virtual file; placeholders

@@ -622,7 +622,7 @@ static void formula_declarations(void **st)
     assert_string_equal(f.requires[0].lhs, "inner");
     assert_string_equal(f.requires[0].rhs, "outer");
     /* the bound, an expression of the parameters (in declared order) */
-    const float v[8][3] = {{-3}, {3}, {1}, {0.1f, -0.2f, 0.3f}, {0.9f, 0.5f, 0.1f}, {0.5f}, {1}, {1.5f}};
+    const float v[8][4] = {{-3}, {3}, {1}, {0.1f, -0.2f, 0.3f}, {0.9f, 0.5f, 0.1f}, {0.5f}, {1}, {1.5f}};
     double b;
     if (!formula_eval(&f, f.bound, v, 5, &b, &e))
         fail_msg("%s", e.msg);
@@ -723,7 +723,7 @@ static void formula_scenes(void **st)
     expect_error(BOX, order, 2, "fractal.min_radius must be below fixed_radius");
     const char *unknown[] = {"fractal.power=8"};
     expect_error(BOX, unknown, 1, "unknown key 'power' (allowed here: formula, iterations, bound_radius, palette, "
-                                  "glow, glow_color, julia, julia_c, hybrid, steps, precision, scale, min_radius, "
+                                  "glow, glow_color, julia, julia_c, hybrid, steps, precision, hit_distance, scale, min_radius, "
                                   "fixed_radius, fold_limit)");
     /* the formula switched by an override: its own keys apply */
     const char *bulb[] = {"fractal.formula=mandelbulb", "fractal.power=6"};

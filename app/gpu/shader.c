@@ -8,6 +8,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "scene/frag.h"
+
 enum { MAX_INCLUDE_DEPTH = 16 };
 
 /* Mesa 22.3 keeps the line of a `#line L S` but reports semantic errors (an undeclared name) with
@@ -130,6 +132,8 @@ static bool expand(const char *root, const char *file, const shader_virtual *vir
     for (int i = 0; i < nvirt; i++)
         if (!strcmp(virt[i].name, file))
             src = virt[i].text, generated = true;
+    if (!src && file[0] == '/' && (src = frag_text(file))) /* a fragment as fathom translated it (scene/frag.h) */
+        generated = true;
     if (!src && !read_source(root, file, home, from, from_line, &text, own_home, err))
         return false;
     src = src ? src : text;

@@ -273,14 +273,16 @@ static bool check_contained(const scene *s, unsigned *seed, formula_check *c, er
     }
     free(pts);
     free(e);
-    c->contained = c->sphere_min >= inside && c->reach == 0;
+    c->framing = s->fractal.formula.fragment; /* FORMULA_EXACT: no sphere clips a fragment */
+    c->contained = (c->sphere_min >= inside && c->reach == 0) || c->framing;
     return ok;
 }
 
 bool check_formula(const scene *s, unsigned seed, int random_rays, formula_check *out, err_t *err)
 {
     /* a Julia set or a hybrid is not the formula its @step was measured for: the scene's own step factor */
-    bool mode = s->fractal.julia || s->fractal.has_hybrid;
+    /* a Julia set, a hybrid or a fragment (no @step: its preset's FudgeFactor) steps by the scene's factor */
+    bool mode = s->fractal.julia || s->fractal.has_hybrid || s->fractal.formula.fragment;
     *out = (formula_check){.step = mode ? s->quality.step_factor : s->fractal.step > 0 ? s->fractal.step : 1.0,
                            .mode = mode, .random_rays = random_rays > 0 ? random_rays : CHECK_RAYS, .loops_measured = true, .loops_declared = s->fractal.loops};
     if (!program_is_fractal(s->program))
@@ -313,14 +315,18 @@ void check_describe(const scene *s, const formula_check *c, strbuf *out)
     if (c->worst > 1)
         sb_printf(out, "  worst at (%.4g, %.4g, %.4g)\n", c->worst_at[0], c->worst_at[1], c->worst_at[2]);
     sb_printf(out, "  step factor: %s %.3g; every sample stays inside its crossing at %.3g%s\n",
-              c->mode ? "the scene's (a Julia set or hybrid)" : "declared", c->step, c->suggested,
+              c->mode ? "the scene's (a Julia set, hybrid or fragment)" : "declared", c->step, c->suggested,
               c->step * c->worst <= CHECK_TOLERANCE ? ""
+              : s->fractal.formula.fragment ? ": set quality.step_factor to it or lower (a fragment's preset: FudgeFactor)"
               : c->mode ? ": set quality.step_factor to it or lower"
                         : ": set @step (and quality.step_factor) to it or lower");
     if (c->crossing == 0)
         sb_printf(out, "  no ray met the surface: check @bound and the parameters\n");
     double B = s->fractal.bound_radius;
-    if (c->contained)
+    if (c->framing)
+        sb_printf(out, "  bound: a fragment's DE is marched without a bounding sphere (radius %.4g frames the view)%s\n",
+                  B, c->reach > 0 ? "; the set reaches past it" : "");
+    else if (c->contained)
         sb_printf(out, "  bound: the set stays inside the bounding sphere (radius %.4g; nearest estimate on it %.3g)\n", B,
                   c->sphere_min);
     else if (c->reach > 0)

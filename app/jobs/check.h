@@ -48,6 +48,7 @@ typedef struct formula_check {
     double step;         /* the step factor the formula declares (1 when it declares none), or the scene's */
     bool mode;           /* a Julia set or a hybrid: checked at the scene's step factor */
     bool contained;      /* the set stays inside the bounding sphere */
+    bool framing;    /* a fragment: its DE is marched without a bounding sphere, the bound only frames the view */
     double sphere_min;   /* the smallest estimate found on the bounding sphere (the bound lifted) */
     double sphere_at[3]; /* where */
     double reach;        /* the farthest point of the set found beyond the sphere (0: none) */

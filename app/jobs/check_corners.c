@@ -47,7 +47,7 @@ int check_corners(const formula *f, const check_desc *d, char (*out)[CHECK_SET_M
     }
     for (int i = 0; i < f->param_count; i++) {
         const formula_param *p = &f->params[i];
-        if (p->type == FORMULA_COLOR || user_sets(d, p->key))
+        if (p->type == FORMULA_COLOR || p->type == FORMULA_COLOR4 || user_sets(d, p->key))
             continue;
         if (p->type == FORMULA_BOOL) {
             n = add(out, n, max, p->key, p->def[0] != 0 ? "false" : "true");
@@ -55,18 +55,17 @@ int check_corners(const formula *f, const check_desc *d, char (*out)[CHECK_SET_M
         }
         /* the ends (a gap's ends too); a vector's components one at a time, the others at their defaults */
         float ends[4] = {p->lo, p->hi, p->gap_lo, p->gap_hi};
-        int comps = p->type == FORMULA_VEC3 ? 3 : 1;
+        int comps = formula_components(p->type);
         for (int k = 0; k < comps; k++)
             for (int e = 0; e < (p->has_gap ? 4 : 2); e++) {
-                float x[3] = {p->def[0], p->def[1], p->def[2]};
+                float x[4] = {p->def[0], p->def[1], p->def[2], p->def[3]};
                 x[k] = ends[e];
-                if (p->type == FORMULA_INT)
+                if (p->type == FORMULA_INT) {
                     snprintf(v, sizeof v, "%d", (int)x[0]);
-                else if (comps == 3) {
-                    char a[32], b[32], c[32];
-                    snprintf(v, sizeof v, "%s,%s,%s", shortest(x[0], a), shortest(x[1], b), shortest(x[2], c));
                 } else {
-                    shortest(x[0], v);
+                    char c[32];
+                    for (int j = 0, at = 0; j < comps; j++)
+                        at += snprintf(v + at, sizeof v - (size_t)at, "%s%s", j ? "," : "", shortest(x[j], c));
                 }
                 n = add(out, n, max, p->key, v);
             }

@@ -11,8 +11,11 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "scene/frag.h"
+
 static const char *const TYPE_NAMES[] = {[FORMULA_FLOAT] = "float", [FORMULA_INT] = "int", [FORMULA_BOOL] = "bool",
-                                         [FORMULA_VEC3] = "vec3", [FORMULA_COLOR] = "colour"};
+                                         [FORMULA_VEC3] = "vec3", [FORMULA_COLOR] = "colour",
+                                         [FORMULA_VEC2] = "vec2", [FORMULA_VEC4] = "vec4", [FORMULA_COLOR4] = "colour4"};
 
 static const char *skip_space(const char *p)
 {
@@ -117,7 +120,7 @@ static bool param_line(const char *line, const char *at, formula_param *q, char 
         if (!numbers(&p, q->def, q->type == FORMULA_VEC3 ? 3 : 1) || !range(&p, q))
             return snprintf(why, n, "expected DEFAULT [LO, HI] (a vec3's default is X,Y,Z)") < 0;
     }
-    for (int i = 0; i < (q->type >= FORMULA_VEC3 ? 3 : 1); i++)
+    for (int i = 0; i < formula_components(q->type); i++)
         if (q->def[i] < q->lo || q->def[i] > q->hi || (q->type == FORMULA_INT && q->def[i] != floorf(q->def[i])))
             return snprintf(why, n, "the default is outside its range") < 0;
     snprintf(q->description, sizeof q->description, "%s", p);
@@ -300,7 +303,7 @@ static bool shipped(const char *name, char *file, size_t fn, char *path, size_t 
 bool formula_load(const char *name_or_path, const char *dir, formula *f, err_t *err)
 {
     char path[PATH_MAX_LEN], file[PATH_MAX_LEN], user[PATH_MAX_LEN], name[FORMULA_NAME_MAX], joined[PATH_MAX_LEN];
-    bool is_path = strchr(name_or_path, '/') || strstr(name_or_path, ".glsl");
+    bool is_path = strchr(name_or_path, '/') || strstr(name_or_path, ".glsl") || frag_is_fragment(name_or_path);
     if (is_path) {
         char abs[PATH_MAX]; /* realpath writes up to PATH_MAX */
         if (dir && name_or_path[0] != '/' && util_join(dir, name_or_path, joined, sizeof joined))
@@ -346,6 +349,8 @@ bool formula_load(const char *name_or_path, const char *dir, formula *f, err_t *
         if (*c == '"' || *c == '\\' || (unsigned char)*c < 0x20 || *c == 0x7f)
             return err_set(err, "formula file '%s': its path has a '\"', '\\' or control character, which GLSL's "
                                 "#include cannot carry: rename it", file);
+    if (frag_is_fragment(path)) /* a Fragmentarium fragment: read as data, translated (frag.h) */
+        return frag_load(path, f, err);
     char *text;
     if (!util_read_file(path, &text, NULL, err))
         return false;
@@ -416,10 +421,9 @@ void formula_describe(const formula *f, strbuf *out)
         char def[64];
         if (q->type == FORMULA_BOOL)
             snprintf(def, sizeof def, "%s", q->def[0] != 0 ? "true" : "false");
-        else if (q->type >= FORMULA_VEC3)
-            snprintf(def, sizeof def, "%g,%g,%g", (double)q->def[0], (double)q->def[1], (double)q->def[2]);
         else
-            snprintf(def, sizeof def, "%g", (double)q->def[0]);
+            for (int k = 0, at = 0; k < formula_components(q->type); k++)
+                at += snprintf(def + at, sizeof def - (size_t)at, "%s%g", k ? "," : "", (double)q->def[k]);
         sb_printf(out, "  fractal.%-14s %-6s %s", q->key, TYPE_NAMES[q->type], def);
         if (q->type != FORMULA_BOOL)
             sb_printf(out, " [%g, %g]", (double)q->lo, (double)q->hi);
@@ -452,7 +456,7 @@ const formula_param *formula_find(const formula *f, const char *key)
 typedef struct expr {
     const char *p;
     const formula *f;
-    const float (*values)[3];
+    const float (*values)[4];
     int iterations;
     bool bad;
     char why[96];
@@ -510,13 +514,15 @@ static double atom(expr *e)
         }
     if (!strcmp(name, "iterations"))
         return e->iterations;
-    int comp = -1; /* NAME.x .y .z: a vector's component; NAME alone its first */
-    if (e->p[0] == '.' && e->p[1] >= 'x' && e->p[1] <= 'z' && !isalnum((unsigned char)e->p[2]))
-        comp = e->p[1] - 'x', e->p += 2;
+    int comp = -1; /* NAME.x .y .z .w: a vector's component; NAME alone its first */
+    if (e->p[0] == '.' && strchr("xyzw", e->p[1]) && e->p[1] && !isalnum((unsigned char)e->p[2]))
+        comp = e->p[1] == 'w' ? 3 : e->p[1] - 'x', e->p += 2;
     for (int i = 0; i < e->f->param_count; i++)
         if (!strcmp(e->f->params[i].key, name)) {
-            if (comp >= 0 && e->f->params[i].type != FORMULA_VEC3 && e->f->params[i].type != FORMULA_COLOR)
-                snprintf(e->why, sizeof e->why, "'%s' is a number: it has no .%c", name, 'x' + comp), e->bad = true;
+            int comps = formula_components(e->f->params[i].type);
+            if (comp >= 0 && (comps == 1 || comp >= comps))
+                snprintf(e->why, sizeof e->why, "'%s' %s no .%c", name, comps == 1 ? "is a number: it has" : "has",
+                         "xyzw"[comp]), e->bad = true;
             return e->values[i][comp > 0 ? comp : 0];
         }
     snprintf(e->why, sizeof e->why, "unknown name '%s'", name);
@@ -550,7 +556,7 @@ static double sum(expr *e)
     }
 }
 
-bool formula_eval(const formula *f, const char *text, const float (*values)[3], int iterations, double *out, err_t *err)
+bool formula_eval(const formula *f, const char *text, const float (*values)[4], int iterations, double *out, err_t *err)
 {
     expr e = {.p = text, .f = f, .values = values, .iterations = iterations};
     *out = sum(&e);

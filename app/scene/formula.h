@@ -50,51 +50,7 @@
 
 #include "util.h"
 
-#define UTF8_BOM "\xef\xbb\xbf"
-
-enum { FORMULA_MAX_PARAMS = 24, FORMULA_NAME_MAX = 64, FORMULA_KEY_MAX = 48, FORMULA_TEXT_MAX = 200,
-       FORMULA_MAX_REQUIRES = 4, FORMULA_EXPR_MAX = 160, FORMULA_LOOPS_MAX = 1 << 20 };
-
-/* The keys of the fractal block that are not a formula's parameters. */
-#define FORMULA_COMMON_KEYS "formula", "iterations", "bound_radius", "palette", "glow", "glow_color", "julia", \
-    "julia_c", "hybrid", "steps", "precision"
-
-typedef enum formula_type { FORMULA_FLOAT, FORMULA_INT, FORMULA_BOOL, FORMULA_VEC3, FORMULA_COLOR } formula_type;
-
-typedef struct formula_param {
-    char key[FORMULA_KEY_MAX];     /* scene key: min_radius */
-    char uniform[FORMULA_KEY_MAX]; /* GLSL name: uMinRadius */
-    char description[FORMULA_TEXT_MAX];
-    formula_type type;
-    float def[3], lo, hi;     /* default (vec3: 3 values) and range (each component) */
-    bool has_gap;             /* values strictly inside (gap_lo, gap_hi) are refused */
-    float gap_lo, gap_hi;
-} formula_param;
-
-typedef struct formula_require {
-    char lhs[FORMULA_EXPR_MAX], rhs[FORMULA_EXPR_MAX], message[FORMULA_TEXT_MAX];
-    bool less; /* lhs < rhs, else lhs > rhs */
-} formula_require;
-
-typedef struct formula {
-    char name[FORMULA_NAME_MAX]; /* the file's name without .glsl */
-    char file[PATH_MAX_LEN];     /* for #include: "fractal/NAME.glsl" under shaders/, or an absolute path */
-    char summary[FORMULA_TEXT_MAX];
-    int iterations, iterations_lo, iterations_hi;
-    char bound[FORMULA_EXPR_MAX]; /* expression of the parameters */
-    char step[FORMULA_EXPR_MAX];  /* @step: an expression of the parameters ("": not declared, 1) */
-    char trap[2][FORMULA_EXPR_MAX]; /* the orbit trap's range: expressions of the parameters */
-    char loops[FORMULA_EXPR_MAX]; /* @loops: loop iterations one estimate runs (an expression) */
-    bool step_formula;            /* formulaStep and the loop (@de), not its own formulaDE */
-    bool de_log;                  /* @de log: ½ ln r · r / dr; else r / dr */
-    char escape[FORMULA_EXPR_MAX]; /* @escape: an expression of the parameters */
-    bool deep;                    /* @deep: compiles in double */
-    char deep_whole[FORMULA_TEXT_MAX]; /* @deep whole KEY...: keys that must be whole numbers in double */
-    int param_count;
-    formula_param params[FORMULA_MAX_PARAMS];
-    int require_count;
-    formula_require requires[FORMULA_MAX_REQUIRES];
-} formula;
+#include "scene/formula_types.h"
 
 /* Reads the declarations of a formula's text; `source` names it in messages ("NAME.glsl:LINE: ..."). */
 bool formula_parse(const char *text, const char *source, formula *f, err_t *err);
@@ -116,9 +72,10 @@ void formula_list(strbuf *out);
 void formula_describe(const formula *f, strbuf *out);
 
 /* Evaluates an expression over the parameters' values (values[i] is params[i]'s; a name is its first
- * component, NAME.x .y .z a vector's each; "iterations" is known too). False with a message on a
+ * component, NAME.x .y .z .w a vector's each; "iterations" is known too). False with a message on a
  * malformed expression or an unknown name. */
-bool formula_eval(const formula *f, const char *expr, const float (*values)[3], int iterations, double *out, err_t *err);
+bool formula_eval(const formula *f, const char *expr, const float (*values)[4], int iterations, double *out, err_t *err);
+
 
 /* The parameter whose scene key is `key`, or NULL. */
 const formula_param *formula_find(const formula *f, const char *key);

@@ -72,12 +72,18 @@ static const char *enum_name(const scene_param *p, int i)
 /* The components of a value, comma-separated. */
 static int components(const scene_param *p, const double *v, char *out, size_t n)
 {
-    if (p->type == PARAM_VEC3 || p->type == PARAM_COLOR)
-        return snprintf(out, n, "%.9g,%.9g,%.9g", v[0], v[1], v[2]);
-    return snprintf(out, n, "%.9g", v[0]);
+    int at = 0;
+    for (int i = 0; i < params_components(p) && at >= 0 && (size_t)at < n; i++)
+        at += snprintf(out + at, n - (size_t)at, "%s%.9g", i ? "," : "", v[i]);
+    return at;
 }
 
-void params_override(const param_list *l, const scene_param *p, const double v[3], char *out, size_t n)
+int params_components(const scene_param *p)
+{
+    return p->type == PARAM_VEC3 || p->type == PARAM_COLOR ? (p->comps ? p->comps : 3) : 1;
+}
+
+void params_override(const param_list *l, const scene_param *p, const double *v, char *out, size_t n)
 {
     if (p->array_len > 0) { /* the whole array: "a.b=[[..],[..]]" */
         size_t key_len = strlen(p->key) - strlen(strrchr(p->key, '.'));
@@ -97,8 +103,10 @@ void params_override(const param_list *l, const scene_param *p, const double v[3
     case PARAM_INT: snprintf(out, n, "%s=%d", p->key, (int)v[0]); break;
     case PARAM_BOOL: snprintf(out, n, "%s=%s", p->key, v[0] != 0 ? "true" : "false"); break;
     case PARAM_ENUM: snprintf(out, n, "%s=%s", p->key, enum_name(p, (int)v[0])); break;
-    case PARAM_VEC3:
-    case PARAM_COLOR: snprintf(out, n, "%s=%.9g,%.9g,%.9g", p->key, v[0], v[1], v[2]); break;
-    default: snprintf(out, n, "%s=%.9g", p->key, v[0]); break;
+    default: {
+        char value[160];
+        components(p, v, value, sizeof value);
+        snprintf(out, n, "%s=%s", p->key, value);
+    }
     }
 }

@@ -23,7 +23,8 @@ typedef enum param_type { PARAM_FLOAT, PARAM_INT, PARAM_BOOL, PARAM_VEC3, PARAM_
 typedef struct scene_param {
     char key[PARAM_KEY_MAX]; /* "materials.glass.roughness", "fractal.power", "lights.0.direction" */
     param_type type;
-    double value[3];         /* a number, a vector, 0/1, or an enum's index */
+    double value[4];         /* a number, a vector, 0/1, or an enum's index */
+    int comps;               /* a vector's or colour's components: 2 to 4 (0: 3); a colour's 4th is an intensity */
     double lo, hi;           /* the accepted range (each component); a bool 0..1, an enum 0..count-1 */
     char names[PARAM_NAMES_MAX]; /* an enum's names, each followed by '\0' ("auto\0on\0off\0") */
     int name_count;
@@ -63,7 +64,10 @@ void params_section(const char *key, char *out, size_t n);
  * "lights.0.direction=0.5,0.7,0.4", "effects.fog=off"; an element of an array sets the whole array
  * from its siblings in l ("fractal.palette=[[...],[...],[...]]"). Numbers are written so that they
  * read back exactly (%.9g). */
-void params_override(const param_list *l, const scene_param *p, const double v[3], char *out, size_t n);
+void params_override(const param_list *l, const scene_param *p, const double *v, char *out, size_t n);
+
+/* The components p's value has (1 for a number, 2 to 4 for a vector or colour). */
+int params_components(const scene_param *p);
 
 #ifdef __cplusplus
 }

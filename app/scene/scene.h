@@ -75,10 +75,10 @@ typedef enum fractal_precision { PRECISION_AUTO, PRECISION_FLOAT, PRECISION_DOUB
 /* Fractal programs' parameters (the "fractal" block). Each program reads the ones it names. */
 typedef struct scene_fractal {
     formula formula;     /* the formula's declarations, read from its GLSL file (formula.h) */
-    float values[FORMULA_MAX_PARAMS][3]; /* its parameters' values, in its declared order */
+    float values[FORMULA_MAX_PARAMS][4]; /* its parameters' values, in its declared order */
     bool has_hybrid;     /* "hybrid": a second step formula alternates with the first */
     formula hybrid;
-    float hybrid_values[FORMULA_MAX_PARAMS][3];
+    float hybrid_values[FORMULA_MAX_PARAMS][4];
     int steps[2];        /* a hybrid's cycle: steps of the formula, then steps of the hybrid */
     bool julia;          /* step formulas: c is julia_c for every point (a Julia set), not the point */
     float julia_c[3];
@@ -94,6 +94,7 @@ typedef struct scene_fractal {
     float palette[3][3]; /* orbit-trap colours: near, middle, far */
     float glow;          /* glow strength; 0 = off */
     float glow_color[3];
+    float hit_distance;  /* an absolute hit distance (a fragment's Detail, 10^Detail); 0: the footprint rule */
 } scene_fractal;
 
 typedef struct scene {

@@ -145,9 +145,14 @@ bool scene_parse_camera(scene_ctx *c, const cJSON *root)
     }
     if (cam) {
         static const char *const ckeys[] = {"position", "look_at", "fov", "adaptive_speed", "up", "roll", "projection",
-                                            "aperture", "focus", "stereo", "eye_separation", NULL};
+                                            "aperture", "focus", "stereo", "eye_separation", "auto", NULL};
         if (!scene_check_keys(c, cam, "camera", ckeys))
             return false;
+        const cJSON *framed = cJSON_GetObjectItemCaseSensitive(cam, "auto"); /* "auto" with a lens */
+        if (framed && (!cJSON_IsBool(framed) || (cJSON_IsTrue(framed) && !p->frame)))
+            return scene_fail(c, "camera.auto", "expected true or false%s%s%s", p->frame ? " (true: framed from " : "",
+                              p->frame ? p->frame_from : "", p->frame ? ")" : ": this program frames nothing itself");
+        s->cam_auto |= cJSON_IsTrue(framed);
         const cJSON *adaptive = cJSON_GetObjectItemCaseSensitive(cam, "adaptive_speed");
         if (adaptive && !cJSON_IsBool(adaptive))
             return scene_fail(c, "camera.adaptive_speed", "expected true or false");

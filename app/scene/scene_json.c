@@ -103,24 +103,26 @@ bool scene_get_int(scene_ctx *c, const cJSON *obj, const char *path, const char 
     return true;
 }
 
-static bool get_vec3_as(scene_ctx *c, const cJSON *obj, const char *path, const char *key, const double def[3],
-                        double lo, double hi, bool as_float, double out[3])
+static bool get_vecn_as(scene_ctx *c, const cJSON *obj, const char *path, const char *key, int n, const double *def,
+                        double lo, double hi, bool as_float, double *out)
 {
+    static const char *const COUNT[] = {"", "one", "two", "three", "four"}, *const FORM[] = {"", "[x]", "[x, y]",
+                                                                                          "[x, y, z]", "[x, y, z, w]"};
     const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
     char p[512];
     scene_child_path(p, sizeof p, path, key);
     if (!v) {
-        memcpy(out, def, sizeof(double) * 3);
+        memcpy(out, def, sizeof(double) * (size_t)n);
         return true;
     }
-    if (!cJSON_IsArray(v) || cJSON_GetArraySize(v) != 3)
-        return scene_fail(c, p, "expected three numbers [x, y, z]");
-    for (int i = 0; i < 3; i++) {
+    if (!cJSON_IsArray(v) || cJSON_GetArraySize(v) != n)
+        return scene_fail(c, p, "expected %s numbers %s", COUNT[n], FORM[n]);
+    for (int i = 0; i < n; i++) {
         const cJSON *e = cJSON_GetArrayItem(v, i);
         if (!in_range(e, lo, hi, as_float)) {
             char range[128];
             snprintf(range, sizeof range, "%g to %g", lo, hi);
-            return scene_fail(c, p, "expected three numbers, each from %s", range);
+            return scene_fail(c, p, "expected %s numbers, each from %s", COUNT[n], range);
         }
         out[i] = e->valuedouble;
     }
@@ -130,19 +132,29 @@ static bool get_vec3_as(scene_ctx *c, const cJSON *obj, const char *path, const 
 bool scene_get_dvec3(scene_ctx *c, const cJSON *obj, const char *path, const char *key, const double def[3], double lo,
                      double hi, double out[3])
 {
-    return get_vec3_as(c, obj, path, key, def, lo, hi, false, out);
+    return get_vecn_as(c, obj, path, key, 3, def, lo, hi, false, out);
 }
 
 bool scene_get_vec3(scene_ctx *c, const cJSON *obj, const char *path, const char *key, const float def[3],
                      float lo, float hi, float out[3])
 {
-    double d[3] = {def[0], def[1], def[2]}, v[3];
-    if (!get_vec3_as(c, obj, path, key, d, lo, hi, true, v))
-        return false;
-    for (int i = 0; i < 3; i++)
-        out[i] = (float)v[i];
     bool colour = strstr(key, "color") && lo >= 0 && hi <= 1;
-    scene_record_param(c, path, key, colour ? PARAM_COLOR : PARAM_VEC3, v, lo, hi);
+    return scene_get_vecn(c, obj, path, key, 3, def, lo, hi, colour, out);
+}
+
+bool scene_get_vecn(scene_ctx *c, const cJSON *obj, const char *path, const char *key, int n, const float *def,
+                    float lo, float hi, bool colour, float *out)
+{
+    double d[4] = {0}, v[4] = {0};
+    for (int i = 0; i < n; i++)
+        d[i] = def[i];
+    if (!get_vecn_as(c, obj, path, key, n, d, lo, hi, true, v))
+        return false;
+    for (int i = 0; i < n; i++)
+        out[i] = (float)v[i];
+    scene_param *q = scene_record_param(c, path, key, colour ? PARAM_COLOR : PARAM_VEC3, v, lo, hi);
+    for (int i = 0; q && i < n; i++)
+        q->comps = n, q->value[i] = v[i];
     return true;
 }
 

@@ -44,6 +44,10 @@ bool scene_get_num(scene_ctx *c, const cJSON *obj, const char *path, const char 
 bool scene_get_int(scene_ctx *c, const cJSON *obj, const char *path, const char *key, int def, int lo, int hi, int *out);
 bool scene_get_vec3(scene_ctx *c, const cJSON *obj, const char *path, const char *key, const float def[3], float lo,
               float hi, float out[3]);
+/* A vector of n (2 to 4) numbers, each in [lo, hi]; recorded as a colour (n = 4: RGB and an intensity) or
+ * a vector of n components. */
+bool scene_get_vecn(scene_ctx *c, const cJSON *obj, const char *path, const char *key, int n, const float *def,
+                    float lo, float hi, bool colour, float *out);
 /* The same in double (camera positions: a deep zoom needs more than a float's digits). */
 bool scene_get_dvec3(scene_ctx *c, const cJSON *obj, const char *path, const char *key, const double def[3], double lo,
                double hi, double out[3]);

@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "scene/frag.h"
 #include "scene/scene_parse.h"
 #include "data/terrain.h"
 
@@ -58,7 +59,8 @@ static const float BOUND_MIN = 1e-3f, BOUND_MAX = 1e6f;
 static bool fractal_common(scene_ctx *c, const cJSON *use, scene_fractal *fr)
 {
     return get_palette(c, use, fr->palette) && scene_get_num(c, use, "fractal", "glow", 0, 0, 100, &fr->glow) &&
-           scene_get_vec3(c, use, "fractal", "glow_color", WARM, 0, 100, fr->glow_color);
+           scene_get_vec3(c, use, "fractal", "glow_color", WARM, 0, 100, fr->glow_color) &&
+           scene_get_num(c, use, "fractal", "hit_distance", 0, 0, 1, &fr->hit_distance);
 }
 
 /* Fractals are drawn with material 0; a scene may omit "materials". */
@@ -80,7 +82,7 @@ static bool fail_formula(scene_ctx *c, const char *path)
 
 /* One declared parameter from the block at `path` (its default when absent), checked against its
  * declaration. */
-static bool get_param(scene_ctx *c, const cJSON *use, const char *path, const formula_param *q, float v[3])
+static bool get_param(scene_ctx *c, const cJSON *use, const char *path, const formula_param *q, float v[4])
 {
     char key[128];
     scene_child_path(key, sizeof key, path, q->key);
@@ -102,7 +104,11 @@ static bool get_param(scene_ctx *c, const cJSON *use, const char *path, const fo
     }
     case FORMULA_VEC3:
     case FORMULA_COLOR:
-        return scene_get_vec3(c, use, path, q->key, q->def, q->lo, q->hi, v);
+    case FORMULA_VEC2:
+    case FORMULA_VEC4:
+    case FORMULA_COLOR4:
+        return scene_get_vecn(c, use, path, q->key, formula_components(q->type), q->def, q->lo, q->hi,
+                              q->type == FORMULA_COLOR || q->type == FORMULA_COLOR4, v);
     default:
         if (!scene_get_num(c, use, path, q->key, q->def[0], q->lo, q->hi, v))
             return false;
@@ -114,14 +120,14 @@ static bool get_param(scene_ctx *c, const cJSON *use, const char *path, const fo
 }
 
 /* Evaluates a formula's expression over its parameters' values. */
-static bool eval(scene_ctx *c, const char *path, const formula *f, float (*values)[3], int iterations,
+static bool eval(scene_ctx *c, const char *path, const formula *f, float (*values)[4], int iterations,
                  const char *expr, double *out)
 {
-    return formula_eval(f, expr, (const float(*)[3])values, iterations, out, c->err) || fail_formula(c, path);
+    return formula_eval(f, expr, (const float(*)[4])values, iterations, out, c->err) || fail_formula(c, path);
 }
 
 /* The formula's @require lines over the values read. */
-static bool check_requires(scene_ctx *c, const char *path, const formula *f, float (*values)[3], int iterations)
+static bool check_requires(scene_ctx *c, const char *path, const formula *f, float (*values)[4], int iterations)
 {
     for (int i = 0; i < f->require_count; i++) {
         const formula_require *r = &f->requires[i];
@@ -137,7 +143,7 @@ static bool check_requires(scene_ctx *c, const char *path, const formula *f, flo
 /* A formula's parameters from the block at `path`, with the block's own keys (`common`, NULL-ended)
  * allowed beside them; then its requirements. */
 static bool formula_block(scene_ctx *c, const cJSON *use, const char *path, const char *const *common,
-                          const formula *f, float (*values)[3], int iterations)
+                          const formula *f, float (*values)[4], int iterations)
 {
     const char *keys[BLOCK_KEYS_MAX];
     int n = 0;
@@ -155,7 +161,7 @@ static bool formula_block(scene_ctx *c, const cJSON *use, const char *path, cons
 }
 
 /* Whether the formula's double-precision path takes these values (@deep whole KEY...). */
-static bool deep_ok(const formula *f, float (*values)[3])
+static bool deep_ok(const formula *f, float (*values)[4])
 {
     if (!f->deep)
         return false;
@@ -289,7 +295,14 @@ static void fractal_code(scene_ctx *c, const scene_fractal *fr)
 {
     strbuf *o = &c->code;
     sb_append(o, "#include \"fractal/common.glsl\"\n");
-    if (!fr->formula.step_formula) {
+    if (fr->formula.fragment) {
+        /* a fragment is plain GLSL: fathom's precision names are not its words (a local named real) */
+        const char *f = fr->formula.file;
+        sb_printf(o, "#undef real\n#undef real3\n#undef real4\n#undef realMat3\n#include \"%s:prelude\"\n"
+                     "#include \"%s\"\n#define real float\n#define real3 vec3\n#define real4 vec4\n"
+                     "#define realMat3 mat3\n#define FORMULA_EXACT 1\n#include \"frag/glue.glsl\"\n"
+                     "#include \"%s:postlude\"\n// translation %016llx\n", f, f, f, frag_digest(f));
+    } else if (!fr->formula.step_formula) {
         sb_printf(o, "#include \"%s\"\n", fr->formula.file);
     } else {
         sb_printf(o, "#define formulaStep formulaStepA\n#include \"%s\"\n#undef formulaStep\n", fr->formula.file);
@@ -351,6 +364,15 @@ bool scene_fractal_frame(scene *s, err_t *err)
 void scene_fractal_defines(const scene *s, strbuf *out)
 {
     sb_printf(out, "#define FRACTAL_ITERATIONS %d\n", s->fractal.iterations);
+    const formula *f = &s->fractal.formula;
+    for (int i = 0; i < f->param_count; i++) /* a fragment's Locked parameters: compile-time constants */
+        if (f->params[i].locked) {
+            char v[160];
+            frag_literal(&f->params[i], s->fractal.values[i], v, sizeof v);
+            sb_printf(out, "#define FRAG_LOCKED_%s %s\n", f->params[i].uniform, v);
+        }
+    if (s->fractal.hit_distance > 0) /* an absolute hit distance (a fragment's Detail): common/march.glsl */
+        sb_printf(out, "#define HIT_DISTANCE %.9g\n", (double)s->fractal.hit_distance);
     if (s->fractal.deep_now) /* a deep zoom: common/uniforms.glsl, fractal/common.glsl */
         sb_append(out, "#extension GL_ARB_gpu_shader_fp64 : require\n#define PRECISION_DOUBLE 1\n");
 }
@@ -363,10 +385,12 @@ static void param_uniforms(const formula *f, const float *values, const char *pr
         const formula_param *q = &f->params[i];
         char name[FORMULA_KEY_MAX + 16];
         snprintf(name, sizeof name, "%s%s", prefix, q->uniform);
+        if (q->locked) /* a compile-time constant: scene_fractal_defines */
+            continue;
         if (q->type == FORMULA_INT || q->type == FORMULA_BOOL)
-            uniform_i(u, name, (int)values[3 * i]);
+            uniform_i(u, name, (int)values[4 * i]);
         else
-            uniform_fv(u, name, q->type >= FORMULA_VEC3 ? 3 : 1, 1, values + 3 * i);
+            uniform_fv(u, name, formula_components(q->type), 1, values + 4 * i);
     }
 }
 

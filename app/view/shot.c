@@ -235,8 +235,8 @@ void shot_free(shot_desc *d)
     d->notes = NULL;
 }
 
-/* <cache>/fathom/formulas/HASH/NAME.glsl for a carried text: the folders made (only this user may
- * write them), NAME the original's base name made safe */
+/* <cache>/fathom/formulas/HASH/NAME.glsl (a fragment's: NAME.frag) for a carried text: the folders made
+ * (only this user may write them), NAME the original's base name made safe */
 static bool cache_path(const shot_formula *f, const char *hash, char *out, size_t n, err_t *err)
 {
     const char *xdg = getenv("XDG_CACHE_HOME"), *home = getenv("HOME"), *base = strrchr(f->file, '/');
@@ -245,7 +245,9 @@ static bool cache_path(const shot_formula *f, const char *hash, char *out, size_
     size_t k = 0;
     for (const char *c = base; *c && *c != '.' && k + 1 < sizeof name - 5; c++)
         name[k++] = (isalnum((unsigned char)*c) || *c == '_' || *c == '-') ? *c : '_';
-    snprintf(name + k, sizeof name - k, "%s.glsl", k ? "" : "formula");
+    size_t fl = strlen(f->file);
+    bool fragment = fl > 5 && !strcmp(f->file + fl - 5, ".frag"); /* read as a fragment again (scene/frag.h) */
+    snprintf(name + k, sizeof name - k, "%s%s", k ? "" : "formula", fragment ? ".frag" : ".glsl");
     int len = xdg && *xdg ? snprintf(dir, sizeof dir, "%s", xdg) : snprintf(dir, sizeof dir, "%s/.cache", home ? home : ".");
     const char *const parts[] = {"", "/fathom", "/formulas", "/"};
     for (int i = 0; i < 4 && len < (int)sizeof dir; i++) { /* each folder made where missing */

@@ -13,7 +13,7 @@
 #include "util.h"
 
 #define SHOT_KEY "fathom_shot"
-enum { SHOT_SET_MAX = 64 }; /* overrides a shot carries (cli.h takes as many) */
+enum { SHOT_SET_MAX = 160 }; /* overrides a shot carries (cli.h takes more): a fragment's preset sets up to ~130 */
 
 /* The formulas that drew a fractal shot, so that it reopens as it was or says why not: a shipped one
  * by its file under shaders/ and the hash of its text; a user's own by its path, hash and whole text

@@ -52,7 +52,7 @@ void on_key(GLFWwindow *window, int key, int scancode, int action, int mods)
 }
 
 /* Turns the control's new value into an override (the window makes the undo step: edit_started). */
-void edited(const param_list *l, const scene_param *p, const double v[3], panel_actions *out)
+void edited(const param_list *l, const scene_param *p, const double v[4], panel_actions *out)
 {
     params_override(l, p, v, out->set, sizeof out->set);
 }
@@ -145,7 +145,8 @@ void cost_line(const panel_model *m, const scene_param *p)
 void param_control(const panel_model *m, const scene_param *p, size_t prefix_len, panel_actions *out)
 {
     const char *label = p->key + prefix_len + (p->key[prefix_len] == '.' ? 1 : 0);
-    double v[3] = {p->value[0], p->value[1], p->value[2]};
+    double v[4] = {p->value[0], p->value[1], p->value[2], p->value[3]};
+    int comps = params_components(p);
     bool changed = false;
     ImGui::PushID(p->key);
     switch (p->type) {
@@ -171,11 +172,17 @@ void param_control(const panel_model *m, const scene_param *p, size_t prefix_len
         }
         break;
     }
-    case PARAM_COLOR: {
+    case PARAM_COLOR: { /* a fragment's colour with an intensity: the colour, then the intensity's slider */
         float c[3] = {(float)v[0], (float)v[1], (float)v[2]};
-        changed = ImGui::ColorEdit3(label, c, ImGuiColorEditFlags_Float);
+        changed = ImGui::ColorEdit3(comps == 4 ? "##colour" : label, c, ImGuiColorEditFlags_Float);
         for (int i = 0; i < 3; i++)
             v[i] = c[i];
+        if (comps == 4) {
+            ImGui::SameLine();
+            float w = (float)v[3];
+            changed |= ImGui::SliderFloat(label, &w, (float)p->lo, (float)p->hi, "%.3g");
+            v[3] = w;
+        }
         break;
     }
     case PARAM_VEC3:
@@ -183,11 +190,13 @@ void param_control(const panel_model *m, const scene_param *p, size_t prefix_len
             ImGui::TextUnformatted(label);
             changed = direction_control(label, v);
         } else {
-            float f[3] = {(float)v[0], (float)v[1], (float)v[2]};
-            float big = std::max({std::fabs(f[0]), std::fabs(f[1]), std::fabs(f[2]), 1e-3f});
-            changed = ImGui::DragFloat3(label, f, big * 0.005f, (float)p->lo, (float)p->hi, "%.4g",
-                                        ImGuiSliderFlags_AlwaysClamp);
-            for (int i = 0; i < 3; i++)
+            float f[4] = {(float)v[0], (float)v[1], (float)v[2], (float)v[3]}, big = 1e-3f;
+            for (int i = 0; i < comps; i++)
+                big = std::max(big, std::fabs(f[i]));
+            float lo = (float)p->lo, hi = (float)p->hi;
+            changed = ImGui::DragScalarN(label, ImGuiDataType_Float, f, comps, big * 0.005f, &lo, &hi, "%.4g",
+                                         ImGuiSliderFlags_AlwaysClamp);
+            for (int i = 0; i < comps; i++)
                 v[i] = f[i];
         }
         break;

@@ -1,0 +1,336 @@
+/* Fragmentarium fragments drawn (scene/frag.h, shaders/frag/): what each must draw, against closed
+ * forms — a sphere fragment's depth at every pixel, Detail's absolute hit distance growing its
+ * silhouette by exactly that distance, the renderers' orbit-trap colouring and the baseColor() hook
+ * as albedo, init() once a pixel, MathUtils' rotation convention through a helper from the fragment's
+ * own folder, a Locked parameter recompiled — and, when FATHOM_FRAG_CORPUS names a folder (the
+ * public collections, not committed), every DE fragment under it: opened, compiled, drawn at its
+ * default preset without NaN and not flat, with a one-line reason for each that is not. */
+#include <dirent.h>
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include <cmocka.h>
+
+#include "gltest.h"
+#include "gpu/render.h"
+#include "scene/frag.h"
+#include "view/shot.h"
+
+enum { FW = 64, FH = 48 };
+
+/* The fractal scene with tests/frag/NAME and the sets (one sample, no anti-aliasing). */
+static void frag_scene(const char *name, const char *const *extra, int n, scene *s)
+{
+    char json[2 * PATH_MAX_LEN];
+    snprintf(json, sizeof json,
+             "{\"program\": \"fractal\", \"fractal\": {\"formula\": \"%s/tests/frag/%s\"}, \"camera\": {\"position\": "
+             "[0, 0, -5], \"look_at\": [0, 0, 0]}, \"environment\": {\"color\": [1, 1, 1], \"intensity\": 1}, "
+             "\"quality\": {\"preset\": \"interactive\", \"step_factor\": 0.9}}",
+             FATHOM_SOURCE_DIR, name);
+    const char *sets[16] = {"quality.spp=1", "effects.aa=off"};
+    for (int i = 0; i < n; i++)
+        sets[2 + i] = extra[i];
+    load_text(json, sets, 2 + n, s);
+}
+
+/* The first hit of the ray o + t d (unit d) with the sphere (centre c, radius r); +inf on a miss. */
+static double sphere_hit(const double *o, const double *d, const double *c, double r)
+{
+    double oc[3] = {o[0] - c[0], o[1] - c[1], o[2] - c[2]};
+    double b = oc[0] * d[0] + oc[1] * d[1] + oc[2] * d[2];
+    double disc = b * b - (oc[0] * oc[0] + oc[1] * oc[1] + oc[2] * oc[2] - r * r);
+    return disc < 0 ? INFINITY : -b - sqrt(disc);
+}
+
+/* Pixels where hit and miss disagree with a sphere's closed form, and the largest depth error (in
+ * pixel footprints) where both hit. A fractal's surface is drawn at a level of detail (the footprint
+ * rule: a ray within hit_k footprints of it has hit it; fractal/common.glsl), or grown by an absolute
+ * hit distance: `grow` is that distance (0: the footprint rule), and rays that pass within two
+ * footprints of the grown silhouette may go either way. */
+static int against_sphere(const scene *s, const camera *cam, double cx, double cy, double cz, double r, double grow,
+                          double *worst)
+{
+    float *aov = malloc(sizeof(float) * FW * FH * AOV);
+    const double c[3] = {cx, cy, cz};
+    draw(s, cam, FW, FH, 1, NULL, aov, NULL);
+    int wrong = 0;
+    *worst = 0;
+    for (int row = 0; row < FH; row++)
+        for (int x = 0; x < FW; x++) {
+            dray ray = pixel_ray(cam, x, row, FW, FH);
+            double oc[3] = {c[0] - ray.o[0], c[1] - ray.o[1], c[2] - ray.o[2]};
+            double along = oc[0] * ray.d[0] + oc[1] * ray.d[1] + oc[2] * ray.d[2];
+            double miss = sqrt(fmax(oc[0] * oc[0] + oc[1] * oc[1] + oc[2] * oc[2] - along * along, 0));
+            double footprint = camera_pixel_angle(cam, FH) * along, edge = grow > 0 ? r + grow : r;
+            double want = miss < edge ? sphere_hit(ray.o, ray.d, c, edge) : INFINITY;
+            double got = aov[(row * FW + x) * AOV + AOV_SLOT_DEPTH];
+            bool band = fabs(miss - edge) < 2 * footprint + (grow > 0 ? 0 : 1.0 * footprint);
+            if (isinf(want) != isinf(got))
+                wrong += !band;
+            else if (!isinf(want) && !band)
+                *worst = fmax(*worst, fabs(got - want) / (camera_pixel_angle(cam, FH) * want));
+        }
+    free(aov);
+    return wrong;
+}
+
+static void sphere_depth(void **st)
+{
+    (void)st;
+    scene s;
+    const char *sets[] = {"fractal.Radius=1.5"};
+    frag_scene("sphere.frag", sets, 1, &s);
+    camera cam = cam_at(0.3, 0.2, -5, 0, 0, 0, 2 * atan(0.4) / DEG2RAD);
+    double worst;
+    int wrong = against_sphere(&s, &cam, 0, 0, 0, 1.5, 0, &worst);
+    /* the footprint rule stops within hit_k footprints: a silhouette pixel may go either way */
+    if (wrong > 0 || worst > 2)
+        fail_msg("%d pixels disagree with the sphere, depth off by %.3f footprints", wrong, worst);
+    const char *moved[] = {"fractal.Radius=0.75", "fractal.Centre=0,0.5,0"}; /* a vec3 parameter moves it */
+    scene_free(&s);
+    frag_scene("sphere.frag", moved, 2, &s);
+    wrong = against_sphere(&s, &cam, 0, 0.5, 0, 0.75, 0, &worst);
+    if (wrong > 0 || worst > 2)
+        fail_msg("moved: %d pixels disagree, depth off by %.3f footprints", wrong, worst);
+    scene_free(&s);
+}
+
+/* Detail: a ray stops where DE < 10^Detail, so the silhouette is the sphere grown by that distance. */
+static void absolute_hit_distance(void **st)
+{
+    (void)st;
+    scene s;
+    const char *sets[] = {"fractal.Radius=1", "fractal.hit_distance=0.25", "quality.max_steps=1024"};
+    frag_scene("sphere.frag", sets, 3, &s);
+    camera cam = cam_at(0, 0, -5, 0, 0, 0, 40);
+    double worst;
+    int grown = against_sphere(&s, &cam, 0, 0, 0, 1, 0.25, &worst), plain = against_sphere(&s, &cam, 0, 0, 0, 1, 0, &worst);
+    if (grown > 0 || plain < 40)
+        fail_msg("hit_distance 0.25: %d pixels off the sphere of radius 1.25, %d off radius 1", grown, plain);
+    scene_free(&s);
+}
+
+/* The albedo at the image's centre pixel (a hit). */
+static void centre_albedo(const scene *s, float out[3])
+{
+    camera cam = cam_at(0, 0, -5, 0, 0, 0, 30);
+    float *aov = malloc(sizeof(float) * FW * FH * AOV);
+    draw(s, &cam, FW, FH, 1, NULL, aov, NULL);
+    const float *a = aov + (size_t)((FH / 2) * FW + FW / 2) * AOV;
+    if (isinf(a[AOV_SLOT_DEPTH]))
+        fail_msg("the centre pixel missed");
+    for (int i = 0; i < 3; i++)
+        out[i] = a[AOV_SLOT_ALBEDO + i];
+    free(aov);
+}
+
+static float decode(double c) { return (float)pow(fmin(fmax(c, 0), 1), 2.2); }
+
+static void trap_colouring(void **st)
+{
+    (void)st;
+    scene s;
+    /* trap (0.2, 0.4, 0.6, r² 0.25): the colour is mix(BaseColor, 3 Σ colour·strength·trap, OrbitStrength) */
+    const char *sets[] = {"fractal.OrbitStrength=0.5", "fractal.BaseColor=1,0,0", "fractal.X=1,0,0,0.5",
+                          "fractal.Y=0,1,0,0.25", "fractal.Z=0,0,1,0.5", "fractal.R=1,1,1,0.2"};
+    frag_scene("trap.frag", sets, 6, &s);
+    float got[3];
+    centre_albedo(&s, got);
+    double sum[3] = {0.2 * 0.5 + 0.5 * 0.2, 0.4 * 0.25 + 0.5 * 0.2, 0.6 * 0.5 + 0.5 * 0.2};
+    double base[3] = {1, 0, 0};
+    for (int i = 0; i < 3; i++)
+        assert_float_equal(got[i], decode(base[i] + 0.5 * (3 * sum[i] - base[i])), 2e-3);
+    scene_free(&s);
+    /* cycling colours: each trap colour cycles as 0.5 + 0.5 cos(trap · Cycles + colour) */
+    const char *cyc[] = {"fractal.OrbitStrength=1", "fractal.CycleColors=true", "fractal.Cycles=2", "fractal.X=0,0,0,1",
+                         "fractal.Y=0,0,0,0", "fractal.Z=0,0,0,0", "fractal.R=0,0,0,0"};
+    frag_scene("trap.frag", cyc, 7, &s);
+    centre_albedo(&s, got);
+    assert_float_equal(got[0], decode(3 * (0.5 + 0.5 * cos(0.2 * 2)) * 0.2), 2e-3);
+    scene_free(&s);
+}
+
+static void hooks(void **st)
+{
+    (void)st;
+    scene s;
+    /* init(): radius = 2 Radius; baseColor() (0.2, 0.5, 0.8) mixed into BaseColor (1, 0, 0) by 0.5 */
+    const char *sets[] = {"fractal.Radius=0.5", "fractal.OrbitStrength=0.5", "fractal.BaseColor=1,0,0"};
+    frag_scene("hooks.frag", sets, 3, &s);
+    camera cam = cam_at(0, 0, -5, 0, 0, 0, 40);
+    double worst;
+    int wrong = against_sphere(&s, &cam, 0, 0, 0, 1.0, 0, &worst);
+    if (wrong > 0)
+        fail_msg("init(): %d pixels off the sphere of radius 2 Radius", wrong);
+    float got[3];
+    centre_albedo(&s, got);
+    assert_float_equal(got[0], decode(0.6), 2e-3);
+    assert_float_equal(got[1], decode(0.25), 2e-3);
+    assert_float_equal(got[2], decode(0.4), 2e-3);
+    scene_free(&s);
+}
+
+/* MathUtils' rotationMatrix3(z, 90°) is Fragmentarium's: the transpose of Rodrigues', so (1, 0, 0)
+ * goes to (0, −1, 0); the helper comes from the fragment's own folder; its boxFold and its global
+ * `floor` are its own (renamed), fathom's code after it unharmed. */
+static void rotation_convention(void **st)
+{
+    (void)st;
+    scene s;
+    frag_scene("rotated.frag", NULL, 0, &s);
+    camera cam = cam_at(0, 0, -5, 0, 0, 0, 50);
+    double worst;
+    int wrong = against_sphere(&s, &cam, 0, -1, 0, 0.4, 0, &worst);
+    if (wrong > 0)
+        fail_msg("%d pixels off a ball at (0, -1, 0)", wrong);
+    scene_free(&s);
+}
+
+static void locked(void **st)
+{
+    (void)st;
+    scene s;
+    frag_scene("locked.frag", NULL, 0, &s);
+    strbuf pre = {0};
+    scene_preamble(&s, &pre);
+    assert_non_null(strstr(pre.data, "#define FRAG_LOCKED_Radius float(1)\n"));
+    sb_free(&pre);
+    camera cam = cam_at(0, 0, -5, 0, 0, 0, 40);
+    double worst;
+    assert_true(against_sphere(&s, &cam, 0, 0, 0, 1.0, 0, &worst) == 0);
+    scene_free(&s);
+    const char *sets[] = {"fractal.Radius=0.5"}; /* a new constant: a new program */
+    frag_scene("locked.frag", sets, 1, &s);
+    assert_true(against_sphere(&s, &cam, 0, 0, 0, 0.5, 0, &worst) == 0);
+    scene_free(&s);
+}
+
+/* ---- the collections (FATHOM_FRAG_CORPUS) ----------------------------------------------------------- */
+
+typedef struct corpus {
+    int files, opened, drawn;
+    strbuf report;
+} corpus;
+
+static bool is_de_fragment(const char *path)
+{
+    char *text;
+    err_t e;
+    if (!util_read_file(path, &text, NULL, &e))
+        return false;
+    bool de = false;
+    for (const char *c = strstr(text, "float"); c && !de; c = strstr(c + 5, "float")) {
+        const char *p = c + 5;
+        while (*p == ' ' || *p == '\t')
+            p++;
+        de = p > c + 5 && !strncmp(p, "DE", 2) && (p[2] == '(' || p[2] == ' ');
+    }
+    free(text);
+    return de;
+}
+
+/* One fragment at its default preset, 64x48, one sample: "ok", or why not. */
+static void corpus_one(corpus *k, const char *path)
+{
+    k->files++;
+    strbuf shot = {0};
+    shot_desc d = {0};
+    err_t e = {""};
+    char names[1][FRAG_PRESET_NAME_MAX];
+    scene s;
+    bool has = frag_presets(path, names, 1, &e) > 0;
+    bool ok = (!has || (frag_preset_shot(path, NULL, &shot, NULL, &e) && shot_parse(shot.data, path, &d, &e)));
+    const char *sets[SHOT_SET_MAX + 3];
+    int n = 0;
+    char use[PATH_MAX_LEN + 32];
+    snprintf(use, sizeof use, "fractal.formula=%s", path);
+    sets[n++] = use;
+    for (int i = 0; i < d.set_count; i++)
+        sets[n++] = d.sets[i];
+    sets[n++] = "quality.spp=1";
+    camera cam = has ? d.cam : cam_at(5.5, 4.2, 7.2, 0, 0, 0, 45);
+    ok = ok && scene_load("fractal", sets, n, &s, &e);
+    if (ok) {
+        k->opened++;
+        float *rgba = malloc(sizeof(float) * FW * FH * 4);
+        ok = render_set_scene(&s, NULL, &e);
+        if (ok) {
+            render_resize(FW, FH);
+            render_begin(&cam);
+            render_sample();
+            render_read_linear(rgba);
+            int nan = 0, differ = 0;
+            for (int i = 0; i < FW * FH; i++) {
+                nan += !isfinite(rgba[4 * i]) || !isfinite(rgba[4 * i + 1]) || !isfinite(rgba[4 * i + 2]);
+                differ += fabsf(rgba[4 * i] - rgba[0]) + fabsf(rgba[4 * i + 1] - rgba[1]) > 0.02f;
+            }
+            if (nan)
+                snprintf(e.msg, sizeof e.msg, "%d pixels are NaN", nan), ok = false;
+            else if (differ < FW * FH / 100)
+                snprintf(e.msg, sizeof e.msg, "the image is flat (%d pixels differ from the corner)", differ), ok = false;
+        }
+        free(rgba);
+        scene_free(&s);
+    }
+    k->drawn += ok;
+    for (char *c = e.msg; *c; c++) /* one line a file */
+        *c = *c == '\n' || *c == '\t' ? ' ' : *c;
+    const char *tail = strstr(path, getenv("FATHOM_FRAG_CORPUS")) ? path + strlen(getenv("FATHOM_FRAG_CORPUS")) : path;
+    sb_printf(&k->report, "%s\t%s\n", tail, ok ? "drawn" : e.msg);
+    shot_free(&d);
+    sb_free(&shot);
+}
+
+static void corpus_walk(corpus *k, const char *dir, int depth)
+{
+    struct dirent **list;
+    int n = scandir(dir, &list, NULL, alphasort);
+    for (int i = 0; i < n; i++) {
+        char path[PATH_MAX_LEN];
+        struct stat st;
+        const char *name = list[i]->d_name;
+        if (name[0] != '.' && strcmp(name, "Include") && snprintf(path, sizeof path, "%s/%s", dir, name) < (int)sizeof path &&
+            !stat(path, &st)) {
+            size_t len = strlen(name);
+            if (S_ISDIR(st.st_mode) && depth < 6)
+                corpus_walk(k, path, depth + 1);
+            else if (len > 5 && !strcmp(name + len - 5, ".frag") && is_de_fragment(path))
+                corpus_one(k, path);
+        }
+        free(list[i]);
+    }
+    free(list);
+}
+
+static void collections(void **st)
+{
+    (void)st;
+    const char *dir = getenv("FATHOM_FRAG_CORPUS");
+    if (!dir || !*dir)
+        skip(); /* the public collections are not fathom's to commit */
+    corpus k = {0};
+    corpus_walk(&k, dir, 0);
+    printf("%s", k.report.data ? k.report.data : "");
+    printf("corpus: %d DE fragments, %d opened, %d drawn (%.1f %%)\n", k.files, k.opened, k.drawn,
+           k.files ? 100.0 * k.drawn / k.files : 0.0);
+    const char *min = getenv("FATHOM_FRAG_CORPUS_MIN"); /* the share that must draw [0.9] */
+    if (k.files == 0 || k.drawn < (min ? atof(min) : 0.9) * k.files)
+        fail_msg("%d of %d DE fragments drawn", k.drawn, k.files);
+    sb_free(&k.report);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(sphere_depth),        cmocka_unit_test(absolute_hit_distance), cmocka_unit_test(trap_colouring),
+        cmocka_unit_test(hooks),               cmocka_unit_test(rotation_convention),   cmocka_unit_test(locked),
+        cmocka_unit_test(collections),
+    };
+    return cmocka_run_group_tests(tests, gl_setup, gl_teardown);
+}
