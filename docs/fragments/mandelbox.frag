@@ -1,0 +1,72 @@
+#info The Mandelbox (T. Lowe, 2010) as a Fragmentarium fragment: box fold, sphere fold, scale (fathom's example, docs/guide/fragments.md)
+#define providesInit
+#include "MathUtils.frag"
+#include "DE-Raytracer.frag"
+#group Mandelbox
+// the scale s of z -> s · fold(z) + c
+uniform float Scale; slider[-4,2.5,4]
+// radius² below which the sphere fold inverts fully
+uniform float MinRad2; slider[0,0.25,2]
+// where the box fold reflects
+uniform float FoldLimit; slider[0,1,2]
+uniform int Iterations; slider[8,14,40]
+// a turn of z each iteration (degrees about RotAxis)
+uniform float Angle; slider[-180,0,180]
+uniform vec3 RotAxis; slider[(-1,-1,-1),(0,1,0),(1,1,1)]
+uniform int ColorIterations; slider[0,4,40]
+
+mat3 rot;
+void init() { rot = rotationMatrix3(normalize(RotAxis), Angle); }
+
+float DE(vec3 p)
+{
+    vec3 z = p;
+    float dr = 1.0;
+    for (int i = 0; i < Iterations; i++) {
+        z = clamp(z, -FoldLimit, FoldLimit) * 2.0 - z; // box fold
+        float r2 = dot(z, z);
+        if (i < ColorIterations)
+            orbitTrap = min(orbitTrap, abs(vec4(z, r2)));
+        float k = r2 < MinRad2 ? 1.0 / MinRad2 : r2 < 1.0 ? 1.0 / r2 : 1.0; // sphere fold
+        z *= k;
+        dr *= k;
+        z = rot * (Scale * z) + p;
+        dr = dr * abs(Scale) + 1.0;
+    }
+    return length(z) / abs(dr);
+}
+
+#preset Default
+FOV = 0.45
+Eye = 5.2,3.4,-6.1
+Target = 0,0,0
+Up = 0,1,0
+Detail = -3.2
+FudgeFactor = 0.9
+MaxRaySteps = 300
+Scale = 2.5
+MinRad2 = 0.25
+Iterations = 14
+OrbitStrength = 0.7
+BaseColor = 0.9,0.85,0.8
+X = 0.9,0.4,0.1,0.6
+Y = 0.2,0.5,1,0.3
+Z = 0.9,0.9,0.9,0.2
+R = 0.3,0.6,0.9,0.4
+#endpreset
+
+#preset Rolled
+FOV = 0.35
+Eye = 3.3,1.1,-3.4
+Target = 0.6,0.2,0.4
+Up = 0.3,1,0.2
+Aperture = 0.02
+FocalPlane = 4.2
+Detail = -3.5
+Scale = 2.2
+MinRad2 = 0.3
+Angle = 12
+OrbitStrength = 0.8
+X = 1,0.6,0.2,0.8
+Y = 0.4,0.7,1,0.4
+#endpreset
