@@ -104,7 +104,8 @@ static const char USAGE_OPTIONS[] =
     "\n"
     "Window keys: WASD move, mouse look, Space/C up/down, Shift faster, scroll speed, F1 or Tab the\n"
     "parameter panel, F2 the full HUD, O orbit, T walk, 1-9 scenes, Ctrl+Z undo, Ctrl+S save a preset,\n"
-    "R reload shaders, P or F12 screenshot, N keyframe (Shift+N clears, L plays the flight), Esc quit.\n";
+    "R reload shaders, P or F12 screenshot, N keyframe (Shift+N clears, L plays the flight), J a\n"
+    "fragment's next preset (Shift+J the previous), Esc quit.\n";
 
 const char *cli_usage(void)
 {
@@ -552,49 +553,4 @@ bool cli_parse(int argc, char **argv, cli_options *o, err_t *err)
     if ((o->quick || o->full) && !o->runs_given)
         o->runs = o->quick ? 3 : 9;
     return check_combinations(o, err);
-}
-
-_Static_assert((int)SHOT_SET_MAX <= (int)CLI_MAX_SETS, "a shot's overrides must fit the command line's");
-
-bool cli_apply_shot_text(cli_options *o, const char *text, const char *source, shot_desc *d, err_t *err)
-{
-    if (!shot_parse(text, source, d, err))
-        return false;
-    if (d->scene_text) /* a user's own scene, carried whole: it reopens on any machine */
-        scene_provide_text(d->scene, d->scene_text);
-    strbuf notes = {0}; /* a formula changed or missing here: main prints them */
-    bool resolved = shot_resolve_formulas(d, &notes, err);
-    d->notes = notes.data;
-    if (!resolved)
-        return false;
-    if (d->set_count + o->set_count > CLI_MAX_SETS)
-        return err_set(err, "%s: its %d overrides and the command line's %d are more than %d", source, d->set_count,
-                       o->set_count, CLI_MAX_SETS);
-    const char *sets[CLI_MAX_SETS];
-    int n = 0;
-    for (int i = 0; i < d->set_count; i++)
-        sets[n++] = d->sets[i];
-    for (int i = 0; i < o->set_count; i++)
-        sets[n++] = o->sets[i];
-    memcpy(o->sets, sets, sizeof(sets[0]) * (size_t)n);
-    o->set_count = n;
-    o->scene = d->scene;
-    if (!o->has_camera && !o->has_look_at && !o->has_fov)
-        o->has_view = true, o->view = d->cam;
-    if (!o->width)
-        o->width = d->width, o->height = d->height;
-    return true;
-}
-
-bool cli_apply_shot(cli_options *o, shot_desc *d, err_t *err)
-{
-    char *text;
-    bool preset = shot_is_preset(o->scene);
-    if (!util_file_exists(o->scene))
-        return err_set(err, "%s '%s' not found: check the path", preset ? "preset" : "image", o->scene);
-    if (preset ? !util_read_file(o->scene, &text, NULL, err) : !image_read_text(o->scene, SHOT_KEY, &text, err))
-        return false;
-    bool ok = cli_apply_shot_text(o, text, o->scene, d, err);
-    free(text);
-    return ok;
 }

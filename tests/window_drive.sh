@@ -7,7 +7,8 @@
 #   - the panel: Enter opens it with its key=value field ready, typing fractal.power=5 there changes the
 #     image (two P screenshots differ) and the preset records the edit; Ctrl+Z takes it back;
 #   - a user's scene in a folder: its preset opens after the folder has moved (the scene travels in it);
-#   - Q rolls the camera, F focuses the lens on the point under the cursor, U levels the horizon.
+#   - Q rolls the camera, F focuses the lens on the point under the cursor, U levels the horizon;
+#   - a Fragmentarium fragment: J opens its next preset (camera and parameters), Shift+J the one before.
 # Usage: window_drive.sh FATHOM   (needs xvfb-run and xdotool; exits 77, skipped, without them)
 fathom=$(realpath "$1")
 command -v xdotool >/dev/null && command -v xvfb-run >/dev/null || { echo "window_drive: needs xdotool and xvfb-run"; exit 77; }
@@ -109,6 +110,30 @@ check "flight: it renders whole ($(ls "$tmp/flight"/f_*.png 2>/dev/null | wc -l)
     >"$tmp/two-keys.json"
 check "flight: the two keys pressed alone cut through the sphere (render --path refuses them)" \
     '[ -s "$f" ] && ! "$fathom" render --path "$tmp/two-keys.json" --output "$tmp/flight/g_%04d.png" --size 8x8 --quiet 2>/dev/null'
+
+# a fragment with two presets: J goes to the second (its camera and its radius), Shift+J back to the first
+mkdir -p "$tmp/frag"
+cat >"$tmp/frag/ball.frag" <<'EOF'
+#include "DE-Raytracer.frag"
+uniform float Radius; slider[0.1,1,2]
+float DE(vec3 p) { return length(p) - Radius; }
+#preset Default
+Eye = 0,0,-5
+Target = 0,0,0
+#endpreset
+#preset Side
+Eye = 3,0,0
+Target = 0,0,0
+Radius = 0.5
+#endpreset
+EOF
+drive frag --scene "$tmp/frag/ball.frag" -- "save ../frag-first" "key j" "sleep 2" "save ../frag-side" "key shift+j" "sleep 2" \
+    "save ../frag-back"
+# (the window's camera settles a few centimetres while the first frames draw)
+check "fragment: it opens at its Default preset" '! ge "$(from "$tmp/frag-first" 0 0 -5)" 0.2'
+check "fragment: J opens its next preset (camera and parameters)" \
+    '! ge "$(from "$tmp/frag-side" 3 0 0)" 0.2 && grep -q "fractal.Radius=0.5" "$tmp/frag-side"'
+check "fragment: Shift+J the one before" '! ge "$(from "$tmp/frag-back" 0 0 -5)" 0.2'
 
 # a user's scene, its preset saved, the folder moved: the preset still opens (and renders)
 mkdir -p "$tmp/mine"

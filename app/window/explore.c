@@ -130,6 +130,9 @@ static bool views_and_presets(GLFWwindow *win, const panel_actions *act, int w, 
                                       sizeof app.message));
     app.ask.save_view = false;
     app.ask.recall_view = 0;
+    restart |= opened(shots_fragment_preset(&app.s, app.ask.fragment_preset, &app.fragment_preset, app.message,
+                                            sizeof app.message));
+    app.ask.fragment_preset = 0;
     if (act->preset_path[0])
         snprintf(app.preset_path, sizeof app.preset_path, "%s", act->preset_path);
     shots_preset_ask ask = {.save = app.ask.save_preset || act->save_preset, .copy = app.ask.copy_preset || act->copy_preset,
@@ -513,6 +516,7 @@ bool explore_run(const cli_options *opt, err_t *err)
     costs_init(&app.cost);
     framestats_init(&app.stats, opt->frames);
     app.ask.pending_scene = -1;
+    app.fragment_preset = 0; /* a fragment opens at its Default (usually its first) preset */
     app.unresolved = -1;
     app.exposure = DEFAULT_EXPOSURE;
     app.res = res_init((float)(opt->fps ? opt->fps : DEFAULT_FPS), RES_MIN_SCALE);

@@ -38,7 +38,9 @@ typedef struct explore_app {
         int recall_view;   /* Ctrl+1…9: 1…9; 0 none */
         int pending_scene; /* a number key's scene; −1 none */
         int knob_step;     /* =/-: +1 or −1 */
+        int fragment_preset; /* J, Shift+J: +1, −1 */
     } ask;
+    int fragment_preset; /* the fragment's preset J last opened (−1: none) */
     bool panel, focus_field;
     hud_mode hud;
     render_view view;

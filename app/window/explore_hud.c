@@ -40,7 +40,7 @@ static void hud_details(const explore_app *a, int h, strbuf *t)
                       knob_value(&s->quality, (knob_id)k), k == (int)a->knob ? "]" : "");
     sb_printf(t, "\nWASD move  mouse look  Space/C up/down  Shift fast  scroll speed  O orbit%s\n"
                  "F1 panel  Enter type an edit  F2 this help  F3 hide  1-%d scenes  K knob  =/- step  H steps  G grab  V difference\n"
-                 "Home start  B save view  Ctrl+1-9 recall  Ctrl+Z undo  Ctrl+S preset  N keyframe (%d)  L play  "
+                 "Home start  B save view  Ctrl+1-9 recall  J fragment preset  Ctrl+Z undo  Ctrl+S preset  N keyframe (%d)  L play  "
                  "R reload  P shot  Esc quit\n",
               s->terrain.heightmap[0] ? "  T walk" : "", a->scene_count, a->flight.key_count);
 }

@@ -69,6 +69,7 @@ static void plain_key(explore_app *a, GLFWwindow *w, int key, int mods)
     case GLFW_KEY_HOME:
     case GLFW_KEY_BACKSPACE: a->ask.go_home = true; break;
     case GLFW_KEY_B: a->ask.save_view = true; break;
+    case GLFW_KEY_J: a->ask.fragment_preset = mods & GLFW_MOD_SHIFT ? -1 : +1; break;
     case GLFW_KEY_N: *(mods & GLFW_MOD_SHIFT ? &a->ask.clear_keys : &a->ask.add_key) = true; break;
     case GLFW_KEY_L: a->ask.toggle_play = true; break;
     case GLFW_KEY_K: a->knob = explore_next_knob(a, a->knob); break;

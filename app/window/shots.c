@@ -9,6 +9,8 @@
 
 #include "gpu/render.h"
 #include "jobs/offline.h"
+#include "scene/frag.h"
+#include "scene/program.h"
 #include "view/views.h"
 
 shots_opened shots_views(session *s, const camera *cam, bool save, int recall, int w, int h, char *message, size_t n)
@@ -44,6 +46,38 @@ shots_opened shots_views(session *s, const camera *cam, bool save, int recall, i
         else
             snprintf(message, n, "%s", e.msg);
     }
+    return r;
+}
+
+shots_opened shots_fragment_preset(session *s, int step, int *current, char *message, size_t n)
+{
+    shots_opened r = {0};
+    const formula *f = &s->scene.fractal.formula;
+    if (!step)
+        return r;
+    if (!s->have_scene || !program_is_fractal(s->scene.program) || !f->fragment) {
+        snprintf(message, n, "J walks a Fragmentarium fragment's presets: this scene is none");
+        return r;
+    }
+    char names[FRAG_PRESET_MAX][FRAG_PRESET_NAME_MAX];
+    err_t e;
+    int count = frag_presets(f->file, names, FRAG_PRESET_MAX, &e);
+    if (count <= 0) {
+        snprintf(message, n, "%s", count < 0 ? e.msg : "the fragment has no presets");
+        return r;
+    }
+    int i = ((*current < 0 && step < 0 ? 0 : *current) + step + count) % count;
+    strbuf text = {0};
+    char path[PATH_MAX_LEN];
+    snprintf(path, sizeof path, "%s", f->file); /* the session reloads the scene, and f with it */
+    bool ok = frag_preset_shot(path, names[i], &text, NULL, &e) &&
+              session_open_shot(s, text.data, path, &r.cam, &r.new_file, &e);
+    sb_free(&text);
+    r.opened = ok;
+    if (ok)
+        *current = i, snprintf(message, n, "preset %d of %d: %s (J next, Shift+J previous)", i + 1, count, names[i]);
+    else
+        snprintf(message, n, "%s", e.msg);
     return r;
 }
 

@@ -1,6 +1,6 @@
 /* shots — the window's view as a shot description (view/shot.h) in a file: B saves it into the first
  * free numbered slot and Ctrl+1…9 recall one (view/views.h); a preset is the same text on its own,
- * saved, loaded, copied or pasted; P writes the image with its description inside. Opening one goes
+ * saved, loaded, copied or pasted; J walks a fragment's own presets; P writes the image with its description inside. Opening one goes
  * through session_open_shot; the caller moves its camera (shots_opened). GL and GLFW. */
 #ifndef FATHOM_SHOTS_H
 #define FATHOM_SHOTS_H
@@ -29,6 +29,9 @@ shots_opened shots_views(session *s, const camera *cam, bool save, int recall, i
 /* Saves to, copies, loads from `path` or pastes a preset. */
 shots_opened shots_presets(struct GLFWwindow *win, session *s, const camera *cam, shots_preset_ask ask, const char *path,
                            int w, int h, char *message, size_t n);
+/* J (step +1) or Shift+J (−1): a fragment's next or previous preset (scene/frag.h), *current its index
+ * (−1 before the first); nothing for another scene. */
+shots_opened shots_fragment_preset(session *s, int step, int *current, char *message, size_t n);
 /* P: the converged image (finished first, or drawn once at full size) to fathom-DATE-TIME.png. */
 void shots_screenshot(const session *s, const camera *cam, int w, int h, char *message, size_t n);
 
