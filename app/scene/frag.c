@@ -127,14 +127,13 @@ static void keep_wrappers(const frag_ctx *x, const char *path)
             sb_printf(&pre, "#define %s %s\n", HOST_MACROS[i][0], HOST_MACROS[i][1]),
                 sb_printf(&post, "#undef %s\n", HOST_MACROS[i][0]);
     }
-    for (const char *c = x->functions.data; c && *c; c += strcspn(c, "\n") + 1)
-        if (c[0] != '\n') {
-            int n = (int)strcspn(c, "\n");
-            sb_printf(&pre, "#define %.*s frag_%.*s\n", n, c, n, c);
-            sb_printf(&post, "#undef %.*s\n", n, c);
-        }
-    for (const char *c = x->macros.data; c && *c; c += strcspn(c, "\n") + 1)
-        if (c[0] != '\n')
+    for (const char *c = x->functions.data; c && *c; c += strcspn(c, "\n"), c += *c == '\n') {
+        int n = (int)strcspn(c, "\n");
+        if (n)
+            sb_printf(&pre, "#define %.*s frag_%.*s\n", n, c, n, c), sb_printf(&post, "#undef %.*s\n", n, c);
+    }
+    for (const char *c = x->macros.data; c && *c; c += strcspn(c, "\n"), c += *c == '\n')
+        if (strcspn(c, "\n"))
             sb_printf(&post, "#undef %.*s\n", (int)strcspn(c, "\n"), c);
     char name[PATH_MAX_LEN + 16];
     snprintf(name, sizeof name, "%s:prelude", path);
@@ -342,8 +341,9 @@ static const char *const HOST[] = {"info", "group", "preset", "endpreset", "vert
 /* Adds name (n bytes) to a list of names once. */
 void frag_add_name(strbuf *list, const char *name, size_t n)
 {
-    char entry[FORMULA_KEY_MAX + 2];
-    snprintf(entry, sizeof entry, "\n%.*s\n", (int)(n < FORMULA_KEY_MAX ? n : FORMULA_KEY_MAX), name);
+    char entry[FORMULA_KEY_MAX + 3]; /* "\nNAME\n": a name is cut at FORMULA_KEY_MAX - 1 bytes */
+    n = n < FORMULA_KEY_MAX ? n : FORMULA_KEY_MAX - 1;
+    snprintf(entry, sizeof entry, "\n%.*s\n", (int)n, name);
     if (!list->data)
         sb_append(list, "\n");
     if (!strstr(list->data, entry))

@@ -30,6 +30,7 @@ typedef struct scene_param {
     int name_count;
     char help[PARAM_HELP_MAX]; /* a description (a formula's declaration, a knob's help), or "" */
     int array_len, array_index; /* one element of an array value (the palette's colours), else 0, 0 */
+    char group[48];          /* a heading inside its section (a fragment's #group), or "" */
 } scene_param;
 
 /* What a group of keys is, for its heading: "objects.3" is "box (red)". */

@@ -300,7 +300,7 @@ static void finish_params(const scene *s, param_list *l)
         const formula *f = hybrid ? &s->fractal.hybrid : &s->fractal.formula;
         const formula_param *q = !strncmp(p->key, "fractal.", 8) ? formula_find(f, p->key + (hybrid ? 15 : 8)) : NULL;
         if (q && program_is_fractal(s->program))
-            snprintf(p->help, sizeof p->help, "%s", q->description);
+            snprintf(p->help, sizeof p->help, "%s", q->description), snprintf(p->group, sizeof p->group, "%s", q->group);
     }
 }
 

@@ -173,12 +173,15 @@ void param_control(const panel_model *m, const scene_param *p, size_t prefix_len
         break;
     }
     case PARAM_COLOR: { /* a fragment's colour with an intensity: the colour, then the intensity's slider */
-        float c[3] = {(float)v[0], (float)v[1], (float)v[2]};
+        float c[3] = {(float)v[0], (float)v[1], (float)v[2]}, width = ImGui::CalcItemWidth();
+        if (comps == 4) /* the colour's swatch and fields, then its intensity's slider beside them */
+            ImGui::SetNextItemWidth(width * 0.7f);
         changed = ImGui::ColorEdit3(comps == 4 ? "##colour" : label, c, ImGuiColorEditFlags_Float);
         for (int i = 0; i < 3; i++)
             v[i] = c[i];
         if (comps == 4) {
-            ImGui::SameLine();
+            ImGui::SameLine(0, ImGui::GetStyle().ItemInnerSpacing.x);
+            ImGui::SetNextItemWidth(width * 0.3f - ImGui::GetStyle().ItemInnerSpacing.x);
             float w = (float)v[3];
             changed |= ImGui::SliderFloat(label, &w, (float)p->lo, (float)p->hi, "%.3g");
             v[3] = w;
@@ -270,7 +273,14 @@ void param_sections(const panel_model *m, panel_actions *out)
         bool any = !listed.empty();
         std::string group; /* the element being listed ("objects.3"), its tree node open or not */
         bool group_open = false;
+        std::string heading; /* a fragment's #group */
         for (const scene_param *p : listed) {
+            if (p->group[0] && heading != p->group) {
+                heading = p->group;
+                ImGui::Spacing();
+                ImGui::TextDisabled("%s", p->group);
+                ImGui::Separator();
+            }
             std::string g = element_of(p->key, s.size());
             if (g != group) {
                 if (group_open)

@@ -38,10 +38,10 @@ float DE(vec3 p)
 
 #preset Default
 FOV = 0.45
-Eye = 5.2,3.4,-6.1
+Eye = 7.8,5.1,-9.2
 Target = 0,0,0
 Up = 0,1,0
-Detail = -3.2
+Detail = -2.3
 FudgeFactor = 0.9
 MaxRaySteps = 300
 Scale = 2.5
@@ -57,12 +57,12 @@ R = 0.3,0.6,0.9,0.4
 
 #preset Rolled
 FOV = 0.35
-Eye = 3.3,1.1,-3.4
-Target = 0.6,0.2,0.4
-Up = 0.3,1,0.2
-Aperture = 0.02
-FocalPlane = 4.2
-Detail = -3.5
+Eye = 8.6,3.2,-7.4
+Target = 4.6,1.4,-3.6
+Up = 0.35,1,0.1
+Aperture = 0.08
+FocalPlane = 5.8
+Detail = -2.8
 Scale = 2.2
 MinRad2 = 0.3
 Angle = 12

@@ -21,11 +21,13 @@ mkdir -p "$build/corpus-$target" "$build/findings-$target"
 if [ "$target" = scene ]; then
     cp "$src"/scenes/*.json "$build/corpus-$target/"
 elif [ "$target" = readers ]; then
-    # the first byte picks the reader: 0 a camera path, 1 a shot record, 2 a tile record, 3 a formula
+    # the first byte picks the reader: 0 a camera path, 1 a shot record, 2 a tile record, 3 a formula, 4 a fragment
     for f in "$src"/docs/flight/*.json; do { printf '\000'; cat "$f"; } >"$build/corpus-$target/path-$(basename "$f")"; done
     printf '\001{"scene":"/x/scenes/csg.json","sets":["a.b=1"],"camera":{"position":[0,1,5],"yaw":0,"pitch":0,"fov_y":0.8},"size":[64,36]}' >"$build/corpus-$target/shot"
     printf '\0022 4 640 360 180 7' >"$build/corpus-$target/tile"
     for f in "$src"/shaders/fractal/*.glsl; do { printf '\003'; cat "$f"; } >"$build/corpus-$target/formula-$(basename "$f")"; done
+    for f in "$src"/tests/frag/*.frag "$src"/docs/fragments/*.frag; do { printf '\004'; cat "$f"; } >"$build/corpus-$target/frag-$(basename "$f")"; done
+    export FATHOM_DATA_DIR="$src" # a fragment's includes: fathom's set
 else
     head -n 40 "$src/scenes/spray.csv" >"$build/corpus-$target/spray.csv"
     printf '"Points:0","Points:1","Points:2","diameter"\n0.5,1.5,-2,0.002\n' >"$build/corpus-$target/paraview.csv"
