@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include <cmocka.h>
 
@@ -1022,10 +1023,11 @@ static void check_catches_planted_faults(void **st)
     for (size_t k = 0; k < sizeof BAD / sizeof BAD[0]; k++) {
         char json[1024];
         scene s;
-        snprintf(json, sizeof json, "{\"program\": \"fractal\", \"fractal\": {\"formula\": \"/tmp/fathom-bad%zu.glsl\"}}",
-                 k);
+        /* the process's own name: test_fractal and test_fractal_compute may run at once (ctest -j) */
+        snprintf(json, sizeof json,
+                 "{\"program\": \"fractal\", \"fractal\": {\"formula\": \"/tmp/fathom-bad%d-%zu.glsl\"}}", (int)getpid(), k);
         char path[300], text[1200];
-        snprintf(path, sizeof path, "/tmp/fathom-bad%zu.glsl", k);
+        snprintf(path, sizeof path, "/tmp/fathom-bad%d-%zu.glsl", (int)getpid(), k);
         snprintf(text, sizeof text,
                  "// @formula %s\n// @bound %s\n#include \"fractal/common.glsl\"\n"
                  "real formulaDE(real3 p, out float trap) { trap = 0.0; return real(%s); }\n", BAD[k].what, BAD[k].bound,

@@ -11,6 +11,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "jobs/offline.h"
 #include "scene/formula.h"
@@ -19,6 +20,9 @@
 #include "view/shot.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
+
+static char frag_path[] = "/tmp/fathom-fuzz-frag-XXXXXX.frag"; /* the fragment reader's file, removed at exit */
+static void remove_frag(void) { unlink(frag_path); }
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
@@ -59,10 +63,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         break;
     }
     case 4: { /* a fragment: read from a file, as fathom reads one */
-        static char path[] = "/tmp/fathom-fuzz-frag-XXXXXX.frag";
         static int fd = -1;
-        if (fd < 0 && (fd = mkstemps(path, 5)) < 0)
+        if (fd < 0 && ((fd = mkstemps(frag_path, 5)) < 0 || atexit(remove_frag)))
             break;
+        const char *path = frag_path;
         FILE *f = fopen(path, "w");
         if (!f)
             break;
