@@ -3,6 +3,9 @@
  * and FOV; Detail, FudgeFactor, MaxRaySteps and the parameters as overrides); the translation keeps
  * every line where it was and renames the fragment's own names; and each refusal in one line that
  * says why (with the include chain). The fragments are fathom's own (tests/frag/). */
+/* realpath() is XSI */
+#define _XOPEN_SOURCE 700
+#include <limits.h>
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -133,6 +136,7 @@ static char dir[] = "/tmp/fathom-frag-XXXXXX";
 static int make_dir(void **st)
 {
     (void)st;
+    memcpy(dir, "/tmp/fathom-frag-XXXXXX", sizeof dir);
     return mkdtemp(dir) ? 0 : -1;
 }
 static int remove_dir(void **st)
@@ -203,6 +207,29 @@ static void refusals(void **st)
     sb_free(&t);
 }
 
+/* Forty fragments opened one after another (the window's R, a corpus): the newest one's files are all
+ * still kept for the compiler (the table drops the oldest; a file translated again counts as new). */
+static void many_fragments(void **st)
+{
+    (void)st;
+    char raytracer[PATH_MAX_LEN], real[PATH_MAX];
+    snprintf(raytracer, sizeof raytracer, "%s/shaders/frag/raytracer.frag", FATHOM_SOURCE_DIR);
+    assert_non_null(realpath(raytracer, real));
+    for (int i = 0; i < 40; i++) {
+        char name[32], path[2 * PATH_MAX_LEN], wrapper[2 * PATH_MAX_LEN + 16];
+        snprintf(name, sizeof name, "f%d.frag", i);
+        put(dir, name, "#include \"MathUtils.frag\"\n#include \"DE-Raytracer.frag\"\nfloat DE(vec3 p) { return 1.0; }\n");
+        snprintf(path, sizeof path, "%s/%s", dir, name);
+        formula f;
+        err_t e;
+        if (!formula_load(path, NULL, &f, &e))
+            fail_msg("%s", e.msg);
+        snprintf(wrapper, sizeof wrapper, "%s:prelude", f.file);
+        if (!frag_text(f.file) || !frag_text(wrapper) || !frag_text(real))
+            fail_msg("after %d fragments, one of the newest one's files is no longer kept", i + 1);
+    }
+}
+
 static bool has_set(const shot_desc *d, const char *set)
 {
     for (int i = 0; i < d->set_count; i++)
@@ -266,6 +293,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(annotations),
         cmocka_unit_test_setup_teardown(refusals, make_dir, remove_dir),
+        cmocka_unit_test_setup_teardown(many_fragments, make_dir, remove_dir),
         cmocka_unit_test(presets),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -134,6 +134,10 @@ static bool expand(const char *root, const char *file, const shader_virtual *vir
             src = virt[i].text, generated = true;
     if (!src && file[0] == '/' && (src = frag_text(file))) /* a fragment as fathom translated it (scene/frag.h) */
         generated = true;
+    const char *ext = strrchr(file, '.'); /* never the raw file: its annotations are not GLSL */
+    if (!src && file[0] == '/' && ext && (!strcmp(ext, ".frag") || !strcmp(ext, ".frag:prelude") ||
+                                          !strcmp(ext, ".frag:postlude")))
+        return err_set(err, "%s: the fragment's translation is no longer kept: reload the scene (R)", file);
     if (!src && !read_source(root, file, home, from, from_line, &text, own_home, err))
         return false;
     src = src ? src : text;

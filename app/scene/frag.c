@@ -77,14 +77,18 @@ static struct {
     int count;
 } table;
 
+/* Keeps a translation as the newest entry (a file translated again moves up: the oldest entries go
+ * first, never one of the fragment being translated: its files are at most FRAG_SEEN_MAX + 2). */
 static void keep(const char *path, char *text)
 {
     for (int i = 0; i < table.count; i++)
         if (!strcmp(table.path[i], path)) {
             free(table.text[i]);
-            table.text[i] = text;
-            table.digest[i] = 0;
-            return;
+            memmove(&table.path[i], &table.path[i + 1], sizeof table.path[0] * (size_t)(table.count - i - 1));
+            memmove(&table.text[i], &table.text[i + 1], sizeof table.text[0] * (size_t)(table.count - i - 1));
+            memmove(&table.digest[i], &table.digest[i + 1], sizeof table.digest[0] * (size_t)(table.count - i - 1));
+            table.count--;
+            break;
         }
     if (table.count == FRAG_TABLE_MAX) { /* the oldest goes */
         free(table.text[0]);
