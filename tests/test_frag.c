@@ -150,7 +150,7 @@ static int remove_dir(void **st)
 static void refusals(void **st)
 {
     (void)st;
-    char inner[PATH_MAX_LEN], cmd[2 * PATH_MAX_LEN];
+    char inner[PATH_MAX_LEN], cmd[3 * PATH_MAX_LEN];
     snprintf(inner, sizeof inner, "%s/in", dir);
     assert_int_equal(system((snprintf(cmd, sizeof cmd, "mkdir '%s'", inner), cmd)), 0);
     const char *de = "#include \"DE-Raytracer.frag\"\nfloat DE(vec3 p) { return length(p) - 1.0; }\n";
@@ -169,6 +169,9 @@ static void refusals(void **st)
         {"up.frag", "#include \"../outside.frag\"\n", "#include \"../outside.frag\": a '..' part"},
         {"abs.frag", "#include \"/etc/passwd\"\n", "#include \"/etc/passwd\": an absolute path"},
         {"link2.frag", "#include \"link.frag\"\n", "#include \"link.frag\": it leads out of the fragment's folder"},
+        {"token.frag", "#include \"token.txt\"\n", "#include \"token.txt\": not a .frag file"},
+        /* in/Include is a planted link to the folder above: not the collection's Include folder */
+        {"planted.frag", "#include \"outside.frag\"\n", "#include \"outside.frag\": no such file"},
         {"tex.frag", "+uniform sampler2D tex; file[texture.jpg]\n", "tex.frag:3: 'sampler2D tex': a texture (file[...])"},
         {"slider.frag", "+uniform float S; slider[2,1]\n", "slider.frag:3: 'S': expected slider[LO,DEFAULT,HI]"},
         {"replace.frag", "+#replace \"a\" \"b\"\n", "#replace"},
@@ -176,8 +179,9 @@ static void refusals(void **st)
         {"ctl.frag", "#include \"DE-Raytracer.frag\"\nfloat DE(vec3 p) { return 1.0; }\x01\n", "ctl.frag:2: a control character (0x01)"},
     };
     put(dir, "outside.frag", "#donotrun\nfloat leak() { return 1.0; }\n");
-    snprintf(cmd, sizeof cmd, "ln -s ../outside.frag '%s/link.frag'", inner);
+    snprintf(cmd, sizeof cmd, "ln -s ../outside.frag '%s/link.frag' && ln -s .. '%s/Include'", inner, inner);
     assert_int_equal(system(cmd), 0);
+    put(inner, "token.txt", "a secret\n");
     strbuf t = {0};
     for (size_t i = 0; i < sizeof CASES / sizeof *CASES; i++) {
         if (CASES[i].text) {

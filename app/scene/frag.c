@@ -259,6 +259,9 @@ static bool resolve(frag_ctx *x, const char *inc, const char *home, char *path, 
         }
     if (inc[0] == '/' || !inc[0])
         return *why = "an absolute path", false;
+    size_t len = strlen(inc);
+    if (len < 6 || strcmp(inc + len - 5, ".frag")) /* only fragments: never a token file's lines in an error */
+        return *why = "not a .frag file", false;
     for (const char *c = inc; *c; c++)
         if (!isalnum((unsigned char)*c) && !strchr("_-. /", *c))
             return *why = "a character other than letters, digits, '_', '-', '.', ' ' and '/'", false;
@@ -294,7 +297,8 @@ static void include_dir(frag_ctx *x)
     char dir[PATH_MAX_LEN], probe[PATH_MAX_LEN], real[PATH_MAX];
     snprintf(dir, sizeof dir, "%s", x->root);
     for (int up = 0; up < 3; up++) {
-        if (util_join(dir, "Include", probe, sizeof probe) && realpath(probe, real) && strlen(real) < PATH_MAX_LEN &&
+        /* the folder itself, not a link to one elsewhere (a planted Include -> /etc) */
+        if (util_join(dir, "Include", probe, sizeof probe) && realpath(probe, real) && strlen(real) < PATH_MAX_LEN && !strcmp(real, probe) &&
             is_dir(real)) {
             snprintf(x->include_dir, sizeof x->include_dir, "%s", real);
             return;
