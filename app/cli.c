@@ -109,9 +109,9 @@ static const char USAGE_OPTIONS[] =
 
 const char *cli_usage(void)
 {
-    static char text[sizeof USAGE + sizeof USAGE_OPTIONS];
+    static char text[sizeof USAGE + sizeof USAGE_OPTIONS + 2048];
     if (!text[0])
-        snprintf(text, sizeof text, "%s%s", USAGE, USAGE_OPTIONS);
+        snprintf(text, sizeof text, "%s%s\n%s", USAGE, cli_mesh_usage(), USAGE_OPTIONS);
     return text;
 }
 
@@ -384,6 +384,7 @@ static bool set_flag(const char *a, cli_options *o)
         {"--interactive", offsetof(cli_options, interactive)},
         {"--terrain-scale", offsetof(cli_options, terrain_scale)},
         {"--panel", offsetof(cli_options, panel)},
+        {"--one-shell", offsetof(cli_options, one_shell)},
     };
     for (size_t i = 0; i < sizeof FLAGS / sizeof FLAGS[0]; i++)
         if (!strcmp(a, FLAGS[i].name)) {
@@ -407,6 +408,8 @@ static bool check_video(const cli_options *o, err_t *err)
 /* Options that only make sense together. */
 static bool check_combinations(const cli_options *o, err_t *err)
 {
+    if (o->mesh || !cli_mesh_check(o, err)) /* fathom mesh: its own rules (cli_mesh.c) */
+        return o->mesh && cli_mesh_check(o, err);
     if (o->stitch && (!o->output || o->input_count == 0))
         return err_set(err, "stitch needs --output POSTER and the tile files, e.g. fathom stitch --output "
                             "poster.png poster.tile-*.png");
@@ -487,6 +490,9 @@ bool cli_parse(int argc, char **argv, cli_options *o, err_t *err)
     } else if (argc > 1 && !strcmp(argv[1], "render")) { /* the offline word: --output says the same */
         o->render_word = true;
         first = 2;
+    } else if (argc > 1 && !strcmp(argv[1], "mesh")) {
+        o->mesh = true;
+        first = 2;
     } else if (argc > 1 && !strcmp(argv[1], "stitch")) {
         o->stitch = true;
         first = 2;
@@ -526,7 +532,8 @@ bool cli_parse(int argc, char **argv, cli_options *o, err_t *err)
         static const char *const WITH_VALUE[] = {"--scene", "--dem", "--formula", "--help-formula", "--output", "--size", "--spp", "--quality",
                                                  "--camera", "--look-at", "--fov", "--set", "--aov", "--frames",
                                                  "--runs", "--out", "--knob", "--name", "--strip-rows", "--fps", "--view", "--backend", "--truth",
-                                                 "--path", "--tile", "--video"};
+                                                 "--path", "--tile", "--video",
+                                                 "--resolution", "--box", "--triangles", "--tolerance", "--print-size", "--base"};
         static const char *const REPEATABLE[] = {"--set", "--knob"};
         size_t k = 0;
         while (k < sizeof WITH_VALUE / sizeof WITH_VALUE[0] && strcmp(name, WITH_VALUE[k]))
@@ -539,7 +546,7 @@ bool cli_parse(int argc, char **argv, cli_options *o, err_t *err)
             return err_set(err, "%s is given twice (the second time '%s'): give it once", name, val);
         seen |= 1ul << k;
         bool handled;
-        if (!set_output_option(name, val, o, err, &handled))
+        if (!set_output_option(name, val, o, err, &handled) || (!handled && !cli_mesh_option(name, val, o, err, &handled)))
             return false;
         if (!handled && !set_view_option(name, val, o, err))
             return false;

@@ -6,6 +6,7 @@
  *   fathom render --path F ...    a flight: the frames of a camera path (app/view/path.h) to numbered files
  *   fathom stitch --output F T... tiles rendered with --tile I/N, joined into the whole image
  *   fathom check-formula NAME     a fractal formula's distance estimate checked (jobs/check.h)
+ *   fathom mesh --output F ...    the scene's surface as a mesh file (jobs/mesh_job.h)
  *   fathom --help                 usage
  *
  * Angles are degrees on the command line (radians inside the code); sizes are pixels.
@@ -87,6 +88,15 @@ typedef struct cli_options {
     bool terrain_scale; /* bench: generated DEMs from 256² up: load time, memory, frame time */
     const char *knobs[CLI_MAX_SETS]; /* bench: "NAME=v1,v2,..." sweeps (none: every knob, default values) */
     int knob_count;
+    bool mesh;            /* `fathom mesh ...` (jobs/mesh_job.h) */
+    int mesh_resolution;  /* --resolution N (0: the default) */
+    bool has_box;         /* --box: the box meshed */
+    double box[6];
+    long mesh_triangles;  /* --triangles N: simplify toward N (0: keep all) */
+    double mesh_tolerance; /* --tolerance V: in voxels (0: the default) */
+    bool one_shell;       /* --one-shell */
+    double print_mm;      /* --print-size MM */
+    double mesh_base;     /* --base M */
 } cli_options;
 
 /* Parses argv into *o (zeroed first). False with one line in err on bad input. */
@@ -99,6 +109,11 @@ bool cli_parse_size(const char *s, int *w, int *h);
 bool cli_parse_vec3(const char *s, double v[3]); /* double: a deep zoom's camera needs the digits */
 
 const char *cli_usage(void);
+
+/* cli_mesh.c: `fathom mesh`'s options (handled false: not one of them), their combinations, usage. */
+bool cli_mesh_option(const char *name, const char *val, cli_options *o, err_t *err, bool *handled);
+bool cli_mesh_check(const cli_options *o, err_t *err);
+const char *cli_mesh_usage(void);
 
 /* --scene IMAGE: reads the image's shot and rewrites o to reopen it. The image's overrides come first
  * and the command line's after them (so they win); its camera and size are used unless the command

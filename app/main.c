@@ -9,6 +9,7 @@
 #include "jobs/bench.h"
 #include "jobs/check.h"
 #include "jobs/flight.h"
+#include "jobs/mesh_job.h"
 #include "cli.h"
 #include "window/explore.h"
 #include "data/image_io.h"
@@ -154,6 +155,15 @@ static bench_desc bench_of(const cli_options *o)
                         .terrain_scale = o->terrain_scale, .fps = o->fps};
 }
 
+static mesh_desc mesh_of(const cli_options *o)
+{
+    return (mesh_desc){.scene = o->scene, .sets = o->sets, .set_count = o->set_count, .output = o->output,
+                       .resolution = o->mesh_resolution, .has_box = o->has_box, .box = {o->box[0], o->box[1], o->box[2],
+                       o->box[3], o->box[4], o->box[5]}, .triangles = (size_t)o->mesh_triangles,
+                       .tolerance = o->mesh_tolerance, .one_shell = o->one_shell, .print_mm = o->print_mm,
+                       .base = o->mesh_base, .quiet = o->quiet};
+}
+
 /* One offline shot (or one tile of it) of s as the command line asks. */
 static bool render_shot(const cli_options *opt, const scene *s, err_t *err)
 {
@@ -226,6 +236,10 @@ int main(int argc, char **argv)
     if (opt.path) {
         flight_desc f = flight_of(&opt);
         return finish(flight_render(&f, &err), &err);
+    }
+    if (opt.mesh) {
+        mesh_desc m = mesh_of(&opt);
+        return finish(mesh_job_run(&m, &err), &err);
     }
     if (opt.bench) {
         bench_desc b = bench_of(&opt);

@@ -23,6 +23,7 @@ static module modules[LAZY_COUNT] = {
     [LAZY_IMAGE] = {.file = "fathom_image.so", .what = "which reads and writes images through OpenImageIO"},
     [LAZY_DEM] = {.file = "fathom_dem.so", .what = "which reads DEMs through GDAL"},
     [LAZY_VIDEO] = {.file = "fathom_video.so", .what = "which writes and reads videos through libavcodec"},
+    [LAZY_MESH] = {.file = "fathom_mesh.so", .what = "which writes and reads meshes through assimp and meshoptimizer"},
 };
 
 /* Whether the open file fd of size bytes is a whole ELF object: every segment the loader maps and the

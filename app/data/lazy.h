@@ -20,7 +20,7 @@
 
 #include "util.h"
 
-typedef enum lazy_module { LAZY_IMAGE, LAZY_DEM, LAZY_VIDEO, LAZY_COUNT } lazy_module;
+typedef enum lazy_module { LAZY_IMAGE, LAZY_DEM, LAZY_VIDEO, LAZY_MESH, LAZY_COUNT } lazy_module;
 
 /* The address of `name` in module m, loading it on first use;
  * NULL with one line in err (may be NULL) when the module cannot be loaded or lacks the name. */

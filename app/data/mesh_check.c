@@ -1,0 +1,259 @@
+/* mesh_check — a mesh's storage, and what it is checked for: closed, manifold, oriented, its
+ * components, Euler characteristic, area and volume (data/mesh.h). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "data/mesh.h"
+
+uint32_t mesh_add_vertex(mesh *m, const float p[3], const float n[3])
+{
+    if (m->nv == m->cap_v) {
+        m->cap_v = m->cap_v ? 2 * m->cap_v : 1 << 12;
+        m->pos = util_realloc(m->pos, m->cap_v * 3 * sizeof(float), "mesh vertices");
+        m->nrm = util_realloc(m->nrm, m->cap_v * 3 * sizeof(float), "mesh normals");
+    }
+    memcpy(m->pos + 3 * m->nv, p, 3 * sizeof(float));
+    memcpy(m->nrm + 3 * m->nv, n, 3 * sizeof(float));
+    return (uint32_t)m->nv++;
+}
+
+void mesh_add_triangle(mesh *m, uint32_t a, uint32_t b, uint32_t c)
+{
+    if (m->nt == m->cap_t) {
+        m->cap_t = m->cap_t ? 2 * m->cap_t : 1 << 13;
+        m->tri = util_realloc(m->tri, m->cap_t * 3 * sizeof(uint32_t), "mesh triangles");
+    }
+    uint32_t *t = m->tri + 3 * m->nt++;
+    t[0] = a;
+    t[1] = b;
+    t[2] = c;
+}
+
+void mesh_free(mesh *m)
+{
+    free(m->pos);
+    free(m->nrm);
+    free(m->col);
+    free(m->tri);
+    *m = (mesh){0};
+}
+
+/* Triangle (a, b, c)'s agreement with its vertices' normals: the sum of the cosines. */
+static double agreement(const mesh *m, uint32_t a, uint32_t b, uint32_t c)
+{
+    const float *p0 = m->pos + 3 * (size_t)a, *p1 = m->pos + 3 * (size_t)b, *p2 = m->pos + 3 * (size_t)c;
+    double u[3], v[3], n[3], sum = 0;
+    for (int k = 0; k < 3; k++) {
+        u[k] = p1[k] - p0[k];
+        v[k] = p2[k] - p0[k];
+    }
+    n[0] = u[1] * v[2] - u[2] * v[1];
+    n[1] = u[2] * v[0] - u[0] * v[2];
+    n[2] = u[0] * v[1] - u[1] * v[0];
+    double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if (len == 0)
+        return -3;
+    const uint32_t id[3] = {a, b, c};
+    for (int i = 0; i < 3; i++)
+        for (int k = 0; k < 3; k++)
+            sum += n[k] / len * m->nrm[3 * (size_t)id[i] + (size_t)k];
+    return sum;
+}
+
+/* Which diagonal splits quad v: the one whose triangles face as their vertices' normals do (a quad
+ * across a sharp edge splits along the edge, not across it). 0: v0–v2, 1: v1–v3. */
+int mesh_split_of(const mesh *m, const uint32_t v[4])
+{
+    double a = agreement(m, v[0], v[1], v[2]) + agreement(m, v[0], v[2], v[3]);
+    double b = agreement(m, v[1], v[2], v[3]) + agreement(m, v[1], v[3], v[0]);
+    return a >= b ? 0 : 1;
+}
+
+static int cmp_u64(const void *a, const void *b)
+{
+    uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
+    return x < y ? -1 : x > y;
+}
+
+static size_t root(size_t *parent, size_t i)
+{
+    while (parent[i] != i)
+        i = parent[i] = parent[parent[i]];
+    return i;
+}
+
+static void join(size_t *parent, size_t a, size_t b)
+{
+    a = root(parent, a);
+    b = root(parent, b);
+    if (a != b)
+        parent[a < b ? b : a] = a < b ? a : b;
+}
+
+/* Directed edges as (from << 32 | to) << 0 with the triangle in a second array, sorted together. */
+typedef struct dedge {
+    uint64_t key;
+    uint64_t tri;
+} dedge;
+
+static int cmp_dedge(const void *a, const void *b)
+{
+    return cmp_u64(&((const dedge *)a)->key, &((const dedge *)b)->key);
+}
+
+static const dedge *find_edge(const dedge *e, size_t n, uint64_t key)
+{
+    size_t lo = 0, hi = n;
+    while (lo < hi) {
+        size_t mid = (lo + hi) / 2;
+        if (e[mid].key < key)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo < n && e[lo].key == key ? &e[lo] : NULL;
+}
+
+/* Fans around each vertex: corner (t, i) joined with the corner at the same vertex in the triangle
+ * across its outgoing edge. A vertex whose corners fall in two or more sets is pinched. */
+static long long pinched_vertices(const mesh *m, const dedge *e, size_t ne)
+{
+    size_t nc = 3 * m->nt;
+    size_t *parent = util_alloc(nc * sizeof *parent, "mesh check");
+    for (size_t i = 0; i < nc; i++)
+        parent[i] = i;
+    for (size_t t = 0; t < m->nt; t++)
+        for (int i = 0; i < 3; i++) {
+            uint32_t v = m->tri[3 * t + (size_t)i], next = m->tri[3 * t + (size_t)(i + 1) % 3];
+            const dedge *o = find_edge(e, ne, (uint64_t)next << 32 | v);
+            if (!o)
+                continue;
+            for (int j = 0; j < 3; j++)
+                if (m->tri[3 * o->tri + (size_t)j] == v)
+                    join(parent, 3 * t + (size_t)i, 3 * o->tri + (size_t)j);
+        }
+    size_t *first = util_alloc(m->nv * sizeof *first, "mesh check");
+    for (size_t v = 0; v < m->nv; v++)
+        first[v] = SIZE_MAX;
+    uint8_t *bad = util_calloc(m->nv, 1, "mesh check");
+    long long pinched = 0;
+    for (size_t c = 0; c < nc; c++) {
+        uint32_t v = m->tri[c];
+        size_t r = root(parent, c);
+        if (first[v] == SIZE_MAX)
+            first[v] = r;
+        else if (first[v] != r && !bad[v]) {
+            bad[v] = 1;
+            pinched++;
+        }
+    }
+    free(bad);
+    free(first);
+    free(parent);
+    return pinched;
+}
+
+/* Undirected edges: E, and those not shared by exactly two faces. */
+static void count_edges(const mesh *m, mesh_topology *t)
+{
+    size_t n = 3 * m->nt;
+    uint64_t *u = util_alloc((n ? n : 1) * sizeof *u, "mesh check");
+    for (size_t i = 0; i < n; i++) {
+        uint64_t a = m->tri[i], b = m->tri[i / 3 * 3 + (i + 1) % 3];
+        u[i] = a < b ? a << 32 | b : b << 32 | a;
+    }
+    qsort(u, n, sizeof *u, cmp_u64);
+    for (size_t i = 0; i < n;) {
+        size_t j = i;
+        while (j < n && u[j] == u[i])
+            j++;
+        t->edges++;
+        t->open_edges += j - i == 1;
+        t->nonmanifold_edges += j - i > 2;
+        i = j;
+    }
+    free(u);
+}
+
+void mesh_check(const mesh *m, mesh_topology *t)
+{
+    *t = (mesh_topology){.faces = (long long)m->nt};
+    size_t ne = 3 * m->nt;
+    dedge *e = util_alloc((ne ? ne : 1) * sizeof *e, "mesh check");
+    size_t *parent = util_alloc((m->nv ? m->nv : 1) * sizeof *parent, "mesh check");
+    uint8_t *used = util_calloc(m->nv ? m->nv : 1, 1, "mesh check");
+    for (size_t v = 0; v < m->nv; v++)
+        parent[v] = v;
+    for (size_t f = 0; f < m->nt; f++) {
+        const uint32_t *v = m->tri + 3 * f;
+        const float *a = m->pos + 3 * (size_t)v[0], *b = m->pos + 3 * (size_t)v[1], *c = m->pos + 3 * (size_t)v[2];
+        double ab[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, ac[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+        double x[3] = {ab[1] * ac[2] - ab[2] * ac[1], ab[2] * ac[0] - ab[0] * ac[2], ab[0] * ac[1] - ab[1] * ac[0]};
+        t->area += 0.5 * sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+        t->volume += (a[0] * ((double)b[1] * c[2] - (double)b[2] * c[1]) + a[1] * ((double)b[2] * c[0] - (double)b[0] * c[2]) +
+                      a[2] * ((double)b[0] * c[1] - (double)b[1] * c[0])) / 6;
+        t->degenerate += v[0] == v[1] || v[1] == v[2] || v[0] == v[2];
+        for (int i = 0; i < 3; i++) {
+            e[3 * f + (size_t)i] = (dedge){(uint64_t)v[i] << 32 | v[(i + 1) % 3], f};
+            used[v[i]] = 1;
+            join(parent, v[i], v[(i + 1) % 3]);
+        }
+    }
+    qsort(e, ne, sizeof *e, cmp_dedge);
+    for (size_t i = 0; i + 1 < ne; i++) /* a directed edge twice: faces folded onto each other */
+        t->nonmanifold_edges += e[i].key == e[i + 1].key;
+    count_edges(m, t);
+    for (size_t v = 0; v < m->nv; v++) {
+        t->vertices += used[v];
+        t->unused_vertices += !used[v];
+        t->components += used[v] && root(parent, v) == v;
+    }
+    t->nonmanifold_vertices = pinched_vertices(m, e, ne);
+    t->euler = t->vertices - t->edges + t->faces;
+    t->closed_manifold = m->nt > 0 && !t->open_edges && !t->nonmanifold_edges && !t->nonmanifold_vertices && !t->degenerate;
+    free(used);
+    free(parent);
+    free(e);
+}
+
+long long mesh_keep_largest(mesh *m)
+{
+    size_t *parent = util_alloc((m->nv ? m->nv : 1) * sizeof *parent, "mesh shells");
+    for (size_t v = 0; v < m->nv; v++)
+        parent[v] = v;
+    for (size_t f = 0; f < 3 * m->nt; f++)
+        join(parent, m->tri[f], m->tri[f / 3 * 3 + (f + 1) % 3]);
+    size_t *faces = util_calloc(m->nv ? m->nv : 1, sizeof *faces, "mesh shells");
+    size_t best = 0;
+    long long shells = 0;
+    for (size_t f = 0; f < m->nt; f++) {
+        size_t r = root(parent, m->tri[3 * f]);
+        shells += faces[r]++ == 0;
+        best = faces[r] > faces[best] ? r : best;
+    }
+    uint32_t *remap = util_alloc((m->nv ? m->nv : 1) * sizeof *remap, "mesh shells");
+    size_t nv = 0, nt = 0;
+    for (size_t v = 0; v < m->nv; v++) {
+        remap[v] = UINT32_MAX;
+        if (root(parent, v) == best && faces[best]) {
+            memmove(m->pos + 3 * nv, m->pos + 3 * v, 3 * sizeof(float));
+            memmove(m->nrm + 3 * nv, m->nrm + 3 * v, 3 * sizeof(float));
+            if (m->col)
+                memmove(m->col + 3 * nv, m->col + 3 * v, 3 * sizeof(float));
+            remap[v] = (uint32_t)nv++;
+        }
+    }
+    for (size_t f = 0; f < m->nt; f++)
+        if (remap[m->tri[3 * f]] != UINT32_MAX) {
+            for (int i = 0; i < 3; i++)
+                m->tri[3 * nt + (size_t)i] = remap[m->tri[3 * f + (size_t)i]];
+            nt++;
+        }
+    m->nv = nv;
+    m->nt = nt;
+    free(remap);
+    free(faces);
+    free(parent);
+    return shells > 1 ? shells - 1 : 0;
+}

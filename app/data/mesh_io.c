@@ -1,0 +1,191 @@
+/* mesh_io — the binary's side of mesh files (data/mesh_io.h): formats, atomic writes, and the calls
+ * into fathom_mesh.so (mesh_file.cpp). */
+#include "data/mesh_io.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+#include "data/lazy.h"
+
+static const struct {
+    const char *ext, *exporter;
+} FORMATS[] = {{".ply", "plyb"}, {".stl", "stlb"}, {".obj", "objnomtl"}, {".glb", "glb2"}, {".3mf", "3mf"}, {".stp", "stp"}};
+
+bool mesh_io_format(const char *path, const char **exporter, err_t *err)
+{
+    const char *dot = strrchr(path, '.'), *slash = strrchr(path, '/');
+    for (size_t i = 0; dot && (!slash || dot > slash) && i < sizeof FORMATS / sizeof FORMATS[0]; i++)
+        if (!strcasecmp(dot, FORMATS[i].ext)) {
+            *exporter = FORMATS[i].exporter;
+            return true;
+        }
+    return err_set(err, "bad mesh file name '%s': it must end in .ply, .stl, .obj, .glb, .3mf or .stp", path);
+}
+
+static mesh_io_view view_of(const mesh *m)
+{
+    return (mesh_io_view){.pos = m->pos, .nrm = m->nrm, .col = m->col, .tri = m->tri, .nv = m->nv, .nt = m->nt};
+}
+
+/* 3MF is a zip archive assimp writes to a file only: into the temporary file, then renamed. */
+static bool write_by_file(const mesh_io_view *v, const char *exporter, const char *path, err_t *err)
+{
+    LAZY_FN(mesh_io_export_fn f, lazy_symbol(LAZY_MESH, "mesh_file_export", err));
+    util_atomic a;
+    if (!f || !util_atomic_open(&a, path, err))
+        return false;
+    char why[512];
+    if (!f(v, exporter, a.tmp, why, sizeof why)) {
+        util_atomic_abort(&a);
+        return err_set(err, "cannot write '%s': %s", path, why);
+    }
+    return util_atomic_commit(&a, err);
+}
+
+bool mesh_io_write(const mesh *m, const char *path, err_t *err)
+{
+    const char *exporter;
+    if (!mesh_io_format(path, &exporter, err))
+        return false;
+    if (m->nt == 0)
+        return err_set(err, "no surface to write to '%s': the mesh is empty (is the object inside the box?)", path);
+    if (m->nv > UINT32_MAX / 2)
+        return err_set(err, "the mesh has %zu vertices, more than a mesh file holds: lower --resolution", m->nv);
+    mesh_io_view v = view_of(m);
+    if (!strcmp(exporter, "plyb")) /* assimp 5.2's binary PLY exporter declares uchar colours and writes floats:
+                                      a file no reader (assimp's own included) reads right; PLY goes without */
+        v.col = NULL;
+    if (!strcmp(exporter, "3mf"))
+        return write_by_file(&v, exporter, path, err);
+    LAZY_FN(mesh_io_encode_fn f, lazy_symbol(LAZY_MESH, "mesh_file_encode", err));
+    if (!f)
+        return false;
+    void *data;
+    size_t size;
+    char why[512];
+    if (!f(&v, exporter, &data, &size, why, sizeof why))
+        return err_set(err, "cannot write '%s': %s", path, why);
+    util_atomic a;
+    bool ok = util_atomic_open(&a, path, err);
+    if (ok && fwrite(data, 1, size, a.f) != size) {
+        util_atomic_abort(&a);
+        ok = err_set(err, "cannot write '%s' (is the disk full?)", path);
+    } else if (ok) {
+        ok = util_atomic_commit(&a, err);
+    }
+    free(data);
+    return ok;
+}
+
+static const float *weld_pos;
+
+static int cmp_position(const void *a, const void *b)
+{
+    const float *p = weld_pos + 3 * (size_t)*(const uint32_t *)a, *q = weld_pos + 3 * (size_t)*(const uint32_t *)b;
+    for (int k = 0; k < 3; k++)
+        if (p[k] != q[k])
+            return p[k] < q[k] ? -1 : 1;
+    return 0;
+}
+
+/* An STL file's triangles each have their own corners: the same positions joined, as a slicer does. */
+static void weld(mesh *m)
+{
+    uint32_t *order = util_alloc((m->nv ? m->nv : 1) * sizeof *order, "mesh weld");
+    uint32_t *remap = util_alloc((m->nv ? m->nv : 1) * sizeof *remap, "mesh weld");
+    for (size_t v = 0; v < m->nv; v++)
+        order[v] = (uint32_t)v;
+    weld_pos = m->pos;
+    qsort(order, m->nv, sizeof *order, cmp_position);
+    size_t n = 0;
+    float *pos = util_alloc((m->nv ? m->nv : 1) * 3 * sizeof(float), "mesh weld");
+    for (size_t i = 0; i < m->nv; i++) {
+        if (i == 0 || cmp_position(&order[i - 1], &order[i]) != 0)
+            memcpy(pos + 3 * n++, m->pos + 3 * (size_t)order[i], 3 * sizeof(float));
+        remap[order[i]] = (uint32_t)(n - 1);
+    }
+    for (size_t i = 0; i < 3 * m->nt; i++)
+        m->tri[i] = remap[m->tri[i]];
+    free(m->pos);
+    m->pos = pos;
+    m->nv = n;
+    free(order);
+    free(remap);
+}
+
+bool mesh_io_read(const char *path, mesh *m, err_t *err)
+{
+    mesh_free(m);
+    LAZY_FN(mesh_io_decode_fn f, lazy_symbol(LAZY_MESH, "mesh_file_decode", err));
+    if (!f)
+        return false;
+    char why[512];
+    float *pos = NULL;
+    uint32_t *tri = NULL;
+    size_t nv = 0, nt = 0;
+    if (!f(path, &pos, &nv, &tri, &nt, why, sizeof why)) {
+        free(pos);
+        free(tri);
+        return err_set(err, "%s", why);
+    }
+    m->pos = pos;
+    m->tri = tri;
+    m->nv = m->cap_v = nv;
+    m->nt = m->cap_t = nt;
+    const char *dot = strrchr(path, '.');
+    if (dot && !strcasecmp(dot, ".stl"))
+        weld(m);
+    m->nrm = util_calloc(nv ? 3 * nv : 1, sizeof(float), "mesh normals");
+    return true;
+}
+
+/* Drops the vertices no triangle uses (after a simplification), keeping their normals and colours. */
+static void compact(mesh *m)
+{
+    uint32_t *remap = util_alloc((m->nv ? m->nv : 1) * sizeof *remap, "mesh vertices");
+    for (size_t v = 0; v < m->nv; v++)
+        remap[v] = UINT32_MAX;
+    size_t n = 0;
+    for (size_t i = 0; i < 3 * m->nt; i++) {
+        uint32_t v = m->tri[i];
+        if (remap[v] == UINT32_MAX) {
+            remap[v] = (uint32_t)n++;
+        }
+        m->tri[i] = remap[v];
+    }
+    float *arrays[3] = {m->pos, m->nrm, m->col};
+    for (int a = 0; a < 3; a++) {
+        if (!arrays[a])
+            continue;
+        float *out = util_alloc((n ? n : 1) * 3 * sizeof(float), "mesh vertices");
+        for (size_t v = 0; v < m->nv; v++)
+            if (remap[v] != UINT32_MAX)
+                memcpy(out + 3 * (size_t)remap[v], arrays[a] + 3 * v, 3 * sizeof(float));
+        free(arrays[a]);
+        arrays[a] = out;
+    }
+    m->pos = arrays[0];
+    m->nrm = arrays[1];
+    m->col = arrays[2];
+    m->nv = m->cap_v = n;
+    free(remap);
+}
+
+bool mesh_io_simplify(mesh *m, size_t target, double tolerance, double *error, err_t *err)
+{
+    LAZY_FN(mesh_io_simplify_fn f, lazy_symbol(LAZY_MESH, "mesh_file_simplify", err));
+    if (!f)
+        return false;
+    uint32_t *out = util_alloc((m->nt ? m->nt : 1) * 3 * sizeof(uint32_t), "mesh triangles");
+    mesh_io_view v = view_of(m);
+    float e = 0;
+    size_t nt = f(&v, out, target, (float)tolerance, &e);
+    free(m->tri);
+    m->tri = out;
+    m->nt = m->cap_t = nt;
+    *error = e;
+    compact(m);
+    return true;
+}

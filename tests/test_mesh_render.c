@@ -1,0 +1,266 @@
+/* `fathom mesh` end to end (jobs/mesh_job.h): the scene's map() on the GPU, the mesh written by assimp
+ * and read back by assimp (the stand-in for Blender and a slicer), then checked: the torus program
+ * against its closed form in every format, the Mandelbulb against its own field, a simplification
+ * within its tolerance, one shell, and the Jacksboro DEM as a solid (its top on the heightfield the
+ * renderer draws, its base where asked). */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include <cmocka.h>
+
+#include "data/mesh.h"
+#include "data/mesh_io.h"
+#include "data/terrain.h"
+#include "gltest.h"
+#include "gpu/render.h"
+#include "gpu/render_probe.h"
+#include "jobs/mesh_job.h"
+#include "scene/scene.h"
+
+static char dir[64];
+static const double PI = 3.14159265358979323846;
+static const double TORUS_BOX[6] = {-1.5, -0.5, -1.5, 1.5, 0.5, 1.5}; /* the torus scene: major 1, minor 0.3 */
+
+static void run(const char *name, const char *out, int res, const double *box, size_t triangles, bool one_shell,
+                double base)
+{
+    mesh_desc d = {.scene = name, .output = out, .resolution = res, .has_box = box != NULL, .triangles = triangles,
+                   .one_shell = one_shell, .base = base, .quiet = true};
+    if (box)
+        memcpy(d.box, box, sizeof d.box);
+    err_t e;
+    if (!mesh_job_run(&d, &e))
+        fail_msg("fathom mesh %s -> %s: %s", name, out, e.msg);
+}
+
+static void read_back(const char *path, mesh *m, mesh_topology *t)
+{
+    err_t e;
+    if (!mesh_io_read(path, m, &e))
+        fail_msg("%s", e.msg);
+    mesh_check(m, t);
+}
+
+static double sd_torus(const float *p)
+{
+    double q = sqrt((double)p[0] * p[0] + (double)p[2] * p[2]) - 1.0;
+    return sqrt(q * q + (double)p[1] * p[1]) - 0.3;
+}
+
+/* The torus program's surface, 96 cells across 3 units: the closed form's within a tenth of a voxel,
+ * genus 1, its area and volume. */
+static void torus_closed_form(void **state)
+{
+    (void)state;
+    char path[PATH_MAX_LEN];
+    snprintf(path, sizeof path, "%s/torus.ply", dir);
+    run("torus", path, 96, TORUS_BOX, 0, false, 0);
+    mesh m = {0};
+    mesh_topology t;
+    read_back(path, &m, &t);
+    double voxel = 3.0 / 96, worst = 0;
+    for (size_t v = 0; v < m.nv; v++)
+        worst = fmax(worst, fabs(sd_torus(m.pos + 3 * v)));
+    double area = 4 * PI * PI * 0.3, volume = 2 * PI * PI * 0.09;
+    fprintf(stderr, "  torus 96: %zu triangles, euler %lld, worst vertex %.4f voxels, area %.5f (%.5f), volume %.5f (%.5f)\n",
+            m.nt, t.euler, worst / voxel, t.area, area, t.volume, volume);
+    assert_true(t.closed_manifold);
+    assert_int_equal(t.components, 1);
+    assert_int_equal(t.euler, 0);
+    assert_true(worst < 0.1 * voxel);
+    assert_true(fabs(t.area - area) < 0.01 * area);
+    assert_true(fabs(t.volume - volume) < 0.01 * volume);
+    mesh_free(&m);
+}
+
+/* Every format read back: the same triangles, closed; STL and 3MF with +Z up; STEP's header. */
+static void formats(void **state)
+{
+    (void)state;
+    static const char *const ext[] = {"ply", "stl", "obj", "glb", "3mf"};
+    size_t first = 0;
+    for (int i = 0; i < 5; i++) {
+        char path[PATH_MAX_LEN];
+        snprintf(path, sizeof path, "%s/small.%s", dir, ext[i]);
+        run("torus", path, 24, TORUS_BOX, 0, false, 0);
+        mesh m = {0};
+        mesh_topology t;
+        read_back(path, &m, &t);
+        float lo[3] = {1e9f, 1e9f, 1e9f}, hi[3] = {-1e9f, -1e9f, -1e9f};
+        for (size_t v = 0; v < m.nv; v++)
+            for (int k = 0; k < 3; k++) {
+                lo[k] = fminf(lo[k], m.pos[3 * v + (size_t)k]);
+                hi[k] = fmaxf(hi[k], m.pos[3 * v + (size_t)k]);
+            }
+        bool z_up = i == 1 || i == 4; /* the torus lies in fathom's xz plane: thin along y, or along z in print formats */
+        fprintf(stderr, "  .%s: %zu triangles, closed %d, extent %.3f %.3f %.3f\n", ext[i], m.nt, t.closed_manifold,
+                (double)(hi[0] - lo[0]), (double)(hi[1] - lo[1]), (double)(hi[2] - lo[2]));
+        first = first ? first : m.nt;
+        assert_int_equal(m.nt, first);
+        assert_true(t.closed_manifold);
+        assert_true(fabs(hi[z_up ? 2 : 1] - lo[z_up ? 2 : 1] - 0.6) < 0.02);
+        assert_true(fabs(hi[z_up ? 1 : 2] - lo[z_up ? 1 : 2] - 2.6) < 0.02);
+        mesh_free(&m);
+    }
+    char path[PATH_MAX_LEN], head[16] = {0};
+    snprintf(path, sizeof path, "%s/small.stp", dir);
+    run("torus", path, 24, TORUS_BOX, 0, false, 0);
+    FILE *f = fopen(path, "rb");
+    assert_non_null(f);
+    assert_int_equal(fread(head, 1, 12, f), 12);
+    fclose(f);
+    assert_string_equal(head, "ISO-10303-21");
+}
+
+/* The Mandelbulb at 192 cells against its own field, probed on the GPU at the vertices read back: the
+ * level meshed (half a voxel) within a voxel at the 99th percentile; one shell on request. */
+static void mandelbulb_field(void **state)
+{
+    (void)state;
+    char path[PATH_MAX_LEN];
+    snprintf(path, sizeof path, "%s/bulb.ply", dir);
+    run("mandelbulb", path, 192, NULL, 0, false, 0);
+    mesh m = {0};
+    mesh_topology t;
+    read_back(path, &m, &t);
+    assert_true(t.closed_manifold);
+    scene s;
+    err_t e;
+    assert_true(gl_setup(NULL) == 0);
+    if (!scene_load("mandelbulb", NULL, 0, &s, &e) || !render_set_scene(&s, NULL, &e))
+        fail_msg("%s", e.msg);
+    float *d = malloc(2 * m.nv * sizeof(float));
+    double *err = malloc(m.nv * sizeof(double)), voxel = 2.0 * s.fractal.bound_radius / 192;
+    assert_true(render_probe(&s, NULL, m.pos, (int)m.nv, d, &e));
+    for (size_t v = 0; v < m.nv; v++)
+        err[v] = fabs(d[2 * v] - 0.5 * voxel) / voxel;
+    util_sort(err, (int)m.nv);
+    fprintf(stderr, "  mandelbulb 192: %zu triangles, %lld shells, vertices off the level by %.3f (median), %.3f (99th "
+                    "percentile), %.3f (worst) voxels\n", m.nt, t.components, err[m.nv / 2], err[m.nv * 99 / 100],
+            err[m.nv - 1]);
+    assert_true(err[m.nv / 2] < 0.05);
+    assert_true(err[m.nv * 99 / 100] < 0.5);
+    free(err);
+    free(d);
+    scene_free(&s);
+    gl_teardown(NULL);
+    mesh_free(&m);
+    snprintf(path, sizeof path, "%s/bulb1.ply", dir);
+    run("mandelbulb", path, 64, NULL, 0, true, 0);
+    read_back(path, &m, &t);
+    assert_int_equal(t.components, 1);
+    assert_true(t.closed_manifold);
+    mesh_free(&m);
+}
+
+/* Simplified toward 3000 triangles within a voxel: the budget met, still closed, every face within the
+ * tolerance of the closed form (sampled at its centroid and corners). */
+static void simplified(void **state)
+{
+    (void)state;
+    char path[PATH_MAX_LEN];
+    snprintf(path, sizeof path, "%s/simple.ply", dir);
+    mesh_desc d = {.scene = "torus", .output = path, .resolution = 96, .has_box = true, .triangles = 3000,
+                   .tolerance = 1.0, .quiet = true};
+    memcpy(d.box, TORUS_BOX, sizeof d.box);
+    err_t e;
+    assert_true(mesh_job_run(&d, &e));
+    mesh m = {0};
+    mesh_topology t;
+    read_back(path, &m, &t);
+    double voxel = 3.0 / 96, worst = 0;
+    for (size_t f = 0; f < m.nt; f++) {
+        float c[3] = {0, 0, 0};
+        for (int i = 0; i < 3; i++)
+            for (int k = 0; k < 3; k++)
+                c[k] += m.pos[3 * (size_t)m.tri[3 * f + (size_t)i] + (size_t)k] / 3;
+        worst = fmax(worst, fabs(sd_torus(c)));
+    }
+    fprintf(stderr, "  simplified: %zu triangles, closed %d, worst centroid %.3f voxels\n", m.nt, t.closed_manifold,
+            worst / voxel);
+    assert_true(m.nt <= 3000 * 1.1);
+    assert_true(t.closed_manifold);
+    assert_true(worst < 1.0 * voxel);
+    mesh_free(&m);
+}
+
+/* Jacksboro as a solid: closed, one shell, genus 0; the base at 100 m below the lowest point; each top
+ * vertex on a texel centre at its height, which the renderer's ground agrees with. */
+static void dem_solid(void **state)
+{
+    (void)state;
+    char path[PATH_MAX_LEN];
+    snprintf(path, sizeof path, "%s/jacksboro.ply", dir);
+    run("jacksboro", path, 160, NULL, 0, false, 100);
+    mesh m = {0};
+    mesh_topology t;
+    read_back(path, &m, &t);
+    assert_true(t.closed_manifold);
+    assert_int_equal(t.components, 1);
+    assert_int_equal(t.euler, 2);
+    scene s;
+    err_t e;
+    if (!scene_load("jacksboro", NULL, 0, &s, &e))
+        fail_msg("%s", e.msg);
+    heightfield_desc hd = {.path = s.terrain.heightmap, .exaggeration = s.terrain.exaggeration};
+    heightfield hf;
+    assert_true(heightfield_load(&hd, &hf, &e));
+    assert_true(gl_setup(NULL) == 0);
+    assert_true(render_set_scene(&s, NULL, &e));
+    size_t top = 0, base = 0, checked = 0;
+    double worst = 0, worst_ground = 0;
+    for (size_t v = 0; v < m.nv; v++) {
+        const float *p = m.pos + 3 * v;
+        if (fabsf(p[1] - (hf.hmin - 100)) < 1e-3f * (hf.hmax - hf.hmin)) {
+            base++;
+            continue;
+        }
+        double ci = (p[0] - hf.x0) / hf.dx - 0.5, cj = (p[2] - hf.z0) / hf.dz - 0.5;
+        int i = (int)lround(ci), j = (int)lround(cj);
+        assert_true(fabs(ci - i) < 1e-3 && fabs(cj - j) < 1e-3);
+        worst = fmax(worst, fabs(p[1] - hf.h[(size_t)j * (size_t)hf.width + (size_t)i]));
+        top++;
+        float g;
+        if (v % 97 == 0 && render_ground_height(p[0], p[2], &g)) {
+            worst_ground = fmax(worst_ground, fabs(g - p[1]));
+            checked++;
+        }
+    }
+    fprintf(stderr, "  jacksboro solid: %zu triangles, %zu top vertices (worst %.3g m off the heightfield; %zu against "
+                    "the renderer's ground, worst %.3g m), %zu base vertices\n", m.nt, top, worst, checked, worst_ground, base);
+    assert_true(top > 100 * 100 && base > 4 * 100);
+    assert_true(worst <= 1e-3);
+    assert_true(checked > 100 && worst_ground < 0.05);
+    gl_teardown(NULL);
+    heightfield_free(&hf);
+    scene_free(&s);
+    mesh_free(&m);
+}
+
+static int setup(void **st)
+{
+    (void)st;
+    snprintf(dir, sizeof dir, "/tmp/fathom-mesh-XXXXXX");
+    return mkdtemp(dir) ? 0 : -1;
+}
+
+static int teardown(void **st)
+{
+    (void)st;
+    util_remove_folder(dir);
+    return 0;
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {cmocka_unit_test(torus_closed_form), cmocka_unit_test(formats),
+                                       cmocka_unit_test(mandelbulb_field), cmocka_unit_test(simplified),
+                                       cmocka_unit_test(dem_solid)};
+    return cmocka_run_group_tests(tests, setup, teardown);
+}
