@@ -22,7 +22,7 @@ _fathom()
     --out) COMPREPLY=($(compgen -d -- "$cur")); return ;;
     esac
     if [ "$COMP_CWORD" -eq 1 ] && [[ $cur != -* ]]; then
-        COMPREPLY=($(compgen -W "bench render stitch check-formula" -- "$cur"))
+        COMPREPLY=($(compgen -W "bench render stitch check-formula mesh" -- "$cur"))
         return
     fi
     COMPREPLY=($(compgen -W "$("$fathom" --help 2>/dev/null | grep -oE -- '--[a-z][a-z-]+' | sort -u)" -- "$cur"))

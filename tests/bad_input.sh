@@ -283,6 +283,23 @@ else
     failed=$((failed + 1)); echo "FAIL help-formula without fractal. or --list-scenes without titles"
 fi
 
+# fathom mesh: its options, a box with nothing in it, and no partial file (the output is out.ply)
+mesh_out="--output $tmp/out.ply --quiet"
+expect mesh-no-output 2 "fathom mesh needs --output FILE.ply" 1 -- "$fathom" mesh --scene torus
+expect mesh-bad-extension 2 "bad mesh file name '$tmp/out.png': it must end in .ply, .stl, .obj, .glb, .3mf or .stp" 1 -- \
+    "$fathom" mesh --output "$tmp/out.png"
+expect mesh-resolution 2 "bad --resolution '1': expected a whole number of cells from 2 to 8192" 1 -- \
+    "$fathom" mesh --resolution 1 $mesh_out
+expect mesh-box 2 "bad --box '0,0,0,1,-1,1': each of X1, Y1, Z1 must be above X0, Y0, Z0" 1 -- \
+    "$fathom" mesh --box 0,0,0,1,-1,1 $mesh_out
+expect mesh-tolerance-alone 2 "--tolerance bounds a simplification: give --triangles N too" 1 -- \
+    "$fathom" mesh --tolerance 2 $mesh_out
+expect mesh-options-elsewhere 2 "belong to fathom mesh" 1 -- "$fathom" --resolution 64 $out
+expect mesh-with-size 2 "fathom mesh writes a mesh: --size" 1 -- "$fathom" mesh --size 64x36 $mesh_out
+expect mesh-empty-box 1 "no surface to write to '$tmp/out.ply': the mesh is empty" 1 -- \
+    "$fathom" mesh --scene torus --box 5,5,5,6,6,6 --resolution 8 $mesh_out
+ls "$tmp"/out.ply "$tmp"/.out.ply.* >/dev/null 2>&1 && { failed=$((failed + 1)); echo "FAIL mesh: a file was left"; }
+
 # the write protocol's own faults, injected (tests/fault_shim.c): a file's fsync, the rename, the
 # folder's fsync after it; each leaves no file (nor a temporary one) and exits non-zero, and a file
 # that was there before is kept as it was where the new one never replaced it
@@ -291,11 +308,13 @@ if [ -n "$shim" ] && [ ! -f "$shim" ]; then
 elif [ -n "$shim" ]; then
     mkdir -p "$tmp/faults"
     for fault in fsync rename dirfsync; do
-        for ext in png exr; do
+        for ext in png exr ply 3mf; do
             rm -rf "$tmp/faults"/* "$tmp/faults"/.[!.]*
+            case $ext in ply | 3mf) how="mesh --scene torus --resolution 8" ;; *) how="--size 32x18 --spp 1" ;; esac
+            # shellcheck disable=SC2086 # how is the subcommand and its options
             expect "write-fault-$fault-$ext" 1 "cannot write '$tmp/faults/f.$ext'" 1 -- env LD_PRELOAD="$shim" \
                 FATHOM_TEST_FAULT=$fault ASAN_OPTIONS=detect_leaks=0:verify_asan_link_order=0 \
-                "$fathom" --output "$tmp/faults/f.$ext" --size 32x18 --spp 1 --quiet
+                "$fathom" $how --output "$tmp/faults/f.$ext" --quiet
             left=$(ls -A "$tmp/faults")
             [ -z "$left" ] || { failed=$((failed + 1)); echo "FAIL write-fault-$fault-$ext: left $left"; }
         done

@@ -57,7 +57,7 @@ for s in $scripts; do
     check "$s: a Usage line (or what sources it) in its header" \
         'sed -n "1,/^[^#]/p" "$src/$s" | grep -q "^# *Usage:\|^# Sourced by\|^#   sbatch "'
     case "$s" in
-    docs/bench/formulas.sh | docs/bench/index.sh | docs/bench/out_of_steps.sh | docs/csg-scale/run.sh | \
+    docs/bench/formulas.sh | docs/bench/index.sh | docs/bench/mesh.sh | docs/bench/out_of_steps.sh | docs/csg-scale/run.sh | \
         docs/droplets/run.sh | docs/droplets/culling.sh | docs/droplets/scene.sh | docs/interactive/run.sh | docs/peak_kb.sh | \
         docs/interactive/panel.sh | docs/slurm/run.sh | docs/slurm/flight.sbatch) ;;
     *) bad "$s: no case below runs it (add one)" ;;
@@ -85,6 +85,17 @@ check "formulas.sh: steps a pixel ($(echo "$row" | awk -F'|' '{ gsub(/ /, "", $7
 echo keep >"$tmp/keep.md" && cp "$tmp/keep.md" "$out/formulas/formulas.md"
 run sh "$src/docs/bench/formulas.sh" /bin/false 32x18 1 "$out/formulas" menger
 check "formulas.sh: a failed run exits non-zero and leaves formulas.md" '[ $code -ne 0 ] && cmp -s "$tmp/keep.md" "$md"'
+
+# ---- docs/bench/mesh.sh: a torus, one run; a failed run keeps the page ----------------------------
+mkdir -p "$out/mesh"
+run sh "$src/docs/bench/mesh.sh" "$fathom" "$out/mesh" 1 torus:12:-1.5,-0.5,-1.5,1.5,0.5,1.5 jacksboro:20
+check "mesh.sh exits 0 ($secs s)" '[ $code -eq 0 ]'
+check "mesh.sh: the torus closed, its error and a simplification" \
+    'grep -q "^| torus | 12 | [0-9.]* ([0-9.]*–[0-9.]*) | [0-9]* | [0-9.]* | [0-9]* | yes | 1 | [0-9.]* | [0-9.]* | [0-9]* | [0-9.]* | yes |\$" "$out/mesh/mesh.md"'
+check "mesh.sh: the DEM solid closed, no field error" 'grep -q "^| jacksboro | 20 | .* | yes | 1 | - | - | " "$out/mesh/mesh.md"'
+cp "$tmp/keep.md" "$out/mesh/mesh.md"
+run sh "$src/docs/bench/mesh.sh" /bin/false "$out/mesh" 1 torus:12
+check "mesh.sh: a failed run exits non-zero and leaves mesh.md" '[ $code -ne 0 ] && cmp -s "$tmp/keep.md" "$out/mesh/mesh.md"'
 
 # ---- docs/bench/index.sh: the shipped README is what it makes of the shipped CSVs --------------
 run sh "$src/docs/bench/index.sh" "$src/docs/bench" "$out/README.md"

@@ -26,6 +26,7 @@ check "--scene man completes to mandelbox mandelbulb" '[ "$(complete_words "$fat
 check "--ti completes to --tile" '[ "$(complete_words "$fathom" --ti)" = "--tile " ]'
 check "check-formula quat completes to the two quaternion formulas" \
     '[ "$(complete_words "$fathom" check-formula quat)" = "quaternion_julia quaternion_mandelbrot " ]'
+check "me completes to the subcommand mesh" '[ "$(complete_words "$fathom" me)" = "mesh " ]'
 check "st completes to the subcommand stitch" '[ "$(complete_words "$fathom" st)" = "stitch " ]'
 check "--quality f completes to final" '[ "$(complete_words "$fathom" --quality f)" = "final " ]'
 echo "man_completion: $passed passed, $failed failed"

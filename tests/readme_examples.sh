@@ -2,7 +2,7 @@
 # Every command the README, the user guide (docs/guide/*.md) and docs/flights.md show in a ```sh block
 # (after the README's two set-up commands) runs and succeeds, at a tiny size, and the words about the
 # program that those pages quote are what it prints: the pages are exactly what the program accepts.
-# Sizes become 32x18, spp 1, bench runs 1; window commands get --frames 1 under xvfb-run (skipped
+# Sizes become 32x18, spp 1, bench runs 1, mesh resolutions 24; window commands get --frames 1 under xvfb-run (skipped
 # without it). A command shown on several pages runs once (the first time it is shown), in the order
 # of the pages below, all from one folder that links build/fathom, scenes, terrains, textures, shaders
 # and docs, so a later command may open what an earlier one wrote.
@@ -38,6 +38,9 @@ while IFS="$tab" read -r from line; do
     cmd=$(echo "$line" | sed -E 's/--size [0-9]+x[0-9]+/--size 32x18/; s/--spp [0-9]+/--spp 1/; s/--runs [0-9]+/--runs 1/')
     case "$cmd" in
     build/fathom\ check-formula*) ;; # a report: it takes no size, frames or output
+    build/fathom\ mesh*) cmd=$(echo "$cmd" | sed -E 's/--resolution [0-9]+/--resolution 24/') # a mesh: no size or spp
+        echo "$cmd" | grep -q -- --resolution || cmd="$cmd --resolution 24"
+        cmd="$cmd --quiet" ;;
     build/fathom\ bench*) cmd="$cmd --quiet" # options are given once: only what the example lacks is added
         echo "$cmd" | grep -q -- --runs || cmd="$cmd --runs 1"
         echo "$cmd" | grep -q -- --size || cmd="$cmd --size 32x18" ;;

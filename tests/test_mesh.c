@@ -322,10 +322,82 @@ static void ambiguous_faces(void **state)
     assert_true(flipped_cases > 0);
 }
 
+/* A plate thinner than a voxel, between two sample planes: the grid misses it, and says so. A sphere
+ * at the same resolution has no such edge. */
+static double sd_plate(const double p[3])
+{
+    static const double c[3] = {0, 0.0151, 0}, h[3] = {0.6, 0.004, 0.6};
+    return sd_box_at(p, c, h);
+}
+
+static void thin_features(void **state)
+{
+    (void)state;
+    mesh m = {0};
+    mesh_stats st;
+    extract(sd_plate, 1.0, 64, 1.0f, &m, &st, 1.0);
+    fprintf(stderr, "  a plate 0.27 voxels thick: %lld edges say a thin feature is lost, %zu triangles\n", st.thin, m.nt);
+    assert_true(st.thin > 1000);
+    extract(sd_sphere, 1.25, 64, 1.0f, &m, &st, 1.0);
+    assert_int_equal(st.thin, 0);
+    mesh_free(&m);
+}
+
+/* A tetrahedron (corners 0 … 3), wound outward, into m with its vertices offset by base. */
+static void tetrahedron(mesh *m, float dx, uint32_t base, bool add_vertices)
+{
+    static const float p[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    static const uint32_t f[4][3] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+    for (int i = 0; add_vertices && i < 4; i++)
+        mesh_add_vertex(m, (const float[3]){p[i][0] + dx, p[i][1], p[i][2]}, (const float[3]){0, 0, 0});
+    for (int i = 0; i < 4; i++)
+        mesh_add_triangle(m, base + f[i][0], base + f[i][1], base + f[i][2]);
+}
+
+/* The repairs after a simplification: faces back to back dropped, sheets touching at a vertex parted,
+ * a hole closed — each leaves a closed, manifold mesh. */
+static void repairs(void **state)
+{
+    (void)state;
+    mesh m = {0};
+    mesh_topology t;
+    tetrahedron(&m, 0, 0, true);
+    mesh_add_vertex(&m, (const float[3]){0.5f, -1, 0}, (const float[3]){0, 0, 0});
+    mesh_add_triangle(&m, 0, 1, 4); /* a fin on the edge (0, 1): two faces back to back */
+    mesh_add_triangle(&m, 0, 4, 1);
+    mesh_check(&m, &t);
+    assert_false(t.closed_manifold);
+    assert_int_equal(mesh_drop_fins(&m), 2);
+    mesh_check(&m, &t);
+    assert_true(t.closed_manifold);
+    mesh_free(&m);
+    tetrahedron(&m, 0, 0, true); /* two tetrahedra sharing corner 1 of the first (0 of the second) */
+    tetrahedron(&m, 1, 4, true);
+    for (size_t i = 12; i < 24; i++)
+        m.tri[i] = m.tri[i] == 4 ? 1 : m.tri[i];
+    mesh_check(&m, &t);
+    assert_int_equal(t.nonmanifold_vertices, 1);
+    assert_int_equal(mesh_split_pinches(&m), 1);
+    mesh_check(&m, &t);
+    assert_true(t.closed_manifold);
+    assert_int_equal(t.components, 2);
+    mesh_free(&m);
+    tetrahedron(&m, 0, 0, true); /* a face missing: closed again by a fan */
+    m.nt = 3;
+    mesh_check(&m, &t);
+    assert_int_equal(t.open_edges, 3);
+    assert_int_equal(mesh_fill_holes(&m), 1);
+    mesh_check(&m, &t);
+    assert_true(t.closed_manifold);
+    assert_true(fabs(t.volume - 1.0 / 6) < 1e-6);
+    mesh_free(&m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {cmocka_unit_test(closed_forms), cmocka_unit_test(box_edges_sharp),
                                        cmocka_unit_test(sparse_blocks), cmocka_unit_test(block_seams),
-                                       cmocka_unit_test(largest_shell), cmocka_unit_test(ambiguous_faces)};
+                                       cmocka_unit_test(largest_shell), cmocka_unit_test(ambiguous_faces),
+                                       cmocka_unit_test(thin_features), cmocka_unit_test(repairs)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -79,10 +79,12 @@ check "F focuses on the point under the cursor (the preset sets camera.focus)" '
 check "U levels the horizon again" 'grep -q "\"roll\":0[,}]" "$tmp/level"'
 
 drive bulb --scene mandelbulb --camera 0.3,0.5,2.2 --look-at 0,0,0 -- \
-    "keydown w" "sleep 4" "keyup w" "save ../bulb-in" "keydown s" "sleep 2" "keyup s" "save ../bulb-out"
+    "keydown w" "sleep 4" "keyup w" "save ../bulb-in" "keydown s" "sleep 2" "keyup s" "save ../bulb-out" "key m" "sleep 10"
 i=$(from "$tmp/bulb-in" 0 0 0)
 o=$(from "$tmp/bulb-out" 0 0 0)
 check "mandelbulb: W flies in ($i m from the centre, from 2.28)" '! ge "$i" 1.6'
+glb=$(ls "$tmp/bulb"/fathom-*.glb 2>/dev/null | head -n 1)
+check "mandelbulb: M saves the surface as a mesh (${glb##*/})" '[ -n "$glb" ] && [ "$(head -c 4 "$glb")" = glTF ]'
 check "mandelbulb: S backs out again ($o m)" 'ge "$o" "$(awk -v i="$i" "BEGIN { print i + 0.02 }")"'
 
 drive panel --scene mandelbulb -- "key p" "sleep 4" "key Return" "sleep 1" "type fractal.power=5" "key Return" "sleep 6" \

@@ -1,176 +1,13 @@
 /* mesh — dual contouring of a distance field in layers, sparse by blocks (data/mesh.h). */
-#include "data/mesh.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-enum { CHUNK = 1 << 20, /* points a field call takes at most */
-       MESH_ROUNDS = 6, /* Illinois steps a crossing takes */
-       MESH_PROJECT = 2 /* steps a vertex takes onto the level along its normal */ };
-
-typedef struct crossing {
-    float p[3], n[3];
-} crossing;
-
-typedef struct xbuf { /* the crossings of one plane's x and y edges, or of one slab's z edges */
-    crossing *c;
-    float (*bracket)[9]; /* while resolving: a, fa, b, fb along the edge (a and b as xyz, f after), the side moved last */
-    size_t n, cap;
-} xbuf;
-
-typedef struct ctx {
-    const mesh_grid *g;
-    int n[3];        /* cells along x, y, z */
-    double o[3], h;  /* sample (0, 0, 0) and the cell side */
-    size_t P;        /* samples a layer */
-    float fill;      /* the value of a sample no visited block holds */
-    float *val[3];   /* three sample layers (a cell layer's faces are decided with the next one's cells) */
-    int32_t *xe[3], *ye[3], *ze[2]; /* crossing ids at each sample: its x and y edges in a plane, its z edge in a slab */
-    xbuf plane[3], slab[2];
-    int32_t *first[2]; /* each cell's first vertex (−1: none), two cell layers */
-    uint8_t *cfg[3];   /* each cell's corner signs, three cell layers */
-    uint8_t *flips[2]; /* each cell's faces resolved the other way (mesh_case) */
-    uint8_t *visit[2]; /* blocks visited, two slabs */
-    int visit_slab[2], nb[3];
-    uint8_t *mark;     /* samples of the layer to evaluate */
-    int32_t (*cell_of)[2]; /* the cell (i, j) of each vertex of the cell layer being made */
-    size_t cell_cap;
-    float *pts, *dst;  /* field call buffers */
-    size_t pts_cap;
-    mesh *m;
-    mesh_stats *st;
-} ctx;
-
-double mesh_box_distance(const double lo[3], const double hi[3], const float p[3])
-{
-    double out = 0, in = -1e300;
-    for (int k = 0; k < 3; k++) {
-        double q = fabs(p[k] - 0.5 * (lo[k] + hi[k])) - 0.5 * (hi[k] - lo[k]);
-        out += q > 0 ? q * q : 0;
-        in = fmax(in, q);
-    }
-    return sqrt(out) + fmin(in, 0.0);
-}
-
-static double box_distance(const ctx *c, const float p[3])
-{
-    return mesh_box_distance(c->g->lo, c->g->hi, p);
-}
-
-static void reserve_points(ctx *c, size_t n)
-{
-    if (n <= c->pts_cap)
-        return;
-    c->pts_cap = n + n / 2;
-    c->pts = util_realloc(c->pts, c->pts_cap * 3 * sizeof(float), "mesh probe points");
-    c->dst = util_realloc(c->dst, c->pts_cap * sizeof(float), "mesh probe values");
-}
-
-/* The clipped field at the n points in c->pts, into c->dst. raw: the field alone (the bound test). */
-static bool eval(ctx *c, size_t n, bool raw, err_t *err)
-{
-    for (size_t at = 0; at < n; at += CHUNK) {
-        size_t k = n - at < CHUNK ? n - at : CHUNK;
-        if (!c->g->field(c->g->user, c->pts + 3 * at, k, c->dst + at, err))
-            return false;
-    }
-    for (size_t i = 0; i < n && !raw; i++) {
-        double f = (double)c->dst[i] - c->g->iso, b = box_distance(c, c->pts + 3 * i);
-        c->dst[i] = (float)(isnan(f) ? b : fmax(f, b)); /* NaN: outside (a field's guard failed: not a surface) */
-    }
-    return true;
-}
-
-/* Which blocks of slab s the surface may cross: the box's distance, then the field's bound, at each
- * block's centre against its half diagonal. */
-static bool slab_blocks(ctx *c, int s, uint8_t *visit, err_t *err)
-{
-    double r = MESH_BLOCK * c->h * sqrt(3.0) / 2 * 1.001;
-    size_t nb = (size_t)c->nb[0] * (size_t)c->nb[1], m = 0;
-    reserve_points(c, nb);
-    int32_t *slot = util_alloc(nb * sizeof *slot, "mesh blocks");
-    for (int by = 0; by < c->nb[1]; by++)
-        for (int bx = 0; bx < c->nb[0]; bx++) {
-            size_t b = (size_t)by * (size_t)c->nb[0] + (size_t)bx;
-            int id[3] = {bx, by, s};
-            float centre[3];
-            for (int k = 0; k < 3; k++) {
-                double lo = id[k] * MESH_BLOCK, hi = fmin(lo + MESH_BLOCK, c->n[k]);
-                centre[k] = (float)(c->o[k] + 0.5 * (lo + hi) * c->h);
-            }
-            visit[b] = box_distance(c, centre) <= r;
-            slot[b] = -1;
-            if (visit[b] && c->g->step > 0) {
-                memcpy(c->pts + 3 * m, centre, sizeof centre);
-                slot[b] = (int32_t)m++;
-            }
-        }
-    bool ok = eval(c, m, true, err);
-    for (size_t b = 0; ok && b < nb; b++) {
-        if (slot[b] >= 0)
-            visit[b] = !((c->dst[slot[b]] - c->g->iso) * c->g->step > r);
-        c->st->blocks++;
-        c->st->skipped += !visit[b];
-    }
-    free(slot);
-    return ok;
-}
-
-static bool blocks_of(ctx *c, int s, const uint8_t **out, err_t *err)
-{
-    for (int i = 0; i < 2; i++)
-        if (c->visit_slab[i] == s) {
-            *out = c->visit[i];
-            return true;
-        }
-    int i = c->visit_slab[0] < c->visit_slab[1] ? 0 : 1; /* the older slab's slot */
-    c->visit_slab[i] = s;
-    *out = c->visit[i];
-    return slab_blocks(c, s, c->visit[i], err);
-}
-
-/* Sample layer k: every sample of a visited block evaluated, the rest filled. */
-static bool sample_layer(ctx *c, int k, err_t *err)
-{
-    int nx = c->n[0], ny = c->n[1], W = nx + 1;
-    memset(c->mark, 0, c->P);
-    for (int s = k / MESH_BLOCK - (k % MESH_BLOCK == 0); s <= k / MESH_BLOCK; s++) {
-        if (s < 0 || s >= c->nb[2])
-            continue;
-        const uint8_t *visit;
-        if (!blocks_of(c, s, &visit, err))
-            return false;
-        for (int by = 0; by < c->nb[1]; by++)
-            for (int bx = 0; bx < c->nb[0]; bx++) {
-                if (!visit[(size_t)by * (size_t)c->nb[0] + (size_t)bx])
-                    continue;
-                int x1 = bx * MESH_BLOCK + MESH_BLOCK, y1 = by * MESH_BLOCK + MESH_BLOCK;
-                for (int j = by * MESH_BLOCK; j <= (y1 < ny ? y1 : ny); j++)
-                    memset(c->mark + (size_t)j * (size_t)W + (size_t)bx * MESH_BLOCK, 1,
-                           (size_t)((x1 < nx ? x1 : nx) - bx * MESH_BLOCK + 1));
-            }
-    }
-    size_t m = 0;
-    reserve_points(c, c->P);
-    for (size_t i = 0; i < c->P; i++)
-        if (c->mark[i]) {
-            float *p = c->pts + 3 * m++;
-            p[0] = (float)(c->o[0] + (double)(i % (size_t)W) * c->h);
-            p[1] = (float)(c->o[1] + (double)(i / (size_t)W) * c->h);
-            p[2] = (float)(c->o[2] + k * c->h);
-        }
-    if (!eval(c, m, false, err))
-        return false;
-    float *v = c->val[k % 3];
-    for (size_t i = 0, at = 0; i < c->P; i++)
-        v[i] = c->mark[i] ? c->dst[at++] : c->fill;
-    c->st->evaluated += (long long)m;
-    return true;
-}
+#include "data/mesh_internal.h"
 
 /* A crossing on the edge from a to b (values fa, fb of opposite signs), by linear interpolation. */
-static int32_t add_crossing(ctx *c, xbuf *x, const double a[3], float fa, const double b[3], float fb)
+static int32_t add_crossing(mesh_ctx *c, xbuf *x, const double a[3], float fa, const double b[3], float fb)
 {
     if (x->n == x->cap) {
         x->cap = x->cap ? 2 * x->cap : 4096;
@@ -195,14 +32,14 @@ static int32_t add_crossing(ctx *c, xbuf *x, const double a[3], float fa, const 
 /* Each crossing located by the Illinois variant of regula falsi (Dowell & Jarratt 1971: the end kept
  * twice in a row has its value halved, so a curved field converges too), then its normal by central
  * differences. */
-static bool resolve(ctx *c, xbuf *x, err_t *err)
+static bool resolve(mesh_ctx *c, xbuf *x, err_t *err)
 {
     size_t n = x->n;
-    reserve_points(c, 6 * n);
+    mesh_reserve(c, 6 * n);
     for (int round = 0; round < MESH_ROUNDS; round++) {
         for (size_t i = 0; i < n; i++)
             memcpy(c->pts + 3 * i, x->c[i].p, sizeof x->c[i].p);
-        if (!eval(c, n, false, err))
+        if (!mesh_eval(c, n, false, err))
             return false;
         for (size_t i = 0; i < n; i++) {
             float *br = x->bracket[i], fq = c->dst[i];
@@ -224,7 +61,7 @@ static bool resolve(ctx *c, xbuf *x, err_t *err)
             memcpy(p, x->c[i].p, sizeof(float) * 3);
             p[d / 2] += d & 1 ? -e : e;
         }
-    if (!eval(c, 6 * n, false, err))
+    if (!mesh_eval(c, 6 * n, false, err))
         return false;
     for (size_t i = 0; i < n; i++) {
         const float *f = c->dst + 6 * i;
@@ -236,15 +73,38 @@ static bool resolve(ctx *c, xbuf *x, err_t *err)
     return true;
 }
 
-static void sample_pos(const ctx *c, int i, int j, int k, double p[3])
+/* An edge whose ends have one sign and values summing below a voxel over the step factor may hold a
+ * feature thinner than a voxel (its ends both within a voxel of a surface): its midpoint is checked. */
+static void thin_candidate(mesh_ctx *c, const double a[3], float fa, const double b[3], float fb)
 {
-    p[0] = c->o[0] + i * c->h;
-    p[1] = c->o[1] + j * c->h;
-    p[2] = c->o[2] + k * c->h;
+    if (!(fabsf(fa) + fabsf(fb) < c->h / (c->g->step > 0 ? c->g->step : 1)) || fa == c->fill || fb == c->fill)
+        return;
+    if (c->mid_n == c->mid_cap) {
+        c->mid_cap = c->mid_cap ? 2 * c->mid_cap : 4096;
+        c->mid = util_realloc(c->mid, c->mid_cap * sizeof *c->mid, "mesh thin features");
+    }
+    float *m = c->mid[c->mid_n++];
+    for (int k = 0; k < 3; k++)
+        m[k] = (float)(0.5 * (a[k] + b[k]));
+    m[3] = fa < 0 ? -1.0f : 1.0f;
+}
+
+/* The candidates' midpoints evaluated: those of the other sign are features the grid misses. */
+static bool thin_check(mesh_ctx *c, err_t *err)
+{
+    mesh_reserve(c, c->mid_n);
+    for (size_t i = 0; i < c->mid_n; i++)
+        memcpy(c->pts + 3 * i, c->mid[i], 3 * sizeof(float));
+    if (!mesh_eval(c, c->mid_n, false, err))
+        return false;
+    for (size_t i = 0; i < c->mid_n; i++)
+        c->st->thin += (c->dst[i] < 0) != (c->mid[i][3] < 0);
+    c->mid_n = 0;
+    return true;
 }
 
 /* The crossings of plane k's x and y edges. */
-static bool plane_crossings(ctx *c, int k, err_t *err)
+static bool plane_crossings(mesh_ctx *c, int k, err_t *err)
 {
     int W = c->n[0] + 1;
     xbuf *x = &c->plane[k % 3];
@@ -255,22 +115,28 @@ static bool plane_crossings(ctx *c, int k, err_t *err)
         for (int i = 0; i <= c->n[0]; i++) {
             size_t s = (size_t)j * (size_t)W + (size_t)i;
             double a[3], b[3];
-            sample_pos(c, i, j, k, a);
+            mesh_sample_pos(c, i, j, k, a);
             xe[s] = ye[s] = -1;
-            if (i < c->n[0] && (v[s] < 0) != (v[s + 1] < 0)) {
-                sample_pos(c, i + 1, j, k, b);
-                xe[s] = add_crossing(c, x, a, v[s], b, v[s + 1]);
+            if (i < c->n[0]) {
+                mesh_sample_pos(c, i + 1, j, k, b);
+                if ((v[s] < 0) != (v[s + 1] < 0))
+                    xe[s] = add_crossing(c, x, a, v[s], b, v[s + 1]);
+                else
+                    thin_candidate(c, a, v[s], b, v[s + 1]);
             }
-            if (j < c->n[1] && (v[s] < 0) != (v[s + (size_t)W] < 0)) {
-                sample_pos(c, i, j + 1, k, b);
-                ye[s] = add_crossing(c, x, a, v[s], b, v[s + (size_t)W]);
+            if (j < c->n[1]) {
+                mesh_sample_pos(c, i, j + 1, k, b);
+                if ((v[s] < 0) != (v[s + (size_t)W] < 0))
+                    ye[s] = add_crossing(c, x, a, v[s], b, v[s + (size_t)W]);
+                else
+                    thin_candidate(c, a, v[s], b, v[s + (size_t)W]);
             }
         }
-    return resolve(c, x, err);
+    return resolve(c, x, err) && thin_check(c, err);
 }
 
 /* The crossings of the z edges between planes k and k + 1. */
-static bool slab_crossings(ctx *c, int k, err_t *err)
+static bool slab_crossings(mesh_ctx *c, int k, err_t *err)
 {
     int W = c->n[0] + 1;
     xbuf *x = &c->slab[k % 2];
@@ -281,18 +147,19 @@ static bool slab_crossings(ctx *c, int k, err_t *err)
         for (int i = 0; i <= c->n[0]; i++) {
             size_t s = (size_t)j * (size_t)W + (size_t)i;
             ze[s] = -1;
-            if ((v0[s] < 0) != (v1[s] < 0)) {
-                double a[3], b[3];
-                sample_pos(c, i, j, k, a);
-                sample_pos(c, i, j, k + 1, b);
+            double a[3], b[3];
+            mesh_sample_pos(c, i, j, k, a);
+            mesh_sample_pos(c, i, j, k + 1, b);
+            if ((v0[s] < 0) != (v1[s] < 0))
                 ze[s] = add_crossing(c, x, a, v0[s], b, v1[s]);
-            }
+            else
+                thin_candidate(c, a, v0[s], b, v1[s]);
         }
-    return resolve(c, x, err);
+    return resolve(c, x, err) && thin_check(c, err);
 }
 
 /* Cell (i, j, k)'s edge e: its crossing. */
-static const crossing *edge_crossing(const ctx *c, int i, int j, int k, int e)
+static const crossing *edge_crossing(const mesh_ctx *c, int i, int j, int k, int e)
 {
     int a = e / 4, u = e & 1, v = e >> 1 & 1, W = c->n[0] + 1;
     int32_t id;
@@ -307,7 +174,7 @@ static const crossing *edge_crossing(const ctx *c, int i, int j, int k, int e)
 }
 
 /* Patch p of cell (i, j, k) (corner lo): its vertex by the quadric of its crossings, its normal their mean. */
-static void patch_vertex(ctx *c, const mesh_cell_case *kc, int p, int i, int j, int k, const double lo[3])
+static void patch_vertex(mesh_ctx *c, const mesh_cell_case *kc, int p, int i, int j, int k, const double lo[3])
 {
     float pt[12][3], nm[12][3], sum[3] = {0, 0, 0}, out[3];
     int n = 0;
@@ -330,7 +197,7 @@ static void patch_vertex(ctx *c, const mesh_cell_case *kc, int p, int i, int j, 
 }
 
 /* Cell layer k's corner signs (between sample layers k and k + 1). */
-static void cell_configs(ctx *c, int k)
+static void cell_configs(mesh_ctx *c, int k)
 {
     int W = c->n[0] + 1;
     for (int j = 0; j < c->n[1]; j++)
@@ -346,7 +213,7 @@ static void cell_configs(ctx *c, int k)
 
 /* Cell (i, j, k)'s faces to flip: those whose two segments one patch holds on both sides (mesh_case).
  * Needs cell layers k − 1 and k + 1's corner signs. */
-static int flips_of(const ctx *c, int i, int j, int k)
+static int flips_of(const mesh_ctx *c, int i, int j, int k)
 {
     const uint8_t *here = c->cfg[k % 3];
     size_t nx = (size_t)c->n[0], cell = (size_t)j * nx + (size_t)i;
@@ -366,19 +233,19 @@ static int flips_of(const ctx *c, int i, int j, int k)
 /* The vertices of cell layer k (from first on) moved onto the level along their normals, MESH_PROJECT
  * steps of the field's value, each kept in its cell: where the quadric's point is off a curved or
  * rough level (a fractal's), the vertex lands on it; where it is on it (a sharp edge), nothing moves. */
-static bool project(ctx *c, int k, size_t first, err_t *err)
+static bool project(mesh_ctx *c, int k, size_t first, err_t *err)
 {
     size_t n = c->m->nv - first;
-    reserve_points(c, n);
+    mesh_reserve(c, n);
     for (int round = 0; round < MESH_PROJECT && n; round++) {
         memcpy(c->pts, c->m->pos + 3 * first, n * 3 * sizeof(float));
-        if (!eval(c, n, false, err))
+        if (!mesh_eval(c, n, false, err))
             return false;
         for (size_t v = 0; v < n; v++) {
             float *p = c->m->pos + 3 * (first + v);
             const float *nm = c->m->nrm + 3 * (first + v);
             double lo[3];
-            sample_pos(c, c->cell_of[v][0], c->cell_of[v][1], k, lo);
+            mesh_sample_pos(c, c->cell_of[v][0], c->cell_of[v][1], k, lo);
             for (int d = 0; d < 3; d++)
                 p[d] = (float)fmin(fmax(p[d] - c->dst[v] * nm[d], lo[d]), lo[d] + c->h);
         }
@@ -387,7 +254,7 @@ static bool project(ctx *c, int k, size_t first, err_t *err)
 }
 
 /* Cell layer k (between planes k and k + 1): a vertex for each patch of each cell. */
-static bool cell_layer(ctx *c, int k, err_t *err)
+static bool cell_layer(mesh_ctx *c, int k, err_t *err)
 {
     size_t first = c->m->nv;
     for (int j = 0; j < c->n[1]; j++)
@@ -401,7 +268,7 @@ static bool cell_layer(ctx *c, int k, err_t *err)
                 continue;
             c->first[k & 1][cell] = (int32_t)c->m->nv;
             double lo[3];
-            sample_pos(c, i, j, k, lo);
+            mesh_sample_pos(c, i, j, k, lo);
             for (int p = 0; p < kc->patches; p++) {
                 size_t v = c->m->nv - first;
                 if (v == c->cell_cap) {
@@ -418,7 +285,7 @@ static bool cell_layer(ctx *c, int k, err_t *err)
 
 /* The quad of the edge along axis a at sample (i, j) of plane or slab k: the four cells around it,
  * counter-clockwise seen from +a, reversed when the edge runs from outside to inside. */
-static void quad(ctx *c, int a, int i, int j, int k, bool inside_first)
+static void quad(mesh_ctx *c, int a, int i, int j, int k, bool inside_first)
 {
     static const int ring[4][2] = {{-1, -1}, {0, -1}, {0, 0}, {-1, 0}};
     uint32_t v[4];
@@ -446,7 +313,7 @@ static void quad(ctx *c, int a, int i, int j, int k, bool inside_first)
 }
 
 /* The quads of slab k's z edges and, k > 0, of plane k's x and y edges. */
-static void quads(ctx *c, int k)
+static void quads(mesh_ctx *c, int k)
 {
     int W = c->n[0] + 1;
     for (int j = 0; j <= c->n[1]; j++) /* (the outermost samples lie outside the box: no crossing has a side */
@@ -464,7 +331,7 @@ static void quads(ctx *c, int k)
         }
 }
 
-static void ctx_free(ctx *c)
+static void ctx_free(mesh_ctx *c)
 {
     for (int i = 0; i < 3; i++) {
         free(c->val[i]);
@@ -484,11 +351,12 @@ static void ctx_free(ctx *c)
     }
     free(c->mark);
     free(c->cell_of);
+    free(c->mid);
     free(c->pts);
     free(c->dst);
 }
 
-static bool ctx_init(ctx *c, const mesh_grid *g, mesh *out, mesh_stats *st, err_t *err)
+static bool ctx_init(mesh_ctx *c, const mesh_grid *g, mesh *out, mesh_stats *st, err_t *err)
 {
     double ext = 0;
     for (int k = 0; k < 3; k++) {
@@ -499,7 +367,7 @@ static bool ctx_init(ctx *c, const mesh_grid *g, mesh *out, mesh_stats *st, err_
     if (g->res < 2 || g->res > MESH_MAX_RES)
         return err_set(err, "mesh: resolution %d is out of range: 2 to %d cells along the longest side", g->res,
                        MESH_MAX_RES);
-    *c = (ctx){.g = g, .h = ext / g->res, .m = out, .st = st, .visit_slab = {-1, -1}};
+    *c = (mesh_ctx){.g = g, .h = ext / g->res, .m = out, .st = st, .visit_slab = {-1, -1}};
     for (int k = 0; k < 3; k++) { /* a cell of margin on each side: the outermost samples lie outside the box */
         c->n[k] = (int)ceil((g->hi[k] - g->lo[k]) / c->h - 1e-9) + 2;
         c->o[k] = g->lo[k] - c->h;
@@ -527,25 +395,25 @@ static bool ctx_init(ctx *c, const mesh_grid *g, mesh *out, mesh_stats *st, err_
     return true;
 }
 
-static size_t ctx_bytes(const ctx *c)
+static size_t ctx_bytes(const mesh_ctx *c)
 {
     size_t cells = (size_t)c->n[0] * (size_t)c->n[1], blocks = (size_t)c->nb[0] * (size_t)c->nb[1];
     size_t fixed = 3 * (c->P * 12 + cells) + 2 * (c->P * 4 + cells * 5 + blocks) + c->P;
     size_t xb = (c->plane[0].cap + c->plane[1].cap + c->plane[2].cap + c->slab[0].cap + c->slab[1].cap) *
                 (sizeof(crossing) + sizeof(float[9]));
-    return fixed + xb + c->pts_cap * 16;
+    return fixed + xb + c->pts_cap * 16 + c->mid_cap * sizeof(float[4]) + c->cell_cap * sizeof(int32_t[2]);
 }
 
 bool mesh_extract(const mesh_grid *g, mesh *out, mesh_stats *st, err_t *err)
 {
     mesh_free(out);
     *st = (mesh_stats){0};
-    ctx c;
+    mesh_ctx c;
     if (!ctx_init(&c, g, out, st, err))
         return false;
     bool ok = true;
     for (int k = 0; ok && k <= c.n[2]; k++) { /* sample layer k; cell layer k − 1's corners; cell layer k − 2 meshed */
-        ok = sample_layer(&c, k, err) && plane_crossings(&c, k, err) && (k == 0 || slab_crossings(&c, k - 1, err));
+        ok = mesh_sample_layer(&c, k, err) && plane_crossings(&c, k, err) && (k == 0 || slab_crossings(&c, k - 1, err));
         if (ok && k >= 1)
             cell_configs(&c, k - 1);
         if (ok && k >= 2) {

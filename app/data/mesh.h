@@ -16,6 +16,9 @@
  *    eigenvalues truncated, Lindstrom 2000) and kept in its cell: sharp edges and corners stay sharp.
  *  - Crossings: on each edge whose samples differ in sign, found by linear interpolation and one step
  *    of regula falsi; normals by central differences of the field there.
+ *  - Thin features: an edge whose ends share a sign but lie within a voxel of the surface together has
+ *    its midpoint evaluated; where that has the other sign, a feature thinner than a voxel is missed
+ *    (counted: the caller reports it).
  *  - Faces: one quad per crossing edge, joining the four cells around it, split along its shorter
  *    diagonal, wound so normals point out (negative is inside).
  * The field is a callback, so the same code meshes a closed form in the tests and the scene's own
@@ -62,6 +65,8 @@ typedef struct mesh_stats {
     long long crossings;        /* edges the surface crosses */
     long long unbounded;        /* crossings with a skipped sample: the field's bound was wrong there */
     long long clamped;          /* vertices whose quadric's point fell outside the cell (kept inside) */
+    long long thin;             /* edges whose ends agree in sign and whose midpoint does not: a feature
+                                   thinner than a voxel the grid misses there */
     size_t peak_bytes;          /* the most the extraction's own arrays held (the mesh aside) */
 } mesh_stats;
 
@@ -90,6 +95,15 @@ typedef struct mesh_topology {
 
 /* Checks m (no change to it). */
 void mesh_check(const mesh *m, mesh_topology *t);
+/* Drops faces that repeat another's corners (a simplification's collapsed slivers: two faces back to
+ * back) and faces with a repeated corner; the number dropped. */
+long long mesh_drop_fins(mesh *m);
+/* A vertex whose faces form several fans (joined across edges of exactly two faces, one each way) gets
+ * a copy for each fan past the first: sheets that touch at a vertex or along an edge part there. The
+ * number of vertices added. */
+long long mesh_split_pinches(mesh *m);
+/* Closes each loop of open edges with a fan of triangles; the number of holes filled. */
+long long mesh_fill_holes(mesh *m);
 /* Keeps only the largest component (by faces); the number of components dropped. */
 long long mesh_keep_largest(mesh *m);
 

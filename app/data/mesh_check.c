@@ -257,3 +257,154 @@ long long mesh_keep_largest(mesh *m)
     free(parent);
     return shells > 1 ? shells - 1 : 0;
 }
+
+static int cmp_face(const void *a, const void *b)
+{
+    const uint32_t *x = a, *y = b;
+    for (int k = 0; k < 4; k++)
+        if (x[k] != y[k])
+            return x[k] < y[k] ? -1 : 1;
+    return 0;
+}
+
+long long mesh_drop_fins(mesh *m)
+{
+    /* each face as its sorted corners and its index; faces with the same corners come in twos (a fin:
+     * the two sides of a collapsed sliver) or more: all of them go */
+    uint32_t (*key)[4] = util_alloc((m->nt ? m->nt : 1) * sizeof *key, "mesh fins");
+    for (size_t f = 0; f < m->nt; f++) {
+        uint32_t a = m->tri[3 * f], b = m->tri[3 * f + 1], c = m->tri[3 * f + 2], t;
+        if (a > b) t = a, a = b, b = t;
+        if (b > c) t = b, b = c, c = t;
+        if (a > b) t = a, a = b, b = t;
+        key[f][0] = a, key[f][1] = b, key[f][2] = c, key[f][3] = (uint32_t)f;
+    }
+    qsort(key, m->nt, sizeof *key, cmp_face);
+    uint8_t *drop = util_calloc(m->nt ? m->nt : 1, 1, "mesh fins");
+    long long dropped = 0;
+    for (size_t i = 0; i < m->nt;) {
+        size_t j = i;
+        while (j < m->nt && !memcmp(key[j], key[i], 3 * sizeof(uint32_t)))
+            j++;
+        bool degenerate = key[i][0] == key[i][1] || key[i][1] == key[i][2];
+        for (size_t k = i; k < j && (j - i > 1 || degenerate); k++, dropped++)
+            drop[key[k][3]] = 1;
+        i = j;
+    }
+    size_t n = 0;
+    for (size_t f = 0; f < m->nt; f++)
+        if (!drop[f])
+            memmove(m->tri + 3 * n++, m->tri + 3 * f, 3 * sizeof(uint32_t));
+    m->nt = n;
+    free(drop);
+    free(key);
+    return dropped;
+}
+
+/* Whether the directed edge at e[i] is one of a manifold pair: it alone from a to b, and one face from
+ * b to a. */
+static const dedge *manifold_reverse(const dedge *e, size_t ne, uint64_t key)
+{
+    const dedge *d = find_edge(e, ne, key);
+    if (!d || (d + 1 < e + ne && d[1].key == key))
+        return NULL;
+    uint64_t rev = (key & 0xffffffffu) << 32 | key >> 32;
+    const dedge *r = find_edge(e, ne, rev);
+    return r && !(r + 1 < e + ne && r[1].key == rev) ? r : NULL;
+}
+
+long long mesh_split_pinches(mesh *m)
+{
+    size_t ne = 3 * m->nt;
+    dedge *e = util_alloc((ne ? ne : 1) * sizeof *e, "mesh pinches");
+    for (size_t f = 0; f < m->nt; f++)
+        for (int i = 0; i < 3; i++)
+            e[3 * f + (size_t)i] = (dedge){(uint64_t)m->tri[3 * f + (size_t)i] << 32 | m->tri[3 * f + (size_t)(i + 1) % 3], f};
+    qsort(e, ne, sizeof *e, cmp_dedge);
+    size_t *parent = util_alloc((ne ? ne : 1) * sizeof *parent, "mesh pinches");
+    for (size_t c = 0; c < ne; c++)
+        parent[c] = c;
+    for (size_t f = 0; f < m->nt; f++) /* corners at v joined across v's manifold edges only */
+        for (int i = 0; i < 3; i++) {
+            uint32_t v = m->tri[3 * f + (size_t)i], next = m->tri[3 * f + (size_t)(i + 1) % 3];
+            const dedge *o = manifold_reverse(e, ne, (uint64_t)v << 32 | next);
+            for (int j = 0; o && j < 3; j++)
+                if (m->tri[3 * o->tri + (size_t)j] == v)
+                    join(parent, 3 * f + (size_t)i, 3 * o->tri + (size_t)j);
+        }
+    size_t *first = util_alloc((m->nv ? m->nv : 1) * sizeof *first, "mesh pinches");
+    for (size_t v = 0; v < m->nv; v++)
+        first[v] = SIZE_MAX;
+    uint32_t *copy = util_alloc((ne ? ne : 1) * sizeof *copy, "mesh pinches"); /* a fan's vertex, by its root */
+    long long added = 0;
+    for (size_t c = 0; c < ne; c++) {
+        uint32_t v = m->tri[c];
+        size_t r = root(parent, c);
+        if (first[v] == SIZE_MAX)
+            first[v] = r;
+        if (first[v] == r) {
+            copy[r] = v;
+        } else if (c == r) { /* another fan's first corner (a set's root is its smallest corner) */
+            float p[3], n[3];
+            memcpy(p, m->pos + 3 * (size_t)v, sizeof p);
+            memcpy(n, m->nrm + 3 * (size_t)v, sizeof n);
+            copy[r] = mesh_add_vertex(m, p, n);
+            added++;
+        }
+    }
+    for (size_t c = 0; c < ne; c++) /* every corner to its fan's vertex */
+        m->tri[c] = copy[root(parent, c)];
+    free(copy);
+    free(first);
+    free(parent);
+    free(e);
+    return added;
+}
+
+long long mesh_fill_holes(mesh *m)
+{
+    size_t ne = 3 * m->nt;
+    uint64_t *e = util_alloc((ne ? ne : 1) * sizeof *e, "mesh holes");
+    for (size_t i = 0; i < ne; i++)
+        e[i] = (uint64_t)m->tri[i] << 32 | m->tri[i / 3 * 3 + (i + 1) % 3];
+    qsort(e, ne, sizeof *e, cmp_u64);
+    uint64_t *open = util_alloc((ne ? ne : 1) * sizeof *open, "mesh holes"); /* a → b with no b → a, by a */
+    size_t no = 0;
+    for (size_t i = 0; i < ne; i++) {
+        uint64_t rev = (e[i] & 0xffffffffu) << 32 | e[i] >> 32;
+        if (!bsearch(&rev, e, ne, sizeof *e, cmp_u64))
+            open[no++] = e[i];
+    }
+    uint8_t *used = util_calloc(no ? no : 1, 1, "mesh holes");
+    uint32_t *loop = util_alloc((no ? no : 1) * sizeof *loop, "mesh holes");
+    long long filled = 0;
+    for (size_t s = 0; s < no; s++) {
+        size_t n = 0, at = s;
+        while (!used[at]) { /* follow the open edges from a to b, then from b on */
+            used[at] = 1;
+            loop[n++] = (uint32_t)(open[at] >> 32);
+            uint64_t from = open[at] & 0xffffffffu, key = from << 32;
+            size_t lo = 0, hi = no;
+            while (lo < hi) { /* the first open edge leaving b */
+                size_t mid = (lo + hi) / 2;
+                if (open[mid] < key)
+                    lo = mid + 1;
+                else
+                    hi = mid;
+            }
+            while (lo < no && open[lo] >> 32 == from && used[lo])
+                lo++;
+            if (lo == no || open[lo] >> 32 != from)
+                break;
+            at = lo;
+        }
+        for (size_t i = 1; n >= 3 && i + 1 < n; i++) /* the hole fanned from its first corner, wound against its rim */
+            mesh_add_triangle(m, loop[0], loop[i + 1], loop[i]);
+        filled += n >= 3;
+    }
+    free(loop);
+    free(used);
+    free(open);
+    free(e);
+    return filled;
+}

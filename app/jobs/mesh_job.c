@@ -16,7 +16,7 @@
 #include "gpu/render_probe.h"
 #include "scene/scene.h"
 
-enum { DEFAULT_RES = 256, DEFAULT_DEM_RES = 2048, BAR_WIDTH = 30 };
+enum { DEFAULT_RES = MESH_JOB_DEFAULT_RES, DEFAULT_DEM_RES = 2048, BAR_WIDTH = 30 };
 
 typedef struct job {
     const mesh_desc *d;
@@ -152,6 +152,9 @@ static bool mesh_field(job *j, mesh *m, double *voxel, float *iso, err_t *err)
            st.cells[0], st.cells[1], st.cells[2], st.voxel, box[0], box[1], box[2], box[3], box[4], box[5],
            d->has_box ? "" : ", the default: --box to choose", (double)g.iso, st.evaluated, st.samples, st.skipped,
            st.blocks, st.crossings, (double)st.peak_bytes / 1e6);
+    if (st.thin)
+        printf("thin: %lld edges cross the surface twice within a voxel: features thinner than a voxel are lost there "
+               "(raise --resolution)\n", st.thin);
     if (st.unbounded)
         printf("note: %lld crossings met a sample the field's bound had skipped: its distance bound is wrong there "
                "(the mesh is closed; lower quality.step_factor for the exact surface)\n", st.unbounded);
@@ -212,6 +215,65 @@ static void place(const mesh_desc *d, mesh *m)
         printf("print: scaled by %.6g, the longest side %.4g mm%s\n", scale, d->print_mm, z_up ? ", +Z up" : "");
 }
 
+static void copy_mesh(mesh *to, const mesh *from)
+{
+    mesh_free(to);
+    for (size_t v = 0; v < from->nv; v++)
+        mesh_add_vertex(to, from->pos + 3 * v, from->nrm + 3 * v);
+    for (size_t f = 0; f < from->nt; f++)
+        mesh_add_triangle(to, from->tri[3 * f], from->tri[3 * f + 1], from->tri[3 * f + 2]);
+}
+
+/* Toward d->triangles within the tolerance; meshoptimizer's collapses keep no promise of a manifold, so
+ * faces folded back to back are dropped and vertices where sheets came to touch are parted; a result
+ * still not closed and manifold is tried again with a quarter more triangles (up to 8 times), and the
+ * mesh is kept whole if none is. */
+static bool simplify(const mesh_desc *d, mesh *m, double unit, bool field_scene, err_t *err)
+{
+    double tol = (d->tolerance > 0 ? d->tolerance : 1.0) * unit, e = 0;
+    const char *u = field_scene ? "voxels" : "texels";
+    mesh whole = {0}, t = {0};
+    copy_mesh(&whole, m);
+    size_t target = d->triangles;
+    mesh_topology top = {0};
+    long long fins = 0, pinches = 0, holes = 0;
+    bool failed = false;
+    for (int round = 0; round < 8 && target < whole.nt; round++, target += target / 4) {
+        copy_mesh(&t, &whole);
+        if ((failed = !mesh_io_simplify(&t, target, tol, &e, err)))
+            break;
+        fins = mesh_drop_fins(&t);
+        mesh_check(&t, &top);
+        if (!top.closed_manifold) { /* sheets touching: parted at their vertices; holes left: closed */
+            pinches = mesh_split_pinches(&t);
+            mesh_check(&t, &top);
+            holes = top.open_edges ? mesh_fill_holes(&t) : 0;
+            if (holes)
+                mesh_check(&t, &top);
+        }
+        if (top.closed_manifold)
+            break;
+    }
+    bool ok = top.closed_manifold;
+    if (ok) {
+        mesh_free(m);
+        *m = t;
+        t = (mesh){0};
+        printf("simplified: toward %zu triangles within %.4g (%.3g %s): %zu%s, deviation %.4g (%.3f %s)\n", d->triangles,
+               tol, tol / unit, u, m->nt, target > d->triangles ? " (more than asked: fewer broke the manifold)" : "", e,
+               e / unit, u);
+        if (fins || pinches || holes)
+            printf("repaired: %lld faces back to back dropped, %lld vertices where sheets touched parted, %lld holes "
+                   "closed\n", fins, pinches, holes);
+    } else if (!failed) {
+        printf("simplified: no simplification toward %zu triangles within %.3g %s stayed closed and manifold: the mesh "
+               "is kept whole\n", d->triangles, tol / unit, u);
+    }
+    mesh_free(&t);
+    mesh_free(&whole);
+    return !failed;
+}
+
 static bool finish(job *j, mesh *m, double unit, float iso, bool field_scene, err_t *err)
 {
     const mesh_desc *d = j->d;
@@ -224,11 +286,8 @@ static bool finish(job *j, mesh *m, double unit, float iso, bool field_scene, er
         printf("one shell: %lld smaller piece%s dropped\n", dropped, dropped == 1 ? "" : "s");
     }
     if (d->triangles && d->triangles < m->nt) {
-        double tol = (d->tolerance > 0 ? d->tolerance : 1.0) * unit, e;
-        if (!mesh_io_simplify(m, d->triangles, tol, &e, err))
+        if (!simplify(d, m, unit, field_scene, err))
             return false;
-        printf("simplified: toward %zu triangles within %.4g (%.3g %s): %zu, deviation %.4g (%.3f %s)\n", d->triangles,
-               tol, tol / unit, field_scene ? "voxels" : "texels", m->nt, e, e / unit, field_scene ? "voxels" : "texels");
         describe(m, "mesh");
         if (field_scene && vertex_error(j, m, iso, unit, &worst, &mean, err))
             printf("error: vertices within %.3f voxels of the surface by the field (mean %.3f)\n", worst, mean);
@@ -245,6 +304,22 @@ static bool finish(job *j, mesh *m, double unit, float iso, bool field_scene, er
     return true;
 }
 
+bool mesh_job_scene(const mesh_desc *d, const scene *s, err_t *err)
+{
+    const char *exporter;
+    if (!mesh_io_format(d->output, &exporter, err))
+        return false;
+    job j = {.d = d, .s = s, .t0 = util_now()};
+    mesh m = {0};
+    double unit = 0;
+    float iso = 0;
+    bool ok = s->terrain.heightmap[0] != '\0' ? mesh_terrain(&j, &m, &unit, err) && finish(&j, &m, unit, 0, false, err)
+                                              : mesh_field(&j, &m, &unit, &iso, err) && finish(&j, &m, unit, iso, true, err);
+    mesh_free(&m);
+    free(j.out);
+    return ok;
+}
+
 bool mesh_job_run(const mesh_desc *d, err_t *err)
 {
     const char *exporter;
@@ -253,24 +328,14 @@ bool mesh_job_run(const mesh_desc *d, err_t *err)
     scene s;
     if (!scene_load(d->scene, d->sets, d->set_count, &s, err))
         return false;
-    job j = {.d = d, .s = &s, .t0 = util_now()};
-    mesh m = {0};
-    double unit = 0;
-    float iso = 0;
-    bool dem = s.terrain.heightmap[0] != '\0', ok;
-    if (dem) {
-        ok = mesh_terrain(&j, &m, &unit, err) && finish(&j, &m, unit, 0, false, err);
-    } else {
-        ok = gpu_open(&(gpu_desc){.headless = true}, err);
-        if (ok) {
-            ok = render_init(err) && render_set_scene(&s, NULL, err) && mesh_field(&j, &m, &unit, &iso, err) &&
-                 finish(&j, &m, unit, iso, true, err);
-            render_shutdown();
-            gpu_close();
-        }
+    bool ok = true;
+    if (s.terrain.heightmap[0]) { /* a DEM solid: no GL */
+        ok = mesh_job_scene(d, &s, err);
+    } else if ((ok = gpu_open(&(gpu_desc){.headless = true}, err))) {
+        ok = render_init(err) && render_set_scene(&s, NULL, err) && mesh_job_scene(d, &s, err);
+        render_shutdown();
+        gpu_close();
     }
-    mesh_free(&m);
-    free(j.out);
     scene_free(&s);
     return ok;
 }

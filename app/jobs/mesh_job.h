@@ -16,6 +16,8 @@
 
 #include "util.h"
 
+enum { MESH_JOB_DEFAULT_RES = 256 }; /* cells along the box's longest side when none is given */
+
 typedef struct mesh_desc {
     const char *scene;
     const char *const *sets;
@@ -32,6 +34,10 @@ typedef struct mesh_desc {
     bool quiet;
 } mesh_desc;
 
+/* Loads d->scene, opens the GL (a field scene) and meshes it. */
 bool mesh_job_run(const mesh_desc *d, err_t *err);
+/* Meshes s, already loaded and set in the renderer (a field scene: the window's M key). */
+struct scene;
+bool mesh_job_scene(const mesh_desc *d, const struct scene *s, err_t *err);
 
 #endif

@@ -496,6 +496,10 @@ static void loop(GLFWwindow *win)
         restart = restart || asked;
         bool moved, refining = draw(w, h, restart, &shown, &moved);
         restart = false;
+        if (app.ask.mesh) {
+            shots_mesh(&app.s, app.message, sizeof app.message);
+            app.ask.mesh = false;
+        }
         if (app.ask.screenshot) {
             shots_screenshot(&app.s, &app.fly.cam, w, h, app.message, sizeof app.message);
             app.ask.screenshot = false;

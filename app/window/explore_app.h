@@ -32,7 +32,7 @@ typedef struct explore_app {
     char names[MAX_SCENES][SCENE_NAME_MAX]; /* the number keys' scenes */
     int scene_count;
     struct { /* what the keys asked, done in the frame's order */
-        bool reload, screenshot, go_home, save_view, add_key, clear_keys, toggle_play;
+        bool reload, screenshot, mesh, go_home, save_view, add_key, clear_keys, toggle_play;
         bool undo, redo, save_preset, copy_preset, paste_preset;
         bool focus; /* F: focus the lens on the point under the cursor */
         int recall_view;   /* Ctrl+1…9: 1…9; 0 none */

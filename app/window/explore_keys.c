@@ -56,6 +56,7 @@ static void plain_key(explore_app *a, GLFWwindow *w, int key, int mods)
     case GLFW_KEY_R: a->ask.reload = true; break;
     case GLFW_KEY_P:
     case GLFW_KEY_F12: a->ask.screenshot = true; break;
+    case GLFW_KEY_M: a->ask.mesh = true; break;
     case GLFW_KEY_H: a->view = a->view == VIEW_STEPS ? VIEW_COLOR : VIEW_STEPS; break;
     case GLFW_KEY_G:
         render_grab_reference(), costs_grabbed(&a->cost);

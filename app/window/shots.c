@@ -1,4 +1,4 @@
-/* shots — views, presets and screenshots (shots.h). */
+/* shots — views, presets, screenshots and meshes (shots.h). */
 #include "window/shots.h"
 
 #define GLFW_INCLUDE_NONE
@@ -8,6 +8,7 @@
 #include <time.h>
 
 #include "gpu/render.h"
+#include "jobs/mesh_job.h"
 #include "jobs/offline.h"
 #include "scene/frag.h"
 #include "scene/program.h"
@@ -134,6 +135,20 @@ void shots_screenshot(const session *s, const camera *cam, int w, int h, char *m
     sb_free(&description);
     if (ok)
         snprintf(message, n, "saved %s (%d samples)", file, render_samples());
+    else
+        snprintf(message, n, "%s", err.msg);
+    fprintf(stderr, "fathom: %s\n", message);
+}
+
+void shots_mesh(const session *s, char *message, size_t n)
+{
+    char file[128];
+    time_t now = time(NULL);
+    strftime(file, sizeof file, "fathom-%Y%m%d-%H%M%S.glb", localtime(&now));
+    mesh_desc d = {.scene = s->scene.path, .output = file};
+    err_t err;
+    if (mesh_job_scene(&d, &s->scene, &err))
+        snprintf(message, n, "saved %s: the scene's surface at %d cells (fathom mesh for more)", file, MESH_JOB_DEFAULT_RES);
     else
         snprintf(message, n, "%s", err.msg);
     fprintf(stderr, "fathom: %s\n", message);

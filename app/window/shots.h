@@ -1,6 +1,7 @@
 /* shots — the window's view as a shot description (view/shot.h) in a file: B saves it into the first
  * free numbered slot and Ctrl+1…9 recall one (view/views.h); a preset is the same text on its own,
- * saved, loaded, copied or pasted; J walks a fragment's own presets; P writes the image with its description inside. Opening one goes
+ * saved, loaded, copied or pasted; J walks a fragment's own presets; P writes the image with its description inside;
+ * M writes the scene's surface as a mesh. Opening one goes
  * through session_open_shot; the caller moves its camera (shots_opened). GL and GLFW. */
 #ifndef FATHOM_SHOTS_H
 #define FATHOM_SHOTS_H
@@ -34,5 +35,8 @@ shots_opened shots_presets(struct GLFWwindow *win, session *s, const camera *cam
 shots_opened shots_fragment_preset(session *s, int step, int *current, char *message, size_t n);
 /* P: the converged image (finished first, or drawn once at full size) to fathom-DATE-TIME.png. */
 void shots_screenshot(const session *s, const camera *cam, int w, int h, char *message, size_t n);
+/* M: the scene's surface as a mesh, fathom-DATE-TIME.glb (`fathom mesh` at its defaults: jobs/mesh_job.h),
+ * its report and progress in the terminal. */
+void shots_mesh(const session *s, char *message, size_t n);
 
 #endif
