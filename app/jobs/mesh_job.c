@@ -240,6 +240,7 @@ static bool simplify(const mesh_desc *d, mesh *m, double unit, bool field_scene,
     bool failed = false;
     for (int round = 0; round < 8 && target < whole.nt; round++, target += target / 4) {
         copy_mesh(&t, &whole);
+        pinches = holes = 0;
         if ((failed = !mesh_io_simplify(&t, target, tol, &e, err)))
             break;
         fins = mesh_drop_fins(&t);
