@@ -51,7 +51,7 @@ static bool parse_box(const char *val, double box[6], err_t *err)
 bool cli_mesh_option(const char *name, const char *val, cli_options *o, err_t *err, bool *handled)
 {
     *handled = true;
-    double v;
+    double v = 0;
     if (!strcmp(name, "--resolution")) {
         if (!positive(name, val, MESH_MAX_RES, &v, err) || v != floor(v) || v < 2)
             return err_set(err, "bad --resolution '%s': expected a whole number of cells from 2 to %d", val, MESH_MAX_RES);
