@@ -85,7 +85,7 @@ bool cli_mesh_check(const cli_options *o, err_t *err)
                             "to fathom mesh");
     if (!o->output)
         return err_set(err, "fathom mesh needs --output FILE.ply (or .stl, .obj, .glb, .3mf, .stp)");
-    const char *exporter;
+    const char *exporter = NULL;
     if (!mesh_io_format(o->output, &exporter, err))
         return false;
     if (o->width || o->spp || o->aovs || o->path || o->tile_count || o->has_camera || o->has_look_at || o->has_fov ||

@@ -181,6 +181,8 @@ static void patch_vertex(mesh_ctx *c, const mesh_cell_case *kc, int p, int i, in
     for (int e = 0; e < 12; e++)
         if (kc->patch_of[e] == p) {
             const crossing *x = edge_crossing(c, i, j, k, e);
+            if (!x) /* (a patch's edge always crosses: no crossing would be a table's bug) */
+                continue;
             memcpy(pt[n], x->p, sizeof pt[n]);
             memcpy(nm[n], x->n, sizeof nm[n]);
             for (int d = 0; d < 3; d++)

@@ -46,7 +46,7 @@ static bool write_by_file(const mesh_io_view *v, const char *exporter, const cha
 
 bool mesh_io_write(const mesh *m, const char *path, err_t *err)
 {
-    const char *exporter;
+    const char *exporter = NULL;
     if (!mesh_io_format(path, &exporter, err))
         return false;
     if (m->nt == 0)

@@ -307,7 +307,7 @@ static bool finish(job *j, mesh *m, double unit, float iso, bool field_scene, er
 
 bool mesh_job_scene(const mesh_desc *d, const scene *s, err_t *err)
 {
-    const char *exporter;
+    const char *exporter = NULL;
     if (!mesh_io_format(d->output, &exporter, err))
         return false;
     job j = {.d = d, .s = s, .t0 = util_now()};
@@ -323,7 +323,7 @@ bool mesh_job_scene(const mesh_desc *d, const scene *s, err_t *err)
 
 bool mesh_job_run(const mesh_desc *d, err_t *err)
 {
-    const char *exporter;
+    const char *exporter = NULL;
     if (!mesh_io_format(d->output, &exporter, err))
         return false;
     scene s;
