@@ -23,7 +23,7 @@ bool mesh_dem_solid(const heightfield *hf, int step, double base, mesh *out, mes
         return err_set(err, "mesh: the base (%g) must lie below the DEM's lowest point (%g)", base, (double)hf->hmin);
     int nx = (hf->width - 1 + step - 1) / step + 1, nz = (hf->height - 1 + step - 1) / step + 1;
     if ((double)nx * nz > 4.0e8)
-        return err_set(err, "mesh: %dx%d vertices is too many: raise --resolution's step (fewer texels a vertex)", nx, nz);
+        return err_set(err, "mesh: %dx%d vertices is too many: lower --resolution", nx, nz);
     for (int j = 0; j < nz; j++)
         for (int i = 0; i < nx; i++) {
             int ti = kept(hf->width, step, i), tj = kept(hf->height, step, j);

@@ -17,6 +17,7 @@
 #include "scene/scene.h"
 
 enum { DEFAULT_RES = MESH_JOB_DEFAULT_RES, DEFAULT_DEM_RES = 2048, BAR_WIDTH = 30 };
+static const size_t PROBE_BATCH = (size_t)1 << 20;
 
 typedef struct job {
     const mesh_desc *d;
@@ -27,13 +28,17 @@ typedef struct job {
     double t0, shown; /* start; when the progress bar was last drawn */
 } job;
 
+/* map() at n points into j->out, in batches a texture holds (2^20 points each). */
 static bool probe(job *j, const float *pts, size_t n, err_t *err)
 {
     if (n > j->out_cap) {
         j->out_cap = n;
         j->out = util_realloc(j->out, 2 * n * sizeof(float), "mesh probes");
     }
-    return n == 0 || render_probe(j->s, NULL, pts, (int)n, j->out, err);
+    for (size_t at = 0; at < n; at += PROBE_BATCH)
+        if (!render_probe(j->s, NULL, pts + 3 * at, (int)(n - at < PROBE_BATCH ? n - at : PROBE_BATCH), j->out + 2 * at, err))
+            return false;
+    return true;
 }
 
 static bool field(void *user, const float *pts, size_t n, float *dist, err_t *err)
@@ -180,8 +185,8 @@ static bool mesh_terrain(job *j, mesh *m, double *texel, err_t *err)
     bool ok = mesh_dem_solid(&hf, step, hf.hmin - below, m, &st, err);
     *texel = step * fmax(hf.dx, hf.dz);
     if (ok)
-        printf("dem: %dx%d texels (%s), every %d%s texel: %zu surface vertices, base %.4g below the lowest point "
-               "(%.4g)%s\n", hf.width, hf.height, hf.about, step, step == 1 ? "st" : "th", st.top_vertices, below,
+        printf("dem: %dx%d texels (%s), a vertex every %d texel%s: %zu surface vertices, base %.4g below the lowest "
+               "point (%.4g)%s\n", hf.width, hf.height, hf.about, step, step == 1 ? "" : "s", st.top_vertices, below,
                (double)hf.hmin, st.holes ? ", nodata texels at the lowest height" : "");
     heightfield_free(&hf);
     return ok;
