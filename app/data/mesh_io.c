@@ -50,7 +50,8 @@ bool mesh_io_write(const mesh *m, const char *path, err_t *err)
     if (!mesh_io_format(path, &exporter, err))
         return false;
     if (m->nt == 0)
-        return err_set(err, "no surface to write to '%s': the mesh is empty (is the object inside the box?)", path);
+        return err_set(err, "no surface to write to '%s': the mesh is empty (is the object inside the box, and thicker "
+                            "than a voxel? --box, --resolution)", path);
     if (m->nv > UINT32_MAX / 2)
         return err_set(err, "the mesh has %zu vertices, more than a mesh file holds: lower --resolution", m->nv);
     mesh_io_view v = view_of(m);
