@@ -19,8 +19,8 @@ passed=0 failed=0
 check() { if eval "$2"; then passed=$((passed + 1)); echo "ok   $1"; else failed=$((failed + 1)); echo "FAIL $1"; fi; }
 
 # drive NAME FATHOM-ARGS... -- XDOTOOL-STEPS...: runs the window in $tmp/NAME under Xvfb and plays the
-# steps (each an xdotool command, or "sleep S", or "save F": Ctrl+S and keep the preset it writes as F,
-# outside the folder's *.fathom)
+# steps (each an xdotool command, or "sleep S", or "wait GLOB": until a file matches it (files are
+# written whole or not at all), or "save F": Ctrl+S and keep the preset it writes as F, outside the folder's *.fathom)
 cat >"$tmp/drive.sh" <<'EOF'
 #!/bin/sh
 dir=$1; fathom=$2; shift 2
@@ -36,8 +36,11 @@ sleep 3
 for step in "$@"; do
     case $step in
     sleep*) eval "$step" ;;
-    wait*) i=0; while [ ! -s "${step#wait }" ] && [ $i -lt 450 ]; do sleep 0.2; i=$((i + 1)); done ;; # slow frames: 90 s
-    save*) xdotool key ctrl+s; sleep 1; cp "$(ls -t ./*.fathom | head -n 1)" "kept.tmp"; mv kept.tmp "${step#save }" ;;
+    wait*) i=0; while ! ls ${step#wait } >/dev/null 2>&1 && [ $i -lt 450 ]; do sleep 0.2; i=$((i + 1)); done ;; # 90 s at most
+    save*) # Ctrl+S, then the preset it writes (a loaded machine may take many seconds to a frame)
+        touch asked.tmp; sleep 0.1; xdotool key ctrl+s; i=0
+        while [ -z "$(find . -maxdepth 1 -name '*.fathom' -newer asked.tmp)" ] && [ $i -lt 300 ]; do sleep 0.2; i=$((i + 1)); done
+        sleep 0.3; cp "$(ls -t ./*.fathom | head -n 1)" "kept.tmp"; mv kept.tmp "${step#save }" ;;
     *) eval "xdotool $step"; sleep 0.5 ;;
     esac
 done
@@ -61,7 +64,7 @@ ge() { awk -v a="$1" -v b="$2" 'BEGIN { exit !(a >= b) }'; }
 
 # the glass sphere: radius 0.7 at (0, 0.7, 0.4)
 drive csg --scene csg --camera 0,0.7,3 --look-at 0,0.7,0.4 -- \
-    "keydown w" "sleep 4" "keyup w" "save ../csg-in" "keydown s" "sleep 1" "keyup s" "save ../csg-out" \
+    "keydown w" "sleep 7" "keyup w" "save ../csg-in" "keydown s" "sleep 1" "keyup s" "save ../csg-out" \
     "keydown d" "sleep 1" "keyup d" "save ../csg-side"
 d=$(from "$tmp/csg-in" 0 0.7 0.4)
 check "csg: W into the glass sphere stops outside it ($d m from its centre, radius 0.7)" 'ge "$d" 0.7 && ! ge "$d" 0.8'
@@ -79,7 +82,7 @@ check "F focuses on the point under the cursor (the preset sets camera.focus)" '
 check "U levels the horizon again" 'grep -q "\"roll\":0[,}]" "$tmp/level"'
 
 drive bulb --scene mandelbulb --camera 0.3,0.5,2.2 --look-at 0,0,0 -- \
-    "keydown w" "sleep 4" "keyup w" "save ../bulb-in" "keydown s" "sleep 2" "keyup s" "save ../bulb-out" "key m" "sleep 10"
+    "keydown w" "sleep 4" "keyup w" "save ../bulb-in" "keydown s" "sleep 2" "keyup s" "save ../bulb-out" "key m" "wait ./fathom-*.glb"
 i=$(from "$tmp/bulb-in" 0 0 0)
 o=$(from "$tmp/bulb-out" 0 0 0)
 check "mandelbulb: W flies in ($i m from the centre, from 2.28)" '! ge "$i" 1.6'
