@@ -86,6 +86,7 @@ typedef struct cli_options {
     bool quick, full;  /* bench: a short run (160x90, 3 runs, 3 values a knob) or a long one (640x360, 9 runs) */
     bool interactive;  /* bench: a scripted flight as the window flies it */
     bool terrain_scale; /* bench: generated DEMs from 256² up: load time, memory, frame time */
+    bool final_frame;   /* bench: the final preset's whole shot, every pixel against adaptive */
     const char *knobs[CLI_MAX_SETS]; /* bench: "NAME=v1,v2,..." sweeps (none: every knob, default values) */
     int knob_count;
     bool mesh;            /* `fathom mesh ...` (jobs/mesh_job.h) */

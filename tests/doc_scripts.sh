@@ -57,7 +57,7 @@ for s in $scripts; do
     check "$s: a Usage line (or what sources it) in its header" \
         'sed -n "1,/^[^#]/p" "$src/$s" | grep -q "^# *Usage:\|^# Sourced by\|^#   sbatch "'
     case "$s" in
-    docs/bench/formulas.sh | docs/bench/index.sh | docs/bench/mesh.sh | docs/bench/out_of_steps.sh | docs/csg-scale/run.sh | \
+    docs/bench/final.sh | docs/bench/formulas.sh | docs/bench/index.sh | docs/bench/mesh.sh | docs/bench/out_of_steps.sh | docs/csg-scale/run.sh | \
         docs/droplets/run.sh | docs/droplets/culling.sh | docs/droplets/scene.sh | docs/interactive/run.sh | docs/peak_kb.sh | \
         docs/interactive/panel.sh | docs/slurm/run.sh | docs/slurm/flight.sbatch) ;;
     *) bad "$s: no case below runs it (add one)" ;;
@@ -85,6 +85,17 @@ check "formulas.sh: steps a pixel ($(echo "$row" | awk -F'|' '{ gsub(/ /, "", $7
 echo keep >"$tmp/keep.md" && cp "$tmp/keep.md" "$out/formulas/formulas.md"
 run sh "$src/docs/bench/formulas.sh" /bin/false 32x18 1 "$out/formulas" menger
 check "formulas.sh: a failed run exits non-zero and leaves formulas.md" '[ $code -ne 0 ] && cmp -s "$tmp/keep.md" "$md"'
+
+# ---- docs/bench/final.sh: two small scenes, one run; a failed run keeps the page --------------------
+mkdir -p "$out/final"
+run sh "$src/docs/bench/final.sh" "$fathom" "$out/final" 1 64x36 torus csg
+check "final.sh exits 0 ($secs s)" '[ $code -eq 0 ]'
+check "final.sh: a row a scene, times and samples a pixel" \
+    'grep -q "^| torus | 64x36 | [0-9.]* \[[0-9.]*-[0-9.]*\] | [0-9.]* \[[0-9.]*-[0-9.]*\] | [0-9.]* | [0-9.]* | " "$out/final/final.md" &&
+     grep -q "^| csg | 64x36 | " "$out/final/final.md"'
+echo keep >"$tmp/keep.md" && cp "$tmp/keep.md" "$out/final/final.md"
+run sh "$src/docs/bench/final.sh" /bin/false "$out/final" 1 64x36 torus
+check "final.sh: a failed run exits non-zero and leaves final.md" '[ $code -ne 0 ] && cmp -s "$tmp/keep.md" "$out/final/final.md"'
 
 # ---- docs/bench/mesh.sh: a torus, one run; a failed run keeps the page ----------------------------
 mkdir -p "$out/mesh"

@@ -1,7 +1,8 @@
 #!/bin/sh
 # Tiles: an image rendered as N tiles (--tile I/N) and stitched (fathom stitch) equals the image rendered
 # at once, bit for bit (PNG: the same file; EXR with depth and normals: the same bytes but for the
-# DateTime stamp in the header); stitching refuses an incomplete or mixed set.
+# DateTime stamp in the header), also where adaptive sampling stops pixels (the final preset, in tiles and
+# in bands); stitching refuses an incomplete or mixed set.
 # Usage: tiles.sh FATHOM
 fathom=$1
 tmp=$(mktemp -d)
@@ -28,6 +29,17 @@ for ext in png exr; do
         [ "$bad" -eq 0 ] || fail "the stitched EXR differs from the whole in $bad bytes outside its DateTime"
     fi
 done
+# adaptive sampling (the final preset): a pixel's stop reads its 3x3 block, so tiles and bands carry
+# margin rows; without them both differ from the whole image
+final="--scene mandelbulb --size 97x55 --quality final --quiet"
+"$fathom" $final --output "$tmp/final.png" || fail "the whole final shot"
+"$fathom" $final --strip-rows 8 --output "$tmp/final-bands.png" || fail "the final shot in bands"
+for i in 1 2 3 4 5; do
+    "$fathom" $final --tile $i/5 --output "$tmp/fposter.png" || fail "final tile $i"
+done
+"$fathom" stitch --quiet --output "$tmp/final-tiles.png" "$tmp"/fposter.tile-*-of-5.png || fail "stitch the final tiles"
+cmp -s "$tmp/final.png" "$tmp/final-bands.png" || fail "the final shot in 8-row bands differs from the whole"
+cmp -s "$tmp/final.png" "$tmp/final-tiles.png" || fail "the final shot's stitched tiles differ from the whole"
 # an incomplete set, a tile from another poster, a file that is not a tile
 "$fathom" stitch --output "$tmp/x.png" "$tmp"/poster.tile-1-of-5.png "$tmp"/poster.tile-2-of-5.png 2>"$tmp/e1" &&
     fail "an incomplete set was stitched"

@@ -103,6 +103,11 @@ static GLuint build_mask(err_t *err)
     return shader_build(render_programs_shader_root(), "fullscreen.vert", "edgemask.frag", NULL, NULL, 0, err);
 }
 
+static GLuint build_error_mask(err_t *err)
+{
+    return shader_build(render_programs_shader_root(), "fullscreen.vert", "errormask.frag", NULL, NULL, 0, err);
+}
+
 bool render_init(err_t *err)
 {
     if (!resolve_backend(err))
@@ -110,7 +115,8 @@ bool render_init(err_t *err)
     render_programs_init();
     state->display_prog = build_display(err);
     state->mask_prog = state->display_prog ? build_mask(err) : 0;
-    return state->display_prog != 0 && state->mask_prog != 0;
+    state->error_prog = state->mask_prog ? build_error_mask(err) : 0;
+    return state->display_prog != 0 && state->mask_prog != 0 && state->error_prog != 0;
 }
 
 static void free_targets(void)
@@ -144,6 +150,7 @@ void render_shutdown(void)
     render_scene_shutdown();
     glDeleteProgram(state->display_prog);
     glDeleteProgram(state->mask_prog);
+    glDeleteProgram(state->error_prog);
     render_programs_shutdown();
     memset(state, 0, sizeof *state);
     state->runtime_effects = ~0u;
@@ -287,34 +294,87 @@ void render_set_edge_aware(bool on) { state->edge_aware = on; }
 
 int render_adaptive_pixels(void) { return state->masked; }
 
-/* The edge mask from the first sample (shaders/edgemask.frag), into mask_tex. */
-static void build_edge_mask(void)
+int render_adaptive_margin(const scene *s, int spp)
 {
-    glBindFramebuffer(GL_FRAMEBUFFER, state->mask_fbo);
-    glViewport(0, 0, state->width, state->height);
-    glUseProgram(state->mask_prog);
-    glActiveTexture(GL_TEXTURE1);
-    glBindTexture(GL_TEXTURE_2D, state->targets[1]);
-    glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_2D, state->targets[0]);
-    glUniform1i(glGetUniformLocation(state->mask_prog, "uAccum"), 0);
-    glUniform1i(glGetUniformLocation(state->mask_prog, "uNormalDepth"), 1);
-    glUniform1f(glGetUniformLocation(state->mask_prog, "uExposure"), 1.0f);
-    glUniform2i(glGetUniformLocation(state->mask_prog, "uSize"), state->width, state->height);
-    glBindVertexArray(render_programs_vao());
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    /* how many pixels it kept: for the HUD and the bench (a small readback, once per still image) */
+    int m = s->quality.tolerance > 0 && !s->quality.integrator && spp > RENDER_ADAPTIVE_MIN ? spp - RENDER_ADAPTIVE_MIN : 0;
+    return (m + 1) & ~1;
+}
+
+double render_mean_samples(void)
+{
+    double n = (double)state->width * state->height;
+    return n > 0 ? state->pixel_samples / n : 0.0;
+}
+
+/* Pixels the mask in mask_tex keeps (a small readback, once a sample: the HUD, the bench and the
+ * early stop read it). */
+static int count_mask(void)
+{
     size_t n = (size_t)state->width * (size_t)state->height;
     uint8_t *m = malloc(n);
-    state->masked = 0;
+    int kept = (int)n; /* unknown: as if every pixel went on */
     if (m) {
+        kept = 0;
         glPixelStorei(GL_PACK_ALIGNMENT, 1);
         glReadPixels(0, 0, state->width, state->height, GL_RED, GL_UNSIGNED_BYTE, m);
         for (size_t i = 0; i < n; i++)
-            state->masked += m[i] > 127;
+            kept += m[i] > 127;
         free(m);
     }
+    return kept;
+}
+
+/* A mask into mask_tex: the edge mask from the first sample (shaders/edgemask.frag), or the pixels
+ * whose standard error is still above the tolerance (shaders/errormask.frag). */
+static void build_mask_tex(bool edges, float tolerance)
+{
+    GLuint prog = edges ? state->mask_prog : state->error_prog;
+    glBindFramebuffer(GL_FRAMEBUFFER, state->mask_fbo);
+    glViewport(0, 0, state->width, state->height);
+    glUseProgram(prog);
+    glActiveTexture(GL_TEXTURE1);
+    glBindTexture(GL_TEXTURE_2D, state->targets[edges ? 1 : 3]);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, state->targets[0]);
+    glUniform1i(glGetUniformLocation(prog, "uAccum"), 0);
+    glUniform1i(glGetUniformLocation(prog, edges ? "uNormalDepth" : "uSquares"), 1);
+    glUniform1f(glGetUniformLocation(prog, "uExposure"), 1.0f);
+    glUniform1f(glGetUniformLocation(prog, "uTolerance"), tolerance);
+    glUniform2i(glGetUniformLocation(prog, "uSize"), state->width, state->height);
+    glBindVertexArray(render_programs_vao());
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    state->masked = count_mask();
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+/* Whether this sample goes only to the pixels mask_tex keeps, building the mask where a sample
+ * starts. Shading is deterministic but for the sub-pixel position, a lens's point and the path
+ * tracer's random numbers: in the window (render_set_adaptive) the samples after the first and before
+ * RENDER_ADAPTIVE_MIN go only to edges while
+ * there is no lens or path tracer; from sample RENDER_ADAPTIVE_MIN on, with a tolerance, only pixels whose
+ * standard error is above it take more (everywhere: per pixel, so tiles and bands agree with the
+ * whole). Once no pixel is left, the image has converged and further samples cost nothing. */
+
+static bool masked_sample(void)
+{
+    const scene *s = render_scene_current();
+    float tolerance = s->quality.tolerance;
+    if (state->samples == 0)
+        return false;
+    if (state->samples < RENDER_ADAPTIVE_MIN) {
+        if (!state->adaptive || !(tolerance > 0) || s->quality.integrator || state->cam.lens.aperture > 0)
+            return false;
+        if (state->samples == 1 && state->band_done == 0)
+            build_mask_tex(true, 0.0f);
+        return true;
+    }
+    if (!(tolerance > 0) || s->quality.integrator) /* the path tracer is the unbiased truth: no early stop */
+        return false;
+    if (state->band_done == 0 && !state->converged) {
+        build_mask_tex(false, tolerance);
+        state->converged = state->masked == 0;
+    }
+    return true;
 }
 
 /* Halton (2, 3) points, centred: low-discrepancy sub-pixel offsets. Sample 0 is the pixel centre. */
@@ -396,11 +456,15 @@ static void dispatch_rows(int y0, int y1, bool first)
 static void sample_rows(int y0, int y1)
 {
     assert(state->fbo && state->prog);
-    /* the path tracer's noise is everywhere, not only on edges: every pixel takes every sample */
-    bool adaptive = state->adaptive && state->samples > 0 && !render_scene_current()->quality.integrator &&
-                    !(state->cam.lens.aperture > 0); /* nor is a lens's blur: it is wherever focus is not */
-    if (adaptive && state->samples == 1 && state->band_done == 0)
-        build_edge_mask();
+    if (state->samples == 0 && state->band_done == 0) {
+        state->converged = false;
+        state->pixel_samples = 0;
+    }
+    bool adaptive = masked_sample();
+    int rows = y1 - y0, n = state->width * rows;
+    state->pixel_samples += adaptive ? (double)state->masked * rows / state->height : (double)n;
+    if (adaptive && state->converged)
+        return; /* no pixel takes this sample */
     glBindFramebuffer(GL_FRAMEBUFFER, state->fbo);
     glViewport(0, 0, state->width, state->height);
     bool first = state->samples == 0;
@@ -478,15 +542,19 @@ bool render_reload(err_t *err)
 {
     /* Build everything first: one failure keeps every old program. */
     GLuint display = build_display(err), mask = display ? build_mask(err) : 0;
-    if (!display || !mask || !render_programs_reload(&state->prog, err)) {
+    GLuint error = mask ? build_error_mask(err) : 0;
+    if (!display || !mask || !error || !render_programs_reload(&state->prog, err)) {
         glDeleteProgram(display);
         glDeleteProgram(mask);
+        glDeleteProgram(error);
         return false;
     }
     glDeleteProgram(state->display_prog);
     glDeleteProgram(state->mask_prog);
+    glDeleteProgram(state->error_prog);
     state->display_prog = display;
     state->mask_prog = mask;
+    state->error_prog = error;
     if (render_scene_current())
         render_scene_uniforms(state->prog, render_scene_current());
     state->samples = 0;

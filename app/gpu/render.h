@@ -94,18 +94,30 @@ bool render_sample_band(int rows);
 void render_keep_preview(void);
 /* Rows of the current sample render_sample_band has done (0: none, or the sample is complete). */
 int render_band_rows(void);
-/* Adaptive sampling: after the first sample of an image, further samples only where the edge mask
- * (shaders/edgemask.frag: colour, depth, hit or normal differs in the 3x3 block) is set. Off by
- * default (offline images sample every pixel); the window turns it on. */
+/* Adaptive sampling, by the scene's quality.tolerance (0: off, every pixel takes every sample; so too
+ * under the path tracer, the unbiased truth whose two samples may agree by chance). From
+ * sample RENDER_ADAPTIVE_MIN on, everywhere, only pixels whose mean's standard error (as displayed) is above the
+ * tolerance take more (shaders/errormask.frag); once none is left, further samples cost nothing. With
+ * render_set_adaptive(true) (the window), samples before it go only where the edge mask is set
+ * (shaders/edgemask.frag: colour, depth, hit or normal differs in the 3x3 block), unless a lens or the
+ * path tracer makes every pixel vary; off by default (its 3x3 block would make a band's or a tile's
+ * border rows differ from the whole image's). */
 void render_set_adaptive(bool on);
+enum { RENDER_ADAPTIVE_MIN = 2 }; /* the samples every pixel takes before the tolerance can stop it */
+/* Rows beyond a band's edges that a band of an image must render with it to agree with the whole
+ * image bit for bit: the error mask reads the 3x3 block, so each masked sample's decisions reach a row
+ * further (0 when s does not sample adaptively at spp samples). Even, as bands' offsets are. */
+int render_adaptive_margin(const scene *s, int spp);
 /* The sub-pixel point of an image's first sample: Halton point k (0, the default: the pixel centre).
  * Moving frames that change it frame to frame let a reprojected history gather detail. */
 void render_set_first_jitter(int k);
 /* A stretched (moving) image: depth-aware upsampling, no blending across silhouettes, or plain
  * bilinear (the default: bench --interactive measures both, and bilinear is nearer the full frame). */
 void render_set_edge_aware(bool on);
-/* Pixels the last edge mask kept. */
+/* Pixels the last mask kept. */
 int render_adaptive_pixels(void);
+/* Samples a pixel of the current image has taken, on average (adaptive sampling stops many early). */
+double render_mean_samples(void);
 
 typedef enum render_view { VIEW_COLOR, VIEW_STEPS, VIEW_DIFFERENCE } render_view;
 

@@ -21,12 +21,15 @@ typedef struct render_state {
     int alloc_width, alloc_height; /* the targets' size */
     int full_width, full_height, tile_x, tile_y; /* the image the target is a band of; its GL offset */
     GLuint prog; /* the current scene's program */
-    /* adaptive sampling (render_set_adaptive): after the first sample, further samples only where the
-     * edge mask (shaders/edgemask.frag) is set; each pixel's alpha counts its own samples */
+    /* adaptive sampling (render.c's masked_sample): samples only where mask_tex is set, the window's
+     * edge mask (render_set_adaptive, shaders/edgemask.frag) or the standard error's (errormask.frag);
+     * each pixel's alpha counts its own samples */
     bool adaptive;
     bool edge_aware; /* stretched images: depth-aware upsampling (display.frag) */
-    GLuint mask_prog, mask_fbo, mask_tex;
-    int masked; /* pixels the mask kept, of the last mask */
+    GLuint mask_prog, error_prog, mask_fbo, mask_tex;
+    int masked;            /* pixels the mask kept, of the last mask */
+    bool converged;        /* the last error mask kept no pixel: the image is done */
+    double pixel_samples;  /* samples taken by the image's pixels, all together */
     int band_done; /* rows of the current sample done by render_sample_band, from the top */
     int first_jitter; /* the Halton point of an image's first sample (0: the pixel centre) */
     GLuint preview_fbo, preview_tex; /* the last moving image, shown where a still one has no sample yet */

@@ -24,6 +24,14 @@ bool bench_run(const bench_desc *opt, err_t *err);
  * (one sample per pixel) at the start view at w × h, on both backends side by side. */
 bool bench_frame_times(const bench_desc *opt, int w, int h, err_t *err);
 
+/* bench --final-frame (bench_final.c): the final preset's whole shot at w × h (1920×1080 by default), as
+ * a user's process takes it, every pixel sampled against adaptive sampling, side by side. */
+bool bench_final_frame(const bench_desc *opt, int w, int h, err_t *err);
+
+/* The wall time (ms) of one whole fathom process (this binary) with these arguments, stdout to
+ * /dev/null and stderr to `log` (NULL: /dev/null); negative when it could not run or failed. */
+double bench_process_ms(char *const *argv, const char *log);
+
 /* For the bench's files: the scene with the command line's --set, then `extra` more; and the time (ms)
  * of all of s's samples from cam at w × h (wall clock around glFinish). */
 bool bench_load(const bench_desc *opt, const char *const *extra, int n_extra, scene *s, err_t *err);

@@ -32,18 +32,17 @@ static bool time_backends(const scene *s, const camera *cam, int w, int h, int n
     return true;
 }
 
-/* The wall time of one whole fathom process (this binary) with these arguments, its output to
- * /dev/null; negative when it could not run or failed. */
-static double process_ms(char *const *argv)
+double bench_process_ms(char *const *argv, const char *log)
 {
     double t0 = util_now();
     pid_t pid = fork();
     if (pid == 0) {
         int null = open("/dev/null", O_WRONLY);
-        if (null >= 0) {
+        int err = log ? open(log, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0600) : null;
+        if (null >= 0)
             dup2(null, 1);
-            dup2(null, 2);
-        }
+        if (err >= 0)
+            dup2(err, 2);
         execv("/proc/self/exe", argv);
         _exit(127);
     }
@@ -64,10 +63,10 @@ static void startup_times(const bench_desc *opt)
     char *version[] = {"fathom", "--version", NULL};
     char *image[] = {"fathom", "--scene", (char *)opt->scene, "--size", "64x36", "--quiet", "--output", shot, NULL};
     double *ms = util_alloc(sizeof *ms * 2 * (size_t)opt->runs, "bench timings");
-    bool ok = process_ms(image) >= 0; /* a warm-up: the shader cache and the page cache */
+    bool ok = bench_process_ms(image, NULL) >= 0; /* a warm-up: the shader cache and the page cache */
     for (int r = 0; ok && r < opt->runs; r++) {
-        ms[r] = process_ms(version);
-        ms[opt->runs + r] = process_ms(image);
+        ms[r] = bench_process_ms(version, NULL);
+        ms[opt->runs + r] = bench_process_ms(image, NULL);
         ok = ms[r] >= 0 && ms[opt->runs + r] >= 0;
     }
     unlink(shot);

@@ -103,10 +103,13 @@ static image_writer *open_writer(const char *path, int width, int height, unsign
     return image_writer_open_text(path, width, height, exr_channels(aovs, names, src), true, names, texts, err);
 }
 
-/* Appends the current render target (width × rows, a band of the image or all of it) to w. */
-static bool write_band(image_writer *w, const char *path, int width, int rows, unsigned aovs, err_t *err)
+/* Appends rows [skip, skip + rows) of the current render target (top down: a band of the image, all of
+ * it, or a band with margin rows above and below it) to w. */
+static bool write_band(image_writer *w, const char *path, int width, int skip, int rows, unsigned aovs, err_t *err)
 {
-    size_t n = (size_t)width * (size_t)rows;
+    int all_rows;
+    render_active_size(&width, &all_rows);
+    size_t n = (size_t)width * (size_t)all_rows, first = (size_t)width * (size_t)skip;
     bool ok;
     if (is_png(path)) {
         uint8_t *px = malloc(n * 4);
@@ -115,7 +118,7 @@ static bool write_band(image_writer *w, const char *path, int width, int rows, u
         render_read_srgb8(px, EXPOSURE);
         for (size_t i = 0; i < n; i++) /* drop alpha: the image is opaque */
             memmove(px + i * 3, px + i * 4, 3);
-        ok = image_writer_rows(w, rows, px, err);
+        ok = image_writer_rows(w, rows, px + first * 3, err);
         free(px);
         return ok;
     }
@@ -135,7 +138,7 @@ static bool write_band(image_writer *w, const char *path, int width, int rows, u
             for (int c = 4; c < nc; c++)
                 out[i * (size_t)nc + (size_t)c] = aov[i * AOV_FLOATS + (size_t)src[c]];
         }
-        ok = image_writer_rows(w, rows, out, err);
+        ok = image_writer_rows(w, rows, out + first * (size_t)nc, err);
     }
     free(out);
     free(rgba);
@@ -148,7 +151,7 @@ bool offline_write(const char *path, int width, int height, unsigned aovs, const
     image_writer *w = open_writer(path, width, height, aovs, description, NULL, NULL, err);
     if (!w)
         return false;
-    if (!write_band(w, path, width, height, aovs, err)) {
+    if (!write_band(w, path, width, 0, height, aovs, err)) {
         image_writer_abort(w);
         return false;
     }
@@ -189,15 +192,20 @@ bool offline_tile_name(const char *output, int index, int count, char *out, size
     return true;
 }
 
-/* Renders rows [top, top + height) of the d->width × d->height image (all of it, or one tile) into w. */
-static bool render_bands(const offline_desc *d, int top, int height, image_writer *w, long unresolved[2], err_t *err)
+/* Renders rows [top, top + height) of the d->width × d->height image (all of it, or one tile) into w.
+ * Each band is rendered with margin rows of the image above and below it where adaptive sampling's
+ * 3x3 blocks need them (render_adaptive_margin), so bands and tiles agree with the whole image. */
+static bool render_bands(const offline_desc *d, int top, int height, image_writer *w, long unresolved[2],
+                         double *pixel_samples, err_t *err)
 {
-    int rows = band_rows(d, height), bands = (height + rows - 1) / rows;
+    int rows = band_rows(d, height), bands = (height + rows - 1) / rows, margin = render_adaptive_margin(d->scene, d->spp);
     double t0 = util_now();
     for (int k = 0; k < bands; k++) {
         int bottom = (bands - 1 - k) * rows, h = height - bottom < rows ? height - bottom : rows;
-        render_resize(d->width, h);
-        render_set_window(d->width, d->height, 0, top + height - bottom - h);
+        int band_top = top + height - bottom - h, below = d->height - band_top - h;
+        int above = band_top < margin ? band_top : margin, under = below < margin ? below : margin;
+        render_resize(d->width, above + h + under);
+        render_set_window(d->width, d->height, 0, band_top - above);
         render_begin(&d->cam);
         for (int i = 0; i < d->spp; i++) {
             render_sample();
@@ -209,8 +217,9 @@ static bool render_bands(const offline_desc *d, int top, int height, image_write
         if (e != GL_NO_ERROR)
             return err_set(err, "cannot render '%s': the GL failed on a %dx%d band (%s); try a smaller --strip-rows",
                            d->output, d->width, h, e == GL_OUT_OF_MEMORY ? "out of GPU memory" : "GL error");
-        unresolved[0] += render_unresolved_pixels(&unresolved[1]);
-        if (!write_band(w, d->output, d->width, h, d->aovs, err))
+        unresolved[0] += render_unresolved_pixels(&unresolved[1]); /* (margin rows counted too) */
+        *pixel_samples += render_mean_samples() * d->width * h; /* (margin rows as many a pixel) */
+        if (!write_band(w, d->output, d->width, above, h, d->aovs, err))
             return false;
     }
     return true;
@@ -268,18 +277,24 @@ bool offline_render_current(const offline_desc *desc, err_t *err)
     if (!w)
         return false;
     long unresolved[2] = {0, 0}; /* all, and those out of the loop budget */
-    if (!render_bands(d, top, rows, w, unresolved, err)) {
+    double pixel_samples = 0;
+    if (!render_bands(d, top, rows, w, unresolved, &pixel_samples, err)) {
         image_writer_abort(w);
         return false;
     }
     if (!image_writer_finish(w, err))
         return false;
+    char spp[64]; /* adaptive sampling: the samples the pixels took, on average */
+    double mean = pixel_samples / ((double)d->width * rows);
+    int len = snprintf(spp, sizeof spp, "%d spp", d->spp);
+    if (mean < d->spp - 0.05)
+        snprintf(spp + len, sizeof spp - (size_t)len, ", %.1f a pixel", mean);
     if (!d->quiet && d->tile_count)
-        fprintf(stderr, "wrote %s (tile %d of %d: rows %d-%d of %dx%d, %d spp%s, %.2f s, %s, %s)\n", d->output,
-                d->tile_index, d->tile_count, top, top + rows - 1, d->width, d->height, d->spp, precision,
+        fprintf(stderr, "wrote %s (tile %d of %d: rows %d-%d of %dx%d, %s%s, %.2f s, %s, %s)\n", d->output,
+                d->tile_index, d->tile_count, top, top + rows - 1, d->width, d->height, spp, precision,
                 util_now() - t0, render_backend_name(render_backend_used()), gpu_describe());
     else if (!d->quiet)
-        fprintf(stderr, "wrote %s (%dx%d, %d spp%s, %.2f s, %s, %s)\n", d->output, d->width, d->height, d->spp,
+        fprintf(stderr, "wrote %s (%dx%d, %s%s, %.2f s, %s, %s)\n", d->output, d->width, d->height, spp,
                 precision, util_now() - t0, render_backend_name(render_backend_used()), gpu_describe());
     long steps = unresolved[0] - unresolved[1], loops = unresolved[1];
     double share = 100.0 / ((double)d->width * rows);
