@@ -294,9 +294,13 @@ void render_set_edge_aware(bool on) { state->edge_aware = on; }
 
 int render_adaptive_pixels(void) { return state->masked; }
 
+/* Whether s's pixels may stop early by their standard error: a tolerance, and not the path tracer (the
+ * unbiased truth, whose two samples may agree by chance). */
+static bool stops_by_error(const scene *s) { return s->quality.tolerance > 0 && !s->quality.integrator; }
+
 int render_adaptive_margin(const scene *s, int spp)
 {
-    int m = s->quality.tolerance > 0 && !s->quality.integrator && spp > RENDER_ADAPTIVE_MIN ? spp - RENDER_ADAPTIVE_MIN : 0;
+    int m = stops_by_error(s) && spp > RENDER_ADAPTIVE_MIN ? spp - RENDER_ADAPTIVE_MIN : 0;
     return (m + 1) & ~1;
 }
 
@@ -350,28 +354,26 @@ static void build_mask_tex(bool edges, float tolerance)
 /* Whether this sample goes only to the pixels mask_tex keeps, building the mask where a sample
  * starts. Shading is deterministic but for the sub-pixel position, a lens's point and the path
  * tracer's random numbers: in the window (render_set_adaptive) the samples after the first and before
- * RENDER_ADAPTIVE_MIN go only to edges while
- * there is no lens or path tracer; from sample RENDER_ADAPTIVE_MIN on, with a tolerance, only pixels whose
- * standard error is above it take more (everywhere: per pixel, so tiles and bands agree with the
- * whole). Once no pixel is left, the image has converged and further samples cost nothing. */
-
+ * RENDER_ADAPTIVE_MIN go only to edges while there is no lens or path tracer; from sample
+ * RENDER_ADAPTIVE_MIN on, only pixels whose 3x3 block's standard error is above the tolerance take
+ * more (every image; bands and tiles carry margin rows for the block: render_adaptive_margin). Once no
+ * pixel is left, the image has converged and further samples cost nothing. */
 static bool masked_sample(void)
 {
     const scene *s = render_scene_current();
-    float tolerance = s->quality.tolerance;
     if (state->samples == 0)
         return false;
     if (state->samples < RENDER_ADAPTIVE_MIN) {
-        if (!state->adaptive || !(tolerance > 0) || s->quality.integrator || state->cam.lens.aperture > 0)
+        if (!state->adaptive || !stops_by_error(s) || state->cam.lens.aperture > 0)
             return false;
         if (state->samples == 1 && state->band_done == 0)
             build_mask_tex(true, 0.0f);
         return true;
     }
-    if (!(tolerance > 0) || s->quality.integrator) /* the path tracer is the unbiased truth: no early stop */
+    if (!stops_by_error(s))
         return false;
     if (state->band_done == 0 && !state->converged) {
-        build_mask_tex(false, tolerance);
+        build_mask_tex(false, s->quality.tolerance);
         state->converged = state->masked == 0;
     }
     return true;
