@@ -111,9 +111,9 @@ static const char USAGE_OPTIONS[] =
 
 const char *cli_usage(void)
 {
-    static char text[sizeof USAGE + sizeof USAGE_OPTIONS + 2048];
+    static char text[sizeof USAGE + sizeof USAGE_OPTIONS + 4096];
     if (!text[0])
-        snprintf(text, sizeof text, "%s%s\n%s", USAGE, cli_mesh_usage(), USAGE_OPTIONS);
+        snprintf(text, sizeof text, "%s%s%s\n%s", USAGE, cli_mesh_usage(), cli_gis_usage(), USAGE_OPTIONS);
     return text;
 }
 

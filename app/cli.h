@@ -115,6 +115,8 @@ const char *cli_usage(void);
 bool cli_mesh_option(const char *name, const char *val, cli_options *o, err_t *err, bool *handled);
 bool cli_mesh_check(const cli_options *o, err_t *err);
 const char *cli_mesh_usage(void);
+/* cli_gis.c: `fathom viewshed` and `fathom track`'s usage (their options: cli_gis.h). */
+const char *cli_gis_usage(void);
 
 /* --scene IMAGE: reads the image's shot and rewrites o to reopen it. The image's overrides come first
  * and the command line's after them (so they win); its camera and size are used unless the command

@@ -10,6 +10,7 @@
 #include "jobs/check.h"
 #include "jobs/flight.h"
 #include "jobs/mesh_job.h"
+#include "jobs/gis_job.h"
 #include "cli.h"
 #include "window/explore.h"
 #include "data/image_io.h"
@@ -205,6 +206,13 @@ int main(int argc, char **argv)
     image_io_install_signal_cleanup();
     cli_options opt;
     err_t err;
+    gis_options gis;
+    if (!cli_gis_parse(argc, argv, &gis, &err)) {
+        fprintf(stderr, "fathom: %s\n", err.msg);
+        return EXIT_USAGE;
+    }
+    if (gis.command != GIS_NONE)
+        return finish(gis.command == GIS_VIEWSHED ? gis_viewshed_run(&gis, &err) : gis_track_run(&gis, &err), &err);
     if (!cli_parse(argc, argv, &opt, &err)) {
         fprintf(stderr, "fathom: %s\n", err.msg);
         return EXIT_USAGE;

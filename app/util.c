@@ -8,6 +8,7 @@
 #include <fcntl.h>
 #include <limits.h>
 #include <stdarg.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -353,3 +354,29 @@ double util_median(const double *v, int n)
     free(c);
     return m;
 }
+/* Days from 1970-01-01 to a proleptic Gregorian date (the era arithmetic of H. Hinnant's
+ * "chrono-Compatible Low-Level Date Algorithms"). */
+long util_days_from_civil(int y, int m, int d)
+{
+    y -= m <= 2;
+    long era = (y >= 0 ? y : y - 399) / 400;
+    long yoe = y - era * 400, mp = (m + 9) % 12;
+    long doy = (153 * mp + 2) / 5 + d - 1, doe = yoe * 365 + yoe / 4 - yoe / 100 + doy;
+    return era * 146097 + doe - 719468;
+}
+
+void util_civil_from_seconds(double t, int *y, int *mo, int *d, int *h, int *mi, double *s)
+{
+    long days = (long)floor(t / 86400);
+    double rest = t - (double)days * 86400;
+    long z = days + 719468, era = (z >= 0 ? z : z - 146096) / 146097, doe = z - era * 146097;
+    long yoe = (doe - doe / 1460 + doe / 36524 - doe / 146096) / 365, doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    long mp = (5 * doy + 2) / 153;
+    *d = (int)(doy - (153 * mp + 2) / 5 + 1);
+    *mo = (int)(mp < 10 ? mp + 3 : mp - 9);
+    *y = (int)(yoe + era * 400 + (*mo <= 2));
+    *h = (int)(rest / 3600);
+    *mi = (int)((rest - *h * 3600) / 60);
+    *s = rest - *h * 3600 - *mi * 60;
+}
+

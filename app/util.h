@@ -96,6 +96,11 @@ void util_sort(double *v, int n);
 /* Median of n doubles (sorts a copy). */
 double util_median(const double *v, int n);
 
+/* Calendar dates (proleptic Gregorian, UTC): days from 1970-01-01 to y-m-d, and seconds since the epoch
+ * back to the date and time of day. */
+long util_days_from_civil(int y, int m, int d);
+void util_civil_from_seconds(double t, int *y, int *mo, int *d, int *h, int *mi, double *s);
+
 #ifdef __cplusplus
 }
 #endif

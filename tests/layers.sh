@@ -19,7 +19,7 @@ say() { echo "layers: $*"; fail=1; }
 
 floor() { # the layer of a path under app/ (lower numbers are higher up)
     case $1 in
-    main.c) echo 0 ;; window/*) echo 1 ;; jobs/*) echo 2 ;; cli.c | cli.h | cli_*.c) echo 3 ;; gpu/*) echo 4 ;;
+    main.c) echo 0 ;; window/*) echo 1 ;; jobs/*) echo 2 ;; cli.c | cli.h | cli_*.c | cli_*.h) echo 3 ;; gpu/*) echo 4 ;;
     scene/*) echo 5 ;; view/*) echo 6 ;; data/*) echo 7 ;; util.c | util.h) echo 8 ;; *) echo x ;;
     esac
 }

@@ -5,8 +5,8 @@
 
 #include "data/image_io.h"
 
-/* A mipmapped, trilinear, repeating 2D texture from one level of pixels. */
-static GLuint tiled_texture(GLint internal, int w, int h, GLenum format, GLenum type, const void *px, GLint align)
+GLuint texture_mipmapped_2d(GLint internal, int w, int h, GLenum format, GLenum type, const void *px, GLint align,
+                            GLint wrap)
 {
     GLuint tex;
     glGenTextures(1, &tex);
@@ -16,8 +16,8 @@ static GLuint tiled_texture(GLint internal, int w, int h, GLenum format, GLenum 
     glGenerateMipmap(GL_TEXTURE_2D);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, wrap);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, wrap);
     return tex;
 }
 
@@ -36,7 +36,7 @@ GLuint texture_load_2d(const char *path, err_t *err)
     if (!image_read_u8(path, 4, max_side(), &w, &h, &px, err))
         return 0;
     /* Row order does not matter for a tiling texture; keep the file's. */
-    GLuint tex = tiled_texture(GL_SRGB8_ALPHA8, w, h, GL_RGBA, GL_UNSIGNED_BYTE, px, 1);
+    GLuint tex = texture_mipmapped_2d(GL_SRGB8_ALPHA8, w, h, GL_RGBA, GL_UNSIGNED_BYTE, px, 1, GL_REPEAT);
     free(px);
     return tex;
 }
@@ -57,7 +57,7 @@ GLuint texture_load_height(const char *path, int *width, err_t *err)
     for (int i = 0; i < w * h; i++) /* 0 deepest, 1 the surface */
         one[i] = hi > lo ? (one[i] - lo) / (hi - lo) : 1.0f;
     free(px);
-    GLuint tex = tiled_texture(GL_R32F, w, h, GL_RED, GL_FLOAT, one, 4);
+    GLuint tex = texture_mipmapped_2d(GL_R32F, w, h, GL_RED, GL_FLOAT, one, 4, GL_REPEAT);
     free(one);
     *width = w;
     return tex;

@@ -13,6 +13,10 @@
 
 /* 0 and err when the file cannot be read. */
 GLuint texture_load_2d(const char *path, err_t *err);
+/* A mipmapped, trilinear 2D texture from one level of pixels, wrapping as `wrap` says (GL_REPEAT for a
+ * tiling texture, GL_CLAMP_TO_EDGE for one that covers something once). */
+GLuint texture_mipmapped_2d(GLint internal, int w, int h, GLenum format, GLenum type, const void *px, GLint align,
+                            GLint wrap);
 
 /* A heightmap as linear float (first channel), mipmapped, repeating: for parallax occlusion. *width
  * gets its width in texels. */

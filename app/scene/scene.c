@@ -83,8 +83,8 @@ static bool parse_root(scene_ctx *c, cJSON *root)
     scene *s = c->s;
     /* the blocks every program reads, then each program's own shape block (PROGRAM_LIST) */
     const char *keys[16 + PROGRAM_COUNT] = {"title", "program", "camera", "environment", "lights", "fog",
-                                            "materials", "quality", "effects", "droplets"};
-    int n = 10;
+                                            "materials", "quality", "effects", "droplets", "sun"};
+    int n = 11;
     for (int k = 0; k < PROGRAM_COUNT; k++) {
         int i = 0;
         while (i < n && strcmp(keys[i], program_get((program_kind)k)->block))
@@ -125,6 +125,7 @@ static bool parse_root(scene_ctx *c, cJSON *root)
     if (!check_shape_blocks(c, root, p))
         return false;
     if (!scene_parse_camera(c, root) || !scene_parse_fog(c, root) || !scene_parse_environment(c, root) || !scene_parse_lights(c, root) ||
+        !scene_parse_sun(c, root) ||
         !scene_parse_quality(c, root) || !scene_parse_effects(c, root) || !scene_parse_droplets(c, root))
         return false;
     /* fractals colour their own surface: their "materials" are optional */
@@ -345,7 +346,7 @@ static bool load_text(const char *text, const char *path, const char *const *set
         ok = scene_apply_set(root, sets[i], err); /* its errors name the override already */
     if (ok) {
         ok = parse_root(&c, root) &&
-             (!s->cam_auto || program_get(s->program)->frame(s, err));
+             (!s->cam_auto || program_get(s->program)->frame(s, err)) && scene_apply_sun(s, err);
         if (!ok && set_count > 0 && blame)
             blame_override(text, path, sets, set_count, err);
     }

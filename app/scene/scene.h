@@ -36,7 +36,8 @@ enum { CSG_LIST_MIN = 32, CSG_CODE_MAX = 256, CSG_LIST_MAX = 1 << 20 };
  * primitive, CSG_NODE_TEXELS a BVH node, in textures CSG_TEXTURE_WIDTH texels wide. */
 enum { CSG_LIST_TEXELS = 5, CSG_NODE_TEXELS = 2, CSG_TEXTURE_WIDTH = 4096 };
 
-enum { SCENE_MAX_MATERIALS = 16, SCENE_MAX_LIGHTS = 8, SCENE_MAX_TEXTURES = 4, SCENE_NAME_MAX = 64 };
+enum { SCENE_MAX_MATERIALS = 16, SCENE_MAX_LIGHTS = 8, SCENE_MAX_TEXTURES = 4, SCENE_NAME_MAX = 64,
+       SCENE_MAX_IMAGERY = 4 };
 
 typedef struct scene_material {
     char name[SCENE_NAME_MAX];
@@ -149,11 +150,24 @@ typedef struct scene {
         float sand_line, snow_line; /* metres: sand below, snow above (after exaggeration) */
         bool elevation_ramp;        /* "colors": "elevation": a hypsometric tint by true height, no layers */
         float grass_slope;          /* grass where the normal's y is above this, else rock */
+        /* "imagery": rasters draped on a DEM in order, each with its opacity (gpu/res_imagery.c) */
+        char imagery[SCENE_MAX_IMAGERY][PATH_MAX_LEN];
+        float imagery_opacity[SCENE_MAX_IMAGERY];
+        int imagery_count;
         /* program noise: f(p) = y − base − amplitude · fbm(p · frequency), `octaves` octaves */
         float base, amplitude, frequency;
         int octaves;
     } terrain;
     bool adaptive_speed; /* window: flying speed follows the distance to the surface */
+
+    struct scene_sun { /* "sun": a directional light placed by date, hour and place (scene_sun.c) */
+        bool on;
+        char date[16];            /* "YYYY-MM-DD" */
+        float hour, utc_offset;   /* local hours; the zone's offset from UTC in hours */
+        double latitude, longitude; /* degrees; NaN: the DEM's centre */
+        int light;                /* which light it moves (a directional one) */
+        double azimuth, elevation; /* where it came out, degrees (the HUD and the tests) */
+    } sun;
 
     /* "droplets": liquid spheres from a file (app/data/droplets.h), a layer any program can hold; the file
      * is read when the scene goes to the GPU (render_scene.c), like a terrain's heightmap */
@@ -196,6 +210,9 @@ bool scene_load_text(const char *text, const char *path, const char *const *sets
                      err_t *err);
 
 void scene_free(scene *s);
+
+/* The "sun" block's light set from its date, hour and place (scene_sun.c); true when there is none. */
+bool scene_apply_sun(scene *s, err_t *err);
 
 /* The files of the formulas that draw s (its fractal's, its hybrid's), NULL where none: what a shot
  * records (view/shot.h). */

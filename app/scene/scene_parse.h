@@ -68,6 +68,7 @@ bool scene_parse_camera(scene_ctx *c, const cJSON *root);
 bool scene_parse_fog(scene_ctx *c, const cJSON *root);
 bool scene_parse_environment(scene_ctx *c, const cJSON *root);
 bool scene_parse_lights(scene_ctx *c, const cJSON *root);
+bool scene_parse_sun(scene_ctx *c, const cJSON *root); /* scene_sun.c */
 bool scene_parse_quality(scene_ctx *c, const cJSON *root);
 bool scene_parse_effects(scene_ctx *c, const cJSON *root);
 bool scene_parse_droplets(scene_ctx *c, const cJSON *root);

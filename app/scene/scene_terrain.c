@@ -33,12 +33,46 @@ bool scene_noise_parse(scene_ctx *c, const cJSON *root)
 
 static bool spacing_ok(const cJSON *v) { return cJSON_IsNumber(v) && terrain_spacing_ok(v->valuedouble); }
 
+/* "imagery": a file, or an array of files and {"file": F, "opacity": A} layers, drawn in order. */
+static bool parse_imagery(scene_ctx *c, const cJSON *tb)
+{
+    struct scene_terrain *t = &c->s->terrain;
+    const cJSON *im = cJSON_GetObjectItemCaseSensitive(tb, "imagery");
+    if (!im)
+        return true;
+    const cJSON *first = cJSON_IsArray(im) ? im->child : im;
+    if (!first && cJSON_IsArray(im))
+        return true; /* [] drapes nothing */
+    static const char *const keys[] = {"file", "opacity", NULL};
+    int i = 0;
+    for (const cJSON *l = first; l; l = cJSON_IsArray(im) ? l->next : NULL, i++) {
+        char p[64];
+        snprintf(p, sizeof p, cJSON_IsArray(im) ? "terrain.imagery.%d" : "terrain.imagery", i);
+        if (i == SCENE_MAX_IMAGERY)
+            return scene_fail(c, p, "too many imagery layers (at most %d)", SCENE_MAX_IMAGERY);
+        const char *file = cJSON_IsString(l) ? l->valuestring : NULL;
+        float opacity = 1;
+        if (cJSON_IsObject(l) && (!scene_check_keys(c, l, p, keys) || !scene_get_str(c, l, p, "file", NULL, &file) ||
+                                  !scene_get_num(c, l, p, "opacity", 1, 0, 1, &opacity)))
+            return false;
+        if (!file)
+            return scene_fail(c, p, "expected an imagery file (any raster GDAL reads, georeferenced) or {\"file\": F, "
+                                    "\"opacity\": 0.7}");
+        if (!scene_resolve_file(c, p, file, t->imagery[i]))
+            return false;
+        t->imagery_opacity[i] = opacity;
+        t->imagery_count = i + 1;
+    }
+    return true;
+}
+
 bool scene_heightmap_parse(scene_ctx *c, const cJSON *root)
 {
     struct scene_terrain *t = &c->s->terrain;
     const cJSON *tb = cJSON_GetObjectItemCaseSensitive(root, "terrain");
     static const char *const keys[] = {"heightmap", "spacing", "height_min", "height_max", "exaggeration", "method",
-                                       "sand_line", "snow_line", "grass_slope", "nodata", "normals", "colors", NULL};
+                                       "sand_line", "snow_line", "grass_slope", "nodata", "normals", "colors", "imagery",
+                                       NULL};
     if (!tb)
         return scene_fail(c, "terrain", "a terrain scene needs a \"terrain\" block with a \"heightmap\"");
     if (!scene_check_keys(c, tb, "terrain", keys))
@@ -92,7 +126,7 @@ bool scene_heightmap_parse(scene_ctx *c, const cJSON *root)
     if (!scene_get_enum(c, tb, "terrain", "colors", "terrain colouring", COLORS, 0, &m))
         return false;
     t->elevation_ramp = m == 1;
-    return true;
+    return parse_imagery(c, tb);
 }
 
 
@@ -143,6 +177,8 @@ void scene_heightmap_defines(const scene *s, strbuf *out)
     sb_printf(out, "#define TERRAIN_MAXMIP %d\n", s->terrain.maxmip);
     if (s->terrain.patch_normals)
         sb_printf(out, "#define TERRAIN_PATCH_NORMALS 1\n");
+    if (s->terrain.imagery_count) /* only a scene with imagery samples it */
+        sb_printf(out, "#define TERRAIN_IMAGERY 1\n");
 }
 
 /* The layered albedo (shaders/terrain/layers.glsl): which material each layer uses, and where. */

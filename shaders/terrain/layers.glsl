@@ -7,6 +7,11 @@ uniform float uGrassSlope; // grass where normal.y exceeds this
 uniform int uLayerSand, uLayerGrass, uLayerRock, uLayerSnow; // material indices
 uniform int uElevationRamp;   // 1: colour by true height (terrain.colors = elevation) instead of layers
 uniform float uExaggeration;  // heights are true heights times this
+#ifdef TERRAIN_IMAGERY
+// The draped imagery (app/gpu/res_imagery.c): the DEM's whole extent, row 0 north, sRGB (read linear),
+// alpha its coverage. Filtered by the footprint's own gradients: mipmaps and anisotropy like any texture.
+uniform sampler2D uImagery;
+#endif
 
 // A hypsometric tint, the map makers' colours for height above the sea (true metres): lowland greens,
 // upland tans and browns, grey rock, then snow; each surface keeps its texture's light and shade.
@@ -54,5 +59,12 @@ vec3 programAlbedo(vec3 p, vec3 n, vec3 dpdx, vec3 dpdy, vec3 base)
         c = mix(c, layerColor(uLayerSnow, p, n, dpdx, dpdy), snow);
     // the ramp keeps the layers' light and shade (their luminance about its mean), not their colour
     float shade = dot(c, vec3(0.299, 0.587, 0.114));
-    return uElevationRamp != 0 ? elevationRamp(p.y / uExaggeration) * (0.65 + 0.5 * shade) : c;
+    if (uElevationRamp != 0)
+        c = elevationRamp(p.y / uExaggeration) * (0.65 + 0.5 * shade);
+#ifdef TERRAIN_IMAGERY
+    vec2 extent = vec2(uTerrainSize) * uTerrainSpacing; // the DEM's texels edge to edge, as the imagery
+    vec4 img = textureGrad(uImagery, (p.xz - uTerrainOrigin) / extent, dpdx.xz / extent, dpdy.xz / extent);
+    c = mix(c, img.rgb, img.a);
+#endif
+    return c;
 }

@@ -1,0 +1,287 @@
+/* gis_job — the viewshed and track commands (gis_job.h). */
+/* M_PI is XSI */
+#define _XOPEN_SOURCE 700
+#include "jobs/gis_job.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "data/dem.h"
+#include "data/geo.h"
+#include "data/sun.h"
+#include "data/terrain.h"
+#include "data/viewshed.h"
+#include "scene/scene.h"
+#include "view/camera.h"
+#include "view/path.h"
+
+bool gis_viewshed_run(const gis_options *o, err_t *err)
+{
+    int w, h;
+    float *heights;
+    dem_info info = {0};
+    if (!dem_read(o->dem, TERRAIN_MAX_SIDE, &w, &h, &heights, &info, err))
+        return false;
+    double col, row;
+    bool ok = info.georeferenced ||
+              err_set(err, "the DEM '%s' has no georeferencing: a viewshed needs its spacing in metres and its place "
+                           "on the Earth", o->dem);
+    ok = ok && geo_convert(o->dem, true, 1, &o->lon, &o->lat, &col, &row, err);
+    unsigned char *out = ok ? util_alloc((size_t)w * (size_t)h, "the viewshed") : NULL;
+    viewshed_desc d = {.heights = heights, .w = w, .h = h, .dx = info.spacing[0], .dz = info.spacing[1], .col = col,
+                       .row = row, .observer_height = o->observer_height, .target_height = o->target_height,
+                       .refraction = o->refraction, .curvature = !o->flat_earth, .radius = o->radius};
+    viewshed_stats st;
+    ok = ok && viewshed_compute(&d, out, &st, err);
+    char earth[96], about[512];
+    if (o->flat_earth)
+        snprintf(earth, sizeof earth, "a flat Earth");
+    else
+        snprintf(earth, sizeof earth, "Earth curvature, refraction coefficient %.3f", o->refraction);
+    snprintf(about, sizeof about,
+             "viewshed from %.6f,%.6f (texel %.2f, %.2f), eye %.2f m above the ground, targets %.2f m; %s; 1 visible, "
+             "0 hidden, 255 nodata%s (fathom %s)",
+             o->lon, o->lat, col, row, o->observer_height, o->target_height, earth,
+             o->radius > 0 ? " or beyond the radius" : "", FATHOM_VERSION);
+    ok = ok && geo_write_mask(o->dem, o->output, w, h, out, about, err);
+    if (ok) {
+        size_t seen = st.visible + st.hidden;
+        printf("%s: %zu of %zu texels visible (%.1f %%), %zu nodata; %.2f s on %d threads (%.1f pyramid nodes a "
+               "texel)\n",
+               o->output, st.visible, seen, seen ? 100.0 * (double)st.visible / (double)seen : 0.0, st.nodata, st.seconds,
+               st.threads, st.nodes_per_texel);
+    }
+    free(out);
+    free(heights);
+    return ok;
+}
+
+/* ---- tracks ------------------------------------------------------------------------------------ */
+
+/* The DEM as its scene draws it: texels, spacing, exaggeration and the heights (metres). World x of
+ * texel column c is (c + ½ − w/2)·dx (data/terrain.h's contract), z likewise, y the height × ex. */
+typedef struct frame {
+    int w, h;
+    double dx, dz, ex;
+    float *heights;
+    scene s;
+} frame;
+
+static bool frame_load(const gis_options *o, frame *f, err_t *err)
+{
+    char set[PATH_MAX_LEN + 32];
+    const char *sets[65];
+    snprintf(set, sizeof set, "terrain.heightmap=%s", o->dem);
+    sets[0] = set;
+    for (int i = 0; i < o->set_count; i++)
+        sets[i + 1] = o->sets[i];
+    if (!scene_load(o->scene ? o->scene : "dem", sets, o->set_count + 1, &f->s, err))
+        return false;
+    heightfield_desc d = {.path = o->dem, .spacing = {f->s.terrain.spacing[0], f->s.terrain.spacing[1]},
+                          .exaggeration = f->s.terrain.exaggeration};
+    double size[2], range[2], spacing[2];
+    dem_info info;
+    bool ok = heightfield_probe(&d, size, range, spacing, err) &&
+              dem_read(o->dem, TERRAIN_MAX_SIDE, &f->w, &f->h, &f->heights, &info, err);
+    if (!ok) {
+        scene_free(&f->s);
+        return false;
+    }
+    f->dx = spacing[0], f->dz = spacing[1], f->ex = f->s.terrain.exaggeration > 0 ? f->s.terrain.exaggeration : 1;
+    return true;
+}
+
+static void frame_free(frame *f)
+{
+    free(f->heights);
+    scene_free(&f->s);
+}
+
+/* The ground (metres, bilinear) under texel coordinates; NaN off the grid or over a hole. */
+static double frame_ground(const frame *f, double c, double r)
+{
+    if (!(c >= 0 && r >= 0 && c <= f->w - 1 && r <= f->h - 1))
+        return NAN;
+    int i = (int)fmin(floor(c), f->w - 2), j = (int)fmin(floor(r), f->h - 2);
+    double u = c - i, v = r - j;
+    const float *p = f->heights + (size_t)j * (size_t)f->w + (size_t)i;
+    return (p[0] * (1 - u) + p[1] * u) * (1 - v) + (p[f->w] * (1 - u) + p[f->w + 1] * u) * v;
+}
+
+/* A flight key: world position, the point it looks at, its time. */
+typedef struct key {
+    double p[3], at[3], t;
+} key;
+
+/* Keys from the track's points inside the DEM: at least `gap` metres apart, each `height` above the
+ * ground. Returns the count; *outside the points left out. */
+static int track_keys(const gis_options *o, const frame *f, const geo_point *pts, const double *col,
+                      const double *row, int n, double gap, key *k, int *outside)
+{
+    int m = 0;
+    double dist = 0;
+    *outside = 0;
+    for (int i = 0; i < n; i++) {
+        double g = frame_ground(f, col[i], row[i]);
+        if (isnan(g)) {
+            (*outside)++;
+            continue;
+        }
+        double x = (col[i] + 0.5 - f->w / 2.0) * f->dx, z = (row[i] + 0.5 - f->h / 2.0) * f->dz;
+        double step = m ? hypot(x - k[m - 1].p[0], z - k[m - 1].p[2]) : 0;
+        bool last = i == n - 1;
+        if (m && step < gap && !last)
+            continue;
+        if (m && step < 1e-6) /* the last point on top of the previous key */
+            continue;
+        dist += step;
+        k[m++] = (key){{x, (g + o->height) * f->ex, z}, {0, 0, 0}, isnan(pts[i].time) ? NAN : pts[i].time};
+        k[m - 1].at[0] = dist; /* the distance along, for the times and the look-ahead below */
+    }
+    return m;
+}
+
+/* Times (the track's own when every kept point has one and they increase, else distance / speed) and
+ * where each key looks: the track `ahead` metres on, down to the ground there. */
+static void track_times_and_views(const gis_options *o, const frame *f, key *k, int m)
+{
+    bool own = true;
+    for (int i = 0; i < m; i++)
+        own = own && !isnan(k[i].t) && (i == 0 || k[i].t > k[i - 1].t);
+    double t0 = k[0].t, ahead = fmax(4 * o->height, 10 * fmax(f->dx, f->dz));
+    double *along = malloc(sizeof(double) * (size_t)m);
+    for (int i = 0; i < m; i++) {
+        along[i] = k[i].at[0];
+        k[i].t = own ? k[i].t - t0 : along[i] / o->speed;
+    }
+    for (int i = 0, j = 0; i < m; i++) {
+        while (j < m - 1 && along[j] < along[i] + ahead)
+            j++;
+        double dx = k[j].p[0] - k[i].p[0], dz = k[j].p[2] - k[i].p[2], len = hypot(dx, dz);
+        if (len < 1e-6) { /* the end: keep the last heading */
+            dx = k[i].p[0] - k[i > 0 ? i - 1 : 0].p[0], dz = k[i].p[2] - k[i > 0 ? i - 1 : 0].p[2];
+            len = fmax(hypot(dx, dz), 1e-9);
+        }
+        double ax = k[i].p[0] + dx / len * ahead, az = k[i].p[2] + dz / len * ahead;
+        double g = frame_ground(f, ax / f->dx + f->w / 2.0 - 0.5, az / f->dz + f->h / 2.0 - 0.5);
+        k[i].at[0] = ax, k[i].at[2] = az;
+        k[i].at[1] = isnan(g) ? k[i].p[1] - o->height * f->ex : g * f->ex;
+    }
+    free(along);
+}
+
+static bool write_flight(const char *out, const key *k, int m, err_t *err)
+{
+    strbuf b = {0};
+    sb_printf(&b, "{ \"keys\": [\n");
+    for (int i = 0; i < m; i++)
+        sb_printf(&b, "  { \"time\": %.3f, \"position\": [%.3f, %.3f, %.3f], \"look_at\": [%.3f, %.3f, %.3f] }%s\n",
+                  k[i].t, k[i].p[0], k[i].p[1], k[i].p[2], k[i].at[0], k[i].at[1], k[i].at[2], i + 1 < m ? "," : "");
+    sb_printf(&b, "] }\n");
+    path p; /* what render --path will read: checked before it is written */
+    bool ok = path_parse(b.data, out, &p, err);
+    if (ok)
+        path_free(&p);
+    ok = ok && util_write_text_atomic(out, b.data, "the flight", err);
+    sb_free(&b);
+    return ok;
+}
+
+static bool track_to_flight(const gis_options *o, frame *f, err_t *err)
+{
+    geo_point *pts;
+    int n;
+    if (!geo_track_read(o->input, &pts, &n, err))
+        return false;
+    double *lon = malloc(sizeof(double) * 4 * (size_t)n), *lat = lon + n, *col = lat + n, *row = col + n;
+    for (int i = 0; i < n; i++)
+        lon[i] = pts[i].lon, lat[i] = pts[i].lat;
+    key *k = malloc(sizeof(key) * (size_t)n);
+    int m = 0, outside = 0;
+    bool ok = geo_convert(o->dem, true, n, lon, lat, col, row, err);
+    for (double gap = fmax(f->dx, f->dz); ok; gap *= 2) { /* a flight holds PATH_MAX_KEYS keys at most */
+        m = track_keys(o, f, pts, col, row, n, gap, k, &outside);
+        if (m <= PATH_MAX_KEYS)
+            break;
+    }
+    if (ok && m < 2)
+        ok = err_set(err, "the track '%s' has %d of its %d points on the DEM '%s': a flight needs two (is it in "
+                          "the DEM's area?)", o->input, m, n, o->dem);
+    if (ok) {
+        track_times_and_views(o, f, k, m);
+        if (k[m - 1].t > PATH_MAX_TIME)
+            ok = err_set(err, "the track lasts %.0f s: a flight lasts at most a day (%.0f s); give --speed for a faster "
+                              "one", k[m - 1].t, PATH_MAX_TIME);
+    }
+    ok = ok && write_flight(o->output, k, m, err);
+    double km = 0;
+    for (int i = 1; ok && i < m; i++)
+        km += 0.001 * hypot(k[i].p[0] - k[i - 1].p[0], k[i].p[2] - k[i - 1].p[2]);
+    if (ok)
+        printf("%s: %d keys from %d track points (%d outside the DEM), %.0f s, %.1f km, %.0f m above the ground\n",
+               o->output, m, n, outside, k[m - 1].t, km, o->height);
+    free(k);
+    free(lon);
+    free(pts);
+    return ok;
+}
+
+/* When the flight starts: the scene's sun date and hour when it sets one (the day it shows), else now. */
+static double flight_start(const scene *s)
+{
+    double t;
+    if (s->sun.on && sun_time(s->sun.date, s->sun.hour, s->sun.utc_offset, &t))
+        return t;
+    return (double)time(NULL);
+}
+
+static bool flight_to_track(const gis_options *o, frame *f, err_t *err)
+{
+    path p;
+    if (!path_load(o->path, &p, err))
+        return false;
+    double t0 = p.keys[0].time, t1 = p.keys[p.count - 1].time, start = flight_start(&f->s);
+    int n = (int)floor((t1 - t0) * o->fps + 1e-9) + 1;
+    if (n < 2)
+        n = 2;
+    geo_point *pts = malloc(sizeof *pts * (size_t)n);
+    double (*cam)[3] = malloc(sizeof *cam * (size_t)n);
+    double *buf = malloc(sizeof(double) * 4 * (size_t)n), *col = buf, *row = buf + n, *lon = buf + 2 * n, *lat = buf + 3 * n;
+    for (int i = 0; i < n; i++) {
+        double t = i == n - 1 ? t1 : t0 + i / o->fps;
+        path_sample ps;
+        path_eval(&p, t, &ps);
+        col[i] = ps.position[0] / f->dx + f->w / 2.0 - 0.5;
+        row[i] = ps.position[2] / f->dz + f->h / 2.0 - 0.5;
+        pts[i] = (geo_point){0, 0, ps.position[1] / f->ex, start + (t - t0)};
+        /* camera.h: yaw 0 looks north (−Z) and grows turning left; KML: heading clockwise from north,
+         * tilt 0 looking straight down and 90 at the horizon */
+        double heading = fmod(-ps.yaw * 180 / M_PI + 720, 360);
+        cam[i][0] = heading, cam[i][1] = 90 + ps.pitch * 180 / M_PI, cam[i][2] = ps.roll * 180 / M_PI;
+    }
+    bool ok = geo_convert(o->dem, false, n, col, row, lon, lat, err);
+    for (int i = 0; ok && i < n; i++)
+        pts[i].lon = lon[i], pts[i].lat = lat[i];
+    const char *base = strrchr(o->path, '/');
+    ok = ok && geo_track_write(o->output, base ? base + 1 : o->path, pts, (const double (*)[3])cam, n, err);
+    if (ok)
+        printf("%s: %d points, %.1f s of the flight at %g a second, from %s\n", o->output, n, t1 - t0, o->fps, o->path);
+    free(buf);
+    free(cam);
+    free(pts);
+    path_free(&p);
+    return ok;
+}
+
+bool gis_track_run(const gis_options *o, err_t *err)
+{
+    frame f = {0};
+    if (!frame_load(o, &f, err))
+        return false;
+    bool ok = o->input ? track_to_flight(o, &f, err) : flight_to_track(o, &f, err);
+    frame_free(&f);
+    return ok;
+}

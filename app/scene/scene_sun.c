@@ -1,0 +1,86 @@
+/* scene_sun — the "sun" block: a directional light placed by a date, a local hour and a place
+ * (data/sun.h: NOAA's solar position), its colour the direct beam's through the air. The place is the
+ * DEM's centre (data/geo.h) unless the block gives latitude and longitude. The hour is a number so a
+ * flight's "set" track can run a day ("sun.hour": 6 → 20) and the panel shows it as a slider. */
+#define _XOPEN_SOURCE 700 /* M_PI is XSI */
+#include "scene/scene.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "data/dem.h"
+#include "data/geo.h"
+#include "data/sun.h"
+#include "scene/scene_parse.h"
+
+bool scene_parse_sun(scene_ctx *c, const cJSON *root)
+{
+    struct scene_sun *sun = &c->s->sun;
+    const cJSON *b = cJSON_GetObjectItemCaseSensitive(root, "sun");
+    if (!b)
+        return true;
+    static const char *const keys[] = {"date", "hour", "utc_offset", "latitude", "longitude", "light", NULL};
+    if (!cJSON_IsObject(b))
+        return scene_fail(c, "sun", "expected an object: {\"date\": \"2026-06-21\", \"hour\": 18.5, \"utc_offset\": 5.75}");
+    const char *date = NULL;
+    float lat = NAN, lon = NAN; /* read only when given: the panel shows no slider for "the DEM's centre" */
+    bool place = cJSON_HasObjectItem(b, "latitude") || cJSON_HasObjectItem(b, "longitude");
+    if (!scene_check_keys(c, b, "sun", keys) || !scene_get_str(c, b, "sun", "date", NULL, &date) ||
+        !scene_get_num(c, b, "sun", "hour", 12, 0, 24, &sun->hour) ||
+        !scene_get_num(c, b, "sun", "utc_offset", 0, -14, 14, &sun->utc_offset) ||
+        (place && !scene_get_num(c, b, "sun", "latitude", NAN, -90, 90, &lat)) ||
+        (place && !scene_get_num(c, b, "sun", "longitude", NAN, -180, 180, &lon)) ||
+        !scene_get_int(c, b, "sun", "light", 0, 0, SCENE_MAX_LIGHTS - 1, &sun->light))
+        return false;
+    double t;
+    if (!date || strlen(date) >= sizeof sun->date || !sun_time(date, sun->hour, sun->utc_offset, &t))
+        return scene_fail(c, "sun.date", "expected a date \"YYYY-MM-DD\" that exists (e.g. \"2026-06-21\")");
+    if (isnan(lat) != isnan(lon))
+        return scene_fail(c, isnan(lat) ? "sun.latitude" : "sun.longitude", "give both latitude and longitude, or "
+                                                                            "neither (the DEM's centre)");
+    snprintf(sun->date, sizeof sun->date, "%s", date);
+    sun->latitude = lat, sun->longitude = lon;
+    sun->on = true;
+    return true;
+}
+
+/* The DEM's centre in longitude and latitude. */
+static bool dem_centre(const scene *s, double *lon, double *lat, err_t *err)
+{
+    int w, h;
+    double range[2];
+    dem_info info;
+    if (!s->terrain.heightmap[0] || !dem_probe(s->terrain.heightmap, &w, &h, range, &info, err) || !info.georeferenced)
+        return err_set(err, "sun: the scene has no georeferenced DEM to place the sun over: give sun.latitude and "
+                            "sun.longitude");
+    double col = (w - 1) / 2.0, row = (h - 1) / 2.0;
+    return geo_convert(s->terrain.heightmap, false, 1, &col, &row, lon, lat, err);
+}
+
+bool scene_apply_sun(scene *s, err_t *err)
+{
+    struct scene_sun *sun = &s->sun;
+    if (!sun->on)
+        return true;
+    if (sun->light >= s->light_count || s->lights[sun->light].type != LIGHT_DIRECTIONAL)
+        return err_set(err, "%s: sun.light %d is not a directional light of the scene's (it has %d lights): the "
+                            "sun moves a directional light", s->path, sun->light, s->light_count);
+    if (isnan(sun->latitude) && !dem_centre(s, &sun->longitude, &sun->latitude, err))
+        return false;
+    double t;
+    sun_time(sun->date, sun->hour, sun->utc_offset, &t);
+    sun_position p = sun_at(t, sun->latitude, sun->longitude);
+    sun->azimuth = p.azimuth, sun->elevation = p.elevation;
+    scene_light *l = &s->lights[sun->light];
+    double az = p.azimuth * M_PI / 180, el = p.elevation * M_PI / 180;
+    /* east is +X, north −Z (data/terrain.h) */
+    l->vec[0] = (float)(cos(el) * sin(az));
+    l->vec[1] = (float)sin(el);
+    l->vec[2] = (float)(-cos(el) * cos(az));
+    float beam[3];
+    sun_color(p.elevation, beam);
+    for (int k = 0; k < 3; k++)
+        l->color[k] *= beam[k];
+    return true;
+}

@@ -1,0 +1,359 @@
+/* GIS in and out (data/geo.h, jobs/gis_job.h), each checked with GDAL and OGR called here directly:
+ *  - imagery in another CRS (a WGS 84 checkerboard on a UTM DEM) lands where its squares are: every
+ *    drape pixel away from a square's edge has its square's colour, and each edge crossed by the middle
+ *    row lies within half a drape pixel of its longitude; where the imagery does not reach, alpha is 0;
+ *  - the viewshed GeoTIFF has the DEM's grid, CRS, nodata and the values computed, and the observer
+ *    lands on the texel its longitude and latitude name;
+ *  - GPX and KML written are read back by OGR with the same points, heights and times (a hostile track
+ *    name is escaped), and read back by fathom too;
+ *  - a flight becomes a track and the track a flight again: its keys lie within a texel of the first
+ *    flight's path and `height` above the ground. */
+#define _XOPEN_SOURCE 700 /* M_PI, mkdtemp */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include <cmocka.h>
+#include <cpl_conv.h>
+#include <gdal.h>
+#include <ogr_api.h>
+#include <ogr_srs_api.h>
+
+#include "data/dem.h"
+#include "data/geo.h"
+#include "data/viewshed.h"
+#include "jobs/gis_job.h"
+#include "view/path.h"
+
+static char dir[] = "/tmp/fathom-geo-XXXXXX";
+enum { W = 64, H = 48 };
+static const double DEM_GT[6] = {400000, 1000, 0, 5300000, 0, -1000}; /* UTM 33N, 1 km texels */
+
+static const char *in_dir(const char *name)
+{
+    static char full[16][256];
+    static int k;
+    k = (k + 1) % 16;
+    snprintf(full[k], sizeof full[k], "%s/%s", dir, name);
+    return full[k];
+}
+
+static double hill(int i, int j) { return 300 + 250 * sin(0.2 * i) * cos(0.15 * j) + 4 * i; }
+
+static OGRSpatialReferenceH srs_of(int epsg)
+{
+    OGRSpatialReferenceH s = OSRNewSpatialReference(NULL);
+    OSRImportFromEPSG(s, epsg);
+    OSRSetAxisMappingStrategy(s, OAMS_TRADITIONAL_GIS_ORDER);
+    return s;
+}
+
+static int setup(void **st)
+{
+    (void)st;
+    if (!mkdtemp(dir))
+        return -1;
+    GDALAllRegister();
+    GDALDatasetH ds = GDALCreate(GDALGetDriverByName("GTiff"), in_dir("dem.tif"), W, H, 1, GDT_Float32, NULL);
+    GDALSetGeoTransform(ds, (double *)DEM_GT);
+    OGRSpatialReferenceH s = srs_of(32633);
+    GDALSetSpatialRef(ds, s);
+    OSRDestroySpatialReference(s);
+    float v[W * H];
+    for (int j = 0; j < H; j++)
+        for (int i = 0; i < W; i++)
+            v[j * W + i] = (float)hill(i, j);
+    int ok = GDALRasterIO(GDALGetRasterBand(ds, 1), GF_Write, 0, 0, W, H, v, W, H, GDT_Float32, 0, 0) == CE_None;
+    GDALClose(ds);
+    return ok ? 0 : -1;
+}
+
+static int teardown(void **st)
+{
+    (void)st;
+    char cmd[300];
+    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+    return system(cmd) == 0 ? 0 : -1;
+}
+
+/* UTM 33N x, y to longitude and latitude, by OSR here. */
+static void utm_to_lonlat(double x, double y, double *lon, double *lat)
+{
+    OGRSpatialReferenceH u = srs_of(32633), g = srs_of(4326);
+    OGRCoordinateTransformationH t = OCTNewCoordinateTransformation(u, g);
+    double z = 0;
+    assert_true(OCTTransform(t, 1, &x, &y, &z));
+    *lon = x, *lat = y;
+    OCTDestroyCoordinateTransformation(t);
+    OSRDestroySpatialReference(u);
+    OSRDestroySpatialReference(g);
+}
+
+enum { SQ_PX = 10 };          /* imagery pixels a checker square */
+static const double PX = 0.005; /* degrees an imagery pixel */
+static const double LON0 = 13.5, LAT0 = 48.2; /* the imagery's north-west corner */
+
+/* A WGS 84 checkerboard, red and blue squares of 0.05°, reaching only 0.55° east of LON0. */
+static void write_checker(const char *file, int iw, int ih)
+{
+    GDALDatasetH ds = GDALCreate(GDALGetDriverByName("GTiff"), file, iw, ih, 3, GDT_Byte, NULL);
+    double gt[6] = {LON0, PX, 0, LAT0, 0, -PX};
+    GDALSetGeoTransform(ds, gt);
+    OGRSpatialReferenceH s = srs_of(4326);
+    GDALSetSpatialRef(ds, s);
+    OSRDestroySpatialReference(s);
+    unsigned char *b = malloc((size_t)iw * (size_t)ih);
+    for (int c = 0; c < 3; c++) {
+        for (int j = 0; j < ih; j++)
+            for (int i = 0; i < iw; i++) {
+                bool red = ((i / SQ_PX) + (j / SQ_PX)) % 2 == 0;
+                b[(size_t)j * (size_t)iw + (size_t)i] = (unsigned char)(c == 0 ? (red ? 255 : 0) : c == 2 ? (red ? 0 : 255) : 0);
+            }
+        assert_true(GDALRasterIO(GDALGetRasterBand(ds, c + 1), GF_Write, 0, 0, iw, ih, b, iw, ih, GDT_Byte, 0, 0) == CE_None);
+    }
+    free(b);
+    GDALClose(ds);
+}
+
+static void drape_lands_on_the_right_texels(void **st)
+{
+    (void)st;
+    double lon_w, lat_n, lon_e, lat_s;
+    utm_to_lonlat(DEM_GT[0], DEM_GT[3], &lon_w, &lat_n);
+    utm_to_lonlat(DEM_GT[0] + W * 1000, DEM_GT[3] - H * 1000, &lon_e, &lat_s);
+    assert_true(lon_w > LON0 + 0.05 && lat_n < LAT0 - 0.05); /* the board covers the DEM's north-west */
+    int iw = 110, ih = (int)ceil((LAT0 - lat_s + 0.1) / PX); /* 0.55° wide: ends inside the DEM */
+    assert_true(LON0 + iw * PX < lon_e - 0.05);
+    write_checker(in_dir("checker.tif"), iw, ih);
+    unsigned char *rgba;
+    int w = 0, h = 0;
+    err_t e;
+    if (!geo_drape(in_dir("dem.tif"), in_dir("checker.tif"), 4096, &rgba, &w, &h, &e))
+        fail_msg("%s", e.msg);
+    print_message("drape: %d x %d\n", w, h);
+    assert_true(w > 80 && h > 60);
+    int checked = 0, wrong = 0, bare = 0;
+    for (int j = 0; j < h; j++)
+        for (int i = 0; i < w; i++) {
+            const unsigned char *p = rgba + 4 * ((size_t)j * (size_t)w + (size_t)i);
+            double lon, lat;
+            utm_to_lonlat(DEM_GT[0] + (i + 0.5) * W * 1000.0 / w, DEM_GT[3] - (j + 0.5) * H * 1000.0 / h, &lon, &lat);
+            double u = (lon - LON0) / PX, v = (LAT0 - lat) / PX; /* imagery pixels from its corner */
+            if (u > iw + 1.5) { /* past the imagery's eastern edge: no coverage */
+                bare += p[3] == 0;
+                continue;
+            }
+            double du = fabs(u / SQ_PX - round(u / SQ_PX)) * SQ_PX, dv = fabs(v / SQ_PX - round(v / SQ_PX)) * SQ_PX;
+            if (du < 1.5 || dv < 1.5 || u > iw - 1.5)
+                continue; /* an edge's blend */
+            bool red = ((int)floor(u / SQ_PX) + (int)floor(v / SQ_PX)) % 2 == 0;
+            checked++;
+            wrong += p[3] != 255 || (red ? p[0] < 200 || p[2] > 55 : p[2] < 200 || p[0] > 55);
+        }
+    print_message("drape: %d pixels checked, %d wrong, %d past the imagery with alpha 0\n", checked, wrong, bare);
+    assert_int_equal(wrong, 0);
+    assert_true(checked > 2000 && bare > 500);
+    /* the middle row: where red turns blue, against the squares' longitudes */
+    int j = h / 2, edges = 0;
+    double worst = 0;
+    for (int i = 0; i + 1 < w; i++) {
+        const unsigned char *a = rgba + 4 * ((size_t)j * (size_t)w + (size_t)i), *b = a + 4;
+        if (a[3] != 255 || b[3] != 255)
+            continue;
+        double fa = a[0] / (double)(a[0] + a[2] + 1), fb = b[0] / (double)(b[0] + b[2] + 1);
+        if ((fa - 0.5) * (fb - 0.5) >= 0)
+            continue;
+        double x = i + (0.5 - fa) / (fb - fa); /* the crossing, in drape pixels from pixel i's centre */
+        double lon, lat, lon1, lat1;
+        utm_to_lonlat(DEM_GT[0] + (x + 0.5) * W * 1000.0 / w, DEM_GT[3] - (j + 0.5) * H * 1000.0 / h, &lon, &lat);
+        utm_to_lonlat(DEM_GT[0] + (x + 1.5) * W * 1000.0 / w, DEM_GT[3] - (j + 0.5) * H * 1000.0 / h, &lon1, &lat1);
+        double edge = LON0 + round((lon - LON0) / (SQ_PX * PX)) * SQ_PX * PX;
+        worst = fmax(worst, fabs(lon - edge) / fabs(lon1 - lon)); /* in drape pixels */
+        edges++;
+    }
+    print_message("drape: %d square edges on the middle row, the worst %.3f drape pixels off its longitude\n", edges,
+                  worst);
+    assert_true(edges >= 5);
+    assert_true(worst < 0.5);
+    free(rgba);
+}
+
+static void viewshed_geotiff(void **st)
+{
+    (void)st;
+    double lon, lat;
+    utm_to_lonlat(DEM_GT[0] + 20.5 * 1000, DEM_GT[3] - 30.5 * 1000, &lon, &lat); /* texel (20, 30)'s centre */
+    gis_options o = {.command = GIS_VIEWSHED, .dem = in_dir("dem.tif"), .output = in_dir("vs.tif"), .lon = lon,
+                     .lat = lat, .observer_height = 10, .refraction = 0.13};
+    err_t e;
+    if (!gis_viewshed_run(&o, &e))
+        fail_msg("%s", e.msg);
+    double col, row;
+    assert_true(geo_convert(in_dir("dem.tif"), true, 1, &lon, &lat, &col, &row, &e));
+    assert_true(fabs(col - 20) < 1e-6 && fabs(row - 30) < 1e-6);
+    /* the same computation here, then the file against it */
+    float hts[W * H];
+    for (int j = 0; j < H; j++)
+        for (int i = 0; i < W; i++)
+            hts[j * W + i] = (float)hill(i, j);
+    unsigned char want[W * H], got[W * H];
+    viewshed_desc d = {.heights = hts, .w = W, .h = H, .dx = 1000, .dz = 1000, .col = 20, .row = 30,
+                       .observer_height = 10, .refraction = 0.13, .curvature = true};
+    assert_true(viewshed_compute(&d, want, NULL, &e));
+    GDALDatasetH ds = GDALOpen(in_dir("vs.tif"), GA_ReadOnly);
+    assert_non_null(ds);
+    double gt[6];
+    assert_true(GDALGetGeoTransform(ds, gt) == CE_None);
+    for (int k = 0; k < 6; k++)
+        assert_true(gt[k] == DEM_GT[k]);
+    OGRSpatialReferenceH utm = srs_of(32633);
+    assert_true(OSRIsSame(GDALGetSpatialRef(ds), utm));
+    OSRDestroySpatialReference(utm);
+    GDALRasterBandH b = GDALGetRasterBand(ds, 1);
+    int has;
+    assert_true(GDALGetRasterNoDataValue(b, &has) == 255 && has);
+    assert_non_null(GDALGetRasterColorTable(b));
+    assert_non_null(strstr(GDALGetDescription(b), "refraction coefficient 0.130"));
+    assert_true(GDALRasterIO(b, GF_Read, 0, 0, W, H, got, W, H, GDT_Byte, 0, 0) == CE_None);
+    GDALClose(ds);
+    assert_memory_equal(got, want, sizeof got);
+    size_t vis = 0;
+    for (int k = 0; k < W * H; k++)
+        vis += got[k] == VIEWSHED_VISIBLE;
+    assert_true(vis > 50 && vis < W * H - 50);
+    /* an observer off the DEM: an error, and no file */
+    o.output = in_dir("off.tif");
+    o.lon = lon + 3;
+    assert_false(gis_viewshed_run(&o, &e));
+    print_message("%s\n", e.msg);
+    assert_non_null(strstr(e.msg, "outside the DEM"));
+    assert_int_equal(access(in_dir("off.tif"), F_OK), -1);
+}
+
+/* The track's points as OGR reads them: lon, lat, z (or the "ele" field), time (seconds). */
+static int ogr_points(const char *file, const char *layer, double (*out)[4], int max)
+{
+    GDALDatasetH ds = GDALOpenEx(file, GDAL_OF_VECTOR, NULL, NULL, NULL);
+    assert_non_null(ds);
+    OGRLayerH l = layer ? GDALDatasetGetLayerByName(ds, layer) : GDALDatasetGetLayer(ds, 0);
+    assert_non_null(l);
+    int n = 0, ele = OGR_FD_GetFieldIndex(OGR_L_GetLayerDefn(l), "ele"),
+        tf = OGR_FD_GetFieldIndex(OGR_L_GetLayerDefn(l), "time");
+    OGRFeatureH f;
+    while ((f = OGR_L_GetNextFeature(l)) != NULL) {
+        OGRGeometryH g = OGR_F_GetGeometryRef(f);
+        for (int k = 0; k < OGR_G_GetPointCount(g) && n < max; k++, n++) {
+            out[n][0] = OGR_G_GetX(g, k), out[n][1] = OGR_G_GetY(g, k);
+            out[n][2] = ele >= 0 ? OGR_F_GetFieldAsDouble(f, ele) : OGR_G_GetZ(g, k);
+            int y, mo, d, hh, mi, tz;
+            float s;
+            out[n][3] = tf >= 0 && OGR_F_GetFieldAsDateTimeEx(f, tf, &y, &mo, &d, &hh, &mi, &s, &tz)
+                            ? (double)util_days_from_civil(y, mo, d) * 86400 + hh * 3600 + mi * 60 + s
+                            : NAN;
+        }
+        OGR_F_Destroy(f);
+    }
+    GDALClose(ds);
+    return n;
+}
+
+static void tracks_round_trip(void **st)
+{
+    (void)st;
+    enum { N = 7 };
+    geo_point pts[N];
+    double cams[N][3];
+    for (int i = 0; i < N; i++) {
+        pts[i] = (geo_point){13.8 + 0.01 * i, 47.9 - 0.004 * i, 500 + 10.5 * i, 1780000000.0 + 2 * i};
+        cams[i][0] = 30 * i, cams[i][1] = 75, cams[i][2] = 0;
+    }
+    err_t e;
+    const char *name = "walk <b>&amp; \"friends\"";
+    assert_true(geo_track_write(in_dir("t.gpx"), name, pts, (const double(*)[3])cams, N, &e));
+    assert_true(geo_track_write(in_dir("t.kml"), name, pts, (const double(*)[3])cams, N, &e));
+    double got[N + 2][4];
+    assert_int_equal(ogr_points(in_dir("t.gpx"), "track_points", got, N + 2), N);
+    for (int i = 0; i < N; i++) {
+        assert_true(fabs(got[i][0] - pts[i].lon) < 1e-9 && fabs(got[i][1] - pts[i].lat) < 1e-9);
+        assert_true(fabs(got[i][2] - pts[i].ele) < 1e-6 && fabs(got[i][3] - pts[i].time) < 1e-3);
+    }
+    assert_int_equal(ogr_points(in_dir("t.kml"), NULL, got, N + 2), N);
+    for (int i = 0; i < N; i++)
+        assert_true(fabs(got[i][0] - pts[i].lon) < 1e-8 && fabs(got[i][2] - pts[i].ele) < 1e-3);
+    char *text;
+    size_t len;
+    assert_true(util_read_file(in_dir("t.kml"), &text, &len, &e));
+    int flytos = 0;
+    for (const char *p = text; (p = strstr(p, "<gx:FlyTo>")) != NULL; p++)
+        flytos++;
+    assert_int_equal(flytos, N);
+    assert_null(strstr(text, "<b>")); /* the name escaped */
+    free(text);
+    geo_point *back;
+    int n;
+    assert_true(geo_track_read(in_dir("t.gpx"), &back, &n, &e));
+    assert_int_equal(n, N);
+    assert_true(fabs(back[3].ele - pts[3].ele) < 1e-6 && fabs(back[3].time - pts[3].time) < 1e-3);
+    free(back);
+    assert_false(geo_track_write(in_dir("t.txt"), name, pts, NULL, N, &e));
+    assert_false(geo_track_read(in_dir("dem.tif"), &back, &n, &e)); /* a raster is no track */
+}
+
+/* A flight over the DEM to a GPX track, and the track to a flight 120 m above the ground. */
+static void flight_track_flight(void **st)
+{
+    (void)st;
+    /* the world frame: x = (col + ½ − W/2)·1000, z = (row + ½ − H/2)·1000 */
+    const char *flight = "{ \"keys\": [\n"
+                         " { \"time\": 0, \"position\": [-20000, 2000, -10000], \"yaw\": -60, \"pitch\": -10 },\n"
+                         " { \"time\": 40, \"position\": [0, 2200, 0], \"yaw\": -90, \"pitch\": -12 },\n"
+                         " { \"time\": 80, \"position\": [15000, 1800, 12000], \"yaw\": -120, \"pitch\": -8 } ] }\n";
+    err_t e;
+    assert_true(util_write_text_atomic(in_dir("f.json"), flight, "the flight", &e));
+    char set[300];
+    snprintf(set, sizeof set, "terrain.exaggeration=1");
+    gis_options o = {.command = GIS_TRACK, .dem = in_dir("dem.tif"), .path = in_dir("f.json"),
+                     .output = in_dir("f.gpx"), .fps = 1, .speed = 30, .height = 120, .sets = {set}, .set_count = 1};
+    if (!gis_track_run(&o, &e))
+        fail_msg("%s", e.msg);
+    o = (gis_options){.command = GIS_TRACK, .dem = in_dir("dem.tif"), .input = in_dir("f.gpx"),
+                      .output = in_dir("g.json"), .fps = 1, .speed = 30, .height = 120, .sets = {set}, .set_count = 1};
+    if (!gis_track_run(&o, &e))
+        fail_msg("%s", e.msg);
+    path a, b;
+    assert_true(path_load(in_dir("f.json"), &a, &e));
+    assert_true(path_load(in_dir("g.json"), &b, &e));
+    assert_true(b.count >= 20);
+    double worst_xz = 0, worst_y = 0;
+    for (int k = 0; k < b.count; k++) {
+        path_sample s;
+        path_eval(&a, b.keys[k].time, &s); /* the GPX's times are the flight's */
+        worst_xz = fmax(worst_xz, hypot(s.position[0] - b.keys[k].position[0], s.position[2] - b.keys[k].position[2]));
+        double col = b.keys[k].position[0] / 1000 + W / 2.0 - 0.5, row = b.keys[k].position[2] / 1000 + H / 2.0 - 0.5;
+        int i = (int)col, j = (int)row;
+        double u = col - i, v = row - j;
+        double g = (hill(i, j) * (1 - u) + hill(i + 1, j) * u) * (1 - v) + (hill(i, j + 1) * (1 - u) + hill(i + 1, j + 1) * u) * v;
+        worst_y = fmax(worst_y, fabs(b.keys[k].position[1] - (g + 120)));
+    }
+    print_message("flight -> GPX -> flight: %d keys, worst %.3f m off the first flight's path, %.4f m off 120 m "
+                  "above the ground\n", b.count, worst_xz, worst_y);
+    assert_true(worst_xz < 1.0); /* a texel is 1000 m: the round trip loses nothing */
+    assert_true(worst_y < 0.01);
+    path_free(&a);
+    path_free(&b);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(drape_lands_on_the_right_texels), cmocka_unit_test(viewshed_geotiff),
+        cmocka_unit_test(tracks_round_trip), cmocka_unit_test(flight_track_flight),
+    };
+    return cmocka_run_group_tests(tests, setup, teardown);
+}
