@@ -50,6 +50,8 @@ static const char USAGE[] =
     "  memory, frame time and height samples per pixel, maxmip and linear [640x360].\n"
     "  bench --final-frame: the final preset's whole shot as a process, every pixel sampled against\n"
     "  adaptive sampling (quality.tolerance) in turn: time, samples a pixel, difference [1920x1080].\n"
+    "  bench --viewshed [--knob side=N1,N2,...]: the exact viewshed on generated DEMs [512² to 4096²]\n"
+    "  against GDAL's: times and where GDAL's answer differs.\n"
     "  render --path: the frames of a camera path (keyframe file: docs/flights.md) at N frames a second\n"
     "  [30], each written atomically to the pattern's file; frames already on disk are skipped (resume).\n"
     "  --tile I/N renders tile I of N (horizontal strips) of the --output image to OUTPUT.tile-I-of-N.EXT;\n"
@@ -385,7 +387,7 @@ static bool set_flag(const char *a, cli_options *o)
         {"--quick", offsetof(cli_options, quick)},         {"--full", offsetof(cli_options, full)},
         {"--interactive", offsetof(cli_options, interactive)},
         {"--terrain-scale", offsetof(cli_options, terrain_scale)},
-        {"--final-frame", offsetof(cli_options, final_frame)},
+        {"--final-frame", offsetof(cli_options, final_frame)}, {"--viewshed", offsetof(cli_options, viewshed)},
         {"--panel", offsetof(cli_options, panel)},
         {"--one-shell", offsetof(cli_options, one_shell)},
     };
@@ -459,8 +461,9 @@ static bool check_combinations(const cli_options *o, err_t *err)
         return err_set(err, "--panel is the window's: it does not apply here");
     if (o->interactive && !o->bench)
         return err_set(err, "--interactive belongs to fathom bench");
-    if ((o->terrain_scale || o->final_frame) && !o->bench)
-        return err_set(err, "%s belongs to fathom bench", o->final_frame ? "--final-frame" : "--terrain-scale");
+    if ((o->terrain_scale || o->final_frame || o->viewshed) && !o->bench)
+        return err_set(err, "%s belongs to fathom bench",
+                       o->final_frame ? "--final-frame" : o->viewshed ? "--viewshed" : "--terrain-scale");
     if (o->has_frames && o->output && !o->path)
         return err_set(err, "--frames counts the window's frames (or a flight's, with --path): an offline shot "
                             "(--output without --path) is one image");

@@ -87,6 +87,7 @@ typedef struct cli_options {
     bool interactive;  /* bench: a scripted flight as the window flies it */
     bool terrain_scale; /* bench: generated DEMs from 256² up: load time, memory, frame time */
     bool final_frame;   /* bench: the final preset's whole shot, every pixel against adaptive */
+    bool viewshed;      /* bench --viewshed: the exact viewshed's cost against GDAL's */
     const char *knobs[CLI_MAX_SETS]; /* bench: "NAME=v1,v2,..." sweeps (none: every knob, default values) */
     int knob_count;
     bool mesh;            /* `fathom mesh ...` (jobs/mesh_job.h) */

@@ -92,6 +92,24 @@ def himalaya():
         os.remove(junk)
 
 
+def bluemarble():
+    """NASA's Blue Marble (2048 x 1024, plate carree, whole Earth) cut to the Himalaya DEM's area as a
+    georeferenced RGB GeoTIFF: imagery to drape on himalaya.tif (docs/guide/gis.md)."""
+    path = fetch("xplanet-images", "/usr/share/xplanet/images/earth.jpg")
+    deg = 360 / 2048  # a pixel; rows from 90 N, columns from 180 W
+    x0, y0, cols, rows = 1456, 295, 115, 70  # 75.94-96.15 E, 38.14-25.84 N: covers the DEM
+    out = os.path.join(HERE, "himalaya-bluemarble.tif")
+    subprocess.run(["gdal_translate", "-q", "-a_srs", "EPSG:4326", "-a_ullr", str(x0 * deg - 180), str(90 - y0 * deg),
+                    str((x0 + cols) * deg - 180), str(90 - (y0 + rows) * deg), "-srcwin", str(x0), str(y0), str(cols),
+                    str(rows), "-co", "COMPRESS=DEFLATE",
+                    "-mo", "SOURCE=NASA Visible Earth Blue Marble (xplanet-images 1.3.1-3: usr/share/xplanet/images/"
+                    "earth.jpg, 2048x1024 plate carree)",
+                    "-mo", "LICENCE=NASA imagery, not copyrighted (the package's images/README)",
+                    path, out], check=True)
+    print("himalaya-bluemarble: %dx%d pixels of %.4f degrees" % (cols, rows, deg))
+
+
 if __name__ == "__main__":
     jacksboro()
     himalaya()
+    bluemarble()

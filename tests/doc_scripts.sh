@@ -57,7 +57,7 @@ for s in $scripts; do
     check "$s: a Usage line (or what sources it) in its header" \
         'sed -n "1,/^[^#]/p" "$src/$s" | grep -q "^# *Usage:\|^# Sourced by\|^#   sbatch "'
     case "$s" in
-    docs/bench/final.sh | docs/bench/formulas.sh | docs/bench/index.sh | docs/bench/mesh.sh | docs/bench/out_of_steps.sh | docs/csg-scale/run.sh | \
+    docs/bench/final.sh | docs/bench/viewshed.sh | docs/bench/formulas.sh | docs/bench/index.sh | docs/bench/mesh.sh | docs/bench/out_of_steps.sh | docs/csg-scale/run.sh | \
         docs/droplets/run.sh | docs/droplets/culling.sh | docs/droplets/scene.sh | docs/interactive/run.sh | docs/peak_kb.sh | \
         docs/interactive/panel.sh | docs/slurm/run.sh | docs/slurm/flight.sbatch) ;;
     *) bad "$s: no case below runs it (add one)" ;;
@@ -96,6 +96,17 @@ check "final.sh: a row a scene, times and samples a pixel" \
 echo keep >"$tmp/keep.md" && cp "$tmp/keep.md" "$out/final/final.md"
 run sh "$src/docs/bench/final.sh" /bin/false "$out/final" 1 64x36 torus
 check "final.sh: a failed run exits non-zero and leaves final.md" '[ $code -ne 0 ] && cmp -s "$tmp/keep.md" "$out/final/final.md"'
+
+# ---- docs/bench/viewshed.sh: two small sides, one run; a failed run keeps the page ------------------
+mkdir -p "$out/viewshed"
+run sh "$src/docs/bench/viewshed.sh" "$fathom" "$out/viewshed" 1 64,100
+check "viewshed.sh exits 0 ($secs s)" '[ $code -eq 0 ]'
+check "viewshed.sh: a row a side and eye height, exact and GDAL's times" \
+    'grep -q "^| 64² | 1.7 | [0-9.]* \[[0-9.]*-[0-9.]*\] | [0-9]* | [0-9.]* | [0-9.]* | [0-9.]* \[" "$out/viewshed/viewshed.md" &&
+     grep -q "^| 100² | 100.0 | " "$out/viewshed/viewshed.md"'
+echo keep >"$tmp/keep.md" && cp "$tmp/keep.md" "$out/viewshed/viewshed.md"
+run sh "$src/docs/bench/viewshed.sh" /bin/false "$out/viewshed" 1 64
+check "viewshed.sh: a failed run exits non-zero and leaves viewshed.md" '[ $code -ne 0 ] && cmp -s "$tmp/keep.md" "$out/viewshed/viewshed.md"'
 
 # ---- docs/bench/mesh.sh: a torus, one run; a failed run keeps the page ----------------------------
 mkdir -p "$out/mesh"

@@ -38,6 +38,7 @@ while IFS="$tab" read -r from line; do
     cmd=$(echo "$line" | sed -E 's/--size [0-9]+x[0-9]+/--size 32x18/; s/--spp [0-9]+/--spp 1/; s/--runs [0-9]+/--runs 1/')
     case "$cmd" in
     build/fathom\ check-formula*) ;; # a report: it takes no size, frames or output
+    build/fathom\ viewshed* | build/fathom\ track*) ;; # GIS files: no size, spp or frames
     build/fathom\ mesh*) cmd=$(echo "$cmd" | sed -E 's/--resolution [0-9]+/--resolution 24/') # a mesh: no size or spp
         echo "$cmd" | grep -q -- --resolution || cmd="$cmd --resolution 24"
         cmd="$cmd --quiet" ;;

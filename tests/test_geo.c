@@ -27,8 +27,10 @@
 
 #include "data/dem.h"
 #include "data/geo.h"
+#include "data/sun.h"
 #include "data/viewshed.h"
 #include "jobs/gis_job.h"
+#include "scene/scene.h"
 #include "view/path.h"
 
 static char dir[] = "/tmp/fathom-geo-XXXXXX";
@@ -349,11 +351,55 @@ static void flight_track_flight(void **st)
     path_free(&b);
 }
 
+/* The "sun" block on the UTM DEM: the light points where NOAA's sun stands over the DEM's centre (its
+ * longitude and latitude found here by OSR), coloured by the beam; night leaves it black; mistakes are
+ * named. */
+static void sun_block_moves_the_light(void **st)
+{
+    (void)st;
+    char text[1024];
+    const char *fmt = "{\"program\": \"terrain\", \"materials\": {\"rock\": {}},"
+                      " \"lights\": [{\"type\": \"%s\", \"%s\": [0, 1, 0], \"color\": [1, 1, 1]}],"
+                      " \"terrain\": {\"heightmap\": \"%s\"},"
+                      " \"sun\": {\"date\": \"%s\", \"hour\": %g, \"utc_offset\": 2}}";
+    snprintf(text, sizeof text, fmt, "directional", "direction", in_dir("dem.tif"), "2026-06-21", 9.5);
+    scene s;
+    err_t e;
+    if (!scene_load_text(text, in_dir("sun.json"), NULL, 0, &s, &e))
+        fail_msg("%s", e.msg);
+    double lon, lat, t;
+    utm_to_lonlat(DEM_GT[0] + W / 2.0 * 1000, DEM_GT[3] - H / 2.0 * 1000, &lon, &lat); /* the centre */
+    assert_true(sun_time("2026-06-21", 9.5, 2, &t));
+    sun_position p = sun_at(t, lat, lon);
+    double az = p.azimuth * M_PI / 180, el = p.elevation * M_PI / 180;
+    const float *v = s.lights[0].vec;
+    print_message("sun over %.4f, %.4f at 09:30 UTC+2: azimuth %.2f, elevation %.2f\n", lon, lat, p.azimuth,
+                  p.elevation);
+    assert_true(fabs(v[0] - cos(el) * sin(az)) < 1e-5 && fabs(v[1] - sin(el)) < 1e-5 &&
+                fabs(v[2] + cos(el) * cos(az)) < 1e-5); /* east +X, north −Z */
+    assert_true(fabs(s.sun.azimuth - p.azimuth) < 1e-6 && p.azimuth > 90 && p.azimuth < 180); /* south-east */
+    float beam[3];
+    sun_color(p.elevation, beam);
+    assert_true(fabsf(s.lights[0].color[2] - beam[2]) < 1e-6f);
+    scene_free(&s);
+    snprintf(text, sizeof text, fmt, "directional", "direction", in_dir("dem.tif"), "2026-12-21", 1.0);
+    assert_true(scene_load_text(text, in_dir("sun.json"), NULL, 0, &s, &e));
+    assert_true(s.lights[0].color[0] == 0 && s.sun.elevation < -30); /* a winter's night */
+    scene_free(&s);
+    snprintf(text, sizeof text, fmt, "point", "position", in_dir("dem.tif"), "2026-06-21", 9.5);
+    assert_false(scene_load_text(text, in_dir("sun.json"), NULL, 0, &s, &e));
+    assert_non_null(strstr(e.msg, "not a directional light"));
+    snprintf(text, sizeof text, fmt, "directional", "direction", in_dir("dem.tif"), "2026-02-30", 9.5);
+    assert_false(scene_load_text(text, in_dir("sun.json"), NULL, 0, &s, &e));
+    assert_non_null(strstr(e.msg, "sun.date"));
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(drape_lands_on_the_right_texels), cmocka_unit_test(viewshed_geotiff),
         cmocka_unit_test(tracks_round_trip), cmocka_unit_test(flight_track_flight),
+        cmocka_unit_test(sun_block_moves_the_light),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

@@ -507,3 +507,32 @@ bool geo_track_write_file(const char *path, bool kml, const char *name, const ge
     geo_init();
     return kml ? write_kml(path, name, pts, cameras, n, err) : write_gpx(path, pts, n, err);
 }
+
+/* ---- GDAL's own viewshed, for the bench's comparison -------------------------------------------- */
+
+bool geo_gdal_viewshed(const char *dem_path, int col, int row, double observer_height, double target_height,
+                       double curvature, unsigned char *out, err_t *err)
+{
+    grid g;
+    if (!grid_of(dem_path, &g, err))
+        return false;
+    OSRDestroySpatialReference(g.srs);
+    GDALDatasetH ds = GDALOpenEx(dem_path, GDAL_OF_RASTER | GDAL_OF_READONLY, NULL, NULL, NULL);
+    double gt[6];
+    if (!ds || GDALGetGeoTransform(ds, gt) != CE_None || gt[5] > 0) {
+        if (ds)
+            GDALClose(ds);
+        return err_set(err, "GDAL's viewshed: '%s' is not a north-up georeferenced raster", dem_path);
+    }
+    double x = gt[0] + (col + 0.5) * gt[1], y = gt[3] + (row + 0.5) * gt[5];
+    /* 1 visible, 0 hidden, 255 nodata; GVM_Edge: GDAL's default (gdal_viewshed -om NORMAL) */
+    GDALDatasetH v = GDALViewshedGenerate(GDALGetRasterBand(ds, 1), "MEM", "", NULL, x, y, observer_height,
+                                          target_height, 1, 0, 255, 255, curvature, GVM_Edge, 0, NULL, NULL,
+                                          GVOT_NORMAL, NULL);
+    bool ok = v && GDALRasterIO(GDALGetRasterBand(v, 1), GF_Read, 0, 0, g.w, g.h, out, g.w, g.h, GDT_Byte, 0, 0) ==
+                       CE_None;
+    if (v)
+        GDALClose(v);
+    GDALClose(ds);
+    return ok || err_set(err, "GDAL's viewshed failed on '%s': %s", dem_path, gdal_msg("no message"));
+}

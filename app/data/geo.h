@@ -51,6 +51,12 @@ bool geo_track_read(const char *path, geo_point **pts, int *n, err_t *err);
 bool geo_track_write(const char *path, const char *name, const geo_point *pts, const double (*cameras)[3], int n,
                      err_t *err);
 
+/* GDAL's own viewshed (GDALViewshedGenerate, gdal_viewshed's algorithm, edge mode) from texel (col, row)
+ * of a north-up DEM, for the bench to compare with the exact one: out as viewshed.h's values;
+ * curvature is GDAL's coefficient (1 − k: 0.87 for refraction 0.13; 0 for a flat Earth). */
+bool geo_gdal_viewshed(const char *dem_path, int col, int row, double observer_height, double target_height,
+                       double curvature, unsigned char *out, err_t *err);
+
 /* The module's writers behind the two above (geo_lazy.c makes them atomic): into `path` as given. */
 bool geo_write_mask_file(const char *dem_path, const char *path, int w, int h, const unsigned char *v,
                          const char *description, err_t *err);

@@ -30,6 +30,14 @@ bool geo_track_read(const char *path, geo_point **pts, int *n, err_t *err)
     return f && f(path, pts, n, err);
 }
 
+bool geo_gdal_viewshed(const char *dem_path, int col, int row, double observer_height, double target_height,
+                       double curvature, unsigned char *out, err_t *err)
+{
+    LAZY_FN(bool (*f)(const char *, int, int, double, double, double, unsigned char *, err_t *),
+            lazy_symbol(LAZY_DEM, "geo_gdal_viewshed", err));
+    return f && f(dem_path, col, row, observer_height, target_height, curvature, out, err);
+}
+
 bool geo_write_mask(const char *dem_path, const char *out_path, int w, int h, const unsigned char *v,
                     const char *description, err_t *err)
 {

@@ -148,8 +148,12 @@ static bool sight_clear(const viewshed_desc *d, const pyramid *p, const sight *l
                 return false;
             continue;
         }
-        for (int c = 0; c < 4; c++) {
-            int ci = 2 * q.i + (c & 1), cj = 2 * q.j + (c >> 1);
+        /* the child nearest the target is popped first: a hidden texel is most often hidden by the ground
+         * just before it (its own back slope), so its blocker is found sooner (512²: 75 nodes a texel, 114
+         * in the fixed order, 126 nearest the observer first) */
+        int flip = 3 ^ ((l->ec < 0) | (l->er < 0) << 1);
+        for (int k = 3; k >= 0; k--) {
+            int c = k ^ flip, ci = 2 * q.i + (c & 1), cj = 2 * q.j + (c >> 1);
             if (ci < p->nx[q.L - 1] && cj < p->nz[q.L - 1])
                 stack[n++] = (node){q.L - 1, ci, cj};
         }

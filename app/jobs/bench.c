@@ -432,6 +432,8 @@ bool bench_run(const bench_desc *desc, err_t *err)
         return bench_frame_times(opt, B.w, B.h, err);
     if (opt->final_frame)
         return bench_final_frame(opt, opt->width ? opt->width : 1920, opt->height ? opt->height : 1080, err);
+    if (opt->viewshed)
+        return bench_viewshed(opt, err);
     if (opt->terrain_scale)
         return bench_terrain_scale(opt, opt->width ? opt->width : 640, opt->height ? opt->height : 360, err);
     if (opt->interactive)

@@ -45,4 +45,8 @@ bool bench_interactive(const bench_desc *opt, int w, int h, err_t *err);
  * pixel of generated DEMs from 256² up (--knob side=N1,N2,...), for maxmip and linear. */
 bool bench_terrain_scale(const bench_desc *opt, int w, int h, err_t *err);
 
+/* bench --viewshed (bench_viewshed.c): the exact viewshed's time on generated DEMs (--knob side=...),
+ * side by side with GDAL's, and where GDAL's answer differs. */
+bool bench_viewshed(const bench_desc *opt, err_t *err);
+
 #endif
