@@ -300,6 +300,29 @@ expect mesh-empty-box 1 "no surface to write to '$tmp/out.ply': the mesh is empt
     "$fathom" mesh --scene torus --box 5,5,5,6,6,6 --resolution 8 $mesh_out
 ls "$tmp"/out.ply "$tmp"/.out.ply.* >/dev/null 2>&1 && { failed=$((failed + 1)); echo "FAIL mesh: a file was left"; }
 
+# GIS: viewshed and track options, an observer off the DEM, a sun date that does not exist, imagery that
+# is not there; no file left (the outputs are out.tif, out.gpx, out.json)
+dem="$src/terrains/himalaya.tif"
+expect vs-no-observer 2 "fathom viewshed needs --observer LON,LAT" 1 -- "$fathom" viewshed --dem "$dem" --output "$tmp/out.tif"
+expect vs-bad-observer 2 "bad --observer '86.9': expected LON,LAT in degrees" 1 -- \
+    "$fathom" viewshed --dem "$dem" --observer 86.9 --output "$tmp/out.tif"
+expect vs-png 2 "the viewshed is a GeoTIFF: end the name in .tif" 1 -- \
+    "$fathom" viewshed --dem "$dem" --observer 86.9,28 --output "$tmp/out.png"
+expect vs-off-dem 1 "is outside the DEM" 1 -- "$fathom" viewshed --dem "$dem" --observer 10,50 --output "$tmp/out.tif"
+expect vs-refraction 2 "bad --refraction '3': expected a number from -1 to 1" 1 -- \
+    "$fathom" viewshed --dem "$dem" --observer 86.9,28 --refraction 3 --output "$tmp/out.tif"
+expect vs-no-georef 1 "has no georeferencing" 1 -- \
+    "$fathom" viewshed --dem "$src/terrains/jacksboro.png" --observer 86.9,28 --output "$tmp/out.tif"
+expect track-both 2 "fathom track takes either --input TRACK" 1 -- "$fathom" track --dem "$dem" --output "$tmp/out.json"
+expect track-not-a-track 1 "cannot open the track '$dem'" 1 -- \
+    "$fathom" track --dem "$dem" --input "$dem" --output "$tmp/out.json"
+expect track-gpx-ext 2 "end the name in .gpx or .kml" 1 -- \
+    "$fathom" track --dem "$dem" --path "$src/docs/flight/himalaya-day.json" --output "$tmp/out.txt"
+expect sun-date 1 "sun.date: expected a date" 1 -- "$fathom" --scene himalaya --set sun.date=2026-02-30 $out
+expect sky-unknown 1 "unknown sky 'blue'" 1 -- "$fathom" --scene himalaya --set environment.sky=blue $out
+expect imagery-missing 1 "$tmp/none.tif" 1 -- "$fathom" --scene himalaya --set terrain.imagery="$tmp/none.tif" $out
+ls "$tmp"/out.* "$tmp"/.out.* >/dev/null 2>&1 && { failed=$((failed + 1)); echo "FAIL gis: a file was left"; }
+
 # the write protocol's own faults, injected (tests/fault_shim.c): a file's fsync, the rename, the
 # folder's fsync after it; each leaves no file (nor a temporary one) and exits non-zero, and a file
 # that was there before is kept as it was where the new one never replaced it

@@ -536,3 +536,111 @@ bool geo_gdal_viewshed(const char *dem_path, int col, int row, double observer_h
     GDALClose(ds);
     return ok || err_set(err, "GDAL's viewshed failed on '%s': %s", dem_path, gdal_msg("no message"));
 }
+
+/* ---- vectors: lines and points burnt onto the DEM's grid ---------------------------------------- */
+
+/* A feature's geometry in the DEM's CRS as an area `width` wide: lines and polygon outlines buffered
+ * by half of it, points by all of it (a marker twice the line's width across). NULL if none. */
+static OGRGeometryH as_area(OGRGeometryH g, OGRCoordinateTransformationH t, double width)
+{
+    if (!g)
+        return NULL;
+    OGRGeometryH c = OGR_G_Clone(g);
+    if (t && OGR_G_Transform(c, t) != OGRERR_NONE) {
+        OGR_G_DestroyGeometry(c);
+        return NULL;
+    }
+    OGRwkbGeometryType type = wkbFlatten(OGR_G_GetGeometryType(c));
+    if (type == wkbPolygon || type == wkbMultiPolygon) { /* outlines: a land-use map's borders */
+        OGRGeometryH b = OGR_G_Boundary(c);
+        OGR_G_DestroyGeometry(c);
+        c = b;
+    }
+    bool point = type == wkbPoint || type == wkbMultiPoint;
+    OGRGeometryH area = c ? OGR_G_Buffer(c, point ? width : width / 2, 8) : NULL;
+    if (c)
+        OGR_G_DestroyGeometry(c);
+    return area;
+}
+
+bool geo_vectors(const char *dem_path, const char *vectors, double width, const float rgba[4], int w, int h,
+                 unsigned char *out, err_t *err)
+{
+    grid g;
+    if (!grid_of(dem_path, &g, err))
+        return false;
+    GDALDatasetH ds = GDALOpenEx(vectors, GDAL_OF_VECTOR | GDAL_OF_READONLY, NULL, NULL, NULL);
+    if (!ds) {
+        OSRDestroySpatialReference(g.srs);
+        return err_set(err, "cannot open the vectors '%s': %s", vectors,
+                       gdal_msg("not a vector file GDAL reads (GPX, KML, GeoJSON, GeoPackage, Shapefile)"));
+    }
+    /* width in the CRS's units: metres, or degrees of latitude for a geographic DEM */
+    double unit = OSRIsGeographic(g.srs) ? 1 / 111320.0 : 1 / OSRGetLinearUnits(g.srs, NULL);
+    double wd = (width > 0 ? width : fabs(g.gt[1]) / unit) * unit;
+    OGRGeometryH *areas = NULL;
+    int n = 0, cap = 0;
+    for (int l = 0; l < GDALDatasetGetLayerCount(ds); l++) {
+        OGRLayerH layer = GDALDatasetGetLayer(ds, l);
+        OGRSpatialReferenceH from = OGR_L_GetSpatialRef(layer);
+        OGRSpatialReferenceH src = from ? OSRClone(from) : wgs84();
+        OSRSetAxisMappingStrategy(src, OAMS_TRADITIONAL_GIS_ORDER);
+        OGRCoordinateTransformationH t = OCTNewCoordinateTransformation(src, g.srs);
+        OGRFeatureH f;
+        while ((f = OGR_L_GetNextFeature(layer)) != NULL && n < GEO_TRACK_MAX) {
+            OGRGeometryH a = as_area(OGR_F_GetGeometryRef(f), t, wd);
+            if (a) {
+                if (n == cap)
+                    areas = util_realloc(areas, sizeof *areas * (size_t)(cap = cap ? 2 * cap : 64), "vector shapes");
+                areas[n++] = a;
+            }
+            OGR_F_Destroy(f);
+        }
+        if (t)
+            OCTDestroyCoordinateTransformation(t);
+        OSRDestroySpatialReference(src);
+    }
+    GDALClose(ds);
+    GDALDatasetH mem = GDALCreate(GDALGetDriverByName("MEM"), "", w, h, 4, GDT_Byte, NULL);
+    double gt[6] = {g.gt[0], g.w * g.gt[1] / w, 0, g.gt[3], 0, g.h * g.gt[5] / h};
+    bool ok = mem && GDALSetGeoTransform(mem, gt) == CE_None && GDALSetSpatialRef(mem, g.srs) == CE_None;
+    int bands[4] = {1, 2, 3, 4};
+    double *burn = util_alloc(sizeof(double) * 4 * (size_t)(n ? n : 1), "burn values");
+    for (int i = 0; i < 4 * n; i++)
+        burn[i] = fmin(255, fmax(0, rgba[i % 4] * 255)); /* each shape burns the colour into the four bands */
+    ok = ok && (n == 0 || GDALRasterizeGeometries(mem, 4, bands, n, areas, NULL, NULL, burn, NULL, NULL, NULL) == CE_None);
+    for (int c = 0; ok && c < 4; c++) {
+        unsigned char *band = util_alloc((size_t)w * (size_t)h, "a vector band");
+        ok = GDALRasterIO(GDALGetRasterBand(mem, c + 1), GF_Read, 0, 0, w, h, band, w, h, GDT_Byte, 0, 0) == CE_None;
+        for (size_t k = 0; ok && k < (size_t)w * (size_t)h; k++)
+            out[4 * k + (size_t)c] = band[k];
+        free(band);
+    }
+    for (int i = 0; i < n; i++)
+        OGR_G_DestroyGeometry(areas[i]);
+    free(areas);
+    free(burn);
+    if (mem)
+        GDALClose(mem);
+    OSRDestroySpatialReference(g.srs);
+    if (ok && n == 0)
+        return err_set(err, "the vectors '%s' hold no lines, points or polygons GDAL could place on the DEM", vectors);
+    return ok || err_set(err, "cannot draw the vectors '%s' on the DEM: %s", vectors, gdal_msg("rasterising failed"));
+}
+
+/* The drape's size for `width`-wide lines: two texels across a line, at least the DEM's own texels,
+ * the longest side at most max_side. */
+void geo_vector_size(const char *dem_path, double width, int max_side, int *w, int *h)
+{
+    grid g;
+    err_t ignore;
+    *w = *h = 0;
+    if (!grid_of(dem_path, &g, &ignore))
+        return;
+    double unit = OSRIsGeographic(g.srs) ? 1 / 111320.0 : 1 / OSRGetLinearUnits(g.srs, NULL);
+    OSRDestroySpatialReference(g.srs);
+    double px = fmin(width > 0 ? width * unit / 2 : fabs(g.gt[1]), fabs(g.gt[1]));
+    double ew = g.w * fabs(g.gt[1]), eh = g.h * fabs(g.gt[5]), scale = fmin(1.0, max_side / fmax(ew / px, eh / px));
+    *w = (int)fmax(2, round(ew / px * scale));
+    *h = (int)fmax(2, round(eh / px * scale));
+}

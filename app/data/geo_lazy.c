@@ -24,6 +24,22 @@ bool geo_drape(const char *dem_path, const char *imagery, int max_side, unsigned
     return f && f(dem_path, imagery, max_side, rgba, w, h, err);
 }
 
+bool geo_vectors(const char *dem_path, const char *vectors, double width, const float rgba[4], int w, int h,
+                 unsigned char *out, err_t *err)
+{
+    LAZY_FN(bool (*f)(const char *, const char *, double, const float *, int, int, unsigned char *, err_t *),
+            lazy_symbol(LAZY_DEM, "geo_vectors", err));
+    return f && f(dem_path, vectors, width, rgba, w, h, out, err);
+}
+
+void geo_vector_size(const char *dem_path, double width, int max_side, int *w, int *h)
+{
+    LAZY_FN(void (*f)(const char *, double, int, int *, int *), lazy_symbol(LAZY_DEM, "geo_vector_size", NULL));
+    *w = *h = 0;
+    if (f)
+        f(dem_path, width, max_side, w, h);
+}
+
 bool geo_track_read(const char *path, geo_point **pts, int *n, err_t *err)
 {
     LAZY_FN(bool (*f)(const char *, geo_point **, int *, err_t *), lazy_symbol(LAZY_DEM, "geo_track_read", err));

@@ -1,5 +1,6 @@
-/* res_imagery — a terrain's draped imagery (terrain.imagery): every layer warped by GDAL onto the DEM's
- * extent in its CRS (data/geo.h), composited in order with its opacity ("over"), one sRGB texture with
+/* res_imagery — a terrain's drape: its imagery (terrain.imagery), every layer warped by GDAL onto the
+ * DEM's extent in its CRS (data/geo.h), then its vectors (terrain.vectors: tracks, paths, places burnt
+ * in their colour and width), composited in order with their opacity ("over"), one sRGB texture with
  * mipmaps and the driver's anisotropic filtering where it has it. Alpha is the imagery's coverage:
  * shaders/terrain/layers.glsl shows the terrain's own layers where it is 0. Kept while the next scene
  * drapes the same unchanged files on the same DEM. */
@@ -16,7 +17,7 @@ enum { IMAGERY_MAX_SIDE = 8192 }; /* 256 MB of RGBA with mipmaps at most */
 
 static struct {
     GLuint tex;
-    char key[SCENE_MAX_IMAGERY * (PATH_MAX_LEN + 96) + PATH_MAX_LEN + 96];
+    char key[2 * SCENE_MAX_IMAGERY * (PATH_MAX_LEN + 128) + PATH_MAX_LEN + 96];
 } state;
 
 static void release(void)
@@ -52,42 +53,87 @@ static bool upload(const unsigned char *rgba, int w, int h)
     return glGetError() != GL_OUT_OF_MEMORY;
 }
 
+/* The cache key: the DEM and every layer's file, opacity, colour and width. */
+static void drape_key(const struct scene_terrain *t, char *key, size_t n)
+{
+    key[0] = '\0';
+    render_file_key(t->heightmap, key, n);
+    for (int i = 0; i < t->imagery_count; i++) {
+        size_t k = strlen(key);
+        snprintf(key + k, n - k, "%.4f;", (double)t->imagery_opacity[i]);
+        render_file_key(t->imagery[i], key, n);
+    }
+    for (int i = 0; i < t->vector_count; i++) {
+        const float *c = t->vector_color[i];
+        size_t k = strlen(key);
+        snprintf(key + k, n - k, "v%.4f,%.4f,%.4f,%.4f,%.3f;", (double)c[0], (double)c[1], (double)c[2], (double)c[3],
+                 (double)t->vector_width[i]);
+        render_file_key(t->vectors[i], key, n);
+    }
+}
+
+/* Every layer composited at one size: the first imagery's own, or larger where a vector layer needs
+ * two texels across its lines. */
+static unsigned char *composite(const struct scene_terrain *t, int side, int *w, int *h, err_t *err)
+{
+    *w = *h = 0;
+    for (int i = 0; i < t->vector_count; i++) {
+        int vw, vh;
+        geo_vector_size(t->heightmap, t->vector_width[i], side, &vw, &vh);
+        if ((long)vw * vh > (long)*w * *h)
+            *w = vw, *h = vh;
+    }
+    unsigned char *all = NULL, *layer = NULL;
+    bool ok = true;
+    for (int i = 0; ok && i < t->imagery_count; i++) {
+        int lw = *w, lh = *h;
+        ok = geo_drape(t->heightmap, t->imagery[i], side, &layer, &lw, &lh, err);
+        if (ok && !all) /* the first layer sets the size (unless the vectors asked for more) */
+            *w = lw, *h = lh;
+        if (ok && !all)
+            all = util_calloc(4 * (size_t)*w * (size_t)*h, 1, "the draped imagery");
+        if (ok)
+            over(all, layer, (size_t)*w * (size_t)*h, t->imagery_opacity[i]);
+        free(layer);
+        layer = NULL;
+    }
+    if (ok && !all)
+        all = util_calloc(4 * (size_t)*w * (size_t)*h, 1, "the draped vectors");
+    layer = ok && t->vector_count ? util_alloc(4 * (size_t)*w * (size_t)*h, "a vector layer") : NULL;
+    for (int i = 0; ok && i < t->vector_count; i++) {
+        const float *c = t->vector_color[i];
+        ok = geo_vectors(t->heightmap, t->vectors[i], t->vector_width[i], (const float[4]){c[0], c[1], c[2], 1}, *w,
+                         *h, layer, err);
+        if (ok)
+            over(all, layer, (size_t)*w * (size_t)*h, c[3]);
+    }
+    free(layer);
+    if (!ok) {
+        free(all);
+        return NULL;
+    }
+    return all;
+}
+
 static bool set(const scene *s, err_t *err)
 {
     const struct scene_terrain *t = &s->terrain;
-    if (!t->imagery_count || !t->heightmap[0]) {
+    if ((!t->imagery_count && !t->vector_count) || !t->heightmap[0]) {
         release();
         return true;
     }
-    char key[sizeof state.key] = "";
-    render_file_key(t->heightmap, key, sizeof key);
-    for (int i = 0; i < t->imagery_count; i++) {
-        size_t n = strlen(key);
-        snprintf(key + n, sizeof key - n, "%.4f;", (double)t->imagery_opacity[i]);
-        render_file_key(t->imagery[i], key, sizeof key);
-    }
+    char key[sizeof state.key];
+    drape_key(t, key, sizeof key);
     if (state.tex && !strcmp(key, state.key))
         return true;
     release();
     GLint most = 0;
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &most);
-    int side = most < IMAGERY_MAX_SIDE ? most : IMAGERY_MAX_SIDE, w = 0, h = 0;
-    unsigned char *all = NULL;
-    bool ok = true;
-    for (int i = 0; ok && i < t->imagery_count; i++) { /* the first layer sets the size; the rest match it */
-        unsigned char *layer = NULL;
-        ok = geo_drape(t->heightmap, t->imagery[i], side, &layer, &w, &h, err);
-        if (ok && !all) {
-            all = calloc(4 * (size_t)w * (size_t)h, 1);
-            ok = all || err_set(err, "out of memory for the imagery (%d x %d)", w, h);
-        }
-        if (ok)
-            over(all, layer, (size_t)w * (size_t)h, t->imagery_opacity[i]);
-        free(layer);
-    }
+    int side = most < IMAGERY_MAX_SIDE ? most : IMAGERY_MAX_SIDE, w, h;
+    unsigned char *all = composite(t, side, &w, &h, err);
     err_t fault;
-    ok = ok && (upload(all, w, h) || err_set(err, "the GPU driver refused the imagery's %d x %d texture: give a smaller "
-                                                  "one (gdal_translate -outsize)", w, h));
+    bool ok = all && (upload(all, w, h) || err_set(err, "the GPU driver refused the imagery's %d x %d texture: give a "
+                                                        "smaller one (gdal_translate -outsize)", w, h));
     if (ok && render_resource_fault(res_imagery.name, &fault))
         ok = err_set(err, "%s", fault.msg);
     free(all);
@@ -95,8 +141,8 @@ static bool set(const scene *s, err_t *err)
         release();
         return false;
     }
-    fprintf(stderr, "fathom: imagery: %d layer%s draped at %d x %d\n", t->imagery_count, t->imagery_count > 1 ? "s" : "",
-            w, h);
+    fprintf(stderr, "fathom: drape: %d imagery and %d vector layer%s at %d x %d\n", t->imagery_count, t->vector_count,
+            t->vector_count == 1 ? "" : "s", w, h);
     snprintf(state.key, sizeof state.key, "%s", key);
     return true;
 }

@@ -25,7 +25,7 @@ bool gis_viewshed_run(const gis_options *o, err_t *err)
     dem_info info = {0};
     if (!dem_read(o->dem, TERRAIN_MAX_SIDE, &w, &h, &heights, &info, err))
         return false;
-    double col, row;
+    double col = 0, row = 0;
     bool ok = info.georeferenced ||
               err_set(err, "the DEM '%s' has no georeferencing: a viewshed needs its spacing in metres and its place "
                            "on the Earth", o->dem);

@@ -26,7 +26,8 @@
     X(AA, "aa", "jittered sub-pixel samples, accumulated progressively")                             \
     X(GLOW, "glow", "fractals: light that grows with the march steps near the surface")               \
     X(RELIEF, "relief", "parallax occlusion mapping of a heightmap on a material (the lab's search)")          \
-    X(DROPLETS, "droplets", "liquid droplets from a file: analytic spheres in a grid, Fresnel, Snell, TIR, Beer")
+    X(DROPLETS, "droplets", "liquid droplets from a file: analytic spheres in a grid, Fresnel, Snell, TIR, Beer") \
+    X(SKY, "sky", "physical sky: the sun scattered by air, aerosol and ozone (Hillaire 2020), aerial perspective")
 
 typedef enum effect {
 #define X(id, name, what) EFFECT_##id,

@@ -58,6 +58,7 @@ static unsigned derive_effects(const scene *s)
         [EFFECT_GLOW] = s->fractal.glow > 0,
         [EFFECT_RELIEF] = relief,
         [EFFECT_DROPLETS] = s->has_droplets,
+        [EFFECT_SKY] = s->has_sky,
     };
     unsigned fx = 0;
     for (int e = 0; e < EFFECT_COUNT; e++) {
@@ -346,7 +347,8 @@ static bool load_text(const char *text, const char *path, const char *const *set
         ok = scene_apply_set(root, sets[i], err); /* its errors name the override already */
     if (ok) {
         ok = parse_root(&c, root) &&
-             (!s->cam_auto || program_get(s->program)->frame(s, err)) && scene_apply_sun(s, err);
+             (!s->cam_auto || program_get(s->program)->frame(s, err)) && scene_apply_sun(s, err) &&
+             scene_apply_sky(s, err);
         if (!ok && set_count > 0 && blame)
             blame_override(text, path, sets, set_count, err);
     }
@@ -491,6 +493,12 @@ void scene_uniforms(const scene *s, const uniform_sink *u)
     uniform_f(u, "uFogDensity", s->fog_density);
     uniform_f(u, "uFogFalloff", s->fog_falloff);
     uniform_f(u, "uFogHeight", s->fog_height);
+    if (s->has_sky) { /* shaders/common/sky.glsl */
+        uniform_fv(u, "uSkySun", 3, 1, s->sky.sun);
+        uniform_fv(u, "uSkyIrradiance", 3, 1, s->sky.irradiance);
+        uniform_fv(u, "uSkyMs", 3, SKY_MS_N, &s->sky.ms[0][0]);
+        uniform_f(u, "uSkyScale", s->sky.scale);
+    }
     if (s->has_droplets) { /* shaders/common/droplets.glsl; the grid's uniforms come with its buffers */
         uniform_f(u, "uDropletIor", s->droplets.ior);
         uniform_fv(u, "uDropletAbsorption", 3, 1, s->droplets.absorption);

@@ -24,6 +24,7 @@
 #include <stdbool.h>
 
 #include "util.h"
+#include "data/sky.h"
 #include "scene/effect.h"
 #include "scene/formula.h"
 #include "scene/program.h"
@@ -116,6 +117,14 @@ typedef struct scene {
     bool has_cubemap;
     char cubemap[6][PATH_MAX_LEN]; /* +X -X +Y -Y +Z -Z */
 
+    bool has_sky; /* "environment": {"sky": "physical"}: Hillaire's atmosphere (data/sky.h, scene_sun.c) */
+    struct scene_sky {
+        float sun[3];           /* toward the sun: the sun light's direction */
+        float irradiance[3];    /* the sun's above the atmosphere: its light's colour × intensity */
+        float ms[SKY_MS_N][3];  /* Ψ_ms by altitude for this sun */
+        float scale;            /* world height units a metre (a terrain's exaggeration) */
+    } sky;
+
     bool has_fog;
     float fog_color[3], fog_density; /* density σ0 at fog_height, per metre */
     float fog_falloff, fog_height;   /* σ(y) = σ0 · exp(−falloff · (y − height)) */
@@ -154,6 +163,11 @@ typedef struct scene {
         char imagery[SCENE_MAX_IMAGERY][PATH_MAX_LEN];
         float imagery_opacity[SCENE_MAX_IMAGERY];
         int imagery_count;
+        /* "vectors": GPS tracks, paths, places burnt onto the drape above the imagery (gpu/res_imagery.c) */
+        char vectors[SCENE_MAX_IMAGERY][PATH_MAX_LEN];
+        float vector_color[SCENE_MAX_IMAGERY][4]; /* RGB and opacity */
+        float vector_width[SCENE_MAX_IMAGERY];    /* metres (0: a DEM texel) */
+        int vector_count;
         /* program noise: f(p) = y − base − amplitude · fbm(p · frequency), `octaves` octaves */
         float base, amplitude, frequency;
         int octaves;
@@ -213,6 +227,9 @@ void scene_free(scene *s);
 
 /* The "sun" block's light set from its date, hour and place (scene_sun.c); true when there is none. */
 bool scene_apply_sun(scene *s, err_t *err);
+/* The physical sky's sun, its light through the air, the ambient from the sky's mean and the Ψ_ms
+ * table (scene_sun.c); true when the scene has no physical sky. */
+bool scene_apply_sky(scene *s, err_t *err);
 
 /* The files of the formulas that draw s (its fractal's, its hybrid's), NULL where none: what a shot
  * records (view/shot.h). */

@@ -275,11 +275,15 @@ bool scene_parse_environment(scene_ctx *c, const cJSON *root)
         s->env_intensity = 1;
         return true;
     }
-    static const char *const keys[] = {"color", "intensity", "cubemap", NULL};
+    static const char *const keys[] = {"color", "intensity", "cubemap", "sky", NULL};
+    static const char *const SKIES[] = {"color", "physical", NULL};
+    int sky;
     if (!scene_check_keys(c, env, "environment", keys) ||
         !scene_get_vec3(c, env, "environment", "color", grey, 0, 1e3f, s->env_color) ||
-        !scene_get_num(c, env, "environment", "intensity", 1, 0, 1e6f, &s->env_intensity))
+        !scene_get_num(c, env, "environment", "intensity", 1, 0, 1e6f, &s->env_intensity) ||
+        !scene_get_enum(c, env, "environment", "sky", "sky", SKIES, 0, &sky))
         return false;
+    s->has_sky = sky == 1; /* the colour (or cube map) stays what reflections see when the sky is off */
     const cJSON *cube = cJSON_GetObjectItemCaseSensitive(env, "cubemap");
     if (!cube)
         return true;

@@ -32,7 +32,7 @@ static bool file_key(const char *key)
     last = last ? last + 1 : key;
     if (!strncmp(key, "materials.", 10))
         return !strcmp(last, "texture") || !strcmp(last, "relief");
-    return !strcmp(key, "terrain.heightmap") || !strcmp(key, "terrain.imagery") || !strcmp(key, "droplets.file") || !strncmp(key, "environment.cubemap", 19);
+    return !strcmp(key, "terrain.heightmap") || !strcmp(key, "terrain.imagery") || !strcmp(key, "terrain.vectors") || !strcmp(key, "droplets.file") || !strncmp(key, "environment.cubemap", 19);
 }
 
 static void from_cwd(cJSON *v)

@@ -11,6 +11,7 @@
 
 #include "data/dem.h"
 #include "data/geo.h"
+#include "data/sky.h"
 #include "data/sun.h"
 #include "scene/scene_parse.h"
 
@@ -78,9 +79,43 @@ bool scene_apply_sun(scene *s, err_t *err)
     l->vec[0] = (float)(cos(el) * sin(az));
     l->vec[1] = (float)sin(el);
     l->vec[2] = (float)(-cos(el) * cos(az));
+    if (s->has_sky) /* the physical sky colours the beam with its own air (scene_apply_sky) */
+        return true;
     float beam[3];
     sun_color(p.elevation, beam);
     for (int k = 0; k < 3; k++)
         l->color[k] *= beam[k];
+    return true;
+}
+
+bool scene_apply_sky(scene *s, err_t *err)
+{
+    if (!s->has_sky)
+        return true;
+    int li = s->sun.on ? s->sun.light : -1;
+    for (int i = 0; li < 0 && i < s->light_count; i++)
+        if (s->lights[i].type == LIGHT_DIRECTIONAL)
+            li = i;
+    if (li < 0 || s->lights[li].type != LIGHT_DIRECTIONAL)
+        return err_set(err, "%s: environment.sky \"physical\" needs a directional light for the sun (add one to "
+                            "\"lights\", or a \"sun\" block)", s->path);
+    scene_light *l = &s->lights[li];
+    struct scene_sky *k = &s->sky;
+    double sun[3] = {l->vec[0], l->vec[1], l->vec[2]}, ms[SKY_MS_N][3];
+    k->scale = s->terrain.heightmap[0] && s->terrain.exaggeration > 0 ? s->terrain.exaggeration : 1;
+    /* the light and the ambient as they are where the camera looks (a terrain's heights are exaggerated) */
+    double altitude = fmax(s->cam_look_at[1] / k->scale, 0), T[3], mean[3];
+    sky_multiple_scattering(sun, ms);
+    sky_transmittance(altitude, sun, -1, 64, T);
+    sky_mean(altitude, sun, (const double(*)[3])ms, mean);
+    for (int c = 0; c < 3; c++) {
+        k->sun[c] = (float)sun[c];
+        k->irradiance[c] = l->color[c] * l->intensity;
+        for (int i = 0; i < SKY_MS_N; i++)
+            k->ms[i][c] = (float)ms[i][c];
+        s->env_color[c] = (float)(mean[c] * k->irradiance[c]);
+        l->color[c] = (float)(l->color[c] * T[c]);
+    }
+    s->env_intensity = 1;
     return true;
 }

@@ -66,13 +66,48 @@ static bool parse_imagery(scene_ctx *c, const cJSON *tb)
     return true;
 }
 
+/* "vectors": a file, or an array of files and {"file": F, "color": [r, g, b], "width": M, "opacity": A}. */
+static bool parse_vectors(scene_ctx *c, const cJSON *tb)
+{
+    struct scene_terrain *t = &c->s->terrain;
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(tb, "vectors");
+    if (!v)
+        return true;
+    static const char *const keys[] = {"file", "color", "width", "opacity", NULL};
+    static const float red[3] = {1.0f, 0.25f, 0.1f};
+    int i = 0;
+    for (const cJSON *l = cJSON_IsArray(v) ? v->child : v; l; l = cJSON_IsArray(v) ? l->next : NULL, i++) {
+        char p[64];
+        snprintf(p, sizeof p, cJSON_IsArray(v) ? "terrain.vectors.%d" : "terrain.vectors", i);
+        if (i == SCENE_MAX_IMAGERY)
+            return scene_fail(c, p, "too many vector layers (at most %d)", SCENE_MAX_IMAGERY);
+        const char *file = cJSON_IsString(l) ? l->valuestring : NULL;
+        float *col = t->vector_color[i];
+        memcpy(col, red, sizeof red);
+        col[3] = 1;
+        t->vector_width[i] = 0;
+        if (cJSON_IsObject(l) &&
+            (!scene_check_keys(c, l, p, keys) || !scene_get_str(c, l, p, "file", NULL, &file) ||
+             !scene_get_vec3(c, l, p, "color", red, 0, 1, col) || !scene_get_num(c, l, p, "width", 0, 0, 1e5f, &t->vector_width[i]) ||
+             !scene_get_num(c, l, p, "opacity", 1, 0, 1, &col[3])))
+            return false;
+        if (!file)
+            return scene_fail(c, p, "expected a vector file (GPX, KML, GeoJSON, GeoPackage, Shapefile) or {\"file\": F, "
+                                    "\"color\": [1, 0.2, 0.1], \"width\": 30}");
+        if (!scene_resolve_file(c, p, file, t->vectors[i]))
+            return false;
+        t->vector_count = i + 1;
+    }
+    return true;
+}
+
 bool scene_heightmap_parse(scene_ctx *c, const cJSON *root)
 {
     struct scene_terrain *t = &c->s->terrain;
     const cJSON *tb = cJSON_GetObjectItemCaseSensitive(root, "terrain");
     static const char *const keys[] = {"heightmap", "spacing", "height_min", "height_max", "exaggeration", "method",
                                        "sand_line", "snow_line", "grass_slope", "nodata", "normals", "colors", "imagery",
-                                       NULL};
+                                       "vectors", NULL};
     if (!tb)
         return scene_fail(c, "terrain", "a terrain scene needs a \"terrain\" block with a \"heightmap\"");
     if (!scene_check_keys(c, tb, "terrain", keys))
@@ -126,7 +161,7 @@ bool scene_heightmap_parse(scene_ctx *c, const cJSON *root)
     if (!scene_get_enum(c, tb, "terrain", "colors", "terrain colouring", COLORS, 0, &m))
         return false;
     t->elevation_ramp = m == 1;
-    return parse_imagery(c, tb);
+    return parse_imagery(c, tb) && parse_vectors(c, tb);
 }
 
 
@@ -177,7 +212,7 @@ void scene_heightmap_defines(const scene *s, strbuf *out)
     sb_printf(out, "#define TERRAIN_MAXMIP %d\n", s->terrain.maxmip);
     if (s->terrain.patch_normals)
         sb_printf(out, "#define TERRAIN_PATCH_NORMALS 1\n");
-    if (s->terrain.imagery_count) /* only a scene with imagery samples it */
+    if (s->terrain.imagery_count || s->terrain.vector_count) /* only a scene with a drape samples it */
         sb_printf(out, "#define TERRAIN_IMAGERY 1\n");
 }
 

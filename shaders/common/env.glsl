@@ -7,12 +7,20 @@ uniform samplerCube uEnvMap;
 uniform float uEnvMaxLod; // log2 of the face size
 #endif
 
+#if FX_SKY
+#include "common/sky.glsl"
+#endif
+
 // Cube maps follow the RenderMan (left-handed) face convention; flipping Z maps fathom's
 // right-handed world onto it so the sky is not mirrored.
 vec3 envDir(vec3 dir) { return vec3(dir.xy, -dir.z); }
 
 vec3 environment(vec3 dir)
 {
+#if FX_SKY
+    if (fxOn(FX_SKY_BIT))
+        return skyRadiance(dir, true);
+#endif
 #if FX_ENVMAP
     return fxOn(FX_ENVMAP_BIT) ? textureLod(uEnvMap, envDir(dir), 0.0).rgb * uEnvColor : uEnvColor;
 #else
@@ -24,6 +32,10 @@ vec3 environment(vec3 dir)
 // (roughness 1 → the 4×4 level, whose texels cover about a hemisphere's worth of directions).
 vec3 environmentBlurred(vec3 dir, float roughness)
 {
+#if FX_SKY
+    if (fxOn(FX_SKY_BIT)) // the air's light without the sun's disc (the lights carry the sun)
+        return skyRadiance(dir, false);
+#endif
 #if FX_ENVMAP
     return fxOn(FX_ENVMAP_BIT) ? textureLod(uEnvMap, envDir(dir), roughness * (uEnvMaxLod - 2.0)).rgb * uEnvColor
                                : uEnvColor;
@@ -53,6 +65,10 @@ vec3 environmentMean()
 // The diffuse ambient light at normal n (quality.ambient: the sky around n, or its mean).
 vec3 ambientLight(vec3 n)
 {
+#if FX_SKY // the physical sky's cosine-weighted mean over the upper hemisphere, from the CPU (scene_sun.c)
+    if (fxOn(FX_SKY_BIT))
+        return uEnvColor;
+#endif
 #if AMBIENT
     return environmentBlurred(n, 1.0);
 #else

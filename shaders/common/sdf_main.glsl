@@ -390,6 +390,10 @@ vec3 pathRadiance(Path P, Ray ray)
     if (fxOn(FX_GLOW_BIT))
         radiance += uGlowColor * uGlowStrength * crept * crept;
 #endif
+#if FX_SKY // the air between the eye and the first hit (a miss saw the whole sky already)
+    if (fxOn(FX_SKY_BIT) && P.firstT >= 0.0)
+        radiance = skyAerial(radiance, worldApprox(ray.o), ray.d, P.primaryT);
+#endif
 #if FX_FOG
     if (fxOn(FX_FOG_BIT))
         radiance = applyFog(radiance, worldApprox(ray.o), ray.d, P.primaryT);

@@ -1,4 +1,6 @@
-/* Imagery on the rendered terrain (gpu/res_imagery.c, shaders/terrain/layers.glsl): a UTM DEM draped
+/* GIS on the GPU. The physical sky (shaders/common/sky.glsl) against its double-precision twin
+ * (data/sky.h) pixel by pixel, and aerial perspective dimming a hit as the twin's transmittance says.
+ * Imagery on the rendered terrain (gpu/res_imagery.c, shaders/terrain/layers.glsl): a UTM DEM draped
  * with an image whose western half is red and eastern half blue, and whose northern half has green, in
  * another CRS (WGS 84), split at a known longitude and latitude: every pixel whose hit (the position AOV) lies more than a texel from that meridian
  * has its half's albedo (pure within 6 km of the camera, dominant beyond, where the mipmaps of a
@@ -21,6 +23,7 @@
 #include <ogr_srs_api.h>
 
 #include "gltest.h"
+#include "data/sky.h"
 #include "gpu/render.h"
 
 static char dir[] = "/tmp/fathom-drape-XXXXXX";
@@ -207,9 +210,143 @@ static void opacity_zero_is_no_imagery(void **st)
     assert_true(mixed > 600);
 }
 
+/* The sky seen from 2 km up, looking 25° above the horizon: each sky pixel's radiance against
+ * data/sky.h's march with 256 steps (the shader takes 16 and 8), the sun's disc left out. */
+static void sky_matches_its_twin(void **st)
+{
+    (void)st;
+    static float aov[W * H * AOV], rgba[W * H * 4];
+    char text[1024];
+    snprintf(text, sizeof text,
+             "{\"program\": \"terrain\", \"materials\": {\"rock\": {}}, \"environment\": {\"sky\": \"physical\"},"
+             " \"lights\": [{\"type\": \"directional\", \"direction\": [0.5, 0.35, -1], \"intensity\": 3,"
+             " \"color\": [1, 0.9, 0.8]}], \"quality\": {\"max_dist\": 1e6, \"spp\": 1},"
+             " \"terrain\": {\"heightmap\": \"%s/dem.tif\", \"exaggeration\": 1}}", dir);
+    scene s;
+    load_text(text, NULL, 0, &s);
+    strbuf pre = {0};
+    scene_preamble(&s, &pre);
+    assert_non_null(strstr(pre.data, "#define FX_SKY 1"));
+    sb_free(&pre);
+    camera cam = cam_at(0, 2000, 6000, 0, 2000 + 4000 * tan(25 * DEG2RAD), 2000, 70);
+    draw(&s, &cam, W, H, 1, NULL, aov, rgba);
+    double sun[3] = {s.sky.sun[0], s.sky.sun[1], s.sky.sun[2]}, ms[SKY_MS_N][3];
+    for (int i = 0; i < SKY_MS_N; i++)
+        for (int k = 0; k < 3; k++)
+            ms[i][k] = s.sky.ms[i][k];
+    double worst = 0, sum = 0;
+    int n = 0;
+    for (int row = 0; row < H; row += 3)
+        for (int x = 0; x < W; x += 3) {
+            size_t k = (size_t)(row * W + x);
+            if (isfinite(aov[k * AOV + AOV_SLOT_DEPTH]))
+                continue; /* terrain */
+            dray r = pixel_ray(&cam, x, row, W, H);
+            if (r.d[0] * sun[0] + r.d[1] * sun[1] + r.d[2] * sun[2] > cos(2 * DEG2RAD))
+                continue; /* the disc */
+            double L[3], T[3];
+            sky_radiance(2000, r.d, -1, sun, (const double(*)[3])ms, 256, L, T);
+            for (int c = 0; c < 3; c++) {
+                double want = L[c] * s.sky.irradiance[c], got = rgba[k * 4 + (size_t)c];
+                worst = fmax(worst, fabs(got / want - 1));
+                sum += fabs(got / want - 1);
+                n++;
+            }
+        }
+    print_message("sky: %d channels of sky pixels, mean %.2f %%, worst %.2f %% off the double-precision march\n", n,
+                  100 * sum / n, 100 * worst);
+    assert_true(n > 300);
+    assert_true(sum / n < 0.02 && worst < 0.05);
+    /* aerial perspective: the terrain (heights ×2) from 1 km up, glowing a constant 0.5 and reflecting nothing
+     * (black metal), with the sky compiled out and in: each hit's light is 0.5 times the air's
+     * transmittance plus its in-scattering */
+    static float off[W * H * 4], on[W * H * 4];
+    camera down = cam_at(0, 2000, 4000, 0, 400, -2000, 60);
+    const char *glow[] = {"materials.rock.base_color=0,0,0", "materials.rock.metallic=1", "materials.rock.roughness=1",
+                          "materials.rock.emission=0.5,0.5,0.5", "terrain.exaggeration=2", "effects.sky=off"};
+    scene s_off, s_on;
+    load_text(text, glow, 6, &s_off);
+    draw(&s_off, &down, W, H, 1, NULL, aov, off);
+    scene_free(&s_off);
+    load_text(text, glow, 5, &s_on); /* heights ×2: the air is measured in metres, 1 km below the eye's 2 km */
+    draw(&s_on, &down, W, H, 1, NULL, NULL, on);
+    scene_free(&s_on);
+    double aworst = 0;
+    int hits = 0;
+    for (int k = 0; k < W * H; k++) {
+        const float *a = aov + (size_t)k * AOV;
+        if (!isfinite(a[AOV_SLOT_DEPTH]))
+            continue;
+        double dx = a[AOV_SLOT_POSITION] - down.position[0], dy = (a[AOV_SLOT_POSITION + 1] - down.position[1]) / 2,
+               dz = a[AOV_SLOT_POSITION + 2] - down.position[2], L[3], T[3];
+        double len = sqrt(dx * dx + dy * dy + dz * dz), d[3] = {dx / len, dy / len, dz / len};
+        sky_radiance(1000, d, len, sun, (const double(*)[3])ms, 256, L, T);
+        for (int c = 0; c < 3; c++) {
+            double want = off[(size_t)k * 4 + (size_t)c] * T[c] + L[c] * s.sky.irradiance[c];
+            if (off[(size_t)k * 4 + (size_t)c] < 0.5f || off[(size_t)k * 4 + (size_t)c] > 0.7f) /* the glow, a glint of the sun */
+                fail_msg("hit %d: %.6f without the sky, not the glow (0.5)", k, off[(size_t)k * 4 + (size_t)c]);
+            aworst = fmax(aworst, fabs(on[(size_t)k * 4 + (size_t)c] / want - 1));
+        }
+        hits++;
+    }
+    print_message("aerial perspective: %d hits, worst %.2f %% off surface x T + in-scattering\n", hits, 100 * aworst);
+    assert_true(hits > 1000 && aworst < 0.005);
+    scene_free(&s);
+}
+
+/* A GeoJSON line along the split meridian (WGS 84), 120 m wide, in green: every hit within 30 m of it is
+ * green, none farther than 60 m + a drape texel is, and the line is there along the whole DEM. */
+static void vectors_on_the_ground(void **st)
+{
+    (void)st;
+    char file[256];
+    snprintf(file, sizeof file, "%s/line.geojson", dir);
+    FILE *f = fopen(file, "w");
+    fprintf(f, "{\"type\": \"FeatureCollection\", \"features\": [{\"type\": \"Feature\", \"properties\": {},"
+               " \"geometry\": {\"type\": \"LineString\", \"coordinates\": [[%.9f, 46.8], [%.9f, 47.0]]}}]}\n",
+            split_lon, split_lon);
+    fclose(f);
+    static float aov[W * H * AOV];
+    scene s;
+    char layer[400];
+    snprintf(layer, sizeof layer, "\"%s/grey.tif\", \"vectors\": {\"file\": \"%s\", \"color\": [0, 1, 0], \"width\": 120}",
+             dir, file);
+    render_with(layer, aov, NULL, &s);
+    scene_free(&s);
+    OGRSpatialReferenceH u = srs_of(32633), g = srs_of(4326);
+    OGRCoordinateTransformationH t = OCTNewCoordinateTransformation(g, u);
+    int near = 0, near_green = 0, far_green = 0;
+    double worst = 0;
+    for (int k = 0; k < W * H; k++) {
+        const float *a = aov + (size_t)k * AOV;
+        if (!isfinite(a[AOV_SLOT_DEPTH]))
+            continue;
+        double wx = a[AOV_SLOT_POSITION], wz = a[AOV_SLOT_POSITION + 2], z = 0;
+        double n = GT[3] - (wz + DH * 100.0), e1 = split_lon, n1 = 46.8, e2 = split_lon, n2 = 47.0;
+        OCTTransform(t, 1, &e1, &n1, &z);
+        OCTTransform(t, 1, &e2, &n2, &z);
+        double metres = fabs(wx + GT[0] + DW * 100.0 - (e1 + (e2 - e1) * (n - n1) / (n2 - n1)));
+        const float *alb = a + AOV_SLOT_ALBEDO;
+        bool green = alb[1] > 0.5f && alb[0] < 0.3f;
+        if (metres < 30)
+            near++, near_green += green;
+        if (green)
+            worst = fmax(worst, metres);
+        far_green += green && metres > 60 + 60; /* half the width, and a drape texel (60 m: two across) */
+    }
+    OCTDestroyCoordinateTransformation(t);
+    OSRDestroySpatialReference(u);
+    OSRDestroySpatialReference(g);
+    print_message("vectors: %d of %d hits within 30 m of the line green, the farthest green hit %.1f m from it\n",
+                  near_green, near, worst);
+    assert_true(near >= 10 && near_green == near && far_green == 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(vectors_on_the_ground),
+        cmocka_unit_test(sky_matches_its_twin),
         cmocka_unit_test(halves_land_on_their_sides),
         cmocka_unit_test(opacity_zero_is_no_imagery),
     };
