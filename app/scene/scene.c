@@ -493,7 +493,7 @@ void scene_uniforms(const scene *s, const uniform_sink *u)
     uniform_f(u, "uFogDensity", s->fog_density);
     uniform_f(u, "uFogFalloff", s->fog_falloff);
     uniform_f(u, "uFogHeight", s->fog_height);
-    if (s->has_sky) { /* shaders/common/sky.glsl */
+    if (s->effects & (1u << EFFECT_SKY)) { /* shaders/common/sky.glsl */
         uniform_fv(u, "uSkySun", 3, 1, s->sky.sun);
         uniform_fv(u, "uSkyIrradiance", 3, 1, s->sky.irradiance);
         uniform_fv(u, "uSkyMs", 3, SKY_MS_N, &s->sky.ms[0][0]);

@@ -90,16 +90,20 @@ bool scene_apply_sun(scene *s, err_t *err)
 
 bool scene_apply_sky(scene *s, err_t *err)
 {
-    if (!s->has_sky)
+    if (!s->has_sky && !(s->effects & (1u << EFFECT_SKY))) /* compiled out, the lights still see the air */
         return true;
     int li = s->sun.on ? s->sun.light : -1;
     for (int i = 0; li < 0 && i < s->light_count; i++)
         if (s->lights[i].type == LIGHT_DIRECTIONAL)
             li = i;
-    if (li < 0 || s->lights[li].type != LIGHT_DIRECTIONAL)
+    bool lit = li >= 0 && s->lights[li].type == LIGHT_DIRECTIONAL;
+    if (!lit && s->has_sky)
         return err_set(err, "%s: environment.sky \"physical\" needs a directional light for the sun (add one to "
                             "\"lights\", or a \"sun\" block)", s->path);
-    scene_light *l = &s->lights[li];
+    /* only forced in (effects.sky=on: the bench pricing it) and no directional light: a sun 45° up,
+     * irradiance 3 */
+    scene_light fallback = {.type = LIGHT_DIRECTIONAL, .vec = {0.5f, 0.7071f, 0.5f}, .color = {1, 1, 1}, .intensity = 3};
+    scene_light *l = lit ? &s->lights[li] : &fallback;
     struct scene_sky *k = &s->sky;
     double sun[3] = {l->vec[0], l->vec[1], l->vec[2]}, ms[SKY_MS_N][3];
     k->scale = s->terrain.heightmap[0] && s->terrain.exaggeration > 0 ? s->terrain.exaggeration : 1;
@@ -113,9 +117,12 @@ bool scene_apply_sky(scene *s, err_t *err)
         k->irradiance[c] = l->color[c] * l->intensity;
         for (int i = 0; i < SKY_MS_N; i++)
             k->ms[i][c] = (float)ms[i][c];
-        s->env_color[c] = (float)(mean[c] * k->irradiance[c]);
-        l->color[c] = (float)(l->color[c] * T[c]);
+        if (s->has_sky) { /* a forced-in sky leaves the scene's own lights and environment alone */
+            s->env_color[c] = (float)(mean[c] * k->irradiance[c]);
+            l->color[c] = (float)(l->color[c] * T[c]);
+        }
     }
-    s->env_intensity = 1;
+    if (s->has_sky)
+        s->env_intensity = 1;
     return true;
 }
