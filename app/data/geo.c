@@ -133,7 +133,7 @@ bool geo_write_mask_file(const char *dem_path, const char *out_path, int w, int 
     GDALSetRasterNoDataValue(b, 255);
     GDALSetDescription(b, description);
     GDALColorTableH ct = GDALCreateColorTable(GPI_RGB);
-    const GDALColorEntry hidden = {40, 30, 70, 170}, visible = {60, 210, 90, 150}, none = {0, 0, 0, 0};
+    const GDALColorEntry hidden = {30, 20, 60, 120}, visible = {60, 210, 90, 170}, none = {0, 0, 0, 0};
     GDALSetColorEntry(ct, 0, &hidden);
     GDALSetColorEntry(ct, 1, &visible);
     for (int i = 2; i < 256; i++)
