@@ -114,6 +114,7 @@ static double frame_ground(const frame *f, double c, double r)
 /* A flight key: world position, the point it looks at, its time. */
 typedef struct key {
     double p[3], at[3], t;
+    double along; /* metres along the track from its first key */
 } key;
 
 /* Keys from the track's points inside the DEM: at least `gap` metres apart, each `height` above the
@@ -138,8 +139,7 @@ static int track_keys(const gis_options *o, const frame *f, const geo_point *pts
         if (m && step < 1e-6) /* the last point on top of the previous key */
             continue;
         dist += step;
-        k[m++] = (key){{x, (g + o->height) * f->ex, z}, {0, 0, 0}, isnan(pts[i].time) ? NAN : pts[i].time};
-        k[m - 1].at[0] = dist; /* the distance along, for the times and the look-ahead below */
+        k[m++] = (key){{x, (g + o->height) * f->ex, z}, {0, 0, 0}, pts[i].time, dist};
     }
     return m;
 }
@@ -152,13 +152,10 @@ static void track_times_and_views(const gis_options *o, const frame *f, key *k, 
     for (int i = 0; i < m; i++)
         own = own && !isnan(k[i].t) && (i == 0 || k[i].t > k[i - 1].t);
     double t0 = k[0].t, ahead = fmax(4 * o->height, 10 * fmax(f->dx, f->dz));
-    double *along = malloc(sizeof(double) * (size_t)m);
-    for (int i = 0; i < m; i++) {
-        along[i] = k[i].at[0];
-        k[i].t = own ? k[i].t - t0 : along[i] / o->speed;
-    }
+    for (int i = 0; i < m; i++)
+        k[i].t = own ? k[i].t - t0 : k[i].along / o->speed;
     for (int i = 0, j = 0; i < m; i++) {
-        while (j < m - 1 && along[j] < along[i] + ahead)
+        while (j < m - 1 && k[j].along < k[i].along + ahead)
             j++;
         double dx = k[j].p[0] - k[i].p[0], dz = k[j].p[2] - k[i].p[2], len = hypot(dx, dz);
         if (len < 1e-6) { /* the end: keep the last heading */
@@ -170,7 +167,6 @@ static void track_times_and_views(const gis_options *o, const frame *f, key *k, 
         k[i].at[0] = ax, k[i].at[2] = az;
         k[i].at[1] = isnan(g) ? k[i].p[1] - o->height * f->ex : g * f->ex;
     }
-    free(along);
 }
 
 static bool write_flight(const char *out, const key *k, int m, err_t *err)
@@ -217,9 +213,7 @@ static bool track_to_flight(const gis_options *o, frame *f, err_t *err)
                               "one", k[m - 1].t, PATH_MAX_TIME);
     }
     ok = ok && write_flight(o->output, k, m, err);
-    double km = 0;
-    for (int i = 1; ok && i < m; i++)
-        km += 0.001 * hypot(k[i].p[0] - k[i - 1].p[0], k[i].p[2] - k[i - 1].p[2]);
+    double km = ok ? 0.001 * k[m - 1].along : 0;
     if (ok)
         printf("%s: %d keys from %d track points (%d outside the DEM), %.0f s, %.1f km, %.0f m above the ground\n",
                o->output, m, n, outside, k[m - 1].t, km, o->height);
