@@ -13,29 +13,10 @@
 #include <strings.h>
 #include <unistd.h>
 
-#include "data/gdal_net.h"
+#include "data/geo_internal.h"
 
 #define EARTH_RADIUS 6371000.0 /* m: the IUGG mean radius */
 
-static void gdal_init(void)
-{
-    static bool done;
-    if (!done) {
-        GDALAllRegister();
-        gdal_network_off();
-        GDALSetCacheMax64((GIntBig)64 << 20); /* rows are read once: a small block cache, not 5 % of RAM */
-        done = true;
-    }
-    CPLSetErrorHandler(CPLQuietErrorHandler); /* errors come back as one message, not GDAL's lines */
-    CPLErrorReset();
-}
-
-/* GDAL's last message, or a fallback. */
-static const char *gdal_msg(const char *fallback)
-{
-    const char *m = CPLGetLastErrorMsg();
-    return m && *m ? m : fallback;
-}
 
 /* Spacing in metres from the geotransform and CRS; false (with a message) when it cannot be had. */
 static bool georeference(GDALDatasetH ds, const char *path, int h, dem_info *info, err_t *err)
@@ -104,7 +85,7 @@ static bool read_rows(const char *path, GDALRasterBandH band, int W, int H, floa
     for (int y = 0; y < H; y += ROWS) {
         int rows = y + ROWS < H ? ROWS : H - y;
         if (GDALRasterIO(band, GF_Read, 0, y, W, rows, v + (size_t)y * (size_t)W, W, rows, GDT_Float32, 0, 0) != CE_None)
-            return err_set(err, "DEM '%s': reading rows %d-%d failed: %s", path, y, y + rows - 1, gdal_msg("I/O error"));
+            return err_set(err, "DEM '%s': reading rows %d-%d failed: %s", path, y, y + rows - 1, geo_gdal_msg("I/O error"));
         if (show)
             fprintf(stderr, "\rfathom: reading %s: %3d %%", path, (int)(100.0 * (y + rows) / H));
     }
@@ -153,10 +134,10 @@ bool dem_read(const char *path, int max_side, int *w, int *h, float **heights, d
 {
     *info = (dem_info){0};
     *heights = NULL;
-    gdal_init();
-    GDALDatasetH ds = GDALOpen(path, GA_ReadOnly);
+    geo_gdal_init();
+    GDALDatasetH ds = geo_open(path, GDAL_OF_RASTER, "read DEM", err);
     if (!ds)
-        return err_set(err, "cannot read DEM '%s': %s", path, gdal_msg("not a raster GDAL knows"));
+        return false;
     int W = GDALGetRasterXSize(ds), H = GDALGetRasterYSize(ds);
     GDALRasterBandH band = GDALGetRasterCount(ds) > 0 ? GDALGetRasterBand(ds, 1) : NULL;
     bool ok = check_readable(path, band, W, H, max_side, err);
@@ -185,10 +166,10 @@ bool dem_read(const char *path, int max_side, int *w, int *h, float **heights, d
 bool dem_probe(const char *path, int *w, int *h, double range[2], dem_info *info, err_t *err)
 {
     *info = (dem_info){0};
-    gdal_init();
-    GDALDatasetH ds = GDALOpen(path, GA_ReadOnly);
+    geo_gdal_init();
+    GDALDatasetH ds = geo_open(path, GDAL_OF_RASTER, "read DEM", err);
     if (!ds)
-        return err_set(err, "cannot read DEM '%s': %s", path, gdal_msg("not a raster GDAL knows"));
+        return false;
     *w = GDALGetRasterXSize(ds);
     *h = GDALGetRasterYSize(ds);
     GDALRasterBandH band = GDALGetRasterCount(ds) > 0 ? GDALGetRasterBand(ds, 1) : NULL;
@@ -197,7 +178,7 @@ bool dem_probe(const char *path, int *w, int *h, double range[2], dem_info *info
         err_set(err, "DEM '%s' has no raster band", path);
     double mm[2] = {0, 0};
     if (ok && GDALComputeRasterMinMax(band, TRUE, mm) != CE_None) /* approximate: overviews or a sample */
-        ok = err_set(err, "DEM '%s': no heights to frame (%s)", path, gdal_msg("every texel is nodata"));
+        ok = err_set(err, "DEM '%s': no heights to frame (%s)", path, geo_gdal_msg("every texel is nodata"));
     if (ok) {
         int has = 0;
         double scale = GDALGetRasterScale(band, &has), offset = GDALGetRasterOffset(band, NULL);
@@ -214,11 +195,11 @@ bool dem_probe(const char *path, int *w, int *h, double range[2], dem_info *info
 
 bool dem_fill_holes(float *heights, int w, int h, err_t *err)
 {
-    gdal_init();
+    geo_gdal_init();
     GDALDriverH mem = GDALGetDriverByName("MEM");
     GDALDatasetH ds = mem ? GDALCreate(mem, "", w, h, 1, GDT_Float32, NULL) : NULL;
     if (!ds)
-        return err_set(err, "filling nodata: cannot make a GDAL memory raster: %s", gdal_msg("no MEM driver"));
+        return err_set(err, "filling nodata: cannot make a GDAL memory raster: %s", geo_gdal_msg("no MEM driver"));
     GDALRasterBandH band = GDALGetRasterBand(ds, 1);
     bool ok = GDALRasterIO(band, GF_Write, 0, 0, w, h, heights, w, h, GDT_Float32, 0, 0) == CE_None &&
               GDALSetRasterNoDataValue(band, NAN) == CE_None &&
@@ -226,7 +207,7 @@ bool dem_fill_holes(float *heights, int w, int h, err_t *err)
               GDALFillNodata(band, NULL, (double)(w > h ? w : h), 0, 0, NULL, NULL, NULL) == CE_None &&
               GDALRasterIO(band, GF_Read, 0, 0, w, h, heights, w, h, GDT_Float32, 0, 0) == CE_None;
     if (!ok)
-        err_set(err, "filling nodata failed: %s", gdal_msg("GDALFillNodata"));
+        err_set(err, "filling nodata failed: %s", geo_gdal_msg("GDALFillNodata"));
     GDALClose(ds);
     return ok;
 }
@@ -241,8 +222,9 @@ dem_geo *dem_geo_open(const char *path)
 {
     if (dem_is_image(path))
         return NULL;
-    gdal_init();
-    GDALDatasetH ds = GDALOpen(path, GA_ReadOnly);
+    geo_gdal_init();
+    err_t ignored;
+    GDALDatasetH ds = geo_open(path, GDAL_OF_RASTER, "read DEM", &ignored);
     if (!ds)
         return NULL;
     double gt[6];
@@ -290,7 +272,7 @@ void dem_geo_close(dem_geo *g)
 
 bool dem_write_hills(const char *path, int n, err_t *err)
 {
-    gdal_init();
+    geo_gdal_init();
     char **opts = CSLSetNameValue(NULL, "TILED", "YES");
     opts = CSLSetNameValue(opts, "BIGTIFF", "IF_SAFER");
     GDALDatasetH ds = GDALCreate(GDALGetDriverByName("GTiff"), path, n, n, 1, GDT_Int16, opts);

@@ -17,14 +17,15 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "data/gdal_net.h"
+#include "data/gdal_trust.h"
 
 void geo_gdal_init(void)
 {
     static bool done;
     if (!done) {
         GDALAllRegister();
-        gdal_network_off();
+        gdal_trust_init();
+        GDALSetCacheMax64((GIntBig)64 << 20); /* rows are read once: a small block cache, not 5 % of RAM */
         done = true;
     }
     CPLSetErrorHandler(CPLQuietErrorHandler);
@@ -37,13 +38,29 @@ const char *geo_gdal_msg(const char *fallback)
     return m && *m ? m : fallback;
 }
 
+GDALDatasetH geo_open(const char *path, unsigned kind, const char *what, err_t *err)
+{
+    geo_gdal_init();
+    char why[256];
+    if (!gdal_trust_path(path, why, sizeof why)) {
+        err_set(err, "cannot %s '%s': %s", what, path, why);
+        return NULL;
+    }
+    GDALDatasetH ds = GDALOpenEx(path, kind | GDAL_OF_READONLY, gdal_trust_drivers(), NULL, NULL);
+    if (!ds)
+        err_set(err, "cannot %s '%s': %s", what, path,
+                geo_gdal_msg(kind & GDAL_OF_VECTOR ? "not a vector file GDAL reads (GPX, KML, GeoJSON, GeoPackage, "
+                                                     "Shapefile)"
+                                                   : "not a raster GDAL reads"));
+    return ds;
+}
+
 
 bool geo_grid_of(const char *dem_path, geo_grid *g, err_t *err)
 {
-    geo_gdal_init();
-    GDALDatasetH ds = GDALOpenEx(dem_path, GDAL_OF_RASTER | GDAL_OF_READONLY, NULL, NULL, NULL);
+    GDALDatasetH ds = geo_open(dem_path, GDAL_OF_RASTER, "open the DEM", err);
     if (!ds)
-        return err_set(err, "cannot open the DEM '%s': %s", dem_path, geo_gdal_msg("not a raster GDAL reads"));
+        return false;
     *g = (geo_grid){GDALGetRasterXSize(ds), GDALGetRasterYSize(ds), {0}, NULL};
     OGRSpatialReferenceH srs = GDALGetSpatialRef(ds);
     bool ok = srs && GDALGetGeoTransform(ds, g->gt) == CE_None && g->gt[2] == 0 && g->gt[4] == 0;
@@ -237,10 +254,8 @@ bool geo_drape(const char *dem_path, const char *imagery, int max_side, unsigned
     geo_grid g;
     if (!geo_grid_of(dem_path, &g, err))
         return false;
-    GDALDatasetH src = GDALOpenEx(imagery, GDAL_OF_RASTER | GDAL_OF_READONLY, NULL, NULL, NULL);
+    GDALDatasetH src = geo_open(imagery, GDAL_OF_RASTER, "open the imagery", err);
     bool ok = src != NULL;
-    if (!ok)
-        err_set(err, "cannot open the imagery '%s': %s", imagery, geo_gdal_msg("not a raster GDAL reads"));
     if (ok && (!GDALGetSpatialRef(src) && !GDALGetGCPCount(src)))
         ok = err_set(err, "the imagery '%s' has no georeferencing: fathom cannot tell where it lies on the DEM "
                           "(give it a CRS and geotransform, e.g. gdal_translate -a_srs -a_ullr)", imagery);
@@ -285,7 +300,7 @@ bool geo_gdal_viewshed(const char *dem_path, int col, int row, double observer_h
     if (!geo_grid_of(dem_path, &g, err))
         return false;
     OSRDestroySpatialReference(g.srs);
-    GDALDatasetH ds = GDALOpenEx(dem_path, GDAL_OF_RASTER | GDAL_OF_READONLY, NULL, NULL, NULL);
+    GDALDatasetH ds = geo_open(dem_path, GDAL_OF_RASTER, "open the DEM", err);
     double gt[6];
     if (!ds || GDALGetGeoTransform(ds, gt) != CE_None || gt[5] > 0) {
         if (ds)

@@ -3,6 +3,7 @@
 #ifndef FATHOM_GEO_INTERNAL_H
 #define FATHOM_GEO_INTERNAL_H
 
+#include <gdal.h>
 #include <ogr_srs_api.h>
 #include <stdbool.h>
 
@@ -12,6 +13,10 @@
 void geo_gdal_init(void);
 /* GDAL's last message, or the fallback. */
 const char *geo_gdal_msg(const char *fallback);
+
+/* Every GDAL/OGR open of a file the user named, through gdal_trust's policy (data/gdal_trust.h): kind is
+ * GDAL_OF_RASTER or GDAL_OF_VECTOR, what is the message's verb and noun ("open the DEM"); NULL with a message. */
+GDALDatasetH geo_open(const char *path, unsigned kind, const char *what, err_t *err);
 
 /* A DEM's grid: size, north-up geotransform (pixel corners), CRS (a clone: the caller destroys it). */
 typedef struct geo_grid {

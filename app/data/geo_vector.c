@@ -82,12 +82,10 @@ static OGRLayerH track_layer(GDALDatasetH ds)
 
 bool geo_track_read(const char *path, geo_point **pts, int *n, err_t *err)
 {
-    geo_gdal_init();
     *pts = NULL, *n = 0;
-    GDALDatasetH ds = GDALOpenEx(path, GDAL_OF_VECTOR | GDAL_OF_READONLY, NULL, NULL, NULL);
+    GDALDatasetH ds = geo_open(path, GDAL_OF_VECTOR, "open the track", err);
     if (!ds)
-        return err_set(err, "cannot open the track '%s': %s", path,
-                       geo_gdal_msg("not a vector file GDAL reads (GPX, KML, GeoJSON, GeoPackage, Shapefile)"));
+        return false;
     OGRLayerH l = track_layer(ds);
     OGRSpatialReferenceH from = l ? OGR_L_GetSpatialRef(l) : NULL, w = geo_wgs84();
     OGRSpatialReferenceH src = from ? OSRClone(from) : NULL;
@@ -276,11 +274,10 @@ bool geo_vectors(const char *dem_path, const char *vectors, double width, const 
     geo_grid g;
     if (!geo_grid_of(dem_path, &g, err))
         return false;
-    GDALDatasetH ds = GDALOpenEx(vectors, GDAL_OF_VECTOR | GDAL_OF_READONLY, NULL, NULL, NULL);
+    GDALDatasetH ds = geo_open(vectors, GDAL_OF_VECTOR, "open the vectors", err);
     if (!ds) {
         OSRDestroySpatialReference(g.srs);
-        return err_set(err, "cannot open the vectors '%s': %s", vectors,
-                       geo_gdal_msg("not a vector file GDAL reads (GPX, KML, GeoJSON, GeoPackage, Shapefile)"));
+        return false;
     }
     /* width in the CRS's units: metres, or degrees of latitude for a geographic DEM */
     double unit = OSRIsGeographic(g.srs) ? 1 / 111320.0 : 1 / OSRGetLinearUnits(g.srs, NULL);
