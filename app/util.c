@@ -7,6 +7,7 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <limits.h>
+#include <signal.h>
 #include <stdarg.h>
 #include <math.h>
 #include <stdio.h>
@@ -71,16 +72,67 @@ void util_remove_folder(const char *dir)
     rmdir(dir);
 }
 
-bool util_atomic_open(util_atomic *a, const char *path, err_t *err)
+bool util_temp_path(const char *path, char *out, size_t n)
 {
     static unsigned serial;
+    const char *slash = strrchr(path, '/'), *base = slash ? slash + 1 : path, *dot = strrchr(base, '.');
+    int k = snprintf(out, n, "%.*s.%s.tmp%ld-%u%s", (int)(base - path), path, base, (long)getpid(), serial++,
+                     dot && dot != base ? dot : "");
+    return k > 0 && (size_t)k < n;
+}
+
+/* Is name ".X.tmpPID[-SERIAL][.EXT]" (util_temp_path's form, or the older one without a serial)? Its PID. */
+static long temp_writer(const char *name)
+{
+    const char *t = name[0] == '.' ? strstr(name, ".tmp") : NULL;
+    while (t && strstr(t + 1, ".tmp"))
+        t = strstr(t + 1, ".tmp");
+    if (!t || t == name)
+        return 0;
+    char *end;
+    long pid = strtol(t + 4, &end, 10);
+    if (end == t + 4 || pid <= 0)
+        return 0;
+    if (*end == '-') {
+        const char *s = end + 1;
+        strtoul(s, &end, 10);
+        if (end == s)
+            return 0;
+    }
+    return *end == '\0' || (*end == '.' && !strchr(end + 1, '.')) ? pid : 0;
+}
+
+int util_remove_stale_temps(const char *path)
+{
+    const char *slash = strrchr(path, '/');
+    char dir[PATH_MAX_LEN], file[PATH_MAX_LEN * 2];
+    snprintf(dir, sizeof dir, "%.*s", slash ? (int)(slash - path) + 1 : 2, slash ? path : "./");
+    DIR *d = opendir(dir);
+    if (!d)
+        return 0;
+    int removed = 0;
+    for (struct dirent *e; (e = readdir(d));) {
+        long pid = temp_writer(e->d_name);
+        if (pid <= 0 || pid == (long)getpid() || kill((pid_t)pid, 0) == 0 || errno != ESRCH)
+            continue; /* not a temporary file, or its writer is alive (or not ours to ask): leave it */
+        snprintf(file, sizeof file, "%s%s", dir, e->d_name);
+        struct stat st;
+        if (lstat(file, &st) == 0 && (S_ISREG(st.st_mode) || S_ISLNK(st.st_mode)))
+            removed += unlink(file) == 0;
+    }
+    closedir(d);
+    return removed;
+}
+
+bool util_atomic_open(util_atomic *a, const char *path, err_t *err)
+{
     *a = (util_atomic){0};
     if (snprintf(a->path, sizeof a->path, "%s", path) >= (int)sizeof a->path)
         return err_set(err, "cannot write '%.200s...': the path is too long", path);
-    const char *slash = strrchr(path, '/'), *base = slash ? slash + 1 : path;
+    util_remove_stale_temps(path);
     for (int tries = 0; tries < 100; tries++) {
-        snprintf(a->tmp, sizeof a->tmp, "%.*s.%.200s.tmp%ld-%u", (int)(base - path), path, base, (long)getpid(),
-                 serial++);
+        if (!util_temp_path(path, a->tmp, sizeof a->tmp))
+            return err_set(err, "cannot write '%.200s...': the path is too long", path);
         int fd = open(a->tmp, O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
         if (fd < 0 && errno == EEXIST)
             continue;
@@ -217,6 +269,22 @@ bool util_file_exists(const char *path)
 {
     struct stat st;
     return stat(path, &st) == 0 && S_ISREG(st.st_mode);
+}
+
+bool util_file_digest(const char *path, unsigned long long *digest)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return false;
+    unsigned long long h = 14695981039346656037ull; /* FNV-1a 64's offset basis and prime (Fowler, Noll, Vo) */
+    unsigned char buf[65536];
+    for (size_t n; (n = fread(buf, 1, sizeof buf, f)) > 0;)
+        for (size_t i = 0; i < n; i++)
+            h = (h ^ buf[i]) * 1099511628211ull;
+    bool ok = !ferror(f);
+    fclose(f);
+    *digest = h;
+    return ok;
 }
 
 /* A folder holds fathom's data when it has shaders/common/contract.glsl. */

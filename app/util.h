@@ -42,7 +42,15 @@ bool util_read_file(const char *path, char **out, size_t *len, err_t *err);
 /* Writes text to path atomically (util_atomic below). False with "cannot save WHAT to 'path': reason". */
 bool util_write_text_atomic(const char *path, const char *text, const char *what, err_t *err);
 
-/* A file written whole or not at all. open makes a new temporary file beside path (".BASE.tmpPID-N",
+/* The one name every writer's temporary file has, beside path: ".BASE.tmpPID-SERIAL.EXT" (the same
+ * folder, so the rename is atomic; the target's extension, for libraries that choose a format by it).
+ * False when out is too small. */
+bool util_temp_path(const char *path, char *out, size_t n);
+/* Removes, in path's folder, every temporary file of that form whose writer is gone (a run killed
+ * mid-write): called by every writer before it writes. Returns how many it removed. */
+int util_remove_stale_temps(const char *path);
+
+/* A file written whole or not at all. open makes a new temporary file beside path (util_temp_path,
  * O_EXCL|O_NOFOLLOW: nothing planted there, a symbolic link included, is followed or overwritten);
  * commit checks every write, flushes it to the disk and renames it over path (rename replaces a link
  * at path, it never writes through one); on any failure, and in abort, the temporary file is removed
@@ -55,7 +63,7 @@ bool util_sync_folder_of(const char *path);
 
 typedef struct util_atomic {
     void *f; /* FILE *, for fprintf */
-    char tmp[PATH_MAX_LEN + 48], path[PATH_MAX_LEN];
+    char tmp[PATH_MAX_LEN + 64], path[PATH_MAX_LEN];
 } util_atomic;
 bool util_atomic_open(util_atomic *a, const char *path, err_t *err);
 bool util_atomic_commit(util_atomic *a, err_t *err); /* "cannot write 'path': reason (is the disk full?)" */
@@ -70,6 +78,8 @@ const char *util_printable(const char *s, char *out, size_t n);
 bool util_dirname(const char *path, char *out, size_t n);
 bool util_join(const char *dir, const char *rel, char *out, size_t n);
 bool util_file_exists(const char *path);
+/* FNV-1a 64 of a file's bytes (not a cryptographic hash: it tells fathom's own file from another one). */
+bool util_file_digest(const char *path, unsigned long long *digest);
 /* Removes a folder of files that fathom made: each entry is unlinked (a link goes, what it points to
  * stays; a subfolder stays, and with it the folder), then the folder. */
 void util_remove_folder(const char *dir);

@@ -58,7 +58,7 @@ check "bench-planted-links: the results are files" '[ -f planted/csg-knobs.csv ]
 # a link planted at the name of the temporary file the bench will make (its PID is the shell's, which
 # execs it): the temporary file is made new (O_EXCL | O_NOFOLLOW), never written through the link
 mkdir templink && echo keep >targets/temp
-run sh -c 'ln -s ../targets/temp "templink/.csg-knobs.csv.tmp$$-0"; exec "$0" "$@"' "$fathom" bench --scene csg $quick --out templink
+run sh -c 'ln -s ../targets/temp "templink/.csg-knobs.csv.tmp$$-0.csv"; exec "$0" "$@"' "$fathom" bench --scene csg $quick --out templink
 check "bench-planted-temp-link: not written through" '[ "$(cat targets/temp)" = keep ]'
 # a gnuplot that exits 0 but leaves its images cut short (a full disk under it): the bench fails
 mkdir fakebin && printf '#!/bin/sh\nprintf "\\211PNG" >plot.png; printf "\\211PNG" >overview.png\n' >fakebin/gnuplot

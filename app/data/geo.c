@@ -121,6 +121,22 @@ bool geo_convert(const char *dem_path, bool to_texel, int n, const double *x, co
     return ok;
 }
 
+/* GDAL writes a GeoTIFF's tiles as it closes it and cannot say when the disk refused one: the file
+ * read back, every byte against what was meant. */
+static bool read_back_equal(const char *path, int w, int h, const unsigned char *v)
+{
+    err_t ignored;
+    GDALDatasetH ds = geo_open(path, GDAL_OF_RASTER, "read back", &ignored);
+    unsigned char *got = ds ? malloc((size_t)w * (size_t)h) : NULL;
+    bool ok = got && GDALGetRasterXSize(ds) == w && GDALGetRasterYSize(ds) == h &&
+              GDALRasterIO(GDALGetRasterBand(ds, 1), GF_Read, 0, 0, w, h, got, w, h, GDT_Byte, 0, 0) == CE_None &&
+              memcmp(got, v, (size_t)w * (size_t)h) == 0;
+    free(got);
+    if (ds)
+        GDALClose(ds);
+    return ok;
+}
+
 bool geo_write_mask_file(const char *dem_path, const char *out_path, int w, int h, const unsigned char *v,
                          const char *description, err_t *err)
 {
@@ -131,6 +147,7 @@ bool geo_write_mask_file(const char *dem_path, const char *out_path, int w, int 
         OSRDestroySpatialReference(g.srs);
         return err_set(err, "a %d × %d raster does not fit the DEM's %d × %d grid", w, h, g.w, g.h);
     }
+    CPLErrorReset();
     char **opts = CSLSetNameValue(NULL, "COMPRESS", "DEFLATE");
     opts = CSLSetNameValue(opts, "TILED", "YES");
     GDALDatasetH ds = GDALCreate(GDALGetDriverByName("GTiff"), out_path, w, h, 1, GDT_Byte, opts);
@@ -154,8 +171,10 @@ bool geo_write_mask_file(const char *dem_path, const char *out_path, int w, int 
     GDALSetRasterColorTable(b, ct);
     GDALDestroyColorTable(ct);
     bool ok = GDALRasterIO(b, GF_Write, 0, 0, w, h, (void *)v, w, h, GDT_Byte, 0, 0) == CE_None;
-    GDALClose(ds);
-    return ok || err_set(err, "writing '%s' failed: %s", out_path, geo_gdal_msg("is the disk full?"));
+    GDALClose(ds); /* GDAL 3.6's close returns nothing: its errors are the last error, the read-back the rest */
+    ok = ok && CPLGetLastErrorType() < CE_Failure && read_back_equal(out_path, w, h, v);
+    return ok || err_set(err, "cannot write '%s': %s", out_path, geo_gdal_msg("it does not read back whole (is the "
+                                                                              "disk full?)"));
 }
 
 /* ---- imagery: any raster warped onto the DEM's extent ------------------------------------------ */

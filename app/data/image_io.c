@@ -23,7 +23,7 @@
 
 /* ---- the temporary file of the write in progress, for the signal handler ------------------------- */
 
-enum { TEMP_MAX = PATH_MAX_LEN + 32 };     /* a target's path and ".tmpPID" */
+enum { TEMP_MAX = PATH_MAX_LEN + 64 };     /* a target's path and ".tmpPID-N.EXT" */
 static char g_temp[TEMP_MAX];             /* written only while no signal can see it half done: */
 static volatile sig_atomic_t g_temp_live; /* the handler reads g_temp only when this is 1 */
 
@@ -57,43 +57,6 @@ void image_io_install_signal_cleanup(void)
     for (size_t i = 0; i < sizeof sigs / sizeof sigs[0]; i++)
         signal(sigs[i], on_fatal_signal);
     signal(SIGXFSZ, SIG_IGN); /* over a file-size limit, write() fails with EFBIG instead */
-}
-
-/* ".NAME.tmpPID.EXT" beside NAME.EXT: the same folder (rename stays atomic) and extension (the
- * format follows it). */
-static void temp_path_for(const char *path, char *out, size_t n)
-{
-    const char *slash = strrchr(path, '/'), *base = slash ? slash + 1 : path, *dot = strrchr(base, '.');
-    snprintf(out, n, "%.*s.%s.tmp%ld%s", (int)(base - path), path, base, (long)getpid(), dot ? dot : "");
-}
-
-int image_remove_stale_temps(const char *path)
-{
-    const char *slash = strrchr(path, '/');
-    char dir[PATH_MAX_LEN], file[PATH_MAX_LEN * 2];
-    snprintf(dir, sizeof dir, "%.*s", slash ? (int)(slash - path) + 1 : 2, slash ? path : "./");
-    DIR *d = opendir(dir);
-    if (!d)
-        return 0;
-    int removed = 0;
-    for (struct dirent *e; (e = readdir(d));) {
-        /* ".NAME.tmpPID.EXT", as temp_path_for makes it, whose writer is gone */
-        const char *n = e->d_name, *t = n[0] == '.' ? strstr(n, ".tmp") : NULL;
-        while (t && strstr(t + 1, ".tmp"))
-            t = strstr(t + 1, ".tmp");
-        if (!t || t == n)
-            continue;
-        char *end;
-        long pid = strtol(t + 4, &end, 10);
-        if (end == t + 4 || *end != '.' || pid <= 0 || strchr(end + 1, '.') || pid == (long)getpid())
-            continue;
-        if (kill((pid_t)pid, 0) == 0 || errno != ESRCH)
-            continue; /* its writer is alive (or not ours to ask): leave it */
-        snprintf(file, sizeof file, "%s%s", dir, n);
-        removed += remove(file) == 0;
-    }
-    closedir(d);
-    return removed;
 }
 
 /* ---- the writer ------------------------------------------------------------------------------------- */
@@ -149,7 +112,12 @@ image_writer *image_writer_open_text(const char *path, int width, int height, in
         return NULL;
     image_writer *w = util_calloc(1, sizeof *w, "an image writer");
     snprintf(w->path, sizeof w->path, "%s", path);
-    temp_path_for(path, w->tmp, sizeof w->tmp);
+    util_remove_stale_temps(path); /* what an earlier write killed mid-way (SIGKILL) left */
+    if (!util_temp_path(path, w->tmp, sizeof w->tmp)) {
+        err_set(err, "cannot write '%.200s...': the path is too long", path);
+        free(w);
+        return NULL;
+    }
     w->width = width, w->height = height, w->channels = channels;
     /* the temporary file is made new here (O_EXCL, O_NOFOLLOW): whatever was planted at its name, a
      * link to another file included, is refused rather than written through */

@@ -62,10 +62,6 @@ bool image_can_write(const char *path, err_t *err);
  * is an error the writer reports. Call once at start-up. */
 void image_io_install_signal_cleanup(void);
 
-/* Removes the temporary files ".NAME.tmpPID.EXT" that a writer killed mid-write (SIGKILL, a power cut)
- * left in path's folder, where process PID is gone; returns how many. */
-int image_remove_stale_temps(const char *path);
-
 /* ---- reading --------------------------------------------------------------------------------- */
 
 /* Reads any image OpenImageIO knows as 8-bit, converted to `channels` channels (missing ones filled:

@@ -2,6 +2,7 @@
  * into fathom_mesh.so (mesh_file.cpp). */
 #include "data/mesh_io.h"
 
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -29,17 +30,51 @@ static mesh_io_view view_of(const mesh *m)
     return (mesh_io_view){.pos = m->pos, .nrm = m->nrm, .col = m->col, .tri = m->tri, .nv = m->nv, .nt = m->nt};
 }
 
-/* 3MF is a zip archive assimp writes to a file only: into the temporary file, then renamed. */
+static uint32_t le32(const unsigned char *p)
+{
+    return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
+}
+static unsigned le16(const unsigned char *p) { return (unsigned)p[0] | (unsigned)p[1] << 8; }
+
+enum { ZIP_EOCD = 22, ZIP_CENTRAL = 46, ZIP_LOCAL = 30 }; /* record sizes (PKWARE's APPNOTE 4.3) */
+
+/* The zip assimp wrote is whole: its end record last in the file, the central directory just before it,
+ * every entry's local header where the directory says, its data before the directory. assimp's zip
+ * writer does not check its writes (a full disk gave a success and a cut file). */
+static bool zip_whole(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    unsigned char e[ZIP_EOCD], h[ZIP_CENTRAL];
+    long size = f && fseek(f, 0, SEEK_END) == 0 ? ftell(f) : -1;
+    bool ok = size >= ZIP_EOCD && fseek(f, size - ZIP_EOCD, SEEK_SET) == 0 && fread(e, 1, ZIP_EOCD, f) == ZIP_EOCD &&
+              le32(e) == 0x06054b50 && le16(e + 20) == 0; /* no comment: the record is the last 22 bytes */
+    long cd = ok ? (long)le32(e + 16) : 0, cd_size = ok ? (long)le32(e + 12) : 0;
+    ok = ok && cd + cd_size == size - ZIP_EOCD;
+    for (unsigned i = 0, n = ok ? le16(e + 10) : 0; ok && i < n; i++) {
+        ok = fseek(f, cd, SEEK_SET) == 0 && fread(h, 1, ZIP_CENTRAL, f) == ZIP_CENTRAL && le32(h) == 0x02014b50;
+        long local = ok ? (long)le32(h + 42) : 0, data = ok ? (long)le32(h + 20) : 0;
+        cd += ZIP_CENTRAL + (ok ? (long)(le16(h + 28) + le16(h + 30) + le16(h + 32)) : 0);
+        unsigned char l[ZIP_LOCAL];
+        ok = ok && fseek(f, local, SEEK_SET) == 0 && fread(l, 1, ZIP_LOCAL, f) == ZIP_LOCAL && le32(l) == 0x04034b50 &&
+             local + ZIP_LOCAL + le16(l + 26) + le16(l + 28) + data <= (long)le32(e + 16);
+    }
+    if (f)
+        fclose(f);
+    return ok;
+}
+
+/* 3MF is a zip archive assimp writes to a file only: into the temporary file, checked, then renamed. */
 static bool write_by_file(const mesh_io_view *v, const char *exporter, const char *path, err_t *err)
 {
     LAZY_FN(mesh_io_export_fn f, lazy_symbol(LAZY_MESH, "mesh_file_export", err));
     util_atomic a;
     if (!f || !util_atomic_open(&a, path, err))
         return false;
-    char why[512];
-    if (!f(v, exporter, a.tmp, why, sizeof why)) {
+    char why[512] = "";
+    if (!f(v, exporter, a.tmp, why, sizeof why) || !zip_whole(a.tmp)) {
         util_atomic_abort(&a);
-        return err_set(err, "cannot write '%s': %s", path, why);
+        return err_set(err, "cannot write '%s': %s", path, why[0] ? why : "the archive does not read back whole (is "
+                                                                         "the disk full?)");
     }
     return util_atomic_commit(&a, err);
 }

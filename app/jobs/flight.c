@@ -149,6 +149,7 @@ static bool frame_range(const flight_desc *opt, const path *p, int fps, int *fir
 typedef struct flight_state {
     const flight_desc *opt;
     const path *p;
+    const char *video; /* the frames' pattern of a video, else "" */
     int fps, rendered, skipped;
     bool loaded; /* s holds the scene for every frame (a path without parameter tracks) */
     scene s;
@@ -164,7 +165,8 @@ static bool render_frame(flight_state *F, int f, err_t *err)
     char name[PATH_MAX_LEN];
     if (!path_frame_name(opt->output, f, name, sizeof name, err))
         return false;
-    if (frame_done(name)) {
+    bool video = F->video[0] != '\0'; /* the frames of a video: fathom's folder, fathom's frames only */
+    if (frame_done(name) && (!video || flight_video_frame_trusted(F->video, f, name))) {
         F->skipped++;
         if (!opt->shot.quiet)
             fprintf(stderr, "frame %d: %s is there, skipped\n", f, name);
@@ -195,6 +197,7 @@ static bool render_frame(flight_state *F, int f, err_t *err)
     sb_free(&description);
     if (!F->loaded)
         scene_free(&F->s);
+    ok = ok && (!video || flight_video_frame_record(F->video, f, name, err));
     if (ok) {
         F->rendered++;
         if (!opt->shot.quiet)
@@ -236,7 +239,7 @@ bool flight_render(const flight_desc *opt, err_t *err)
         return false;
     }
     static flight_state F; /* big: the overrides' text */
-    F = (flight_state){.opt = opt, .p = &p, .fps = opt->fps ? opt->fps : DEFAULT_FPS};
+    F = (flight_state){.opt = opt, .p = &p, .video = pattern, .fps = opt->fps ? opt->fps : DEFAULT_FPS};
     int first, last;
     bool ok = frame_range(opt, &p, F.fps, &first, &last, err);
     /* the scene and the output folder are checked before the GPU opens */
@@ -255,7 +258,7 @@ bool flight_render(const flight_desc *opt, err_t *err)
         return false;
     }
     ok = render_init(err) && check_clearance(opt, &p, first, last, F.fps, err);
-    int stale = image_remove_stale_temps(name); /* what a killed run left half-written */
+    int stale = util_remove_stale_temps(name); /* what a killed run left half-written */
     if (stale && !opt->shot.quiet)
         fprintf(stderr, "removed %d temporary file%s a killed run left\n", stale, stale > 1 ? "s" : "");
     double t0 = util_now();

@@ -23,7 +23,51 @@ bool flight_video_prepare(const char *output, const char *options, char *pattern
         return err_set(err, "--output '%s': the name is too long", output);
     if (mkdir(folder, 0777) != 0 && errno != EEXIST)
         return err_set(err, "cannot make the frames' folder '%s': %s", folder, strerror(errno));
+    /* a folder someone else put there (a link to another folder, another user's) is not fathom's to write into */
+    struct stat st;
+    if (lstat(folder, &st) != 0 || !S_ISDIR(st.st_mode) || st.st_uid != geteuid() || (st.st_mode & S_IWOTH))
+        return err_set(err, "the frames' folder '%s' is %s: fathom writes frames only into a folder it made; remove "
+                            "it (or render to another name)", folder,
+                       S_ISLNK(st.st_mode) ? "a link" : !S_ISDIR(st.st_mode) ? "not a folder"
+                                                      : st.st_uid != geteuid() ? "another user's" : "writable by everyone");
     return true;
+}
+
+/* The frames' manifest: "INDEX DIGEST" a line, appended as fathom writes each frame (several processes
+ * of a farm append to one, a line a write). A frame is fathom's when its last line's digest matches. */
+static bool manifest_path(const char *pattern, char *out, size_t n)
+{
+    char folder[PATH_MAX_LEN];
+    return util_dirname(pattern, folder, sizeof folder) && snprintf(out, n, "%s/%s", folder, FRAMES_MANIFEST) < (int)n;
+}
+
+bool flight_video_frame_trusted(const char *pattern, int f, const char *name)
+{
+    char list[PATH_MAX_LEN + 32];
+    unsigned long long want = 0, d;
+    bool listed = false;
+    FILE *m = manifest_path(pattern, list, sizeof list) ? fopen(list, "r") : NULL;
+    for (int i; m && fscanf(m, "%d %llx", &i, &d) == 2;)
+        if (i == f)
+            want = d, listed = true;
+    if (m)
+        fclose(m);
+    return listed && util_file_digest(name, &d) && d == want;
+}
+
+bool flight_video_frame_record(const char *pattern, int f, const char *name, err_t *err)
+{
+    char list[PATH_MAX_LEN + 32], line[64];
+    unsigned long long d;
+    if (!manifest_path(pattern, list, sizeof list) || !util_file_digest(name, &d))
+        return err_set(err, "cannot read back the frame '%s' just written: %s", name, strerror(errno));
+    int fd = open(list, O_WRONLY | O_CREAT | O_APPEND | O_NOFOLLOW | O_CLOEXEC, 0666);
+    int k = snprintf(line, sizeof line, "%d %016llx\n", f, d);
+    bool ok = fd >= 0 && write(fd, line, (size_t)k) == k;
+    int saved = errno;
+    if (fd >= 0)
+        close(fd);
+    return ok || err_set(err, "cannot write the frames' manifest '%s': %s", list, strerror(saved));
 }
 
 /* Encodes frames 0 … last into tmp. */
@@ -65,6 +109,9 @@ bool flight_video_assemble(const char *output, const char *pattern, int last, in
             return false;
         if (!util_file_exists(name) && missing++ == 0)
             first_missing = f;
+        else if (util_file_exists(name) && !flight_video_frame_trusted(pattern, f, name))
+            return err_set(err, "%s is not the frame fathom wrote (not in the frames' manifest, or changed since): "
+                                "remove it and render the path again", name);
     }
     if (missing) {
         if (!quiet)
@@ -72,9 +119,9 @@ bool flight_video_assemble(const char *output, const char *pattern, int last, in
                             "are there (render the path again without --frames)\n", output, missing, last + 1, first_missing);
         return true;
     }
-    char tmp[PATH_MAX_LEN];
-    const char *dot = strrchr(output, '.');
-    if (snprintf(tmp, sizeof tmp, "%s.tmp-%ld%s", output, (long)getpid(), dot ? dot : "") >= (int)sizeof tmp)
+    char tmp[PATH_MAX_LEN + 64];
+    util_remove_stale_temps(output); /* what an encoding killed mid-way left */
+    if (!util_temp_path(output, tmp, sizeof tmp))
         return err_set(err, "--output '%s': the name is too long", output);
     /* made here, new (O_EXCL) and no link followed: libavformat then writes into this file */
     int fd = open(tmp, O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);

@@ -223,6 +223,9 @@ static bool track_to_flight(const gis_options *o, frame *f, err_t *err)
     return ok;
 }
 
+/* Points a flight becomes at most: a GPX of 10^6 points is ~100 MB, beyond what GPS tools open. */
+enum { TRACK_POINTS_MAX = 1000000 };
+
 /* When the flight starts: the scene's sun date and hour when it sets one (the day it shows), else now. */
 static double flight_start(const scene *s)
 {
@@ -238,12 +241,17 @@ static bool flight_to_track(const gis_options *o, frame *f, err_t *err)
     if (!path_load(o->path, &p, err))
         return false;
     double t0 = p.keys[0].time, t1 = p.keys[p.count - 1].time, start = flight_start(&f->s);
-    int n = (int)floor((t1 - t0) * o->fps + 1e-9) + 1;
-    if (n < 2)
-        n = 2;
-    geo_point *pts = malloc(sizeof *pts * (size_t)n);
-    double (*cam)[3] = malloc(sizeof *cam * (size_t)n);
-    double *buf = malloc(sizeof(double) * 4 * (size_t)n), *col = buf, *row = buf + n, *lon = buf + 2 * n, *lat = buf + 3 * n;
+    double points = floor((t1 - t0) * o->fps + 1e-9) + 1;
+    if (points > TRACK_POINTS_MAX) {
+        path_free(&p);
+        return err_set(err, "%s: %.0f s of flight at --fps %g is %.0f points, more than the %d a track holds here: "
+                            "lower --fps", o->path, t1 - t0, o->fps, points, TRACK_POINTS_MAX);
+    }
+    int n = points < 2 ? 2 : (int)points;
+    geo_point *pts = util_alloc(sizeof *pts * (size_t)n, "the track's points");
+    double (*cam)[3] = util_alloc(sizeof *cam * (size_t)n, "the track's cameras");
+    double *buf = util_alloc(sizeof(double) * 4 * (size_t)n, "the track's coordinates");
+    double *col = buf, *row = buf + n, *lon = buf + 2 * n, *lat = buf + 3 * n;
     for (int i = 0; i < n; i++) {
         double t = i == n - 1 ? t1 : t0 + i / o->fps;
         path_sample ps;

@@ -318,7 +318,6 @@ bool offline_render(const offline_desc *d, err_t *err)
                             "another point (render the pass with --set camera.aperture=0)");
     if (!image_can_write(d->output, err))
         return false;
-    image_remove_stale_temps(d->output); /* what an earlier shot killed mid-write (SIGKILL) left */
     if (!gpu_open(&(gpu_desc){.headless = true}, err))
         return false;
     bool ok = render_init(err) && offline_render_current(d, err);

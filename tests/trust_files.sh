@@ -1,0 +1,81 @@
+#!/bin/sh
+# Files fathom writes and the files a stranger leaves where fathom writes (issue 50): a planted frames'
+# folder or frame, a full disk under every writer the libraries cannot vouch for, a flight that asks for
+# more points than memory, the temporaries of killed runs, terminal control bytes and oversized files.
+# Each case failed on the code before its fix. Usage: trust_files.sh FATHOM SRC
+fathom=$1
+src=$2
+tmp=$(mktemp -d)
+trap 'umount "$tmp/small" 2>/dev/null; rm -rf "$tmp"' EXIT
+trap 'exit 130' INT TERM
+passed=0
+failed=0
+ok() { passed=$((passed + 1)); echo "ok   $1"; }
+bad() { failed=$((failed + 1)); echo "FAIL $1"; [ -s "$tmp/stderr" ] && sed 's/^/     | /' "$tmp/stderr"; }
+check() { if eval "$2"; then ok "$1"; else bad "$1"; fi; }
+run() { "$@" >"$tmp/stdout" 2>"$tmp/stderr"; code=$?; }
+dem=$src/terrains/himalaya.tif
+flight=$src/docs/flight/csg.json
+small="--fps 2 --size 32x18 --spp 1 --quiet"
+mkdir "$tmp/w" && cd "$tmp/w" || exit 1
+
+# ---- 3. the frames' folder is fathom's, and so is every frame in it ------------------------------------
+mkdir elsewhere && ln -s elsewhere v.mp4.frames
+run "$fathom" render --path "$flight" $small --output v.mp4
+check "frames-folder-link: refused, nothing written through it" \
+    '[ $code -ne 0 ] && grep -q "is a link" "$tmp/stderr" && [ -z "$(ls -A elsewhere)" ] && [ ! -e v.mp4 ]'
+rm v.mp4.frames
+run "$fathom" render --path "$flight" $small --frames 0-0 --output p.mp4 # frame 0 rendered, the rest not yet
+# a frame planted where frame 1 goes, a copy of a real frame of fathom's (it decodes, it carries a shot)
+cp p.mp4.frames/00000.png p.mp4.frames/00001.png
+run "$fathom" render --path "$flight" $small --output p.mp4
+check "planted-frame: rendered again, not taken" \
+    '[ $code -eq 0 ] && [ -s p.mp4 ] && ! grep -q "00001.png is there, skipped" "$tmp/stderr" && ! cmp -s p.mp4.frames/00000.png p.mp4.frames/00001.png'
+cp p.mp4.frames/00000.png p.mp4.frames/00002.png # planted after the render, before a later assembly
+run "$fathom" render --path "$flight" $small --output p.mp4
+check "frame-changed-after-render: rendered again (not fathom's by the manifest)" \
+    '[ $code -eq 0 ] && ! cmp -s p.mp4.frames/00000.png p.mp4.frames/00002.png'
+
+# ---- 5. a full disk under the writers whose library cannot tell ----------------------------------------
+mkdir -p "$tmp/small"
+if mount -t tmpfs -o size=256k fathomfull "$tmp/small" 2>/dev/null; then
+    dd if=/dev/zero of="$tmp/small/fill" bs=4k 2>/dev/null # until the disk is full
+    run "$fathom" viewshed --dem "$dem" --observer 86.9,28 --output "$tmp/small/v.tif"
+    check "full-disk-viewshed: fails, no file" '[ $code -ne 0 ] && grep -q "cannot write" "$tmp/stderr" && [ "$(ls -A "$tmp/small")" = fill ]'
+    run "$fathom" mesh --scene torus --resolution 16 --output "$tmp/small/m.3mf" --quiet
+    check "full-disk-3mf: fails, no file" '[ $code -ne 0 ] && grep -q "cannot write" "$tmp/stderr" && [ "$(ls -A "$tmp/small")" = fill ]'
+    run "$fathom" track --dem "$dem" --path "$src/docs/flight/himalaya-day.json" --output "$tmp/small/t.kml"
+    check "full-disk-kml: fails, no file" '[ $code -ne 0 ] && [ "$(ls -A "$tmp/small")" = fill ]'
+    umount "$tmp/small"
+else
+    echo "skip full-disk: cannot mount a tmpfs here (not root)"
+fi
+
+# ---- 6. a flight asking for more points than a track holds --------------------------------------------
+printf '{"keys":[{"time":-86400,"position":[0,110000,0],"look_at":[1000,20000,0]},' >twoday.json
+printf '{"time":86400,"position":[1000,110000,0],"look_at":[2000,20000,0]}]}\n' >>twoday.json
+run timeout 60 "$fathom" track --dem "$dem" --path twoday.json --fps 1000 --output t.gpx
+check "track-two-days-at-1000-fps: refused at once, no crash" \
+    '[ $code -eq 1 ] && grep -q "lower --fps" "$tmp/stderr" && [ ! -e t.gpx ]'
+
+# ---- 9. every writer removes what a killed run of any writer left ---------------------------------------
+dead=$(sh -c 'echo $$') # a process that has ended: its temporaries are stale
+for out in m.3mf t.kml t.gpx v.tif s.png f.mp4; do
+    base=${out%.*} ext=${out##*.}
+    touch ".$out.tmp$dead-0.$ext" ".$out.tmp$dead.$ext"
+    case $ext in
+        3mf) run "$fathom" mesh --scene torus --resolution 8 --output "$out" --quiet ;;
+        kml | gpx) run "$fathom" track --dem "$dem" --path "$src/docs/flight/himalaya-day.json" --output "$out" ;;
+        tif) run "$fathom" viewshed --dem "$dem" --observer 86.9,28 --output "$out" ;;
+        png) run "$fathom" --output "$out" --size 16x9 --spp 1 --quiet ;;
+        mp4) run "$fathom" render --path "$flight" $small --output "$out" ;;
+    esac
+    check "stale-temporaries-$ext: removed by the next $ext writer" \
+        '[ $code -eq 0 ] && [ -s "$out" ] && [ -z "$(ls -A | grep "^\.$base.*\.tmp")" ]'
+done
+touch ".other.png.tmp$$-0.png" # a live writer's (this shell's): kept
+run "$fathom" --output s.png --size 16x9 --spp 1 --quiet
+check "live-temporary: kept" '[ -e ".other.png.tmp$$-0.png" ]'
+
+echo "trust_files: $passed passed, $failed failed"
+[ "$failed" -eq 0 ]
