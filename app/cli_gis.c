@@ -26,9 +26,8 @@ const char *cli_gis_usage(void) { return USAGE_GIS; }
 
 static bool number(const char *name, const char *val, double lo, double hi, double *out, err_t *err)
 {
-    char *end;
-    double v = strtod(val, &end);
-    if (!*val || *end || !(v >= lo && v <= hi))
+    double v = 0;
+    if (!util_parse_decimal(val, &v) || !(v >= lo && v <= hi))
         return err_set(err, "bad %s '%s': expected a number from %g to %g", name, val, lo, hi);
     *out = v;
     return true;
@@ -136,6 +135,10 @@ bool cli_gis_parse(int argc, char **argv, gis_options *o, err_t *err)
         } else {
             return err_set(err, "unexpected '%s' (see fathom --help)", a);
         }
+        for (int k = 2; k < i - (eq ? 0 : 1); k++) /* an option given twice: which one counts is a guess */
+            if (strcmp(name, "--set") && !strncmp(argv[k], name, strlen(name)) &&
+                (argv[k][strlen(name)] == '\0' || argv[k][strlen(name)] == '='))
+                return err_set(err, "%s is given twice (the second time '%s'): give it once", name, val);
         if (!option(name, val, o, err))
             return false;
     }

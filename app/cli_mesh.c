@@ -27,9 +27,8 @@ const char *cli_mesh_usage(void)
 
 static bool positive(const char *name, const char *val, double hi, double *out, err_t *err)
 {
-    char *end;
-    double v = strtod(val, &end);
-    if (!*val || *end || !(v > 0) || !(v <= hi))
+    double v = 0;
+    if (!util_parse_decimal(val, &v) || !(v > 0) || !(v <= hi))
         return err_set(err, "bad %s '%s': expected a number above 0 and at most %g", name, val, hi);
     *out = v;
     return true;

@@ -204,6 +204,7 @@ static bool render_shot(const cli_options *opt, const scene *s, err_t *err)
 
 int main(int argc, char **argv)
 {
+    util_guard_terminal();
     image_io_install_signal_cleanup();
     cli_options opt;
     err_t err;

@@ -1,5 +1,5 @@
-/* realpath() is XSI */
-#define _XOPEN_SOURCE 700
+/* realpath() is XSI; fopencookie is GNU */
+#define _GNU_SOURCE
 #include "util.h"
 
 #include <assert.h>
@@ -10,6 +10,7 @@
 #include <signal.h>
 #include <stdarg.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -24,6 +25,63 @@ static void err_vset(err_t *err, bool newline_ok, const char *fmt, va_list ap)
     for (char *c = err->msg; *c; c++)
         if (((unsigned char)*c < 0x20 && !(newline_ok && *c == '\n')) || *c == 0x7f)
             *c = '?';
+}
+
+size_t util_escape_controls(const char *s, size_t n, char *out)
+{
+    size_t k = 0;
+    for (size_t i = 0; i < n; i++) {
+        unsigned char c = (unsigned char)s[i];
+        bool c1_utf8 = c == 0xc2 && i + 1 < n && (unsigned char)s[i + 1] >= 0x80 && (unsigned char)s[i + 1] <= 0x9f;
+        /* a byte 0x80-0x9f after ASCII is no UTF-8 continuation: an 8-bit terminal's C1 control */
+        bool c1_alone = c >= 0x80 && c <= 0x9f && (i == 0 || (unsigned char)s[i - 1] < 0x80);
+        if (c1_utf8)
+            k += (size_t)sprintf(out + k, "\\u%04x", (unsigned char)s[++i]);
+        else if ((c < 0x20 && c != '\t' && c != '\n' && c != '\r') || c == 0x7f || c1_alone)
+            k += (size_t)sprintf(out + k, "\\x%02x", c);
+        else
+            out[k++] = (char)c;
+    }
+    return k;
+}
+
+static ssize_t guarded_write(void *cookie, const char *buf, size_t n)
+{
+    int fd = (int)(intptr_t)cookie;
+    char out[6 * 1024];
+    for (size_t done = 0; done < n;) {
+        size_t chunk = n - done < 1024 ? n - done : 1024;
+        if (chunk < n - done && (unsigned char)buf[done + chunk - 1] == 0xc2)
+            chunk--; /* a C1 pair is escaped whole */
+        size_t k = util_escape_controls(buf + done, chunk, out);
+        for (size_t w = 0; w < k;) {
+            ssize_t r = write(fd, out + w, k - w);
+            if (r < 0 && errno == EINTR)
+                continue;
+            if (r <= 0)
+                return done ? (ssize_t)done : -1;
+            w += (size_t)r;
+        }
+        done += chunk;
+    }
+    return (ssize_t)n;
+}
+
+void util_guard_terminal(void)
+{
+    cookie_io_functions_t io = {.write = guarded_write};
+    fflush(stdout);
+    fflush(stderr);
+    FILE *out = fopencookie((void *)(intptr_t)STDOUT_FILENO, "w", io);
+    FILE *err = fopencookie((void *)(intptr_t)STDERR_FILENO, "w", io);
+    if (out) {
+        setvbuf(out, NULL, isatty(STDOUT_FILENO) ? _IOLBF : _IOFBF, BUFSIZ);
+        stdout = out;
+    }
+    if (err) {
+        setvbuf(err, NULL, _IONBF, 0);
+        stderr = err;
+    }
 }
 
 const char *util_printable(const char *s, char *out, size_t n)
@@ -213,7 +271,21 @@ bool util_write_text_atomic(const char *path, const char *text, const char *what
     return true;
 }
 
+bool util_parse_decimal(const char *s, double *out)
+{
+    char *end;
+    if (!*s || s[strspn(s, "0123456789+-.eE")] != '\0')
+        return false;
+    *out = strtod(s, &end);
+    return *end == '\0' && end != s && isfinite(*out);
+}
+
 bool util_read_file(const char *path, char **out, size_t *len, err_t *err)
+{
+    return util_read_file_max(path, UTIL_TEXT_FILE_MAX, out, len, err);
+}
+
+bool util_read_file_max(const char *path, size_t max, char **out, size_t *len, err_t *err)
 {
     /* O_NONBLOCK: opening a FIFO for reading would wait for a writer forever; it is refused below */
     int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
@@ -230,6 +302,10 @@ bool util_read_file(const char *path, char **out, size_t *len, err_t *err)
         return err_set(err, "cannot open '%s': %s", path, strerror(errno));
     }
     size_t size = (size_t)st.st_size;
+    if (size > max) { /* by the size the file system gives: a sparse 2 GB file is not read to find out */
+        fclose(f);
+        return err_set(err, "'%s' is larger than %zu KB: not a file fathom reads", path, max / 1024);
+    }
     char *buf = util_alloc(size + 1, path);
     size_t got = fread(buf, 1, size, f);
     fclose(f);

@@ -36,8 +36,16 @@ void *util_calloc(size_t count, size_t size, const char *what);
 void *util_realloc(void *p, size_t bytes, const char *what);
 char *util_strdup(const char *s);
 
-/* Reads a whole file, NUL-terminated. *out is malloc'd; the caller frees it. */
+/* Reads a whole file, NUL-terminated. *out is malloc'd; the caller frees it. A file over max bytes is
+ * refused by its size before a byte is read ("larger than N KB"); util_read_file's max is the largest
+ * text file fathom reads (scenes, presets, flights, formulas). */
+enum { UTIL_TEXT_FILE_MAX = 64 << 20, UTIL_SOURCE_FILE_MAX = 512 << 10 /* a formula's or shader's GLSL */ };
+bool util_read_file_max(const char *path, size_t max, char **out, size_t *len, err_t *err);
 bool util_read_file(const char *path, char **out, size_t *len, err_t *err);
+
+/* A decimal number as users write one ("12", "-0.5", "1e3"), the whole string: strtod alone also takes
+ * "0x10" (16), "inf" and "nan", which no option means. */
+bool util_parse_decimal(const char *s, double *out);
 
 /* Writes text to path atomically (util_atomic below). False with "cannot save WHAT to 'path': reason". */
 bool util_write_text_atomic(const char *path, const char *text, const char *what, err_t *err);
@@ -68,6 +76,14 @@ typedef struct util_atomic {
 bool util_atomic_open(util_atomic *a, const char *path, err_t *err);
 bool util_atomic_commit(util_atomic *a, err_t *err); /* "cannot write 'path': reason (is the disk full?)" */
 void util_atomic_abort(util_atomic *a);
+
+/* Every byte fathom prints passes one guard: stdout and stderr are replaced by streams that show a control
+ * byte (C0 but tab, newline and carriage return; DEL; C1 in UTF-8 or alone) as a visible escape such as
+ * \x1b, so that no text from a file (a fragment's #info, a parameter's help, a preset's name, a path) can
+ * drive the terminal (change its title, clear it, move the cursor). Once, first thing in main. */
+void util_guard_terminal(void);
+/* The guard's escaping of n bytes into out (at most 6 bytes a byte in); returns the bytes written. */
+size_t util_escape_controls(const char *s, size_t n, char *out);
 
 /* s with every control byte (below 0x20, 0x7f: ESC, BEL, a newline) as '?', into out: text from a
  * file that goes to a terminal, a CSV cell or a one-line message. Returns out. */

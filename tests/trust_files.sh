@@ -77,5 +77,58 @@ touch ".other.png.tmp$$-0.png" # a live writer's (this shell's): kept
 run "$fathom" --output s.png --size 16x9 --spp 1 --quiet
 check "live-temporary: kept" '[ -e ".other.png.tmp$$-0.png" ]'
 
+# ---- 7. no control byte from a file reaches the terminal; a track's name any bytes, its KML still XML ---
+# a fragment whose #info, slider comment and preset name carry C1 controls (CSI clear, OSC title) in UTF-8
+awk 'NR == 1 { print "#info \302\2332J\302\2350;TITLE\302\234 a C1 clear"; next }
+     /^#preset Rolled/ { print "#preset \302\2350;EVIL\302\234Rolled"; next } { print }' \
+    "$src/docs/fragments/mandelbox.frag" >c1.frag
+{ "$fathom" --scene c1.frag --view nosuch --output c1.png --size 16x9 --spp 1
+  "$fathom" --scene c1.frag --output c1.png --size 16x9 --spp 1 --quiet
+  "$fathom" --scene c1.frag --print-variant
+  "$fathom" --set "$(printf 'camera.roll=\033]0;T\007')" --output c1.png --size 16x9; } >"$tmp/stdout" 2>&1
+check "control-bytes: none printed (the preset's name shown escaped)" \
+    '! LC_ALL=C grep -q "$(printf "[\033\007]")" "$tmp/stdout" && ! LC_ALL=C grep -q "$(printf "\302[\200-\237]")" "$tmp/stdout" &&
+     grep -q "u009d0;EVIL" "$tmp/stdout"'
+name=$(printf 'bad\377\302\233name')
+cp "$src/docs/flight/himalaya-day.json" "$name.json"
+run "$fathom" track --dem "$dem" --path "$name.json" --output n.kml
+check "kml-invalid-utf8-name: the file is UTF-8 XML" '[ $code -eq 0 ] && iconv -f UTF-8 -t UTF-8 n.kml >/dev/null 2>&1'
+
+# ---- 8. an oversized fragment or formula is refused by its size, not read first (a sparse 2 GB file) ------
+truncate -s 2G big.frag && truncate -s 2G big.glsl
+for f in big.frag big.glsl; do
+    case $f in *.frag) how="--scene" ;; *) how="--formula" ;; esac
+    if [ -x /usr/bin/time ]; then # GNU time: the peak resident memory (KB) last on stderr
+        run /usr/bin/time -f "%M" "$fathom" $how $f --output big.png --size 16x9 --spp 1 --quiet
+        kb=$(tail -n 1 "$tmp/stderr")
+    else
+        run "$fathom" $how $f --output big.png --size 16x9 --spp 1 --quiet
+        kb=0
+    fi
+    check "oversized-$f: refused at once (peak ${kb} KB)" '[ $code -ne 0 ] && grep -q "larger than" "$tmp/stderr" && [ "$kb" -lt 200000 ]'
+done
+rm -f big.frag big.glsl
+
+# ---- 10. small: a hexadecimal count, an option given twice, an Include two folders up ---------------------
+run "$fathom" mesh --scene torus --resolution 0x10 --output hex.ply
+check "resolution-0x10: refused, not read as 16" '[ $code -eq 2 ] && grep -q "bad --resolution" "$tmp/stderr" && [ ! -e hex.ply ]'
+run "$fathom" viewshed --dem "$dem" --observer 86.9,28 --radius 5000 --radius=6000 --output twice.tif
+check "viewshed-option-twice: refused" '[ $code -eq 2 ] && grep -q "given twice" "$tmp/stderr" && [ ! -e twice.tif ]'
+run "$fathom" track --dem "$dem" --dem "$dem" --path "$src/docs/flight/himalaya-day.json" --output twice.gpx
+check "track-option-twice: refused" '[ $code -eq 2 ] && grep -q "given twice" "$tmp/stderr" && [ ! -e twice.gpx ]'
+mkdir -p up/Include up/a/b
+printf 'float DE(vec3 p) { return length(p) - 1.0; }\n' >up/Include/Planted.frag
+printf '#include "DE-Raytracer.frag"\n#include "Planted.frag"\n' >up/a/b/x.frag
+run "$fathom" --scene up/a/b/x.frag --output inc.png --size 16x9 --spp 1 --quiet
+check "include-two-folders-up: not the collection's" '[ $code -ne 0 ] && grep -q "Planted.frag" "$tmp/stderr" && [ ! -e inc.png ]'
+mv up/Include up/a/Include # one up: Fragmentarium's Examples/GROUP/X.frag beside Examples/Include
+run "$fathom" --scene up/a/b/x.frag --output inc.png --size 16x9 --spp 1 --quiet
+check "include-one-folder-up: the collection's, used" '[ $code -eq 0 ] && [ -s inc.png ]'
+if [ "$(id -u)" = 0 ] && id nobody >/dev/null 2>&1; then
+    chown -R nobody up/a/Include && rm -f inc.png
+    run "$fathom" --scene up/a/b/x.frag --output inc.png --size 16x9 --spp 1 --quiet
+    check "include-of-another-user: not used" '[ $code -ne 0 ] && [ ! -e inc.png ]'
+fi
+
 echo "trust_files: $passed passed, $failed failed"
 [ "$failed" -eq 0 ]

@@ -185,15 +185,33 @@ static bool write_gpx(const char *path, const geo_point *pts, int n, err_t *err)
     return ok;
 }
 
-/* Text for XML: the five characters XML reserves as entities, control bytes dropped. */
+/* Length of the well-formed UTF-8 sequence at s (RFC 3629: no overlongs, no surrogates, ≤ U+10FFFF), or 0. */
+static int utf8_length(const unsigned char *s)
+{
+    int n = s[0] < 0x80 ? 1 : s[0] >= 0xc2 && s[0] < 0xe0 ? 2 : s[0] >= 0xe0 && s[0] < 0xf0 ? 3
+                                                           : s[0] >= 0xf0 && s[0] < 0xf5 ? 4 : 0;
+    for (int i = 1; i < n; i++)
+        if ((s[i] & 0xc0) != 0x80)
+            return 0;
+    if ((n == 3 && s[0] == 0xe0 && s[1] < 0xa0) || (n == 3 && s[0] == 0xed && s[1] >= 0xa0) ||
+        (n == 4 && s[0] == 0xf0 && s[1] < 0x90) || (n == 4 && s[0] == 0xf4 && s[1] >= 0x90))
+        return 0;
+    return n;
+}
+
+/* Text for XML: the five characters XML reserves as entities, control bytes (C0, DEL, C1) dropped, a
+ * byte that is not UTF-8 (a file name in Latin-1) as U+FFFD: the file parses whatever the name. */
 static void xml_text(FILE *f, const char *s)
 {
-    for (; *s; s++) {
-        unsigned char c = (unsigned char)*s;
-        if (c == '<' || c == '>' || c == '&' || c == '"' || c == '\'')
-            fprintf(f, "&#%d;", c);
-        else if (c >= 0x20 && c != 0x7f)
-            fputc(c, f);
+    for (const unsigned char *c = (const unsigned char *)s; *c;) {
+        int n = utf8_length(c);
+        if (n == 0)
+            fputs("\xef\xbf\xbd", f), n = 1;
+        else if (*c == '<' || *c == '>' || *c == '&' || *c == '"' || *c == '\'')
+            fprintf(f, "&#%d;", *c);
+        else if ((n == 1 && *c >= 0x20 && *c != 0x7f) || (n == 2 && !(c[0] == 0xc2 && c[1] < 0xa0)) || n > 2)
+            fwrite(c, 1, (size_t)n, f);
+        c += n;
     }
 }
 

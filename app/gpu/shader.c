@@ -108,7 +108,7 @@ static bool read_source(const char *root, const char *file, const char *home, co
     } else {
         found = util_join(root, file, path, sizeof path);
     }
-    if (found && util_read_file(path, text, NULL, &e))
+    if (found && util_read_file_max(path, UTIL_SOURCE_FILE_MAX, text, NULL, &e))
         return true;
     if (from)
         return err_set(err, "%s:%d: cannot include \"%s\": %s", from, from_line, file, e.msg);

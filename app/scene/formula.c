@@ -352,7 +352,7 @@ bool formula_load(const char *name_or_path, const char *dir, formula *f, err_t *
     if (frag_is_fragment(path)) /* a Fragmentarium fragment: read as data, translated (frag.h) */
         return frag_load(path, f, err);
     char *text;
-    if (!util_read_file(path, &text, NULL, err))
+    if (!util_read_file_max(path, UTIL_SOURCE_FILE_MAX, &text, NULL, err))
         return false;
     bool ok = formula_parse(text, path, f, err);
     free(text);

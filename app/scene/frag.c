@@ -175,12 +175,8 @@ bool frag_is_fragment(const char *path)
 bool frag_read(const char *path, const char *shown, char **text, err_t *err)
 {
     size_t len = 0;
-    if (!util_read_file(path, text, &len, err))
+    if (!util_read_file_max(path, FRAG_FILE_MAX, text, &len, err))
         return err_set(err, "%s: %s", shown, err->msg);
-    if (len > FRAG_FILE_MAX) {
-        free(*text);
-        return err_set(err, "%s: larger than %d KB: not a fragment fathom reads", shown, FRAG_FILE_MAX / 1024);
-    }
     int line = 1;
     for (size_t i = 0; i < len; i++) {
         unsigned char c = (unsigned char)(*text)[i];
@@ -290,16 +286,22 @@ static bool is_dir(const char *path)
     return !stat(path, &st) && S_ISDIR(st.st_mode);
 }
 
-/* The collection's Include folder (Fragmentarium's include path: Examples/Include): a folder named
- * Include in the fragment's folder or up to two above it, into x->include_dir (real path), or "". */
+/* The collection's Include folder (Fragmentarium's include path: Examples/Include beside the group
+ * folders, Examples/GROUP/X.frag): a folder named Include in the fragment's folder or the one above it,
+ * into x->include_dir (real path), or "". Higher up is a stranger's folder, not the collection's. */
 static void include_dir(frag_ctx *x)
 {
     char dir[PATH_MAX_LEN], probe[PATH_MAX_LEN], real[PATH_MAX];
+    struct stat own, st;
     snprintf(dir, sizeof dir, "%s", x->root);
-    for (int up = 0; up < 3; up++) {
-        /* the folder itself, not a link to one elsewhere (a planted Include -> /etc) */
-        if (util_join(dir, "Include", probe, sizeof probe) && realpath(probe, real) && strlen(real) < PATH_MAX_LEN && !strcmp(real, probe) &&
-            is_dir(real)) {
+    if (stat(dir, &own) != 0)
+        return;
+    for (int up = 0; up < 2; up++) {
+        /* the folder itself, not a link to one elsewhere (a planted Include -> /etc), and the fragment's
+         * owner's, not writable by everyone (planted by another user on a shared machine) */
+        if (util_join(dir, "Include", probe, sizeof probe) && realpath(probe, real) && strlen(real) < PATH_MAX_LEN &&
+            !strcmp(real, probe) && is_dir(real) && stat(real, &st) == 0 && st.st_uid == own.st_uid &&
+            !(st.st_mode & S_IWOTH)) {
             snprintf(x->include_dir, sizeof x->include_dir, "%s", real);
             return;
         }

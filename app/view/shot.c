@@ -56,7 +56,8 @@ static void describe_formulas(cJSON *j, const char *const files[SHOT_FORMULA_MAX
     for (int i = 0; files && i < SHOT_FORMULA_MAX; i++) {
         char path[PATH_MAX_LEN], hash[17], *text = NULL;
         err_t e;
-        if (!files[i] || !formula_path(files[i], path, sizeof path) || !util_read_file(path, &text, NULL, &e))
+        if (!files[i] || !formula_path(files[i], path, sizeof path) ||
+            !util_read_file_max(path, UTIL_SOURCE_FILE_MAX, &text, NULL, &e))
             continue;
         arr = arr ? arr : cJSON_AddArrayToObject(j, "formulas");
         cJSON *f = cJSON_CreateObject();
@@ -266,7 +267,8 @@ bool shot_resolve_formulas(shot_desc *d, strbuf *notes, err_t *err)
         shot_formula *f = &d->formulas[i];
         char path[PATH_MAX_LEN], now[17] = "", carried[17], cached[PATH_MAX_LEN], *text = NULL;
         err_t e;
-        bool here = formula_path(f->file, path, sizeof path) && util_read_file(path, &text, NULL, &e);
+        bool here = formula_path(f->file, path, sizeof path) &&
+                    util_read_file_max(path, UTIL_SOURCE_FILE_MAX, &text, NULL, &e);
         if (here)
             text_hash(text, now);
         free(text);
