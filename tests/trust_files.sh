@@ -77,6 +77,34 @@ touch ".other.png.tmp$$-0.png" # a live writer's (this shell's): kept
 run "$fathom" --output s.png --size 16x9 --spp 1 --quiet
 check "live-temporary: kept" '[ -e ".other.png.tmp$$-0.png" ]'
 
+# ---- 4. no formula or fragment takes fathom down: bounds on what the compiler sees, loops that never end ---
+formula() { # formula FILE BODY-EXPRESSION [DEFINES...]: a formula whose distance adds the expression
+    f=$1 body=$2
+    shift 2
+    { printf '// @formula hostile\n// @iterations 1 [1, 1]\n// @bound 2\n#include "fractal/common.glsl"\n'
+      for d in "$@"; do printf '%s\n' "$d"; done
+      printf 'real formulaDE(real3 p, out float trap)\n{\n    trap = 0.0;\n    float a = float(p.x);\n'
+      printf '    %s\n    return real(length(vec3(p)) - 1.0 + %s);\n}\n' "${loop:-}" "$body"; } >"$f"
+}
+chain=$(i=1; while [ $i -le 30 ]; do printf '#define M%d M%d M%d\n' $i $((i - 1)) $((i - 1)); i=$((i + 1)); done)
+formula bomb.glsl "0.0 M30" "#define M0 +0.0" "$chain"
+nest() { i=0; while [ $i -lt "$1" ]; do printf '%s' "$2"; i=$((i + 1)); done; }
+formula fbomb.glsl "$(nest 40 'F(')0.0$(nest 40 ')')" "#define F(x) (x+x)"
+formula rescan.glsl "$(nest 20 'A(')1.0$(nest 20 ')')" "#define B(x) x x x x" "#define A B"
+formula deep.glsl "$(nest 3000 '(' | fold -w 60)0.0$(nest 3000 ')' | fold -w 60)"
+formula longline.glsl "$(i=0; while [ $i -lt 3000 ]; do printf '0.0+'; i=$((i + 1)); done)0.0"
+loop='for (int i = 0; i >= 0; i += 0) { a = a * 1.0001 + 1.0; if (a < -1e30) break; }' formula loop.glsl "min(a, 0.0)"
+# (each under 8 GB of address space: a bomb that got through would take the machine's memory, not CI's run)
+for f in bomb fbomb rescan deep longline loop; do
+    run sh -c 'ulimit -v 8000000; exec "$@"' sh timeout 60 "$fathom" --formula $f.glsl --output $f.png --size 16x9 --spp 1 --quiet
+    check "formula-$f: one line, exit 1, no image" '[ $code -eq 1 ] && [ "$(wc -l <"$tmp/stderr")" -eq 1 ] && [ ! -e $f.png ]'
+done
+# the same bomb in a fragment (Fragmentarium's translation keeps its macros)
+{ printf '#include "DE-Raytracer.frag"\n#define M0 +0.0\n%s\n' "$chain"
+  printf 'float DE(vec3 p) { return length(p) - 1.0 M30; }\n'; } >bomb.frag
+run sh -c 'ulimit -v 8000000; exec "$@"' sh timeout 60 "$fathom" --scene bomb.frag --output bombf.png --size 16x9 --spp 1 --quiet
+check "fragment-bomb: one line, exit 1, no image" '[ $code -eq 1 ] && [ "$(wc -l <"$tmp/stderr")" -eq 1 ] && [ ! -e bombf.png ]'
+
 # ---- 7. no control byte from a file reaches the terminal; a track's name any bytes, its KML still XML ---
 # a fragment whose #info, slider comment and preset name carry C1 controls (CSI clear, OSC title) in UTF-8
 awk 'NR == 1 { print "#info \302\2332J\302\2350;TITLE\302\234 a C1 clear"; next }

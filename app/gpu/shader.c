@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "scene/frag.h"
+#include "scene/glsl_budget.h"
 
 enum { MAX_INCLUDE_DEPTH = 16 };
 
@@ -232,7 +233,11 @@ static GLuint compile(GLenum type, const char *root, const char *file, const cha
     shader_files files = {0};
     /* compute shaders are GLSL 4.30; the rest keeps the GL 3.3 path */
     sb_printf(&src, "#version %s core\n%s", type == GL_COMPUTE_SHADER ? "430" : "330", preamble ? preamble : "");
-    if (!shader_expand(root, file, virt, nvirt, &src, &files, err)) {
+    char shown[SHADER_NAME_MAX + 64];
+    bool ok_text = shader_expand(root, file, virt, nvirt, &src, &files, err);
+    snprintf(shown, sizeof shown, "%s%s", file, files.foreign_bytes ? " with the scene's formula" : "");
+    ok_text = ok_text && glsl_budget_check(src.data, shown, NULL, err); /* bounds that see what the compiler sees */
+    if (!ok_text) {
         sb_free(&src);
         return 0;
     }

@@ -282,6 +282,11 @@ bool offline_render_current(const offline_desc *desc, err_t *err)
         image_writer_abort(w);
         return false;
     }
+    if (unresolved[1] == (long)d->width * rows) { /* not one pixel finished: no image, whatever was drawn */
+        image_writer_abort(w);
+        return err_set(err, "every pixel ran out of the loop budget (%s): the scene's loops do not end (a formula "
+                            "whose loop never stops?); nothing written", render_programs_loop_budget_text());
+    }
     if (!image_writer_finish(w, err))
         return false;
     char spp[64]; /* adaptive sampling: the samples the pixels took, on average */
