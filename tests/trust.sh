@@ -3,16 +3,7 @@
 # fails on the code before the fix (the closing note of issue 34 lists them). Usage: trust.sh FATHOM SRC
 fathom=$1
 src=$2
-tmp=$(mktemp -d)
-trap 'umount "$tmp/small" 2>/dev/null; chmod -R u+w "$tmp" 2>/dev/null; rm -rf "$tmp"' EXIT
-trap 'exit 130' INT TERM
-passed=0
-failed=0
-ok() { passed=$((passed + 1)); echo "ok   $1"; }
-bad() { failed=$((failed + 1)); echo "FAIL $1"; [ -s "$tmp/stderr" ] && sed 's/^/     | /' "$tmp/stderr"; }
-# check NAME CONDITION: CONDITION is a shell test run after the case
-check() { if eval "$2"; then ok "$1"; else bad "$1"; fi; }
-run() { "$@" >"$tmp/stdout" 2>"$tmp/stderr"; code=$?; }
+. "$src/tests/trust_lib.sh"
 quick="--size 16x9 --runs 1 --knob resolution_scale=0.5 --quiet"
 
 # a preset that carries its own small scene, under the name NAME
@@ -264,5 +255,4 @@ else
     echo "skip loops: not llvmpipe (a GPU has no loop limiter to cut them)"
 fi
 
-echo "trust: $passed passed, $failed failed"
-[ "$failed" -eq 0 ]
+finish trust

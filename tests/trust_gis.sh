@@ -8,13 +8,8 @@
 fathom=$1
 src=$2
 listen=$3
-tmp=$(mktemp -d)
-trap 'kill "$lpid" 2>/dev/null; rm -rf "$tmp"' EXIT
-trap 'exit 130' INT TERM
-passed=0
-failed=0
-ok() { passed=$((passed + 1)); echo "ok   $1"; }
-bad() { failed=$((failed + 1)); echo "FAIL $1"; sed 's/^/     | /' "$tmp/stderr"; }
+. "$src/tests/trust_lib.sh"
+extra_cleanup='kill "$lpid" 2>/dev/null'
 
 "$listen" "$tmp/port" "$tmp/count" 600 &
 lpid=$!
@@ -126,5 +121,4 @@ timeout 120 "$fathom" viewshed --dem "NETCDF:\"$e/dem.tif\":z" --observer 86.9,2
 grep -q "cannot read DEM" "$tmp/stderr" && ! grep -q "local files only" "$tmp/stderr" && ok "NETCDF:\"FILE\":VAR reaches GDAL (the file checked)" ||
     bad "NETCDF:\"FILE\":VAR: not read as a netCDF variable"
 
-echo "trust_gis: $passed passed, $failed failed"
-[ "$failed" -eq 0 ]
+finish trust_gis

@@ -189,8 +189,10 @@ static void drivers_allowed_only(void)
 {
     for (int i = GDALGetDriverCount() - 1; i >= 0; i--) {
         GDALDriverH d = GDALGetDriver(i);
-        if (CSLFindString(const_cast<char **>(DRIVERS), GDALGetDriverShortName(d)) < 0)
-            GDALDeregisterDriver(d); /* not destroyed: a driver may hold state GDAL's exit walks */
+        if (CSLFindString(const_cast<char **>(DRIVERS), GDALGetDriverShortName(d)) < 0) {
+            GDALDeregisterDriver(d); /* as GDAL_SKIP does it: out of the manager, then freed */
+            GDALDestroyDriver(d);
+        }
     }
 }
 

@@ -214,6 +214,10 @@ static bool frames_of_video(const flight_desc **opt, flight_desc *framed, char *
         return true;
     if (!flight_video_prepare((*opt)->output, (*opt)->video, pattern, n, vo, err))
         return false;
+    int w = (*opt)->shot.width, h = (*opt)->shot.height;
+    if (!vo->yuv444 && (w % 2 || h % 2)) /* before the first frame, not after the last */
+        return err_set(err, "--output %s: yuv420p needs an even width and height (this is %dx%d): change --size, or "
+                            "--video pix_fmt=yuv444p", (*opt)->output, w, h);
     *framed = **opt;
     framed->output = pattern;
     *opt = framed;

@@ -75,7 +75,7 @@ until sinfo -h -o %t 2>/dev/null | grep -q idle; do
 done
 
 # how many frames the path has: fathom names the last one when asked for a frame past it
-frames=$("$fathom" render --path "$pathfile" --frames 100000000 --output "$tmp/probe_%d.png" --size 1x1 --quiet "$@" 2>&1 |
+frames=$("$fathom" render --path "$pathfile" --frames 100000000 --output "$tmp/probe_%d.png" --quiet "$@" 2>&1 |
     sed -n 's/.*ends at frame \([0-9]*\).*/\1/p')
 [ -n "$frames" ] || { echo "FAIL: could not read the path's length"; exit 1; }
 tasks=$(( (frames + per) / per ))
