@@ -11,7 +11,7 @@ listen=$3
 . "$src/tests/trust_lib.sh"
 extra_cleanup='kill "$lpid" 2>/dev/null'
 
-"$listen" "$tmp/port" "$tmp/count" 600 &
+"$listen" "$tmp/port" "$tmp/count" 3600 &
 lpid=$!
 i=0
 while [ ! -s "$tmp/port" ] && [ $i -lt 100 ]; do sleep 0.1; i=$((i + 1)); done
@@ -60,6 +60,19 @@ cp "$tmp/elsewhere/secret.txt" "$e/token.txt" # a raw band on a file beside the 
 sed "s#$tmp/elsewhere/secret.txt#token.txt#; s#relativeToVRT=\"0\"#relativeToVRT=\"1\"#" "$e/raw.vrt" >"$e/rawmem.vrt"
 vrt "rawmem.vrt" 1 >"$e/rawnested.vrt" # the raw band one VRT down
 vrt "MEM:::DATAPOINTER=4096,PIXELS=64,LINES=64" 0 >"$e/memptr.vrt"
+# the same through what a byte scan does not see: XML entities, an archive, a window on a file, inline XML
+sed 's/VRTRawRasterBand/VRTRaw\&#82;asterBand/' "$e/rawmem.vrt" >"$e/rawentity.vrt"
+vrt "MEM&#58;::DATAPOINTER=4096,PIXELS=64,LINES=64" 0 >"$e/mementity.vrt"
+gzip -c "$e/rawmem.vrt" >"$e/raw.vrt.gz"
+vrt "/vsigzip/$e/raw.vrt.gz" 0 >"$e/gzip.vrt"
+vrt "/vsisubfile/0_$(wc -c <"$e/rawmem.vrt"),$e/rawmem.vrt" 0 >"$e/subfile.vrt"
+vrt "$(sed 's/&/\&amp;/g; s/</\&lt;/g; s/>/\&gt;/g' "$e/rawmem.vrt" | tr -d '\n')" 0 >"$e/inline.vrt"
+vrt "/vsicurl?url=$url/dem.tif" 0 >"$e/curlq.vrt"
+vrt "/vsistdin?buffer_limit=1" 0 >"$e/stdinq.vrt"
+# a link the user names, to a file elsewhere: that file opens, its folder does not
+cp "$e/dem.tif" "$tmp/elsewhere/other.tif"
+ln -s "$tmp/elsewhere/dem.tif" "$e/link.tif"
+vrt "$tmp/elsewhere/other.tif" 0 >"$e/sibling.vrt"
 # vectors: an OGR VRT on a WFS, on PostgreSQL, on a CSV outside the folder; a GML whose schema is a URL
 ogrvrt() { printf '<OGRVRTDataSource><OGRVRTLayer name="x"><SrcDataSource>%s</SrcDataSource></OGRVRTLayer></OGRVRTDataSource>\n' "$1"; }
 ogrvrt "WFS:$url/wfs" >"$e/wfs.vrt"
@@ -95,13 +108,16 @@ attack() {
         grep -rq 'root:x\|FAKESECRET\|root\\:x' "$o" "$tmp/stderr" 2>/dev/null && why="$why; the secret reached the output"
         if [ -z "$why" ]; then ok "$name via $how: exit $code ($(tail -n 1 "$tmp/stderr" | head -c 150))"; else bad "$name via $how: $why"; fi
     done
+    sleep 0.5 # the listener polls every 0.2 s: a connection the last run made is counted by now
+    kill -0 "$lpid" 2>/dev/null || { failed=$((failed + 1)); echo "FAIL the listener is gone: nothing would be counted"; }
     after=$(count)
     if [ "$before" = "$after" ]; then ok "$name: no connection"; else
         failed=$((failed + 1)); echo "FAIL $name: $((after - before)) connection(s) to the listener"; fi
 }
 
 for f in http.vrt vsicurl.vrt wmsconn.vrt wms.xml wcs.xml tms.xml outside.vrt updir.vrt stdin.vrt vsistdin.vrt \
-    fifo.vrt proc.vrt raw.vrt rawfifo.vrt rawmem.vrt rawnested.vrt memptr.vrt wfs.vrt pg.vrt csv.vrt proccsv.vrt; do
+    fifo.vrt proc.vrt raw.vrt rawfifo.vrt rawmem.vrt rawnested.vrt memptr.vrt rawentity.vrt mementity.vrt gzip.vrt \
+    subfile.vrt inline.vrt curlq.vrt stdinq.vrt wfs.vrt pg.vrt csv.vrt proccsv.vrt; do
     attack "$f" "$e/$f"
 done
 attack schema.gml "$e/schema.gml" may-open
@@ -111,6 +127,12 @@ for f in "$url/dem.tif" "/vsicurl/$url/dem.tif" "WMS:$url/wms" "PG:host=127.0.0.
     "$e/fifo.tif" /proc/self/environ; do
     attack "named $f" "$f"
 done
+
+run timeout 60 "$fathom" --dem "$e/link.tif" --output "$tmp/out/link.png" --size 16x9 --spp 1 --quiet
+check "a named link to a file elsewhere: drawn" '[ $code -eq 0 ] && [ -s "$tmp/out/link.png" ]'
+run timeout 60 "$fathom" --dem "$e/link.tif" --set "terrain.imagery=$e/sibling.vrt" --output "$tmp/out/sib.png" \
+    --size 16x9 --spp 1 --quiet
+check "... its target's folder not opened by it" '[ $code -ne 0 ] && [ ! -e "$tmp/out/sib.png" ]'
 
 # the control: the folder's own files still open, and a VRT mosaic of them too
 timeout 120 "$fathom" --dem "$e/inside.vrt" --output "$tmp/out/ok.png" --size 16x9 --spp 1 --quiet 2>"$tmp/stderr" &&

@@ -4,6 +4,7 @@
 #include <cpl_conv.h>
 #include <cpl_error.h>
 #include <cpl_http.h>
+#include <cpl_minixml.h>
 #include <cpl_string.h>
 #include <cpl_vsi.h>
 #include <cpl_vsi_virtual.h>
@@ -32,11 +33,11 @@ static const char *const DRIVERS[] = {
     "GPX", "KML", "LIBKML", "GeoJSON", "GeoJSONSeq", "ESRI Shapefile", "FlatGeobuf", "CSV", "GML", "OGR_VRT",
     "Memory", "MapInfo File", nullptr};
 
-static const char *const NETWORK_PREFIXES[] = {
-    "/vsicurl/", "/vsicurl_streaming/", "/vsis3/", "/vsis3_streaming/", "/vsigs/", "/vsigs_streaming/",
-    "/vsiaz/", "/vsiaz_streaming/", "/vsiadls/", "/vsioss/", "/vsioss_streaming/", "/vsiswift/",
-    "/vsiswift_streaming/", "/vsiwebhdfs/", "/vsihdfs/", "/vsistdin/"};
-enum { PREFIXES = sizeof NETWORK_PREFIXES / sizeof NETWORK_PREFIXES[0] };
+/* The one virtual file system a stranger's file may name: fathom's own memory files (GPX output). Every
+ * other prefix GDAL registers (/vsicurl/ and /vsicurl?, /vsistdin?, /vsizip/, /vsigzip/, /vsisubfile/,
+ * /vsisparse/, …) refuses: a network one connects, and an archive or a window on a file hides a VRT's
+ * text from the scan below. */
+static const char *const VSI_ALLOWED = "/vsimem/";
 
 /* Folders GDAL reads its own tables from (CRS, datums): read, never a stranger's. */
 static const char *const DATA_FOLDERS[] = {"/usr/share/gdal", "/usr/share/proj"};
@@ -45,6 +46,7 @@ static const char *const NEVER[] = {"/proc/", "/sys/", "/dev/"};
 
 static std::mutex roots_lock;
 static std::vector<std::string> roots; /* real paths of folders GDAL may read from, without a trailing '/' */
+static std::vector<std::string> files; /* real paths of files the user named (a link's target elsewhere) */
 
 static bool starts_with(const char *s, const char *prefix) { return strncmp(s, prefix, strlen(prefix)) == 0; }
 
@@ -78,6 +80,9 @@ static bool may_read(const char *name)
     for (const std::string &r : roots)
         if (under(real, r))
             return true;
+    for (const std::string &f : files)
+        if (f == real)
+            return true;
     return false;
 }
 
@@ -98,25 +103,61 @@ static bool contains_nocase(const char *text, size_t n, const char *needle)
     return false;
 }
 
-/* A regular file already allowed: false when it is a VRT holding what no VRT may hold (or too big to scan). */
+/* Every name and value in a parsed XML tree (entities decoded, as the VRT driver reads them): none may
+ * hold what no VRT may hold, and no value may be a whole dataset written inline ("<VRTDataset…"). */
+static bool tree_harmless(const CPLXMLNode *n)
+{
+    for (; n; n = n->psNext) {
+        const char *v = n->pszValue ? n->pszValue : "";
+        for (const char *bad : VRT_REFUSED)
+            if (contains_nocase(v, strlen(v), bad))
+                return false;
+        if (n->eType == CXT_Text && v[strspn(v, " \t\r\n")] == '<')
+            return false;
+        if (!tree_harmless(n->psChild))
+            return false;
+    }
+    return true;
+}
+
+/* A regular file already allowed: false when it is a VRT holding what no VRT may hold, does not parse, or
+ * is too big to scan. GDAL knows a VRT by its root element in the first bytes (no entity can spell an
+ * element's name), so the first 64 KB decide whether the rest is read. */
 static bool vrt_harmless(const char *name)
 {
     FILE *f = fopen(name, "rb");
     if (!f)
         return false;
-    char head[1024];
-    size_t n = fread(head, 1, sizeof head, f);
-    bool vrt = contains_nocase(head, n, "<VRTDataset") || contains_nocase(head, n, "<OGRVRTDataSource");
-    bool ok = true;
-    if (vrt) {
-        std::vector<char> all(VRT_SCAN_MAX);
-        memcpy(all.data(), head, n);
-        n += fread(all.data() + n, 1, all.size() - n, f);
-        ok = n < all.size();
-        for (const char *bad : VRT_REFUSED)
-            ok = ok && !contains_nocase(all.data(), n, bad);
+    std::vector<char> text(65536);
+    size_t n = fread(text.data(), 1, text.size(), f);
+    /* HDF5 (netCDF-4): its library reads external storage, links and virtual datasets by path, past this
+     * jail; the signature sits at 0, 512, 1024, … (a user block before it) */
+    for (size_t at = 0; at + 8 <= n; at = at ? 2 * at : 512)
+        if (!memcmp(text.data() + at, "\x89HDF\r\n\x1a\n", 8)) {
+            fclose(f);
+            CPLError(CE_Failure, CPLE_NotSupported, "'%s' is HDF5 (netCDF-4), whose library reads other files by "
+                                                    "itself: fathom does not open it; convert it (gdal_translate "
+                                                    "to a GeoTIFF)", name);
+            return false;
+        }
+    if (!contains_nocase(text.data(), n, "<VRTDataset") && !contains_nocase(text.data(), n, "<OGRVRTDataSource")) {
+        fclose(f);
+        return true;
     }
+    text.resize(VRT_SCAN_MAX);
+    n += fread(text.data() + n, 1, text.size() - n, f);
     fclose(f);
+    if (n == text.size())
+        return false; /* too big to scan */
+    text.resize(n);
+    for (const char *bad : VRT_REFUSED) /* the bytes as written, and below as GDAL decodes them */
+        if (contains_nocase(text.data(), n, bad))
+            return false;
+    text.push_back('\0');
+    CPLXMLNode *root = CPLParseXMLString(text.data());
+    bool ok = root && tree_harmless(root);
+    if (root)
+        CPLDestroyXMLNode(root);
     return ok;
 }
 
@@ -164,12 +205,12 @@ class jailed_files final : public VSIFilesystemHandler
 };
 
 /* GDAL's own handlers, replaced but not freed by InstallHandler: kept reachable for the process */
-static VSIFilesystemHandler *replaced[PREFIXES + 1];
+static std::vector<VSIFilesystemHandler *> replaced;
 
 static void *refuse_open(void *, const char *name, const char *)
 {
-    CPLError(CE_Failure, CPLE_OpenFailed, "'%s': fathom reads no file over the network or from standard input; "
-                                          "download it first", name);
+    CPLError(CE_Failure, CPLE_OpenFailed, "'%s': fathom reads no file over the network, from standard input or "
+                                          "through GDAL's virtual file systems; give the file itself", name);
     return nullptr;
 }
 
@@ -202,13 +243,23 @@ extern "C" void gdal_trust_init(void)
     VSIFilesystemPluginCallbacksStruct *cb = VSIAllocFilesystemPluginCallbacksStruct();
     cb->open = refuse_open;
     cb->stat = refuse_stat;
-    for (int i = 0; i < PREFIXES; i++) {
-        replaced[i] = VSIFileManager::GetHandler(NETWORK_PREFIXES[i]);
-        VSIInstallPluginHandler(NETWORK_PREFIXES[i], cb);
-    }
+    /* every registered prefix, and its "?" form (/vsicurl?url=…): GDAL 3.6 registers /vsicurl? apart and does
+     * not list it among the prefixes */
+    char **prefixes = VSIFileManager::GetPrefixes();
+    for (int i = 0; prefixes && prefixes[i]; i++)
+        for (int form = 0; form < 2 && strcmp(prefixes[i], VSI_ALLOWED) != 0; form++) {
+            std::string p = prefixes[i];
+            if (form == 1 && p.back() != '/')
+                break;
+            if (form == 1)
+                p.back() = '?';
+            replaced.push_back(VSIFileManager::GetHandler(p.c_str()));
+            VSIInstallPluginHandler(p.c_str(), cb);
+        }
+    CSLDestroy(prefixes);
     VSIFreeFilesystemPluginCallbacksStruct(cb);
-    replaced[PREFIXES] = VSIFileManager::GetHandler("/"); /* the default handler: local files */
-    VSIFileManager::InstallHandler("", new jailed_files(replaced[PREFIXES]));
+    replaced.push_back(VSIFileManager::GetHandler("/")); /* the default handler: local files */
+    VSIFileManager::InstallHandler("", new jailed_files(replaced.back()));
     CPLHTTPSetFetchCallback(refuse_fetch, nullptr);
     OSRSetPROJEnableNetwork(0); /* PROJ's grid downloads too */
     CPLSetConfigOption("GDAL_VRT_ENABLE_RAWRASTERBAND", "NO"); /* GDAL >= 3.7; vrt_harmless before that */
@@ -257,7 +308,17 @@ extern "C" bool gdal_trust_path(const char *path, char *why, size_t why_size)
         never = never || starts_with(real, n);
     if (!S_ISREG(st.st_mode) || never)
         return snprintf(why, why_size, "not a regular file (a device, FIFO or folder): give a file on disk"), false;
-    *strrchr(real, '/') = '\0';
-    allow_folder(*real ? real : "/");
+    {
+        std::lock_guard<std::mutex> hold(roots_lock);
+        files.emplace_back(real);
+    }
+    /* the folder as named (a link named there does not open its target's folder); never the whole tree */
+    char folder[PATH_MAX], real_folder[PATH_MAX];
+    snprintf(folder, sizeof folder, "%s", file);
+    char *slash = strrchr(folder, '/');
+    if (slash)
+        *slash = '\0';
+    if (realpath(slash ? (*folder ? folder : "/") : ".", real_folder) && strcmp(real_folder, "/") != 0)
+        allow_folder(real_folder);
     return true;
 }
