@@ -204,8 +204,9 @@ class jailed_files final : public VSIFilesystemHandler
     bool SupportsRandomWrite(const char *name, bool tmp) override { return inner->SupportsRandomWrite(name, tmp); }
 };
 
-/* GDAL's own handlers, replaced but not freed by InstallHandler: kept reachable for the process */
-static std::vector<VSIFilesystemHandler *> replaced;
+/* GDAL's own handlers, replaced but not freed by InstallHandler: kept reachable for the whole process, past the
+ * static destructors (a static vector's storage is freed before LeakSanitizer looks, and its handlers then leak) */
+static std::vector<VSIFilesystemHandler *> &replaced = *new std::vector<VSIFilesystemHandler *>;
 
 static void *refuse_open(void *, const char *name, const char *)
 {
