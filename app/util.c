@@ -3,6 +3,7 @@
 #include "util.h"
 
 #include <assert.h>
+#include <ctype.h>
 #include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
@@ -27,53 +28,89 @@ static void err_vset(err_t *err, bool newline_ok, const char *fmt, va_list ap)
             *c = '?';
 }
 
-size_t util_escape_controls(const char *s, size_t n, char *out)
+/* The guard's state across writes: a UTF-8 character or a C1 pair may be cut between two of them. */
+typedef struct guard {
+    int fd;
+    unsigned char prev; /* the byte before: a byte 0x80-0x9f after ASCII is an 8-bit terminal's C1 */
+    bool held_c2;       /* a 0xc2 waiting for the next byte: with 0x80-0x9f it is a C1 control in UTF-8 */
+} guard;
+
+static size_t escape_byte(guard *g, unsigned char c, char *out)
 {
     size_t k = 0;
-    for (size_t i = 0; i < n; i++) {
-        unsigned char c = (unsigned char)s[i];
-        bool c1_utf8 = c == 0xc2 && i + 1 < n && (unsigned char)s[i + 1] >= 0x80 && (unsigned char)s[i + 1] <= 0x9f;
-        /* a byte 0x80-0x9f after ASCII is no UTF-8 continuation: an 8-bit terminal's C1 control */
-        bool c1_alone = c >= 0x80 && c <= 0x9f && (i == 0 || (unsigned char)s[i - 1] < 0x80);
-        if (c1_utf8)
-            k += (size_t)sprintf(out + k, "\\u%04x", (unsigned char)s[++i]);
-        else if ((c < 0x20 && c != '\t' && c != '\n' && c != '\r') || c == 0x7f || c1_alone)
-            k += (size_t)sprintf(out + k, "\\x%02x", c);
-        else
-            out[k++] = (char)c;
+    if (g->held_c2) {
+        g->held_c2 = false;
+        if (c >= 0x80 && c <= 0x9f)
+            return g->prev = c, (size_t)sprintf(out, "\\u%04x", c);
+        out[k++] = (char)0xc2;
     }
+    bool c1_alone = c >= 0x80 && c <= 0x9f && g->prev < 0x80;
+    if (c == 0xc2)
+        g->held_c2 = true;
+    else if ((c < 0x20 && c != '\t' && c != '\n' && c != '\r') || c == 0x7f || c1_alone)
+        k += (size_t)sprintf(out + k, "\\x%02x", c);
+    else
+        out[k++] = (char)c;
+    g->prev = c;
     return k;
+}
+
+size_t util_escape_controls(const char *s, size_t n, char *out)
+{
+    guard g = {0};
+    size_t k = 0;
+    for (size_t i = 0; i < n; i++)
+        k += escape_byte(&g, (unsigned char)s[i], out + k);
+    if (g.held_c2)
+        out[k++] = (char)0xc2;
+    return k;
+}
+
+static bool write_all(int fd, const char *b, size_t k)
+{
+    for (size_t w = 0; w < k;) {
+        ssize_t r = write(fd, b + w, k - w);
+        if (r < 0 && errno == EINTR)
+            continue;
+        if (r <= 0)
+            return false;
+        w += (size_t)r;
+    }
+    return true;
 }
 
 static ssize_t guarded_write(void *cookie, const char *buf, size_t n)
 {
-    int fd = (int)(intptr_t)cookie;
-    char out[6 * 1024];
-    for (size_t done = 0; done < n;) {
-        size_t chunk = n - done < 1024 ? n - done : 1024;
-        if (chunk < n - done && (unsigned char)buf[done + chunk - 1] == 0xc2)
-            chunk--; /* a C1 pair is escaped whole */
-        size_t k = util_escape_controls(buf + done, chunk, out);
-        for (size_t w = 0; w < k;) {
-            ssize_t r = write(fd, out + w, k - w);
-            if (r < 0 && errno == EINTR)
-                continue;
-            if (r <= 0)
-                return done ? (ssize_t)done : -1;
-            w += (size_t)r;
+    guard *g = cookie;
+    char out[8192];
+    size_t k = 0;
+    for (size_t i = 0; i < n; i++) {
+        k += escape_byte(g, (unsigned char)buf[i], out + k);
+        if (k > sizeof out - 16) {
+            if (!write_all(g->fd, out, k))
+                return i ? (ssize_t)i : -1;
+            k = 0;
         }
-        done += chunk;
     }
-    return (ssize_t)n;
+    return write_all(g->fd, out, k) ? (ssize_t)n : -1;
+}
+
+static int guarded_close(void *cookie)
+{
+    guard *g = cookie;
+    if (g->held_c2)
+        write_all(g->fd, "\xc2", 1);
+    return 0;
 }
 
 void util_guard_terminal(void)
 {
-    cookie_io_functions_t io = {.write = guarded_write};
+    static guard out_guard = {.fd = STDOUT_FILENO}, err_guard = {.fd = STDERR_FILENO};
+    cookie_io_functions_t io = {.write = guarded_write, .close = guarded_close};
     fflush(stdout);
     fflush(stderr);
-    FILE *out = fopencookie((void *)(intptr_t)STDOUT_FILENO, "w", io);
-    FILE *err = fopencookie((void *)(intptr_t)STDERR_FILENO, "w", io);
+    FILE *out = fopencookie(&out_guard, "w", io);
+    FILE *err = fopencookie(&err_guard, "w", io);
     if (out) {
         setvbuf(out, NULL, isatty(STDOUT_FILENO) ? _IOLBF : _IOFBF, BUFSIZ);
         stdout = out;
@@ -139,7 +176,9 @@ bool util_temp_path(const char *path, char *out, size_t n)
     return k > 0 && (size_t)k < n;
 }
 
-/* Is name ".X.tmpPID[-SERIAL][.EXT]" (util_temp_path's form, or the older one without a serial)? Its PID. */
+/* Is name one of fathom's temporary names, ".BASE.tmpPID-N.EXT" (util_temp_path), ".BASE.tmpPID.EXT" (the
+ * image writer's before it) or ".BASE.tmpPID-N" (util_atomic's before it)? Its PID, else 0. EXT must be
+ * BASE's own extension: a user's ".notes.tmp12.md" is not fathom's. */
 static long temp_writer(const char *name)
 {
     const char *t = name[0] == '.' ? strstr(name, ".tmp") : NULL;
@@ -149,15 +188,23 @@ static long temp_writer(const char *name)
         return 0;
     char *end;
     long pid = strtol(t + 4, &end, 10);
-    if (end == t + 4 || pid <= 0)
+    if (end == t + 4 || pid <= 0 || !isdigit((unsigned char)t[4]))
         return 0;
-    if (*end == '-') {
+    bool serial = *end == '-';
+    if (serial) {
         const char *s = end + 1;
         strtoul(s, &end, 10);
-        if (end == s)
+        if (end == s || !isdigit((unsigned char)*s))
             return 0;
     }
-    return *end == '\0' || (*end == '.' && !strchr(end + 1, '.')) ? pid : 0;
+    if (*end == '\0')
+        return serial ? pid : 0;
+    const char *base_ext = memrchr(name + 1, '.', (size_t)(t - name - 1)); /* BASE's extension, if any */
+    size_t ext_len = strlen(end);
+    return *end == '.' && !strchr(end + 1, '.') && base_ext && (size_t)(t - base_ext) == ext_len &&
+                   !strncmp(base_ext, end, ext_len)
+               ? pid
+               : 0;
 }
 
 int util_remove_stale_temps(const char *path)
