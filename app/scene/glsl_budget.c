@@ -47,15 +47,19 @@ typedef struct ctx {
     bool failed;
     glsl_measure out;
     size_t statement;
-    int depth;
+    int depth, cond; /* cond: #if sections open around the directive being read */
+    int collecting;  /* reading a call's arguments: a directive among them is dropped, as glcpp drops it */
 } ctx;
 
 typedef struct stream {
     src stack[SOURCES_MAX];
     int sp;
-    const tok *base; /* the text's tokens; a directive is a token whose s starts with '#' */
+    const tok *base; /* the text's tokens; a directive is a '#' token marked DIRECTIVE by tokenize */
     size_t nbase, bi;
+    bool text; /* the program's own text (its directives apply), not a macro's argument */
 } stream;
+
+enum { DIRECTIVE = -2 }; /* tok.param of a '#' that starts a line of the text */
 
 static bool fail(ctx *c, const char *fmt, const char *what, size_t limit)
 {
@@ -118,6 +122,8 @@ static bool lex(const char **p, bool in_directive, tok *t)
     if (ident_start(*s))
         while (ident_char(*s))
             s++;
+    else if (s[0] == '#' && s[1] == '#')
+        s += 2;
     else if (isdigit((unsigned char)*s) || (*s == '.' && isdigit((unsigned char)s[1])))
         while (ident_char(*s) || *s == '.' || ((*s == '+' || *s == '-') && (s[-1] == 'e' || s[-1] == 'E')))
             s++;
@@ -139,11 +145,13 @@ static unsigned bucket(tok t)
     return h % BUCKETS;
 }
 
-static int lookup(const ctx *c, tok t)
+/* The macro named t, or -1; each step along a bucket's chain is work (names made to share one bucket
+ * cannot make the measure slow). */
+static int lookup(ctx *c, tok t)
 {
     if (!ident_start(t.s[0]))
         return -1;
-    for (int i = c->head[bucket(t)]; i >= 0; i = c->m[i].next)
+    for (int i = c->head[bucket(t)]; i >= 0 && spend(c, 1); i = c->m[i].next)
         if (same(c->m[i].name, t))
             return c->m[i].removed ? -1 : i;
     return -1;
@@ -153,15 +161,24 @@ static int lookup(const ctx *c, tok t)
 static bool directive(ctx *c, const char *p)
 {
     tok kw, name;
-    if (!lex(&p, true, &kw) || !(is(kw, "define") || is(kw, "undef")) || !lex(&p, true, &name) ||
-        !ident_start(name.s[0]))
+    if (!lex(&p, true, &kw))
         return true;
+    if (is(kw, "if") || is(kw, "ifdef") || is(kw, "ifndef"))
+        c->cond++;
+    if (is(kw, "endif") && c->cond > 0)
+        c->cond--;
+    if (!(is(kw, "define") || is(kw, "undef")) || !lex(&p, true, &name) || !ident_start(name.s[0]))
+        return true;
+    /* the measure does not evaluate #if: inside one, a definition never shrinks what a name expands to
+     * (an #undef or a redefinition there is passed over), so both sides count at their largest */
+    int known = lookup(c, name);
     if (is(kw, "undef")) {
-        int i = lookup(c, name);
-        if (i >= 0)
-            c->m[i].removed = true;
+        if (known >= 0 && c->cond == 0)
+            c->m[known].removed = true;
         return true;
     }
+    if (known >= 0 && c->cond > 0)
+        return true;
     if (c->nm == c->cap) {
         int cap = c->cap ? 2 * c->cap : 256;
         macro *n = realloc(c->m, (size_t)cap * sizeof *n);
@@ -176,11 +193,17 @@ static bool directive(ctx *c, const char *p)
         m->nparams = 0;
         tok t;
         while (lex(&p, true, &t) && !is(t, ")"))
-            if (!is(t, ",") && m->nparams < PARAMS_MAX)
-                m->params[m->nparams++] = t;
+            if (!is(t, ",") && m->nparams++ < PARAMS_MAX)
+                m->params[m->nparams - 1] = t;
+        if (m->nparams > PARAMS_MAX)
+            return fail(c, "%s: %s more than %zu parameters: simplify it", "a macro has", (size_t)PARAMS_MAX);
     }
     tokens body = {0};
     for (tok t; lex(&p, true, &t);) {
+        if (is(t, "##")) {
+            free(body.t);
+            return fail(c, "%s: %s (%zu): write the names out", "a macro pastes tokens with ##", 0);
+        }
         for (int k = 0; k < m->nparams; k++)
             if (same(t, m->params[k]))
                 t.param = k;
@@ -217,9 +240,9 @@ static bool next(ctx *c, stream *st, tok *t)
     }
     while (st->bi < st->nbase) {
         tok b = st->base[st->bi++];
-        if (b.s[0] != '#')
+        if (b.param != DIRECTIVE)
             return *t = b, true;
-        if (!directive(c, b.s + 1))
+        if (st->text && !c->collecting && !directive(c, b.s + 1))
             return false;
     }
     return false;
@@ -232,7 +255,7 @@ static bool next_is_paren(const stream *st)
         if (st->stack[k].i < st->stack[k].n)
             return is(st->stack[k].t[st->stack[k].i], "(");
     for (size_t i = st->bi; i < st->nbase; i++)
-        if (st->base[i].s[0] != '#')
+        if (st->base[i].param != DIRECTIVE)
             return is(st->base[i], "(");
     return false;
 }
@@ -263,6 +286,7 @@ static bool call(ctx *c, stream *st, int mi, int level)
     next(c, st, &t); /* the '(' */
     int depth = 1, k = 0;
     bool ok = true;
+    c->collecting++;
     while (ok && depth > 0 && next(c, st, &t)) {
         depth += is(t, "(") - is(t, ")");
         if (depth == 0)
@@ -272,6 +296,7 @@ static bool call(ctx *c, stream *st, int mi, int level)
         else
             ok = push_tok(c, &args[k], t);
     }
+    c->collecting--;
     tokens expanded[PARAMS_MAX] = {{0}};
     for (int a = 0; ok && a < c->m[mi].nparams && a < PARAMS_MAX; a++) {
         stream inner = {.base = args[a].t, .nbase = args[a].n};
@@ -352,9 +377,14 @@ static bool tokenize(ctx *c, const char *source, tokens *v)
     tok t;
     while (lex(&p, false, &t)) {
         bool line_start = prev_end == source || memchr(prev_end, '\n', (size_t)(t.s - prev_end)) != NULL;
+        if (is(t, "##"))
+            return fail(c, "%s: %s (%zu): write the names out", "the text pastes tokens with ##", 0);
+        bool directive_start = is(t, "#") && line_start;
+        if (directive_start)
+            t.param = DIRECTIVE;
         if (!push_tok(c, v, t))
             return false;
-        if (is(t, "#") && line_start) /* the directive's line is read as the stream reaches it */
+        if (directive_start) /* the directive's line is read as the stream reaches it */
             for (tok skip; lex(&p, true, &skip);)
                 ;
         prev_end = p;
@@ -362,11 +392,33 @@ static bool tokenize(ctx *c, const char *source, tokens *v)
     return true;
 }
 
-bool glsl_budget_check(const char *source, const char *file, glsl_measure *m, err_t *err)
+/* The text with every line continuation (a '\\' before a newline) spliced out, as the preprocessor does
+ * before anything else: a name or a directive cut by one is read whole. */
+static char *spliced(const char *source)
+{
+    size_t n = strlen(source), k = 0;
+    char *out = malloc(n + 1);
+    for (size_t i = 0; out && i < n; i++) {
+        if (source[i] == '\\' && source[i + 1] == '\n')
+            i++;
+        else if (source[i] == '\\' && source[i + 1] == '\r' && source[i + 2] == '\n')
+            i += 2;
+        else
+            out[k++] = source[i];
+    }
+    if (out)
+        out[k] = '\0';
+    return out;
+}
+
+bool glsl_budget_check(const char *original, const char *file, glsl_measure *m, err_t *err)
 {
     ctx *c = calloc(1, sizeof *c);
-    if (!c)
+    char *source = c ? spliced(original) : NULL;
+    if (!source) {
+        free(c);
         return err_set(err, "%s: out of memory measuring the source", file);
+    }
     memset(c->head, -1, sizeof c->head);
     c->file = file, c->err = err;
     for (const char *line = source; *line;) {
@@ -385,7 +437,7 @@ bool glsl_budget_check(const char *source, const char *file, glsl_measure *m, er
     bool ok = !c->failed && st && tokenize(c, source, &text);
     if (ok) {
         c->work = 0; /* the text itself is not the macros' work */
-        *st = (stream){.base = text.t, .nbase = text.n};
+        *st = (stream){.base = text.t, .nbase = text.n, .text = true};
         ok = expand(c, st, measure, NULL, 0);
     }
     while (st && st->sp)
@@ -397,6 +449,7 @@ bool glsl_budget_check(const char *source, const char *file, glsl_measure *m, er
     free(c->m);
     free(text.t);
     free(st);
+    free(source);
     ok = ok && !c->failed;
     free(c);
     return ok;
