@@ -166,7 +166,8 @@ static bool render_frame(flight_state *F, int f, err_t *err)
     if (!path_frame_name(opt->output, f, name, sizeof name, err))
         return false;
     bool video = F->video[0] != '\0'; /* the frames of a video: fathom's folder, fathom's frames only */
-    if (frame_done(name) && (!video || flight_video_frame_trusted(F->video, f, name))) {
+    /* a video's frame is fathom's by the manifest before any decoder reads it */
+    if ((!video || flight_video_frame_trusted(F->video, f, name)) && frame_done(name)) {
         F->skipped++;
         if (!opt->shot.quiet)
             fprintf(stderr, "frame %d: %s is there, skipped\n", f, name);

@@ -21,7 +21,7 @@ bool flight_video_prepare(const char *output, const char *options, char *pattern
     if (snprintf(folder, sizeof folder, "%s.frames", output) >= (int)sizeof folder ||
         snprintf(pattern, n, "%s/%%05d.png", folder) >= (int)n)
         return err_set(err, "--output '%s': the name is too long", output);
-    if (mkdir(folder, 0777) != 0 && errno != EEXIST)
+    if (mkdir(folder, 0775) != 0 && errno != EEXIST) /* never writable by all, whatever the umask */
         return err_set(err, "cannot make the frames' folder '%s': %s", folder, strerror(errno));
     /* a folder someone else put there (a link to another folder, another user's) is not fathom's to write into */
     struct stat st;
