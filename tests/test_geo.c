@@ -186,6 +186,78 @@ static void drape_lands_on_the_right_texels(void **st)
     free(rgba);
 }
 
+/* Issue 58, item 1: a vector layer never coarsens the imagery under it. The checkerboard's own drape size
+ * stands when the vectors ask for less (a 5 km line), and gives way to theirs when they ask for more. */
+static void vectors_keep_the_imagery_resolution(void **st)
+{
+    (void)st;
+    write_checker(in_dir("layers.tif"), 400, 300);
+    unsigned char *rgba;
+    int w = 0, h = 0, lw, lh;
+    err_t e;
+    if (!geo_drape(in_dir("dem.tif"), in_dir("layers.tif"), 4096, &rgba, &w, &h, &e))
+        fail_msg("%s", e.msg);
+    free(rgba);
+    const float coarse[] = {5000, 0}, fine[] = {5000, 100};
+    assert_true(geo_layers_size(in_dir("dem.tif"), in_dir("layers.tif"), coarse, 2, 4096, &lw, &lh, &e));
+    print_message("layers: the imagery's own %d x %d; with 5 km and DEM-texel lines %d x %d\n", w, h, lw, lh);
+    assert_true(w > 2 * W && lw == w && lh == h);
+    assert_true(geo_layers_size(in_dir("dem.tif"), in_dir("layers.tif"), fine, 2, 4096, &lw, &lh, &e));
+    print_message("layers: with a 100 m line %d x %d (two texels across it)\n", lw, lh);
+    assert_true(lw >= W * 1000 / 50 - 1 && lw > w);
+    assert_true(geo_layers_size(in_dir("dem.tif"), NULL, coarse, 1, 4096, &lw, &lh, &e) && lw == W && lh == H);
+}
+
+/* Burns a north-south line `width` metres wide at longitude 10.5 on a WGS 84 DEM at 49.5–50.1° N drawn at
+ * w × h; returns its width in metres on the middle row, alpha summed (coverage) times the texel's width. */
+static double drawn_width(double width, int w, int h)
+{
+    FILE *f = fopen(in_dir("ns.geojson"), "w");
+    fprintf(f, "{\"type\": \"FeatureCollection\", \"features\": [{\"type\": \"Feature\", \"properties\": {},"
+               " \"geometry\": {\"type\": \"LineString\", \"coordinates\": [[10.5, 49.4], [10.5, 50.2]]}}]}\n");
+    fclose(f);
+    unsigned char *rgba = malloc(4 * (size_t)w * (size_t)h);
+    err_t e;
+    if (!geo_vectors(in_dir("geo.tif"), in_dir("ns.geojson"), width, (const float[4]){1, 0, 0, 1}, w, h, rgba, &e))
+        fail_msg("%s", e.msg);
+    double covered = 0, lat = 50.1 - 0.6 * (h / 2 + 0.5) / h;
+    for (int i = 0; i < w; i++)
+        covered += rgba[4 * ((size_t)(h / 2) * (size_t)w + (size_t)i) + 3] / 255.0;
+    free(rgba);
+    /* a texel's east-west metres on the WGS 84 ellipsoid: the parallel's radius, N(φ) cos φ */
+    double a = 6378137, e2 = 0.00669437999014, phi = lat * M_PI / 180;
+    double east = M_PI / 180 * a * cos(phi) / sqrt(1 - e2 * sin(phi) * sin(phi)) * 1.0 / w;
+    return covered * east;
+}
+
+/* Issue 58, item 4: a line's width is metres on the ground in every direction, on a geographic DEM too (an
+ * 8 km line was 5.5 km wide east–west at 49.8° N: the width was taken in degrees of latitude), and not
+ * quantised to drape texels (a line two texels wide was drawn one to three wide). */
+static void vector_widths_in_metres(void **st)
+{
+    (void)st;
+    enum { GW = 100, GH = 60 };
+    GDALDatasetH ds = GDALCreate(GDALGetDriverByName("GTiff"), in_dir("geo.tif"), GW, GH, 1, GDT_Float32, NULL);
+    double gt[6] = {10, 0.01, 0, 50.1, 0, -0.01};
+    GDALSetGeoTransform(ds, gt);
+    OGRSpatialReferenceH s = srs_of(4326);
+    GDALSetSpatialRef(ds, s);
+    OSRDestroySpatialReference(s);
+    float v[GW * GH] = {0};
+    assert_int_equal(GDALRasterIO(GDALGetRasterBand(ds, 1), GF_Write, 0, 0, GW, GH, v, GW, GH, GDT_Float32, 0, 0),
+                     CE_None);
+    GDALClose(ds);
+    double wide = drawn_width(8000, 400, 240), worst = 0;
+    print_message("widths: an 8 km line drawn %.0f m wide east-west at 49.8 N\n", wide);
+    assert_true(fabs(wide / 8000 - 1) < 0.01);
+    for (int k = 0; k < 7; k++) { /* a 2.2-texel line (texels of 180 m), at seven offsets from the grid */
+        double width = 400 + 20 * k, got = drawn_width(width, 400, 240);
+        worst = fmax(worst, fabs(got / width - 1));
+    }
+    print_message("widths: 400-520 m lines (2.2-2.9 texels) drawn within %.1f %% of their width\n", 100 * worst);
+    assert_true(worst < 0.06); /* a sub-texel of 8 across: 1/17.6 of a 2.2-texel line */
+}
+
 static void viewshed_geotiff(void **st)
 {
     (void)st;
@@ -399,7 +471,8 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(drape_lands_on_the_right_texels), cmocka_unit_test(viewshed_geotiff),
         cmocka_unit_test(tracks_round_trip), cmocka_unit_test(flight_track_flight),
-        cmocka_unit_test(sun_block_moves_the_light),
+        cmocka_unit_test(sun_block_moves_the_light), cmocka_unit_test(vectors_keep_the_imagery_resolution),
+        cmocka_unit_test(vector_widths_in_metres),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

@@ -234,6 +234,32 @@ static void drape_size(GDALDatasetH src, const geo_grid *g, int max_side, int *w
     *h = (int)fmax(2, round(eh / px * scale));
 }
 
+bool geo_layers_size(const char *dem_path, const char *imagery, const float *widths, int n_widths, int max_side,
+                     int *w, int *h, err_t *err)
+{
+    *w = *h = 0;
+    if (imagery) {
+        geo_grid g;
+        if (!geo_grid_of(dem_path, &g, err))
+            return false;
+        GDALDatasetH src = geo_open(imagery, GDAL_OF_RASTER, "open the imagery", err);
+        if (src) {
+            drape_size(src, &g, max_side, w, h);
+            GDALClose(src);
+        }
+        OSRDestroySpatialReference(g.srs);
+        if (!src)
+            return false;
+    }
+    for (int i = 0; i < n_widths; i++) { /* a finer size where a line needs two texels across */
+        int vw, vh;
+        geo_vector_size(dem_path, widths[i], max_side, &vw, &vh);
+        if ((long)vw * vh > (long)*w * *h)
+            *w = vw, *h = vh;
+    }
+    return *w > 0 && *h > 0 ? true : err_set(err, "cannot size the drape on the DEM '%s'", dem_path);
+}
+
 static bool warp_into(GDALDatasetH view, GDALDatasetH dst, const char *path, err_t *err)
 {
     int bands = GDALGetRasterCount(view);

@@ -36,11 +36,14 @@ bool geo_drape(const char *dem_path, const char *imagery, int max_side, unsigned
 /* Vector data (GPX, KML, GeoJSON, GeoPackage, Shapefile: every layer) drawn onto the DEM's extent at
  * w × h (row 0 north): lines and polygon outlines `width` metres wide (0: a DEM texel), points as discs
  * twice that across, in rgba (0–1; alpha 0 elsewhere), reprojected to the DEM's CRS (a geographic DEM
- * takes the width in degrees of latitude). geo_vector_size: the size that keeps two texels across a
- * line. */
+ * takes the width in degrees of latitude). */
 bool geo_vectors(const char *dem_path, const char *vectors, double width, const float rgba[4], int w, int h,
                  unsigned char *out, err_t *err);
-void geo_vector_size(const char *dem_path, double width, int max_side, int *w, int *h);
+/* The size every draped layer is composited at: the first imagery's own resolution over the DEM (NULL: none),
+ * or finer where a vector layer of one of the widths needs two texels across its lines; the longest side at
+ * most max_side. A vector layer never coarsens the imagery under it. */
+bool geo_layers_size(const char *dem_path, const char *imagery, const float *widths, int n_widths, int max_side,
+                     int *w, int *h, err_t *err);
 
 /* A point of a GPS track: WGS 84 degrees, metres above the ellipsoid's datum (NaN if none), seconds
  * since the Unix epoch (NaN if none). */

@@ -29,5 +29,7 @@ typedef struct geo_grid {
 bool geo_grid_of(const char *dem_path, geo_grid *g, err_t *err);
 /* WGS 84 with x = longitude, y = latitude (the caller destroys it). */
 OGRSpatialReferenceH geo_wgs84(void);
+/* The drape's size that keeps two texels across a `width`-metre line (geo_vector.c). */
+void geo_vector_size(const char *dem_path, double width, int max_side, int *w, int *h);
 
 #endif

@@ -32,12 +32,12 @@ bool geo_vectors(const char *dem_path, const char *vectors, double width, const 
     return f && f(dem_path, vectors, width, rgba, w, h, out, err);
 }
 
-void geo_vector_size(const char *dem_path, double width, int max_side, int *w, int *h)
+bool geo_layers_size(const char *dem_path, const char *imagery, const float *widths, int n_widths, int max_side,
+                     int *w, int *h, err_t *err)
 {
-    LAZY_FN(void (*f)(const char *, double, int, int *, int *), lazy_symbol(LAZY_DEM, "geo_vector_size", NULL));
-    *w = *h = 0;
-    if (f)
-        f(dem_path, width, max_side, w, h);
+    LAZY_FN(bool (*f)(const char *, const char *, const float *, int, int, int *, int *, err_t *),
+            lazy_symbol(LAZY_DEM, "geo_layers_size", err));
+    return f && f(dem_path, imagery, widths, n_widths, max_side, w, h, err);
 }
 
 bool geo_track_read(const char *path, geo_point **pts, int *n, err_t *err)

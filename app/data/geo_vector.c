@@ -262,14 +262,17 @@ bool geo_track_write_file(const char *path, bool kml, const char *name, const ge
 
 /* ---- vectors: lines and points burnt onto the DEM's grid ---------------------------------------- */
 
-/* A feature's geometry in the DEM's CRS as an area `width` wide: lines and polygon outlines buffered
- * by half of it, points by all of it (a marker twice the line's width across). NULL if none. */
-static OGRGeometryH as_area(OGRGeometryH g, OGRCoordinateTransformationH t, double width)
+/* A feature's geometry as an area `width` metres wide, in the DEM's CRS: lines and polygon outlines buffered
+ * by half of it, points by all of it (a marker twice the line's width across). The buffer is taken where
+ * lengths are metres: `to` carries the feature there (the DEM's CRS if projected, else a transverse Mercator
+ * about the DEM's centre) and `back`, if any, from there to the DEM's CRS. NULL if none. */
+static OGRGeometryH as_area(OGRGeometryH g, OGRCoordinateTransformationH to, OGRCoordinateTransformationH back,
+                            double width)
 {
     if (!g)
         return NULL;
     OGRGeometryH c = OGR_G_Clone(g);
-    if (t && OGR_G_Transform(c, t) != OGRERR_NONE) {
+    if (to && OGR_G_Transform(c, to) != OGRERR_NONE) {
         OGR_G_DestroyGeometry(c);
         return NULL;
     }
@@ -283,7 +286,65 @@ static OGRGeometryH as_area(OGRGeometryH g, OGRCoordinateTransformationH t, doub
     OGRGeometryH area = c ? OGR_G_Buffer(c, point ? width : width / 2, 8) : NULL;
     if (c)
         OGR_G_DestroyGeometry(c);
+    if (area && back && OGR_G_Transform(area, back) != OGRERR_NONE) {
+        OGR_G_DestroyGeometry(area);
+        return NULL;
+    }
     return area;
+}
+
+/* The CRS in which a buffer's width is metres: the DEM's own if projected (in its units), else a transverse
+ * Mercator about the DEM's centre (scale error under 0.3 % within 500 km of it). */
+static OGRSpatialReferenceH metric_crs(const geo_grid *g, double *unit)
+{
+    OGRSpatialReferenceH m = OSRClone(g->srs);
+    *unit = 1;
+    if (!OSRIsGeographic(g->srs)) {
+        *unit = 1 / OSRGetLinearUnits(g->srs, NULL);
+        return m;
+    }
+    double lon = g->gt[0] + g->w * g->gt[1] / 2, lat = g->gt[3] + g->h * g->gt[5] / 2;
+    OSRSetTM(m, lat, lon, 1, 0, 0);
+    OSRSetAxisMappingStrategy(m, OAMS_TRADITIONAL_GIS_ORDER);
+    return m;
+}
+
+/* The shapes burnt at w × h as coverage: each drape texel's alpha is the part of it the shapes cover, counted
+ * on an 8 × 8 grid of sub-texels, so a line keeps its width within a sub-texel however it falls (burnt
+ * whole texels made a two-texel line one to three texels wide). In strips of at most 16 MB. */
+enum { SUB = 8 };
+static bool burn_coverage(const geo_grid *g, OGRGeometryH *areas, int n, int w, int h, unsigned char *alpha)
+{
+    int rows = (int)fmax(1, fmin(h, (double)(1 << 24) / ((double)w * SUB * SUB)));
+    double dx = g->w * g->gt[1] / w, dy = g->h * g->gt[5] / h;
+    int *bands = (int[]){1};
+    double *burn = util_alloc(sizeof(double) * (size_t)(n ? n : 1), "burn values");
+    for (int i = 0; i < n; i++)
+        burn[i] = 1;
+    unsigned char *sub = util_alloc((size_t)w * SUB * (size_t)rows * SUB, "a vector strip");
+    bool ok = true;
+    for (int r0 = 0; ok && r0 < h; r0 += rows) {
+        int sh = (int)fmin(rows, h - r0);
+        GDALDatasetH mem = GDALCreate(GDALGetDriverByName("MEM"), "", w * SUB, sh * SUB, 1, GDT_Byte, NULL);
+        double gt[6] = {g->gt[0], dx / SUB, 0, g->gt[3] + r0 * dy, 0, dy / SUB};
+        ok = mem && GDALSetGeoTransform(mem, gt) == CE_None && GDALSetSpatialRef(mem, g->srs) == CE_None &&
+             (n == 0 || GDALRasterizeGeometries(mem, 1, bands, n, areas, NULL, NULL, burn, NULL, NULL, NULL) == CE_None) &&
+             GDALRasterIO(GDALGetRasterBand(mem, 1), GF_Read, 0, 0, w * SUB, sh * SUB, sub, w * SUB, sh * SUB, GDT_Byte,
+                          0, 0) == CE_None;
+        for (int j = 0; ok && j < sh; j++)
+            for (int i = 0; i < w; i++) {
+                int covered = 0;
+                for (int b = 0; b < SUB; b++)
+                    for (int a = 0; a < SUB; a++)
+                        covered += sub[((size_t)(j * SUB + b) * (size_t)w + (size_t)i) * SUB + (size_t)a] != 0;
+                alpha[(size_t)(r0 + j) * (size_t)w + (size_t)i] = (unsigned char)((covered * 255 + SUB * SUB / 2) / (SUB * SUB));
+            }
+        if (mem)
+            GDALClose(mem);
+    }
+    free(sub);
+    free(burn);
+    return ok;
 }
 
 bool geo_vectors(const char *dem_path, const char *vectors, double width, const float rgba[4], int w, int h,
@@ -297,9 +358,10 @@ bool geo_vectors(const char *dem_path, const char *vectors, double width, const 
         OSRDestroySpatialReference(g.srs);
         return false;
     }
-    /* width in the CRS's units: metres, or degrees of latitude for a geographic DEM */
-    double unit = OSRIsGeographic(g.srs) ? 1 / 111320.0 : 1 / OSRGetLinearUnits(g.srs, NULL);
-    double wd = (width > 0 ? width : fabs(g.gt[1]) / unit) * unit;
+    double unit, texel_m = OSRIsGeographic(g.srs) ? fabs(g.gt[5]) * 111320.0 : fabs(g.gt[1]) * OSRGetLinearUnits(g.srs, NULL);
+    OGRSpatialReferenceH metric = metric_crs(&g, &unit);
+    OGRCoordinateTransformationH back = OSRIsGeographic(g.srs) ? OCTNewCoordinateTransformation(metric, g.srs) : NULL;
+    double wd = (width > 0 ? width : texel_m) * unit; /* in the metric CRS's units */
     OGRGeometryH *areas = NULL;
     int n = 0, cap = 0;
     for (int l = 0; l < GDALDatasetGetLayerCount(ds); l++) {
@@ -307,10 +369,10 @@ bool geo_vectors(const char *dem_path, const char *vectors, double width, const 
         OGRSpatialReferenceH from = OGR_L_GetSpatialRef(layer);
         OGRSpatialReferenceH src = from ? OSRClone(from) : geo_wgs84();
         OSRSetAxisMappingStrategy(src, OAMS_TRADITIONAL_GIS_ORDER);
-        OGRCoordinateTransformationH t = OCTNewCoordinateTransformation(src, g.srs);
+        OGRCoordinateTransformationH t = OCTNewCoordinateTransformation(src, metric);
         OGRFeatureH f;
         while ((f = OGR_L_GetNextFeature(layer)) != NULL && n < GEO_TRACK_MAX) {
-            OGRGeometryH a = as_area(OGR_F_GetGeometryRef(f), t, wd);
+            OGRGeometryH a = as_area(OGR_F_GetGeometryRef(f), t, back, wd);
             if (a) {
                 if (n == cap)
                     areas = util_realloc(areas, sizeof *areas * (size_t)(cap = cap ? 2 * cap : 64), "vector shapes");
@@ -323,27 +385,18 @@ bool geo_vectors(const char *dem_path, const char *vectors, double width, const 
         OSRDestroySpatialReference(src);
     }
     GDALClose(ds);
-    GDALDatasetH mem = GDALCreate(GDALGetDriverByName("MEM"), "", w, h, 4, GDT_Byte, NULL);
-    double gt[6] = {g.gt[0], g.w * g.gt[1] / w, 0, g.gt[3], 0, g.h * g.gt[5] / h};
-    bool ok = mem && GDALSetGeoTransform(mem, gt) == CE_None && GDALSetSpatialRef(mem, g.srs) == CE_None;
-    int bands[4] = {1, 2, 3, 4};
-    double *burn = util_alloc(sizeof(double) * 4 * (size_t)(n ? n : 1), "burn values");
-    for (int i = 0; i < 4 * n; i++)
-        burn[i] = fmin(255, fmax(0, rgba[i % 4] * 255)); /* each shape burns the colour into the four bands */
-    ok = ok && (n == 0 || GDALRasterizeGeometries(mem, 4, bands, n, areas, NULL, NULL, burn, NULL, NULL, NULL) == CE_None);
-    for (int c = 0; ok && c < 4; c++) {
-        unsigned char *band = util_alloc((size_t)w * (size_t)h, "a vector band");
-        ok = GDALRasterIO(GDALGetRasterBand(mem, c + 1), GF_Read, 0, 0, w, h, band, w, h, GDT_Byte, 0, 0) == CE_None;
-        for (size_t k = 0; ok && k < (size_t)w * (size_t)h; k++)
-            out[4 * k + (size_t)c] = band[k];
-        free(band);
-    }
+    if (back)
+        OCTDestroyCoordinateTransformation(back);
+    OSRDestroySpatialReference(metric);
+    unsigned char *alpha = util_alloc((size_t)w * (size_t)h, "a vector layer's coverage");
+    bool ok = burn_coverage(&g, areas, n, w, h, alpha);
+    for (size_t k = 0; ok && k < (size_t)w * (size_t)h; k++)
+        for (int c = 0; c < 4; c++) /* the colour where the shapes reach, its alpha times their coverage */
+            out[4 * k + (size_t)c] = alpha[k] ? (unsigned char)fmin(255, fmax(0, rgba[c] * (c < 3 ? 255 : alpha[k])) + 0.5) : 0;
+    free(alpha);
     for (int i = 0; i < n; i++)
         OGR_G_DestroyGeometry(areas[i]);
     free(areas);
-    free(burn);
-    if (mem)
-        GDALClose(mem);
     OSRDestroySpatialReference(g.srs);
     if (ok && n == 0)
         return err_set(err, "the vectors '%s' hold no lines, points or polygons GDAL could place on the DEM", vectors);

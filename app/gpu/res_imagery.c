@@ -72,24 +72,18 @@ static void drape_key(const struct scene_terrain *t, char *key, size_t n)
     }
 }
 
-/* Every layer composited at one size: the first imagery's own, or larger where a vector layer needs
- * two texels across its lines. */
+/* Every layer composited at one size (geo_layers_size): the first imagery's own, or finer where a vector layer
+ * needs two texels across its lines. */
 static unsigned char *composite(const struct scene_terrain *t, int side, int *w, int *h, err_t *err)
 {
-    *w = *h = 0;
-    for (int i = 0; i < t->vector_count; i++) {
-        int vw, vh;
-        geo_vector_size(t->heightmap, t->vector_width[i], side, &vw, &vh);
-        if ((long)vw * vh > (long)*w * *h)
-            *w = vw, *h = vh;
-    }
+    if (!geo_layers_size(t->heightmap, t->imagery_count ? t->imagery[0] : NULL, t->vector_width, t->vector_count,
+                         side, w, h, err))
+        return NULL;
     unsigned char *all = NULL, *layer = NULL;
     bool ok = true;
     for (int i = 0; ok && i < t->imagery_count; i++) {
         int lw = *w, lh = *h;
         ok = geo_drape(t->heightmap, t->imagery[i], side, &layer, &lw, &lh, err);
-        if (ok && !all) /* the first layer sets the size (unless the vectors asked for more) */
-            *w = lw, *h = lh;
         if (ok && !all)
             all = util_calloc(4 * (size_t)*w * (size_t)*h, 1, "the draped imagery");
         if (ok)
