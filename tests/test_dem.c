@@ -127,6 +127,43 @@ static void projected_feet(void **st)
     free(hts);
 }
 
+/* Issue 58, item 3: heights in feet become metres (they were drawn 3.28 times too tall, without a word), in
+ * what dem_read returns and in dem_probe's range; a unit fathom does not know is refused by name. */
+static void vertical_units(void **st)
+{
+    (void)st;
+    static const struct {
+        const char *unit;
+        double metres;
+    } cases[] = {{"ft", 0.3048}, {"US survey foot", 1200.0 / 3937}, {"m", 1}, {"", 1}, {"furlong", 0}};
+    double v[3 * 2] = {1000, 2000, 0, 500, 1500, 250};
+    const double gt[6] = {500000, 30, 0, 5200000, 0, -30};
+    for (size_t c = 0; c < sizeof cases / sizeof *cases; c++) {
+        const char *p = write_tif(&(tif){"unit.tif", GDT_Float32, 3, 2, gt, 32633, false, 0, 0, 0}, v);
+        GDALDatasetH ds = GDALOpen(p, GA_Update);
+        assert_int_equal(GDALSetRasterUnitType(GDALGetRasterBand(ds, 1), cases[c].unit), CE_None);
+        GDALClose(ds);
+        int w, h;
+        float *hts;
+        dem_info info;
+        double range[2];
+        err_t e;
+        bool ok = dem_read(p, 16384, &w, &h, &hts, &info, &e);
+        if (cases[c].metres == 0) {
+            assert_false(ok);
+            assert_non_null(strstr(e.msg, "'furlong'"));
+            assert_false(dem_probe(p, &w, &h, range, &info, &e));
+            continue;
+        }
+        assert_true(ok);
+        for (int k = 0; k < 6; k++)
+            assert_near(hts[k], v[k] * cases[c].metres, 1e-3);
+        free(hts);
+        assert_true(dem_probe(p, &w, &h, range, &info, &e));
+        assert_near(range[1], 2000 * cases[c].metres, 1e-3);
+    }
+}
+
 /* Great-circle distance on the IUGG mean sphere (haversine): an independent reference for the
  * spacing of a geographic DEM. */
 static double haversine(double lat1, double lon1, double lat2, double lon2)
@@ -494,7 +531,7 @@ static void dem_scene_frames_any_dem(void **st)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(projected_float),  cmocka_unit_test(projected_feet),   cmocka_unit_test(geographic_int16_nodata),
+        cmocka_unit_test(projected_float),  cmocka_unit_test(projected_feet), cmocka_unit_test(vertical_units),   cmocka_unit_test(geographic_int16_nodata),
         cmocka_unit_test(south_up_is_flipped), cmocka_unit_test(holes_and_fill), cmocka_unit_test(refused),
         cmocka_unit_test(ascii_grid),          cmocka_unit_test(dem_scene_frames_any_dem),
         cmocka_unit_test(hostile_numbers),     cmocka_unit_test(no_network),     cmocka_unit_test(georeference_lonlat),

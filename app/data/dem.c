@@ -9,8 +9,8 @@
 #include <ogr_srs_api.h>
 #include <stdio.h>
 #include <stdlib.h>
-#include <string.h>
 #include <strings.h>
+#include <string.h>
 #include <unistd.h>
 
 #include "data/geo_internal.h"
@@ -94,8 +94,43 @@ static bool read_rows(const char *path, GDALRasterBandH band, int W, int H, floa
     return true;
 }
 
-/* Raw values to heights: nodata and non-finite values become holes (NaN), the rest take the band's
- * scale and offset. */
+/* Metres per unit of the heights: the band's unit (GDALGetRasterUnitType: "m", "ft", "US survey foot"…), else the
+ * vertical CRS's of a compound CRS, else metres. A unit fathom does not know is refused with its name, never
+ * drawn as metres (feet were drawn 3.28 times too tall). */
+static bool vertical_unit(GDALDatasetH ds, GDALRasterBandH band, const char *path, dem_info *info, err_t *err)
+{
+    static const struct {
+        const char *name;
+        double metres;
+    } UNITS[] = {{"", 1},           {"m", 1},         {"metre", 1},           {"meter", 1},
+                 {"metres", 1},     {"meters", 1},    {"ft", 0.3048},         {"foot", 0.3048},
+                 {"feet", 0.3048},  {"international foot", 0.3048},           {"us-ft", 1200.0 / 3937},
+                 {"ftUS", 1200.0 / 3937}, {"US survey foot", 1200.0 / 3937},  {"foot_us", 1200.0 / 3937},
+                 {"US foot", 1200.0 / 3937}, {"km", 1000},    {"dm", 0.1},    {"cm", 0.01},
+                 {"mm", 0.001}};
+    const char *unit = GDALGetRasterUnitType(band);
+    OGRSpatialReferenceH srs = GDALGetSpatialRef(ds);
+    info->height_unit = 1;
+    if ((!unit || !*unit) && srs && OSRIsCompound(srs)) {
+        char *vert = NULL;
+        info->height_unit = OSRGetTargetLinearUnits(srs, "VERT_CS", &vert);
+        snprintf(info->height_unit_name, sizeof info->height_unit_name, "%s", vert ? vert : "metre");
+        return info->height_unit > 0 ||
+               err_set(err, "DEM '%s': its vertical CRS has no length unit; give the heights in metres", path);
+    }
+    for (size_t i = 0; unit && i < sizeof UNITS / sizeof *UNITS; i++)
+        if (!strcasecmp(unit, UNITS[i].name)) {
+            info->height_unit = UNITS[i].metres;
+            snprintf(info->height_unit_name, sizeof info->height_unit_name, "%s", *unit ? unit : "metre");
+            return true;
+        }
+    return err_set(err, "DEM '%s': its heights are in '%.40s', a unit fathom does not know (metres, feet, US survey "
+                        "feet, km, cm, mm); convert them to metres (gdal_translate -scale) or set the band's unit",
+                   path, unit);
+}
+
+/* Raw values to heights in metres: nodata and non-finite values become holes (NaN), the rest take the band's
+ * scale and offset, then its unit. */
 static void to_heights(GDALRasterBandH band, float *v, size_t n, dem_info *info)
 {
     int has_nodata = 0, has_scale = 0, has_offset = 0;
@@ -112,7 +147,7 @@ static void to_heights(GDALRasterBandH band, float *v, size_t n, dem_info *info)
             v[i] = NAN;
             info->holes++;
         } else {
-            v[i] = (float)(x * scale + offset);
+            v[i] = (float)((x * scale + offset) * info->height_unit);
         }
     }
 }
@@ -145,7 +180,7 @@ bool dem_read(const char *path, int max_side, int *w, int *h, float **heights, d
         GDALDataType type = GDALGetRasterDataType(band);
         snprintf(info->type, sizeof info->type, "%s", GDALGetDataTypeName(type));
         info->is_float = GDALDataTypeIsFloating(type);
-        ok = georeference(ds, path, H, info, err);
+        ok = georeference(ds, path, H, info, err) && vertical_unit(ds, band, path, info, err);
     }
     size_t n = (size_t)W * (size_t)H;
     float *v = ok ? malloc(sizeof(float) * n) : NULL;
@@ -173,7 +208,7 @@ bool dem_probe(const char *path, int *w, int *h, double range[2], dem_info *info
     *w = GDALGetRasterXSize(ds);
     *h = GDALGetRasterYSize(ds);
     GDALRasterBandH band = GDALGetRasterCount(ds) > 0 ? GDALGetRasterBand(ds, 1) : NULL;
-    bool ok = band && georeference(ds, path, *h, info, err);
+    bool ok = band && georeference(ds, path, *h, info, err) && vertical_unit(ds, band, path, info, err);
     if (!band)
         err_set(err, "DEM '%s' has no raster band", path);
     double mm[2] = {0, 0};
@@ -186,8 +221,8 @@ bool dem_probe(const char *path, int *w, int *h, double range[2], dem_info *info
             scale = 1;
         if (!isfinite(offset))
             offset = 0;
-        range[0] = fmin(mm[0] * scale, mm[1] * scale) + offset;
-        range[1] = fmax(mm[0] * scale, mm[1] * scale) + offset;
+        range[0] = (fmin(mm[0] * scale, mm[1] * scale) + offset) * info->height_unit;
+        range[1] = (fmax(mm[0] * scale, mm[1] * scale) + offset) * info->height_unit;
     }
     GDALClose(ds);
     return ok;

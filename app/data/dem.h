@@ -25,6 +25,8 @@ typedef struct dem_info {
     char type[16];       /* GDAL's name of the band's data type: Int16, Float32, ... */
     bool is_float;       /* Float32/Float64: real values; otherwise integers (still metres) */
     size_t holes;        /* nodata (and NaN) texels */
+    double height_unit;  /* metres per unit of the file's heights (the band's unit or the vertical CRS's) */
+    char height_unit_name[32]; /* that unit as the file names it ("metre" when it names none) */
 } dem_info;
 
 /* Memory a DEM takes per texel while it is loaded (docs/terrain-scale: 9.3 at its peak at 16384²,
@@ -35,8 +37,8 @@ typedef struct dem_info {
  * are normalised colours; everything else goes to GDAL. */
 bool dem_is_image(const char *path);
 
-/* Reads band 1 of `path`: *heights (malloc'd, w × h, row 0 north) in the file's units with scale and
- * offset applied, nodata and NaN as NaN. Sides above max_side are refused with the size. */
+/* Reads band 1 of `path`: *heights (malloc'd, w × h, row 0 north) in metres, with scale, offset and the
+ * band's vertical unit applied (feet converted; an unknown unit refused), nodata and NaN as NaN. Sides above max_side are refused with the size. */
 bool dem_read(const char *path, int max_side, int *w, int *h, float **heights, dem_info *info, err_t *err);
 
 /* What framing a camera needs, without reading every texel: size, georeferencing and the height range
