@@ -310,6 +310,56 @@ static void viewshed_geotiff(void **st)
     assert_int_equal(access(in_dir("off.tif"), F_OK), -1);
 }
 
+/* A geographic DEM of GW × GH texels of 0.01° from (lon0, lat0) at its north-west corner; heights rise to the
+ * east, texel (hole_i, 0) nodata (-1: none). */
+static void write_geographic(const char *file, int gw, int gh, double lon0, double lat0, int hole_i)
+{
+    GDALDatasetH ds = GDALCreate(GDALGetDriverByName("GTiff"), file, gw, gh, 1, GDT_Float32, NULL);
+    double gt[6] = {lon0, 0.01, 0, lat0, 0, -0.01};
+    GDALSetGeoTransform(ds, gt);
+    OGRSpatialReferenceH s = srs_of(4326);
+    GDALSetSpatialRef(ds, s);
+    OSRDestroySpatialReference(s);
+    float *v = malloc(sizeof(float) * (size_t)(gw * gh));
+    for (int k = 0; k < gw * gh; k++)
+        v[k] = k == hole_i ? -9999.0f : (float)(100 + k % gw);
+    GDALSetRasterNoDataValue(GDALGetRasterBand(ds, 1), -9999);
+    assert_int_equal(GDALRasterIO(GDALGetRasterBand(ds, 1), GF_Write, 0, 0, gw, gh, v, gw, gh, GDT_Float32, 0, 0),
+                     CE_None);
+    free(v);
+    GDALClose(ds);
+}
+
+/* Issue 58, item 5: valid observers are not refused by round-off: at the highest texel's centre beside a
+ * nodata texel, at the corner texels' centres and on the DEM's outer edge, and across the antimeridian on a
+ * DEM that spans it (178.5-181.5° E, observer at -179.5°). Off the DEM is still refused. */
+static void observers_on_edges_and_across_180(void **st)
+{
+    (void)st;
+    enum { GW = 40, GH = 30 };
+    write_geographic(in_dir("edge.tif"), GW, GH, 10, 47, GW - 2); /* the highest is (GW - 1, 0), beside the hole */
+    const double at[][2] = {{10 + 0.01 * (GW - 0.5), 47 - 0.005}, {10.005, 47 - 0.01 * (GH - 0.5)},
+                            {10.0, 46.9}, {10 + 0.01 * GW, 46.9}};
+    err_t e;
+    for (size_t k = 0; k < sizeof at / sizeof *at; k++) {
+        gis_options o = {.command = GIS_VIEWSHED, .dem = in_dir("edge.tif"), .output = in_dir("edge-vs.tif"),
+                         .lon = at[k][0], .lat = at[k][1], .observer_height = 2, .refraction = 0.13};
+        if (!gis_viewshed_run(&o, &e))
+            fail_msg("observer %zu at %.4f, %.4f: %s", k, at[k][0], at[k][1], e.msg);
+    }
+    write_geographic(in_dir("dateline.tif"), 300, 20, 178.5, 10, -1);
+    gis_options o = {.command = GIS_VIEWSHED, .dem = in_dir("dateline.tif"), .output = in_dir("dl-vs.tif"),
+                     .lon = -179.5, .lat = 9.9, .observer_height = 2, .refraction = 0.13};
+    if (!gis_viewshed_run(&o, &e))
+        fail_msg("observer at -179.5: %s", e.msg);
+    double col, row, lon = -179.5, lat = 9.9;
+    assert_true(geo_convert(in_dir("dateline.tif"), true, 1, &lon, &lat, &col, &row, &e));
+    assert_true(fabs(col - 199.5) < 1e-6 && fabs(row - 9.5) < 1e-6);
+    o.lon = 177.0, o.output = in_dir("dl-off.tif");
+    assert_false(gis_viewshed_run(&o, &e));
+    assert_non_null(strstr(e.msg, "outside the DEM"));
+}
+
 /* The track's points as OGR reads them: lon, lat, z (or the "ele" field), time (seconds). */
 static int ogr_points(const char *file, const char *layer, double (*out)[4], int max)
 {
@@ -472,7 +522,7 @@ int main(void)
         cmocka_unit_test(drape_lands_on_the_right_texels), cmocka_unit_test(viewshed_geotiff),
         cmocka_unit_test(tracks_round_trip), cmocka_unit_test(flight_track_flight),
         cmocka_unit_test(sun_block_moves_the_light), cmocka_unit_test(vectors_keep_the_imagery_resolution),
-        cmocka_unit_test(vector_widths_in_metres),
+        cmocka_unit_test(vector_widths_in_metres), cmocka_unit_test(observers_on_edges_and_across_180),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

@@ -102,6 +102,10 @@ bool geo_convert(const char *dem_path, bool to_texel, int n, const double *x, co
             py = g.gt[3] + (y[i] + 0.5) * g.gt[5];
         }
         ok = OCTTransform(t, 1, &px, &py, &pz) && isfinite(px) && isfinite(py);
+        if (ok && to_texel && OSRIsGeographic(g.srs)) { /* the turn nearest the DEM: -179.5° on one past 180° */
+            double turn = 360 / (OSRGetAngularUnits(g.srs, NULL) * 180 / M_PI), mid = g.gt[0] + g.gt[1] * g.w / 2;
+            px += turn * round((mid - px) / turn);
+        }
         if (ok && to_texel) {
             px = (px - g.gt[0]) / g.gt[1] - 0.5;
             py = (py - g.gt[3]) / g.gt[5] - 0.5;

@@ -64,9 +64,10 @@ static double texel(const viewshed_desc *d, int i, int j) { return d->heights[at
 static double ground(const viewshed_desc *d, double c, double r)
 {
     int i = (int)fmin(floor(c), d->w - 2), j = (int)fmin(floor(r), d->h - 2);
-    double u = c - i, v = r - j;
-    double h00 = texel(d, i, j), h10 = texel(d, i + 1, j), h01 = texel(d, i, j + 1), h11 = texel(d, i + 1, j + 1);
-    return (h00 * (1 - u) + h10 * u) * (1 - v) + (h01 * (1 - u) + h11 * u) * v;
+    double u = c - i, v = r - j, wt[4] = {(1 - u) * (1 - v), u * (1 - v), (1 - u) * v, u * v}, sum = 0;
+    for (int k = 0; k < 4; k++) /* a corner of no weight adds nothing, a nodata one either (NaN × 0 is NaN) */
+        sum += wt[k] > 0 ? wt[k] * texel(d, i + (k & 1), j + (k >> 1)) : 0;
+    return sum;
 }
 
 /* One line of sight: from the observer (cell coordinates o, eye height yo) to a target e away in cell
@@ -194,9 +195,15 @@ bool viewshed_compute(const viewshed_desc *d, unsigned char *out, viewshed_stats
 {
     if (d->w < 2 || d->h < 2)
         return err_set(err, "the viewshed needs a DEM of at least 2 × 2 texels (this one is %d × %d)", d->w, d->h);
-    if (!(d->col >= 0 && d->col <= d->w - 1 && d->row >= 0 && d->row <= d->h - 1))
-        return err_set(err, "the observer (texel %.1f, %.1f) is outside the DEM (0 to %d, 0 to %d): give a point on it",
-                       d->col, d->row, d->w - 1, d->h - 1);
+    /* on the DEM: within its extent, half a texel past the edge texels' centres (there, the edge's ground) */
+    const double e = 1e-6; /* a point given in degrees comes back a hair off where it was meant */
+    if (!(d->col >= -0.5 - e && d->col <= d->w - 0.5 + e && d->row >= -0.5 - e && d->row <= d->h - 0.5 + e))
+        return err_set(err, "the observer (texel %.1f, %.1f) is outside the DEM (-0.5 to %g, -0.5 to %g): give a point "
+                            "on it", d->col, d->row, d->w - 0.5, d->h - 0.5);
+    viewshed_desc on = *d; /* a texel centre snapped to it; past the edge texels' centres, the edge's */
+    on.col = fmin(fmax(fabs(d->col - round(d->col)) < e ? round(d->col) : d->col, 0), d->w - 1);
+    on.row = fmin(fmax(fabs(d->row - round(d->row)) < e ? round(d->row) : d->row, 0), d->h - 1);
+    d = &on;
     double g = ground(d, d->col, d->row);
     if (isnan(g))
         return err_set(err, "the observer (texel %.1f, %.1f) stands over a nodata hole of the DEM: move it onto ground",
