@@ -473,6 +473,77 @@ static void flight_track_flight(void **st)
     path_free(&b);
 }
 
+/* A GPX text of these parts, written to `name` in the test's folder. */
+static const char *write_gpx(const char *name, const char *body)
+{
+    FILE *f = fopen(in_dir(name), "w");
+    fprintf(f, "<?xml version=\"1.0\"?>\n<gpx version=\"1.1\" creator=\"test\" "
+               "xmlns=\"http://www.topografix.com/GPX/1/1\">\n%s</gpx>\n", body);
+    fclose(f);
+    return in_dir(name);
+}
+
+/* Issue 58, item 7: tracks read and written as the guide says. A GPX with two tracks gives the first (they
+ * were merged); one with waypoints and a route flies the route (it flew the waypoints); a point without
+ * <time> takes its time between its neighbours (every time was dropped); a flight written without a sun
+ * block starts at the flight's own time base, 1970-01-01T00:00:00Z (it was "now"). */
+static void tracks_as_the_guide_says(void **st)
+{
+    (void)st;
+    double lon[4], lat[4];
+    for (int i = 0; i < 4; i++) /* east along the DEM's middle row, 6 km apart */
+        utm_to_lonlat(DEM_GT[0] + 20000 + 6000 * i, DEM_GT[3] - 24000, &lon[i], &lat[i]);
+    char body[4096], pt[4][160];
+    static const char *const times[4] = {"2026-05-01T10:00:00Z", "2026-05-01T10:02:00Z", NULL, "2026-05-01T10:06:00Z"};
+    for (int i = 0; i < 4; i++)
+        snprintf(pt[i], sizeof pt[i], "<trkpt lat=\"%.7f\" lon=\"%.7f\">%s%s%s</trkpt>", lat[i], lon[i],
+                 times[i] ? "<time>" : "", times[i] ? times[i] : "", times[i] ? "</time>" : "");
+    snprintf(body, sizeof body,
+             "<wpt lat=\"%.7f\" lon=\"%.7f\"><name>hut</name></wpt><wpt lat=\"%.7f\" lon=\"%.7f\"/>\n"
+             "<trk><trkseg>%s%s%s%s</trkseg></trk>\n<trk><trkseg>%s%s</trkseg></trk>\n",
+             lat[3], lon[3], lat[0], lon[0], pt[0], pt[1], pt[2], pt[3], pt[3], pt[0]);
+    geo_point *pts;
+    int n;
+    err_t e;
+    if (!geo_track_read(write_gpx("two.gpx", body), &pts, &n, &e))
+        fail_msg("%s", e.msg);
+    assert_int_equal(n, 4); /* the first track's four points, not the second's two nor the waypoints */
+    for (int i = 0; i < 4; i++)
+        assert_true(fabs(pts[i].lon - lon[i]) < 1e-6 && (i == 2) == isnan(pts[i].time));
+    free(pts);
+    snprintf(body, sizeof body,
+             "<wpt lat=\"%.7f\" lon=\"%.7f\"/><wpt lat=\"%.7f\" lon=\"%.7f\"/>\n<rte><rtept lat=\"%.7f\" lon=\"%.7f\"/>"
+             "<rtept lat=\"%.7f\" lon=\"%.7f\"/><rtept lat=\"%.7f\" lon=\"%.7f\"/></rte>\n",
+             lat[3], lon[3], lat[2], lon[2], lat[0], lon[0], lat[1], lon[1], lat[2], lon[2]);
+    if (!geo_track_read(write_gpx("route.gpx", body), &pts, &n, &e))
+        fail_msg("%s", e.msg);
+    assert_true(n == 3 && fabs(pts[0].lon - lon[0]) < 1e-6 && fabs(pts[2].lon - lon[2]) < 1e-6);
+    free(pts);
+    /* the flight from the first track: its own times, the missing one in between by distance */
+    char set[] = "terrain.exaggeration=1";
+    gis_options o = {.command = GIS_TRACK, .dem = in_dir("dem.tif"), .input = in_dir("two.gpx"),
+                     .output = in_dir("two.json"), .fps = 1, .speed = 30, .height = 120, .sets = {set}, .set_count = 1};
+    if (!gis_track_run(&o, &e))
+        fail_msg("%s", e.msg);
+    path p;
+    assert_true(path_load(in_dir("two.json"), &p, &e));
+    print_message("tracks: %d keys, at %.1f %.1f ... %.1f s\n", p.count, p.keys[0].time, p.keys[1].time,
+                  p.keys[p.count - 1].time);
+    assert_int_equal(p.count, 4); /* 6 km apart: each point a key */
+    const double want[4] = {0, 120, 240, 360}; /* the untimed third point: between 120 and 360 by distance */
+    for (int k = 0; k < 4; k++)
+        assert_true(fabs(p.keys[k].time - want[k]) < 0.5);
+    path_free(&p);
+    /* a flight without a sun block: the GPX's times are the flight's own seconds from the epoch */
+    o = (gis_options){.command = GIS_TRACK, .dem = in_dir("dem.tif"), .path = in_dir("two.json"),
+                      .output = in_dir("back.gpx"), .fps = 1, .speed = 30, .height = 120, .sets = {set}, .set_count = 1};
+    if (!gis_track_run(&o, &e))
+        fail_msg("%s", e.msg);
+    assert_true(geo_track_read(in_dir("back.gpx"), &pts, &n, &e));
+    assert_true(n > 300 && pts[0].time == 0 && fabs(pts[n - 1].time - 360) < 1e-3);
+    free(pts);
+}
+
 /* The "sun" block on the UTM DEM: the light points where NOAA's sun stands over the DEM's centre (its
  * longitude and latitude found here by OSR), coloured by the beam; night leaves it black; mistakes are
  * named. */
@@ -523,6 +594,7 @@ int main(void)
         cmocka_unit_test(tracks_round_trip), cmocka_unit_test(flight_track_flight),
         cmocka_unit_test(sun_block_moves_the_light), cmocka_unit_test(vectors_keep_the_imagery_resolution),
         cmocka_unit_test(vector_widths_in_metres), cmocka_unit_test(observers_on_edges_and_across_180),
+        cmocka_unit_test(tracks_as_the_guide_says),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

@@ -66,18 +66,26 @@ static bool feature_points(OGRGeometryH geo, OGRCoordinateTransformationH t, dou
     return true;
 }
 
-/* The layer a track is read from: GPX's track points (they carry times), else the first with features. */
+/* The layer a track is read from: GPX's track points (they carry times), else its route points, else the first
+ * layer with features that is not GPX's waypoints (a GPX's loose waypoints are places, not a way), else those. */
 static OGRLayerH track_layer(GDALDatasetH ds)
 {
-    OGRLayerH l = GDALDatasetGetLayerByName(ds, "track_points");
-    if (l && OGR_L_GetFeatureCount(l, 1) > 0)
-        return l;
-    for (int i = 0; i < GDALDatasetGetLayerCount(ds); i++) {
-        l = GDALDatasetGetLayer(ds, i);
-        if (OGR_L_GetFeatureCount(l, 1) > 0)
+    static const char *const PREFERRED[] = {"track_points", "route_points"};
+    for (size_t k = 0; k < sizeof PREFERRED / sizeof *PREFERRED; k++) {
+        OGRLayerH l = GDALDatasetGetLayerByName(ds, PREFERRED[k]);
+        if (l && OGR_L_GetFeatureCount(l, 1) > 0)
             return l;
     }
-    return NULL;
+    OGRLayerH waypoints = NULL;
+    for (int i = 0; i < GDALDatasetGetLayerCount(ds); i++) {
+        OGRLayerH l = GDALDatasetGetLayer(ds, i);
+        if (OGR_L_GetFeatureCount(l, 1) <= 0)
+            continue;
+        if (strcmp(OGR_L_GetName(l), "waypoints") != 0)
+            return l;
+        waypoints = l;
+    }
+    return waypoints;
 }
 
 bool geo_track_read(const char *path, geo_point **pts, int *n, err_t *err)
@@ -94,9 +102,21 @@ bool geo_track_read(const char *path, geo_point **pts, int *n, err_t *err)
     OGRCoordinateTransformationH t = src ? OCTNewCoordinateTransformation(src, w) : NULL;
     int cap = 0, field = l ? OGR_FD_GetFieldIndex(OGR_L_GetLayerDefn(l), "time") : -1;
     int ele = l ? OGR_FD_GetFieldIndex(OGR_L_GetLayerDefn(l), "ele") : -1; /* GPX keeps heights in a field */
-    bool ok = l != NULL, full = false;
+    /* GPX's points name their track (route): the first one's only, as a GPS tool reads "the track" */
+    int owner = l ? OGR_FD_GetFieldIndex(OGR_L_GetLayerDefn(l), "track_fid") : -1;
+    if (l && owner < 0)
+        owner = OGR_FD_GetFieldIndex(OGR_L_GetLayerDefn(l), "route_fid");
+    bool ok = l != NULL, full = false, first_owner = true;
+    long long which = 0;
     OGRFeatureH f;
     while (ok && !full && (f = OGR_L_GetNextFeature(l)) != NULL) {
+        long long of = owner >= 0 && OGR_F_IsFieldSetAndNotNull(f, owner) ? OGR_F_GetFieldAsInteger64(f, owner) : 0;
+        if (first_owner)
+            which = of, first_owner = false;
+        if (of != which) {
+            OGR_F_Destroy(f);
+            continue;
+        }
         int first = *n;
         full = !feature_points(OGR_F_GetGeometryRef(f), t, feature_time(f, field), pts, n, &cap);
         for (int k = first; ele >= 0 && OGR_F_IsFieldSetAndNotNull(f, ele) && k < *n; k++)

@@ -144,13 +144,48 @@ static int track_keys(const gis_options *o, const frame *f, const geo_point *pts
     return m;
 }
 
-/* Times (the track's own when every kept point has one and they increase, else distance / speed) and
- * where each key looks: the track `ahead` metres on, down to the ground there. */
+/* The track's own times where it has them: a key without one (a point whose <time> is missing) takes the time
+ * its distance along says between the timed keys around it, or beyond the ends at `speed`. False (distance /
+ * speed for all) when fewer than two keys have times or the times do not increase. */
+static bool own_times(key *k, int m, double speed)
+{
+    int first = -1, last = -1;
+    for (int i = 0; i < m; i++)
+        if (!isnan(k[i].t)) {
+            if (last >= 0 && !(k[i].t > k[last].t))
+                return false;
+            first = first < 0 ? i : first, last = i;
+        }
+    if (first < 0 || first == last)
+        return false;
+    for (int i = 0, a = first; i < m; i++) {
+        if (!isnan(k[i].t)) {
+            a = i;
+            continue;
+        }
+        int b = i + 1;
+        while (b < m && isnan(k[b].t))
+            b++;
+        if (i < first || b >= m) { /* before the first time or after the last: at the track's speed */
+            int e = i < first ? first : last;
+            k[i].t = k[e].t + (k[i].along - k[e].along) / speed;
+        } else { /* between two: by distance along, or evenly where the keys do not move */
+            double span = k[b].along - k[a].along, f = span > 0 ? (k[i].along - k[a].along) / span
+                                                                 : (double)(i - a) / (b - a);
+            k[i].t = k[a].t + (k[b].t - k[a].t) * f;
+        }
+    }
+    for (int i = 1; i < m; i++)
+        if (!(k[i].t > k[i - 1].t))
+            return false;
+    return true;
+}
+
+/* Times (the track's own, a missing one filled in by own_times, else distance / speed) and where each key
+ * looks: the track `ahead` metres on, down to the ground there. */
 static void track_times_and_views(const gis_options *o, const frame *f, key *k, int m)
 {
-    bool own = true;
-    for (int i = 0; i < m; i++)
-        own = own && !isnan(k[i].t) && (i == 0 || k[i].t > k[i - 1].t);
+    bool own = own_times(k, m, o->speed);
     double t0 = k[0].t, ahead = fmax(4 * o->height, 10 * fmax(f->dx, f->dz));
     for (int i = 0; i < m; i++)
         k[i].t = own ? k[i].t - t0 : k[i].along / o->speed;
@@ -226,13 +261,13 @@ static bool track_to_flight(const gis_options *o, frame *f, err_t *err)
 /* Points a flight becomes at most: a GPX of 10^6 points is ~100 MB, beyond what GPS tools open. */
 enum { TRACK_POINTS_MAX = 1000000 };
 
-/* When the flight starts: the scene's sun date and hour when it sets one (the day it shows), else now. */
-static double flight_start(const scene *s)
+/* When the flight starts: the scene's sun date and hour when it sets one (the day it shows), else the flight's
+ * own time base, its seconds from 1970-01-01T00:00:00Z (the same track every run, never the clock's "now"). */
+static double flight_start(const scene *s, bool *sun)
 {
     double t;
-    if (s->sun.on && sun_time(s->sun.date, s->sun.hour, s->sun.utc_offset, &t))
-        return t;
-    return (double)time(NULL);
+    *sun = s->sun.on && sun_time(s->sun.date, s->sun.hour, s->sun.utc_offset, &t);
+    return *sun ? t : 0;
 }
 
 static bool flight_to_track(const gis_options *o, frame *f, err_t *err)
@@ -240,7 +275,8 @@ static bool flight_to_track(const gis_options *o, frame *f, err_t *err)
     path p;
     if (!path_load(o->path, &p, err))
         return false;
-    double t0 = p.keys[0].time, t1 = p.keys[p.count - 1].time, start = flight_start(&f->s);
+    bool sun;
+    double t0 = p.keys[0].time, t1 = p.keys[p.count - 1].time, start = flight_start(&f->s, &sun);
     double points = floor((t1 - t0) * o->fps + 1e-9) + 1;
     if (points > TRACK_POINTS_MAX) {
         path_free(&p);
@@ -270,7 +306,9 @@ static bool flight_to_track(const gis_options *o, frame *f, err_t *err)
     const char *base = strrchr(o->path, '/');
     ok = ok && geo_track_write(o->output, base ? base + 1 : o->path, pts, (const double (*)[3])cam, n, err);
     if (ok)
-        printf("%s: %d points, %.1f s of the flight at %g a second, from %s\n", o->output, n, t1 - t0, o->fps, o->path);
+        printf("%s: %d points, %.1f s of the flight at %g a second, from %s; times %s\n", o->output, n, t1 - t0, o->fps,
+               o->path, sun ? "from the scene's sun date and hour" : "the flight's own seconds from 1970-01-01T00:00:00Z "
+                                                                       "(give the scene a sun block for a real day)");
     free(buf);
     free(cam);
     free(pts);
