@@ -1,6 +1,7 @@
 /* fathom — a terrain and fractal ray-marching explorer.
  * main: parse the command line, load the scene, then open the window or render offline.
  * Exit codes: 0 done, 1 failed (bad data or environment), 2 bad command line. */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <sys/stat.h>
@@ -40,6 +41,15 @@ static void print_variant(const scene *s)
         if (!(s->effects & (1u << e)))
             printf(" %s", effect_name((effect)e));
     printf("\n");
+    if (s->sun.on) {
+        const float *v = s->lights[s->sun.light].vec;
+        printf("sun: %s %05.2f h (UTC%+g) at latitude %.4f, longitude %.4f: azimuth %.2f° from true north, %.2f° from the grid's north "
+               "(true north %+.2f° from it), elevation %.2f°; light %d toward (%.4f, %.4f, %.4f) (+X east, +Y up, −Z "
+               "grid north)\n",
+               s->sun.date, (double)s->sun.hour, (double)s->sun.utc_offset, s->sun.latitude, s->sun.longitude,
+               s->sun.azimuth, fmod(s->sun.azimuth + s->sun.convergence + 360, 360), s->sun.convergence,
+               s->sun.elevation, s->sun.light, (double)v[0], (double)v[1], (double)v[2]);
+    }
     strbuf pre = {0};
     render_preamble(s, NULL, &pre);
     fputs(pre.data, stdout);

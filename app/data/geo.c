@@ -125,6 +125,25 @@ bool geo_convert(const char *dem_path, bool to_texel, int n, const double *x, co
     return ok;
 }
 
+bool geo_true_north(const char *dem_path, double lon, double lat, double *gamma, err_t *err)
+{
+    *gamma = 0;
+    geo_grid g;
+    if (!geo_grid_of(dem_path, &g, err))
+        return false;
+    bool projected = !OSRIsGeographic(g.srs);
+    OSRDestroySpatialReference(g.srs);
+    if (!projected) /* a geographic grid's north is the meridian's */
+        return true;
+    /* the meridian through the place, 10 m north of it on the sphere, in the DEM's CRS */
+    double x[2] = {lon, lon}, y[2] = {lat, lat + 10 / 111195.0}, col[2], row[2];
+    if (!geo_convert(dem_path, true, 2, x, y, col, row, err))
+        return false;
+    double east = (col[1] - col[0]) * g.gt[1], north = (row[1] - row[0]) * g.gt[5]; /* CRS units, y north */
+    *gamma = atan2(east, north) * 180 / M_PI;
+    return true;
+}
+
 /* GDAL writes a GeoTIFF's tiles as it closes it and cannot say when the disk refused one: the file
  * read back, every byte against what was meant. */
 static bool read_back_equal(const char *path, int w, int h, const unsigned char *v)

@@ -25,6 +25,11 @@ bool geo_convert(const char *dem_path, bool to_texel, int n, const double *x, co
 bool geo_write_mask(const char *dem_path, const char *out_path, int w, int h, const unsigned char *v,
                     const char *description, err_t *err);
 
+/* True north on the DEM's grid at a place (WGS 84 degrees): *gamma, degrees clockwise from the grid's north (the
+ * −Z of a terrain's world) to the meridian's; 0 on a geographic DEM. A true azimuth A is A + *gamma on the grid
+ * (on EPSG:3413 at 0° E: −45°; in UTM, −atan(tan(λ − λ0) sin φ)). */
+bool geo_true_north(const char *dem_path, double lon, double lat, double *gamma, err_t *err);
+
 /* Warps any raster GDAL reads (an orthophoto, a hillshade, a land-cover map; grey, RGB, RGBA, a
  * palette, 8 or 16 bits or float) onto the DEM's extent in its CRS: *rgba (malloc'd, *w × *h, row 0
  * north, sRGB bytes; alpha 0 where the imagery has no data or does not reach). The resolution is the

@@ -40,6 +40,13 @@ bool geo_layers_size(const char *dem_path, const char *imagery, const float *wid
     return f && f(dem_path, imagery, widths, n_widths, max_side, w, h, err);
 }
 
+bool geo_true_north(const char *dem_path, double lon, double lat, double *gamma, err_t *err)
+{
+    LAZY_FN(bool (*f)(const char *, double, double, double *, err_t *), lazy_symbol(LAZY_DEM, "geo_true_north", err));
+    *gamma = 0;
+    return f && f(dem_path, lon, lat, gamma, err);
+}
+
 bool geo_track_read(const char *path, geo_point **pts, int *n, err_t *err)
 {
     LAZY_FN(bool (*f)(const char *, geo_point **, int *, err_t *), lazy_symbol(LAZY_DEM, "geo_track_read", err));

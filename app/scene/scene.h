@@ -180,7 +180,8 @@ typedef struct scene {
         float hour, utc_offset;   /* local hours; the zone's offset from UTC in hours */
         double latitude, longitude; /* degrees; NaN: the DEM's centre */
         int light;                /* which light it moves (a directional one) */
-        double azimuth, elevation; /* where it came out, degrees (the HUD and the tests) */
+        double azimuth, elevation; /* where it came out, degrees from true north (the HUD and the tests) */
+        double convergence;        /* degrees from the DEM's grid north to true north at its centre (0: none) */
     } sun;
 
     /* "droplets": liquid spheres from a file (app/data/droplets.h), a layer any program can hold; the file

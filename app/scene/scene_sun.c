@@ -67,15 +67,25 @@ bool scene_apply_sun(scene *s, err_t *err)
     if (sun->light >= s->light_count || s->lights[sun->light].type != LIGHT_DIRECTIONAL)
         return err_set(err, "%s: sun.light %d is not a directional light of the scene's (it has %d lights): the "
                             "sun moves a directional light", s->path, sun->light, s->light_count);
-    if (isnan(sun->latitude) && !dem_centre(s, &sun->longitude, &sun->latitude, err))
+    double lon, lat;
+    err_t none;
+    bool on_dem = dem_centre(s, &lon, &lat, isnan(sun->latitude) ? err : &none);
+    if (isnan(sun->latitude) && !on_dem)
+        return false;
+    if (isnan(sun->latitude))
+        sun->longitude = lon, sun->latitude = lat;
+    /* the terrain's −Z is its grid's north: on a projected DEM true north is turned from it (by up to 45° on a
+     * polar stereographic one), measured at the DEM's centre */
+    sun->convergence = 0;
+    if (on_dem && !geo_true_north(s->terrain.heightmap, lon, lat, &sun->convergence, err))
         return false;
     double t;
     sun_time(sun->date, sun->hour, sun->utc_offset, &t);
     sun_position p = sun_at(t, sun->latitude, sun->longitude);
     sun->azimuth = p.azimuth, sun->elevation = p.elevation;
     scene_light *l = &s->lights[sun->light];
-    double az = p.azimuth * M_PI / 180, el = p.elevation * M_PI / 180;
-    /* east is +X, north −Z (data/terrain.h) */
+    double az = (p.azimuth + sun->convergence) * M_PI / 180, el = p.elevation * M_PI / 180;
+    /* east is +X, grid north −Z (data/terrain.h) */
     l->vec[0] = (float)(cos(el) * sin(az));
     l->vec[1] = (float)sin(el);
     l->vec[2] = (float)(-cos(el) * cos(az));
