@@ -1,6 +1,6 @@
 /* Videos (data/video.h) decoded back with libavformat and compared with the frames they were made
  * from: frame count, size, rate, codec, the 360° and stereo tags, and every frame's PSNR (at least
- * 40 dB at the default quality) for H.264 in MP4, VP9 in WebM and AV1 in MP4; the option errors.
+ * 40.5 dB on the worst frame at the default quality) for H.264 in MP4, VP9 in WebM and AV1 in MP4; the option errors.
  * With arguments, `test_video VIDEO FRAMES_PATTERN N` checks a video fathom wrote against its N frames
  * on disk (tests/video_resume.sh: a flight killed and resumed). */
 #include <math.h>
@@ -87,9 +87,9 @@ static void codecs_round_trip(void **st)
         const char *file, *options, *codec;
         double min_db;
     } cases[] = {
-        {"fathom-test-video.mp4", NULL, "h264", 40},
-        {"fathom-test-video.webm", NULL, "vp9", 40},
-        {"fathom-test-video-av1.mp4", "codec=av1", "av1", 40},
+        {"fathom-test-video.mp4", NULL, "h264", 40.5},
+        {"fathom-test-video.webm", NULL, "vp9", 40.5},
+        {"fathom-test-video-av1.mp4", "codec=av1", "av1", 40.5},
         {"fathom-test-video-444.mkv", "pix_fmt=yuv444p,crf=10", "h264", 44},
         {"fathom-test-video-low.mp4", "crf=40", "h264", 20}, /* lower quality, still a picture */
     };
@@ -151,14 +151,15 @@ static void bad_options(void **st)
     err_t e = {{0}};
     assert_true(video_options_parse(NULL, "a.webm", &o, &e));
     assert_int_equal(o.codec, VIDEO_VP9);
-    assert_int_equal(o.crf, 6);
+    assert_int_equal(o.crf, 3);
     /* an odd size cannot be yuv420p: one clear line, nothing written */
     assert_null(video_open("fathom-test-odd.mp4", 95, 64, FPS, &o, &(video_view){0}, &e));
     assert_non_null(strstr(e.msg, "needs an even width and height"));
     assert_false(access("fathom-test-odd.mp4", F_OK) == 0);
 }
 
-/* test_video VIDEO PATTERN N: the video holds the N frames on disk, each at 40 dB or better. */
+/* test_video VIDEO PATTERN N: the video holds the N frames on disk, each at 40.5 dB or better (the guide's
+ * promise for the default quality, cameras.md: the worst frame, not the mean). */
 static int check_video(const char *video, const char *pattern, int n)
 {
     video_info info;
@@ -185,7 +186,7 @@ static int check_video(const char *video, const char *pattern, int n)
     free(rgb);
     printf("%s: %d frames (%d on disk), %dx%d, %s, worst frame %.1f dB\n", video, info.frames, n, info.width,
            info.height, info.codec, worst);
-    return bad || worst < 40;
+    return bad || worst < 40.5;
 }
 
 int main(int argc, char **argv)

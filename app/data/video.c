@@ -102,6 +102,13 @@ static bool open_encoder(video_writer *v, int width, int height, int fps, const 
     snprintf(crf, sizeof crf, "%d", o->crf);
     if (av_opt_set(c->priv_data, "crf", crf, 0) < 0)
         return err_set(err, "the %s encoder takes no crf: pick another codec (--video codec=...)", name);
+    if (!strcmp(name, "libx264")) {
+        /* the same frames, the same stream: x264's macroblock tree gives a different stream in each process (its
+         * SIMD takes paths by where memory lies: three runs, three streams; none with mbtree=0), and its frame
+         * threads shape the stream, so their number is fixed rather than the machine's cores */
+        av_opt_set(c->priv_data, "x264-params", "mbtree=0", 0);
+        c->thread_count = 4;
+    }
     if (!strcmp(name, "libaom-av1"))
         av_opt_set(c->priv_data, "cpu-used", "6", 0); /* its default (1) is some 20 times slower */
     if (!strcmp(name, "libsvtav1"))
