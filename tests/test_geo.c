@@ -360,6 +360,52 @@ static void observers_on_edges_and_across_180(void **st)
     assert_non_null(strstr(e.msg, "outside the DEM"));
 }
 
+/* Issue 58, item 6: --radius crops: only the window that holds the circle is read and written (a 3 km radius
+ * on a 20000² DEM read and computed it all), georeferenced where it lies, and each of its texels is the
+ * whole DEM's viewshed's; every texel outside it is beyond the radius there. */
+static void viewshed_radius_crops(void **st)
+{
+    (void)st;
+    double lon, lat;
+    utm_to_lonlat(DEM_GT[0] + 20.5 * 1000, DEM_GT[3] - 30.5 * 1000, &lon, &lat); /* texel (20, 30)'s centre */
+    gis_options o = {.command = GIS_VIEWSHED, .dem = in_dir("dem.tif"), .output = in_dir("vs-r.tif"), .lon = lon,
+                     .lat = lat, .observer_height = 10, .refraction = 0.13, .radius = 7500};
+    err_t e;
+    if (!gis_viewshed_run(&o, &e))
+        fail_msg("%s", e.msg);
+    float hts[W * H];
+    for (int j = 0; j < H; j++)
+        for (int i = 0; i < W; i++)
+            hts[j * W + i] = (float)hill(i, j);
+    unsigned char want[W * H];
+    viewshed_desc d = {.heights = hts, .w = W, .h = H, .dx = 1000, .dz = 1000, .col = 20, .row = 30,
+                       .observer_height = 10, .refraction = 0.13, .curvature = true, .radius = 7500};
+    assert_true(viewshed_compute(&d, want, NULL, &e));
+    GDALDatasetH ds = GDALOpen(in_dir("vs-r.tif"), GA_ReadOnly);
+    assert_non_null(ds);
+    int w = GDALGetRasterXSize(ds), h = GDALGetRasterYSize(ds);
+    double gt[6];
+    assert_true(GDALGetGeoTransform(ds, gt) == CE_None);
+    int x0 = (int)lround((gt[0] - DEM_GT[0]) / 1000), y0 = (int)lround((DEM_GT[3] - gt[3]) / 1000);
+    print_message("radius: 7.5 km around texel (20, 30): a %d x %d window from %d, %d\n", w, h, x0, y0);
+    assert_true(w <= 2 * 9 + 1 && h <= 2 * 9 + 1 && w >= 15 && h >= 15 && gt[1] == 1000 && gt[5] == -1000);
+    unsigned char *got = malloc((size_t)w * (size_t)h);
+    assert_true(GDALRasterIO(GDALGetRasterBand(ds, 1), GF_Read, 0, 0, w, h, got, w, h, GDT_Byte, 0, 0) == CE_None);
+    GDALClose(ds);
+    int outside = 0, wrong = 0;
+    for (int j = 0; j < H; j++)
+        for (int i = 0; i < W; i++) {
+            bool in = i >= x0 && i < x0 + w && j >= y0 && j < y0 + h;
+            if (in)
+                wrong += got[(j - y0) * w + (i - x0)] != want[j * W + i];
+            else
+                outside += want[j * W + i] != VIEWSHED_NODATA;
+        }
+    free(got);
+    assert_int_equal(wrong, 0);
+    assert_int_equal(outside, 0);
+}
+
 /* The track's points as OGR reads them: lon, lat, z (or the "ele" field), time (seconds). */
 static int ogr_points(const char *file, const char *layer, double (*out)[4], int max)
 {
@@ -644,6 +690,7 @@ int main(void)
         cmocka_unit_test(sun_block_moves_the_light), cmocka_unit_test(vectors_keep_the_imagery_resolution),
         cmocka_unit_test(vector_widths_in_metres), cmocka_unit_test(observers_on_edges_and_across_180),
         cmocka_unit_test(tracks_as_the_guide_says), cmocka_unit_test(sun_on_a_polar_grid),
+        cmocka_unit_test(viewshed_radius_crops),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

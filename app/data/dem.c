@@ -78,14 +78,16 @@ static bool check_readable(const char *path, GDALRasterBandH band, int W, int H,
 }
 
 /* Band 1 as floats, in row blocks, with progress on a terminal for big files. */
-static bool read_rows(const char *path, GDALRasterBandH band, int W, int H, float *v, err_t *err)
+static bool read_rows(const char *path, GDALRasterBandH band, int x0, int y0, int W, int H, float *v, err_t *err)
 {
     bool show = isatty(2) && (size_t)W * (size_t)H > ((size_t)1 << 24);
     const int ROWS = 256;
     for (int y = 0; y < H; y += ROWS) {
         int rows = y + ROWS < H ? ROWS : H - y;
-        if (GDALRasterIO(band, GF_Read, 0, y, W, rows, v + (size_t)y * (size_t)W, W, rows, GDT_Float32, 0, 0) != CE_None)
-            return err_set(err, "DEM '%s': reading rows %d-%d failed: %s", path, y, y + rows - 1, geo_gdal_msg("I/O error"));
+        if (GDALRasterIO(band, GF_Read, x0, y0 + y, W, rows, v + (size_t)y * (size_t)W, W, rows, GDT_Float32, 0, 0) !=
+            CE_None)
+            return err_set(err, "DEM '%s': reading rows %d-%d failed: %s", path, y0 + y, y0 + y + rows - 1,
+                           geo_gdal_msg("I/O error"));
         if (show)
             fprintf(stderr, "\rfathom: reading %s: %3d %%", path, (int)(100.0 * (y + rows) / H));
     }
@@ -167,6 +169,13 @@ static void flip_south_up(GDALDatasetH ds, float *v, int W, int H)
 
 bool dem_read(const char *path, int max_side, int *w, int *h, float **heights, dem_info *info, err_t *err)
 {
+    *w = *h = 0;
+    return dem_read_window(path, 0, 0, w, h, max_side, heights, info, err);
+}
+
+bool dem_read_window(const char *path, int x0, int y0, int *w, int *h, int max_side, float **heights, dem_info *info,
+                     err_t *err)
+{
     *info = (dem_info){0};
     *heights = NULL;
     geo_gdal_init();
@@ -174,25 +183,33 @@ bool dem_read(const char *path, int max_side, int *w, int *h, float **heights, d
     if (!ds)
         return false;
     int W = GDALGetRasterXSize(ds), H = GDALGetRasterYSize(ds);
+    if (*w <= 0 || *h <= 0) /* the whole DEM */
+        x0 = y0 = 0, *w = W, *h = H;
     GDALRasterBandH band = GDALGetRasterCount(ds) > 0 ? GDALGetRasterBand(ds, 1) : NULL;
-    bool ok = check_readable(path, band, W, H, max_side, err);
+    bool ok = x0 >= 0 && y0 >= 0 && x0 + *w <= W && y0 + *h <= H;
+    if (!ok)
+        err_set(err, "DEM '%s': the window %d,%d + %dx%d is not inside its %dx%d texels", path, x0, y0, *w, *h, W, H);
+    ok = ok && check_readable(path, band, *w, *h, max_side, err);
     if (ok) {
         GDALDataType type = GDALGetRasterDataType(band);
         snprintf(info->type, sizeof info->type, "%s", GDALGetDataTypeName(type));
         info->is_float = GDALDataTypeIsFloating(type);
         ok = georeference(ds, path, H, info, err) && vertical_unit(ds, band, path, info, err);
     }
-    size_t n = (size_t)W * (size_t)H;
+    double gt[6];
+    bool south_up = GDALGetGeoTransform(ds, gt) == CE_None && gt[5] > 0; /* its rows counted from the end */
+    size_t n = (size_t)*w * (size_t)*h;
     float *v = ok ? malloc(sizeof(float) * n) : NULL;
     if (ok && !v)
-        ok = err_set(err, "DEM '%s' (%dx%d): out of memory (%zu MB for the heights)", path, W, H, sizeof(float) * n >> 20);
-    ok = ok && read_rows(path, band, W, H, v, err);
+        ok = err_set(err, "DEM '%s' (%dx%d): out of memory (%zu MB for the heights)", path, *w, *h, sizeof(float) * n >> 20);
+    ok = ok && read_rows(path, band, x0, south_up ? H - y0 - *h : y0, *w, *h, v, err);
     if (ok) {
         to_heights(band, v, n, info);
-        flip_south_up(ds, v, W, H);
-        *w = W, *h = H, *heights = v;
+        flip_south_up(ds, v, *w, *h);
+        *heights = v;
     } else {
         free(v);
+        *w = *h = 0;
     }
     GDALClose(ds);
     return ok;

@@ -40,6 +40,10 @@ bool dem_is_image(const char *path);
 /* Reads band 1 of `path`: *heights (malloc'd, w × h, row 0 north) in metres, with scale, offset and the
  * band's vertical unit applied (feet converted; an unknown unit refused), nodata and NaN as NaN. Sides above max_side are refused with the size. */
 bool dem_read(const char *path, int max_side, int *w, int *h, float **heights, dem_info *info, err_t *err);
+/* Only the texels [x0, x0 + *w) × [y0, y0 + *h) (row 0 north, whatever the file's order), read from disk
+ * alone: a part of a DEM larger than memory. *w or *h 0: the whole DEM (then they come back its size). */
+bool dem_read_window(const char *path, int x0, int y0, int *w, int *h, int max_side, float **heights, dem_info *info,
+                     err_t *err);
 
 /* What framing a camera needs, without reading every texel: size, georeferencing and the height range
  * (GDAL's approximate minimum and maximum, scale and offset applied). */

@@ -11,6 +11,14 @@ bool dem_read(const char *path, int max_side, int *w, int *h, float **heights, d
     return f && f(path, max_side, w, h, heights, info, err);
 }
 
+bool dem_read_window(const char *path, int x0, int y0, int *w, int *h, int max_side, float **heights, dem_info *info,
+                     err_t *err)
+{
+    LAZY_FN(bool (*f)(const char *, int, int, int *, int *, int, float **, dem_info *, err_t *),
+            lazy_symbol(LAZY_DEM, "dem_read_window", err));
+    return f && f(path, x0, y0, w, h, max_side, heights, info, err);
+}
+
 bool dem_probe(const char *path, int *w, int *h, double range[2], dem_info *info, err_t *err)
 {
     LAZY_FN(bool (*f)(const char *, int *, int *, double *, dem_info *, err_t *),

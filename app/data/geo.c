@@ -160,16 +160,18 @@ static bool read_back_equal(const char *path, int w, int h, const unsigned char 
     return ok;
 }
 
-bool geo_write_mask_file(const char *dem_path, const char *out_path, int w, int h, const unsigned char *v,
-                         const char *description, err_t *err)
+bool geo_write_mask_file(const char *dem_path, const char *out_path, int x0, int y0, int w, int h,
+                         const unsigned char *v, const char *description, err_t *err)
 {
     geo_grid g;
     if (!geo_grid_of(dem_path, &g, err))
         return false;
-    if (g.w != w || g.h != h) {
+    if (x0 < 0 || y0 < 0 || x0 + w > g.w || y0 + h > g.h) {
         OSRDestroySpatialReference(g.srs);
-        return err_set(err, "a %d × %d raster does not fit the DEM's %d × %d grid", w, h, g.w, g.h);
+        return err_set(err, "a %d × %d raster at %d, %d does not fit the DEM's %d × %d grid", w, h, x0, y0, g.w, g.h);
     }
+    g.gt[0] += x0 * g.gt[1]; /* the window's corner (north-up: geo_grid_of) */
+    g.gt[3] += y0 * g.gt[5];
     CPLErrorReset();
     char **opts = CSLSetNameValue(NULL, "COMPRESS", "DEFLATE");
     opts = CSLSetNameValue(opts, "TILED", "YES");

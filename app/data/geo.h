@@ -19,10 +19,10 @@
 bool geo_convert(const char *dem_path, bool to_texel, int n, const double *x, const double *y, double *u, double *v,
                  err_t *err);
 
-/* Writes v (w × h bytes, row 0 north: the DEM's own grid) as a GeoTIFF in the DEM's CRS and
- * geotransform (north-up), nodata 255, with a colour table (0 hidden: dark, 1 visible: green, 255
+/* Writes v (w × h bytes, row 0 north: the DEM's own grid, or its window from texel x0, y0) as a GeoTIFF in the
+ * DEM's CRS and geotransform (north-up), nodata 255, with a colour table (0 hidden: dark, 1 visible: green, 255
  * transparent) and `description` as its band's description; whole or not at all. */
-bool geo_write_mask(const char *dem_path, const char *out_path, int w, int h, const unsigned char *v,
+bool geo_write_mask(const char *dem_path, const char *out_path, int x0, int y0, int w, int h, const unsigned char *v,
                     const char *description, err_t *err);
 
 /* True north on the DEM's grid at a place (WGS 84 degrees): *gamma, degrees clockwise from the grid's north (the
@@ -75,8 +75,8 @@ bool geo_gdal_viewshed(const char *dem_path, int col, int row, double observer_h
                        double curvature, unsigned char *out, err_t *err);
 
 /* The module's writers behind the two above (geo_lazy.c makes them atomic): into `path` as given. */
-bool geo_write_mask_file(const char *dem_path, const char *path, int w, int h, const unsigned char *v,
-                         const char *description, err_t *err);
+bool geo_write_mask_file(const char *dem_path, const char *path, int x0, int y0, int w, int h,
+                         const unsigned char *v, const char *description, err_t *err);
 bool geo_track_write_file(const char *path, bool kml, const char *name, const geo_point *pts,
                           const double (*cameras)[3], int n, err_t *err);
 

@@ -61,15 +61,15 @@ bool geo_gdal_viewshed(const char *dem_path, int col, int row, double observer_h
     return f && f(dem_path, col, row, observer_height, target_height, curvature, out, err);
 }
 
-bool geo_write_mask(const char *dem_path, const char *out_path, int w, int h, const unsigned char *v,
+bool geo_write_mask(const char *dem_path, const char *out_path, int x0, int y0, int w, int h, const unsigned char *v,
                     const char *description, err_t *err)
 {
-    LAZY_FN(bool (*f)(const char *, const char *, int, int, const unsigned char *, const char *, err_t *),
+    LAZY_FN(bool (*f)(const char *, const char *, int, int, int, int, const unsigned char *, const char *, err_t *),
             lazy_symbol(LAZY_DEM, "geo_write_mask_file", err));
     util_atomic a;
     if (!f || !util_atomic_open(&a, out_path, err))
         return false;
-    if (!f(dem_path, a.tmp, w, h, v, description, err)) {
+    if (!f(dem_path, a.tmp, x0, y0, w, h, v, description, err)) {
         util_atomic_abort(&a);
         return false;
     }

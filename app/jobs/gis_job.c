@@ -18,18 +18,38 @@
 #include "view/camera.h"
 #include "view/path.h"
 
+/* The texels a viewshed reads: the whole DEM, or with a radius only the window around the observer that holds
+ * it (a 3 km radius on a 20000² DEM read and computed it all). */
+static bool viewshed_window(const gis_options *o, double *col, double *row, int *x0, int *y0, int *w, int *h,
+                            float **heights, dem_info *info, err_t *err)
+{
+    int W, H;
+    double range[2];
+    *x0 = *y0 = *w = *h = 0;
+    if (!dem_probe(o->dem, &W, &H, range, info, err))
+        return false;
+    if (!info->georeferenced)
+        return err_set(err, "the DEM '%s' has no georeferencing: a viewshed needs its spacing in metres and its place "
+                            "on the Earth", o->dem);
+    if (!geo_convert(o->dem, true, 1, &o->lon, &o->lat, col, row, err))
+        return false;
+    if (o->radius > 0 && *col > -1 && *col < W && *row > -1 && *row < H) { /* off the DEM: viewshed_compute says so */
+        double rx = o->radius / info->spacing[0] + 1, rz = o->radius / info->spacing[1] + 1;
+        int x1 = (int)fmin(W - 1, ceil(*col + rx)), y1 = (int)fmin(H - 1, ceil(*row + rz));
+        *x0 = (int)fmax(0, floor(*col - rx)), *y0 = (int)fmax(0, floor(*row - rz));
+        *w = x1 - *x0 + 1, *h = y1 - *y0 + 1;
+        *col -= *x0, *row -= *y0;
+    }
+    return dem_read_window(o->dem, *x0, *y0, w, h, TERRAIN_MAX_SIDE, heights, info, err);
+}
+
 bool gis_viewshed_run(const gis_options *o, err_t *err)
 {
-    int w, h;
-    float *heights;
+    int x0, y0, w, h;
+    float *heights = NULL;
     dem_info info = {0};
-    if (!dem_read(o->dem, TERRAIN_MAX_SIDE, &w, &h, &heights, &info, err))
-        return false;
     double col = 0, row = 0;
-    bool ok = info.georeferenced ||
-              err_set(err, "the DEM '%s' has no georeferencing: a viewshed needs its spacing in metres and its place "
-                           "on the Earth", o->dem);
-    ok = ok && geo_convert(o->dem, true, 1, &o->lon, &o->lat, &col, &row, err);
+    bool ok = viewshed_window(o, &col, &row, &x0, &y0, &w, &h, &heights, &info, err);
     unsigned char *out = ok ? util_alloc((size_t)w * (size_t)h, "the viewshed") : NULL;
     viewshed_desc d = {.heights = heights, .w = w, .h = h, .dx = info.spacing[0], .dz = info.spacing[1], .col = col,
                        .row = row, .observer_height = o->observer_height, .target_height = o->target_height,
@@ -44,15 +64,15 @@ bool gis_viewshed_run(const gis_options *o, err_t *err)
     snprintf(about, sizeof about,
              "viewshed from %.6f,%.6f (texel %.2f, %.2f), eye %.2f m above the ground, targets %.2f m; %s; 1 visible, "
              "0 hidden, 255 nodata%s (fathom %s)",
-             o->lon, o->lat, col, row, o->observer_height, o->target_height, earth,
+             o->lon, o->lat, col + x0, row + y0, o->observer_height, o->target_height, earth,
              o->radius > 0 ? " or beyond the radius" : "", FATHOM_VERSION);
-    ok = ok && geo_write_mask(o->dem, o->output, w, h, out, about, err);
+    ok = ok && geo_write_mask(o->dem, o->output, x0, y0, w, h, out, about, err);
     if (ok) {
         size_t seen = st.visible + st.hidden;
         printf("%s: %zu of %zu texels visible (%.1f %%), %zu nodata; %.2f s on %d threads (%.1f pyramid nodes a "
-               "texel)\n",
+               "texel); %d x %d texels from %d, %d\n",
                o->output, st.visible, seen, seen ? 100.0 * (double)st.visible / (double)seen : 0.0, st.nodata, st.seconds,
-               st.threads, st.nodes_per_texel);
+               st.threads, st.nodes_per_texel, w, h, x0, y0);
     }
     free(out);
     free(heights);
