@@ -406,6 +406,42 @@ static void viewshed_radius_crops(void **st)
     assert_int_equal(outside, 0);
 }
 
+/* Issue 58, item 8: the viewshed draped keeps its nodata clear (GeoTIFF keeps no alpha in its colour table: the
+ * nodata entry expanded to opaque black over the terrain): a 7.5 km radius's window on the DEM, hidden and visible
+ * texels opaque in their colours, nodata and the DEM beyond the window clear. */
+static void viewshed_drapes_see_through(void **st)
+{
+    (void)st;
+    unsigned char *rgba;
+    int w = W, h = H; /* the DEM's own grid: each drape pixel one texel */
+    err_t e;
+    if (!geo_drape(in_dir("dem.tif"), in_dir("vs-r.tif"), 4096, &rgba, &w, &h, &e))
+        fail_msg("%s", e.msg);
+    GDALDatasetH ds = GDALOpen(in_dir("vs-r.tif"), GA_ReadOnly);
+    int vw = GDALGetRasterXSize(ds), vh = GDALGetRasterYSize(ds);
+    double gt[6];
+    GDALGetGeoTransform(ds, gt);
+    int x0 = (int)lround((gt[0] - DEM_GT[0]) / 1000), y0 = (int)lround((DEM_GT[3] - gt[3]) / 1000);
+    unsigned char *v = malloc((size_t)vw * (size_t)vh);
+    assert_true(GDALRasterIO(GDALGetRasterBand(ds, 1), GF_Read, 0, 0, vw, vh, v, vw, vh, GDT_Byte, 0, 0) == CE_None);
+    GDALClose(ds);
+    int counts[3] = {0}, wrong = 0;
+    for (int j = 0; j < H; j++)
+        for (int i = 0; i < W; i++) {
+            int val = i >= x0 && i < x0 + vw && j >= y0 && j < y0 + vh ? v[(j - y0) * vw + (i - x0)] : VIEWSHED_NODATA;
+            const unsigned char *p = rgba + 4 * ((size_t)j * W + (size_t)i);
+            int kind = val == VIEWSHED_VISIBLE ? 0 : val == VIEWSHED_HIDDEN ? 1 : 2;
+            counts[kind]++;
+            wrong += kind == 2 ? p[3] != 0 : p[3] != 255 || p[1] != (kind == 0 ? 210 : 20);
+        }
+    print_message("viewshed draped: %d visible, %d hidden, %d nodata texels; %d drawn wrong\n", counts[0], counts[1],
+                  counts[2], wrong);
+    free(v);
+    free(rgba);
+    assert_true(counts[0] > 10 && counts[1] > 10 && counts[2] > 1000);
+    assert_int_equal(wrong, 0);
+}
+
 /* The track's points as OGR reads them: lon, lat, z (or the "ele" field), time (seconds). */
 static int ogr_points(const char *file, const char *layer, double (*out)[4], int max)
 {
@@ -563,6 +599,33 @@ static void sun_on_a_polar_grid(void **st)
     scene_free(&s);
 }
 
+/* Issue 58, item 8 (after the tests above, which wrote ns.geojson and layers.tif): a layer's file given on the
+ * command line in the object form is the user's folder's, as the
+ * plain form is (it was looked for beside the scene file: under scenes/ for a named scene). */
+static void set_layers_from_the_users_folder(void **st)
+{
+    (void)st;
+    char here[PATH_MAX_LEN], want[PATH_MAX_LEN * 2];
+    assert_non_null(getcwd(here, sizeof here));
+    assert_int_equal(chdir(dir), 0);
+    const char *text = "{\"program\": \"terrain\", \"materials\": {\"rock\": {}}, \"terrain\": {\"heightmap\": "
+                       "\"/nonexistent/dem.tif\"}}";
+    const char *sets[] = {"terrain.heightmap=dem.tif", "terrain.imagery={\"file\": \"layers.tif\", \"opacity\": 0.5}",
+                          "terrain.vectors=[{\"file\": \"ns.geojson\", \"width\": 30}, \"ns.geojson\"]"};
+    scene s;
+    err_t e;
+    bool ok = scene_load_text(text, "/nonexistent/scene.json", sets, 3, &s, &e);
+    assert_int_equal(chdir(here), 0);
+    if (!ok)
+        fail_msg("%s", e.msg);
+    snprintf(want, sizeof want, "%s/ns.geojson", dir);
+    assert_string_equal(s.terrain.vectors[0], want);
+    assert_string_equal(s.terrain.vectors[1], want);
+    snprintf(want, sizeof want, "%s/layers.tif", dir);
+    assert_string_equal(s.terrain.imagery[0], want);
+    scene_free(&s);
+}
+
 /* A GPX text of these parts, written to `name` in the test's folder. */
 static const char *write_gpx(const char *name, const char *body)
 {
@@ -690,7 +753,8 @@ int main(void)
         cmocka_unit_test(sun_block_moves_the_light), cmocka_unit_test(vectors_keep_the_imagery_resolution),
         cmocka_unit_test(vector_widths_in_metres), cmocka_unit_test(observers_on_edges_and_across_180),
         cmocka_unit_test(tracks_as_the_guide_says), cmocka_unit_test(sun_on_a_polar_grid),
-        cmocka_unit_test(viewshed_radius_crops),
+        cmocka_unit_test(viewshed_radius_crops), cmocka_unit_test(viewshed_drapes_see_through),
+        cmocka_unit_test(set_layers_from_the_users_folder),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

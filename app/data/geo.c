@@ -188,7 +188,8 @@ bool geo_write_mask_file(const char *dem_path, const char *out_path, int x0, int
     GDALSetRasterNoDataValue(b, 255);
     GDALSetDescription(b, description);
     GDALColorTableH ct = GDALCreateColorTable(GPI_RGB);
-    const GDALColorEntry hidden = {30, 20, 60, 120}, visible = {60, 210, 90, 170}, none = {0, 0, 0, 0};
+    /* GeoTIFF keeps no alpha in a colour table: opaque colours, nodata clear by its value (geo_drape) */
+    const GDALColorEntry hidden = {30, 20, 60, 255}, visible = {60, 210, 90, 255}, none = {0, 0, 0, 0};
     GDALSetColorEntry(ct, 0, &hidden);
     GDALSetColorEntry(ct, 1, &visible);
     for (int i = 2; i < 256; i++)
@@ -206,6 +207,36 @@ bool geo_write_mask_file(const char *dem_path, const char *out_path, int x0, int
 
 /* A Byte RGB(A) or grey view of src (a VRT in memory): a palette expanded to RGBA, other types scaled
  * from their own range to 0–255. NULL with a message when GDAL cannot. */
+/* A palette raster's colours with its nodata entry clear: GeoTIFF keeps no alpha in a colour table, so a nodata
+ * value (the viewshed's 255) would expand to an opaque colour. A VRT over src with the table changed, or src. */
+static GDALDatasetH palette_with_clear_nodata(GDALDatasetH src, bool *made)
+{
+    GDALRasterBandH b1 = GDALGetRasterBand(src, 1);
+    *made = false;
+    if (!GDALGetRasterColorTable(b1))
+        return src;
+    int has = 0;
+    double nd = GDALGetRasterNoDataValue(b1, &has);
+    GDALColorTableH ct = GDALGetRasterColorTable(b1);
+    if (!has || !(nd >= 0 && nd < GDALGetColorEntryCount(ct)) || nd != floor(nd))
+        return src;
+    char **argv = CSLAddString(CSLAddString(NULL, "-of"), "VRT");
+    GDALTranslateOptions *o = GDALTranslateOptionsNew(argv, NULL);
+    CSLDestroy(argv);
+    GDALDatasetH v = o ? GDALTranslate("", src, o, NULL) : NULL;
+    GDALTranslateOptionsFree(o);
+    if (!v)
+        return src;
+    GDALColorTableH clear = GDALCloneColorTable(ct);
+    GDALColorEntry e = *GDALGetColorEntry(clear, (int)nd);
+    e.c4 = 0;
+    GDALSetColorEntry(clear, (int)nd, &e);
+    GDALSetRasterColorTable(GDALGetRasterBand(v, 1), clear);
+    GDALDestroyColorTable(clear);
+    *made = true;
+    return v;
+}
+
 static GDALDatasetH byte_view(GDALDatasetH src, const char *path, err_t *err)
 {
     GDALRasterBandH b1 = GDALGetRasterBand(src, 1);
@@ -233,6 +264,8 @@ static GDALDatasetH byte_view(GDALDatasetH src, const char *path, err_t *err)
     GDALTranslateOptionsFree(o);
     if (!v)
         err_set(err, "cannot read the imagery '%s' as colours: %s", path, geo_gdal_msg("unsupported bands"));
+    else if (palette) /* the palette's fourth component, its alpha */
+        GDALSetRasterColorInterpretation(GDALGetRasterBand(v, 4), GCI_AlphaBand);
     return v;
 }
 
@@ -293,8 +326,9 @@ static bool warp_into(GDALDatasetH view, GDALDatasetH dst, const char *path, err
     argv = CSLAddString(argv, "-r");
     argv = CSLAddString(argv, "bilinear");
     argv = CSLAddString(argv, "-dstalpha");
-    if (src_alpha)
-        argv = CSLAddString(argv, "-srcalpha");
+    if (src_alpha) /* warped as a band of values, its own (a palette's 120 stays 120): GDAL's source alpha is a
+                    * mask that makes every pixel it lets through opaque */
+        argv = CSLAddString(argv, "-nosrcalpha");
     GDALWarpAppOptions *o = GDALWarpAppOptionsNew(argv, NULL);
     CSLDestroy(argv);
     int usage = 0;
@@ -304,16 +338,23 @@ static bool warp_into(GDALDatasetH view, GDALDatasetH dst, const char *path, err
 }
 
 /* The warped bands (grey, RGB, each with alpha last) as RGBA bytes. */
-static bool read_rgba(GDALDatasetH dst, int colours, int w, int h, unsigned char *rgba)
+/* The warped bands as RGBA: the colours, and as alpha the coverage (the last band) times the imagery's own alpha
+ * if it has one (the band before). */
+static bool read_rgba(GDALDatasetH dst, int colours, bool own_alpha, int w, int h, unsigned char *rgba)
 {
-    unsigned char *band = util_alloc((size_t)w * (size_t)h, "a row of the imagery");
+    size_t n = (size_t)w * (size_t)h;
+    unsigned char *band = util_alloc(n, "a band of the imagery");
     bool ok = true;
     for (int c = 0; ok && c < 4; c++) {
-        int src = c == 3 ? colours + 1 : (colours == 1 ? 1 : c + 1);
+        int src = c == 3 ? GDALGetRasterCount(dst) : (colours == 1 ? 1 : c + 1);
         ok = GDALRasterIO(GDALGetRasterBand(dst, src), GF_Read, 0, 0, w, h, band, w, h, GDT_Byte, 0, 0) == CE_None;
-        for (size_t k = 0; ok && k < (size_t)w * (size_t)h; k++)
+        for (size_t k = 0; ok && k < n; k++)
             rgba[4 * k + (size_t)c] = band[k];
     }
+    ok = ok && (!own_alpha || GDALRasterIO(GDALGetRasterBand(dst, colours + 1), GF_Read, 0, 0, w, h, band, w, h,
+                                           GDT_Byte, 0, 0) == CE_None);
+    for (size_t k = 0; ok && own_alpha && k < n; k++)
+        rgba[4 * k + 3] = (unsigned char)((rgba[4 * k + 3] * band[k] + 127) / 255);
     free(band);
     return ok;
 }
@@ -329,7 +370,9 @@ bool geo_drape(const char *dem_path, const char *imagery, int max_side, unsigned
     if (ok && (!GDALGetSpatialRef(src) && !GDALGetGCPCount(src)))
         ok = err_set(err, "the imagery '%s' has no georeferencing: fathom cannot tell where it lies on the DEM "
                           "(give it a CRS and geotransform, e.g. gdal_translate -a_srs -a_ullr)", imagery);
-    GDALDatasetH view = ok ? byte_view(src, imagery, err) : NULL;
+    bool made = false;
+    GDALDatasetH base = ok ? palette_with_clear_nodata(src, &made) : NULL; /* outlives the view over it */
+    GDALDatasetH view = ok ? byte_view(base, imagery, err) : NULL;
     ok = view != NULL;
     int bands = ok ? GDALGetRasterCount(view) : 0;
     bool alpha = ok && GDALGetRasterColorInterpretation(GDALGetRasterBand(view, bands)) == GCI_AlphaBand;
@@ -338,16 +381,17 @@ bool geo_drape(const char *dem_path, const char *imagery, int max_side, unsigned
     if (ok) {
         if (*w <= 0 || *h <= 0) /* else the size asked (a second layer matching the first) */
             drape_size(src, &g, max_side, w, h);
-        dst = GDALCreate(GDALGetDriverByName("MEM"), "", *w, *h, colours + 1, GDT_Byte, NULL);
+        int out = colours + alpha + 1; /* the colours, the imagery's alpha if any, the warp's coverage */
+        dst = GDALCreate(GDALGetDriverByName("MEM"), "", *w, *h, out, GDT_Byte, NULL);
         double gt[6] = {g.gt[0], g.w * g.gt[1] / *w, 0, g.gt[3], 0, g.h * g.gt[5] / *h};
         ok = dst && GDALSetGeoTransform(dst, gt) == CE_None && GDALSetSpatialRef(dst, g.srs) == CE_None;
         if (ok)
-            GDALSetRasterColorInterpretation(GDALGetRasterBand(dst, colours + 1), GCI_AlphaBand);
+            GDALSetRasterColorInterpretation(GDALGetRasterBand(dst, out), GCI_AlphaBand);
         ok = ok && warp_into(view, dst, imagery, err);
     }
     if (ok) {
         *rgba = util_alloc(4 * (size_t)*w * (size_t)*h, "the draped imagery");
-        ok = read_rgba(dst, colours, *w, *h, *rgba) || err_set(err, "reading the warped imagery failed");
+        ok = read_rgba(dst, colours, alpha, *w, *h, *rgba) || err_set(err, "reading the warped imagery failed");
         if (!ok)
             free(*rgba);
     }
@@ -355,6 +399,8 @@ bool geo_drape(const char *dem_path, const char *imagery, int max_side, unsigned
         GDALClose(dst);
     if (view)
         GDALClose(view);
+    if (made)
+        GDALClose(base);
     if (src)
         GDALClose(src);
     OSRDestroySpatialReference(g.srs);

@@ -42,6 +42,10 @@ static void from_cwd(cJSON *v)
             from_cwd(e);
         return;
     }
+    if (cJSON_IsObject(v)) { /* a layer's object form: {"file": "route.gpx", "width": 30} */
+        from_cwd(cJSON_GetObjectItemCaseSensitive(v, "file"));
+        return;
+    }
     char cwd[PATH_MAX_LEN], abs[PATH_MAX_LEN];
     if (!cJSON_IsString(v) || v->valuestring[0] == '/' || !getcwd(cwd, sizeof cwd) ||
         !util_join(cwd, v->valuestring, abs, sizeof abs))
