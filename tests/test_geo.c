@@ -599,6 +599,19 @@ static void sun_on_a_polar_grid(void **st)
     scene_free(&s);
 }
 
+/* Issue 58, item 8: imagery wholly off the DEM is refused by name (it drew as nothing, silently): geo.tif lies
+ * at 10-11° E, 49.5-50.1° N, the DEM near 14° E, 47.5° N. */
+static void imagery_off_the_dem_refused(void **st)
+{
+    (void)st;
+    unsigned char *rgba = NULL;
+    int w = 0, h = 0;
+    err_t e;
+    assert_false(geo_drape(in_dir("dem.tif"), in_dir("geo.tif"), 4096, &rgba, &w, &h, &e));
+    print_message("%s\n", e.msg);
+    assert_non_null(strstr(e.msg, "wholly off the DEM"));
+}
+
 /* Issue 58, item 8 (after the tests above, which wrote ns.geojson and layers.tif): a layer's file given on the
  * command line in the object form is the user's folder's, as the
  * plain form is (it was looked for beside the scene file: under scenes/ for a named scene). */
@@ -754,7 +767,7 @@ int main(void)
         cmocka_unit_test(vector_widths_in_metres), cmocka_unit_test(observers_on_edges_and_across_180),
         cmocka_unit_test(tracks_as_the_guide_says), cmocka_unit_test(sun_on_a_polar_grid),
         cmocka_unit_test(viewshed_radius_crops), cmocka_unit_test(viewshed_drapes_see_through),
-        cmocka_unit_test(set_layers_from_the_users_folder),
+        cmocka_unit_test(set_layers_from_the_users_folder), cmocka_unit_test(imagery_off_the_dem_refused),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

@@ -392,6 +392,12 @@ bool geo_drape(const char *dem_path, const char *imagery, int max_side, unsigned
     if (ok) {
         *rgba = util_alloc(4 * (size_t)*w * (size_t)*h, "the draped imagery");
         ok = read_rgba(dst, colours, alpha, *w, *h, *rgba) || err_set(err, "reading the warped imagery failed");
+        size_t k = 0, n = (size_t)*w * (size_t)*h;
+        while (ok && k < n && (*rgba)[4 * k + 3] == 0)
+            k++;
+        if (ok && k == n) /* nothing of it on the DEM: a wrong file or CRS, not a layer to draw as nothing */
+            ok = err_set(err, "the imagery '%s' lies wholly off the DEM '%s' (or is all nodata): check that it covers "
+                              "the DEM's area and that its CRS is right (gdalinfo)", imagery, dem_path);
         if (!ok)
             free(*rgba);
     }

@@ -9,6 +9,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "data/dem.h"
+
 static struct {
     GLuint height_tex, height_max_tex, height_top_tex; /* heights, max pyramid (tiles, top) */
     struct terrain_tiles {
@@ -117,6 +119,33 @@ static void upload_block(const float *src, int src_w, int src_h, int x0, int y0,
     glPixelStorei(GL_UNPACK_SKIP_ROWS, 0);
 }
 
+/* A DEM whose heights the driver cannot hold is refused before it is read (llvmpipe holds 1 GB in one texture: a
+ * 20000² DEM was refused after 88 s and 3.1 GB of reading): the heights' texture, planned from the file's size,
+ * is allocated first and given back. */
+static bool heights_fit(const char *path, err_t *err)
+{
+    int w, h;
+    double range[2];
+    dem_info info;
+    err_t later; /* a file that cannot be probed is heightfield_load's to report */
+    if (dem_is_image(path) || !dem_probe(path, &w, &h, range, &info, &later))
+        return true;
+    heightfield stub = {.width = w, .height = h, .pw = 1 << log2i(w - 1), .ph = 1 << log2i(h - 1)};
+    stub.levels = log2i(stub.pw > stub.ph ? stub.pw : stub.ph) + 1;
+    snprintf(stub.about, sizeof stub.about, "%s", path);
+    struct terrain_tiles t;
+    if (!plan_tiles(&stub, &t, err))
+        return false;
+    while (glGetError() != GL_NO_ERROR)
+        ;
+    GLuint tex = array_texture(t.hx, t.hy, t.tiles_x * t.tiles_y, 1);
+    bool ok = glGetError() != GL_OUT_OF_MEMORY;
+    glDeleteTextures(1, &tex);
+    return ok || err_set(err, "heightmap '%s' (%dx%d): the GPU driver cannot hold its %.0f MB of heights (llvmpipe "
+                              "holds at most 1 GB in one texture: about 16384x16384); cut or resample the DEM "
+                              "(gdal_translate -outsize)", path, w, h, 4.0 * t.hx * t.hy * t.tiles_x * t.tiles_y / 1048576.0);
+}
+
 /* Terrain: heights (exact texelFetch, bilinear done in the shader) and the max pyramid, in tiles. */
 static bool set(const scene *s, err_t *err)
 {
@@ -138,7 +167,7 @@ static bool set(const scene *s, err_t *err)
     if (state.height_tex && !strcmp(key, state.key))
         return true;
     release();
-    if (!heightfield_load(&d, &state.hf, err))
+    if (!heights_fit(d.path, err) || !heightfield_load(&d, &state.hf, err))
         return false;
     heightfield *hf = &state.hf;
     struct terrain_tiles *t = &state.tiles;
