@@ -571,3 +571,9 @@ void util_civil_from_seconds(double t, int *y, int *mo, int *d, int *h, int *mi,
     *s = rest - *h * 3600 - *mi * 60;
 }
 
+
+double util_physical_memory(void)
+{
+    long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
+    return pages > 0 && page > 0 ? (double)pages * (double)page : INFINITY;
+}

@@ -96,6 +96,10 @@ bool util_join(const char *dir, const char *rel, char *out, size_t n);
 bool util_file_exists(const char *path);
 /* FNV-1a 64 of a file's bytes (not a cryptographic hash: it tells fathom's own file from another one). */
 bool util_file_digest(const char *path, unsigned long long *digest);
+
+/* The machine's physical memory in bytes (INFINITY when it cannot be told): what a file's claimed size is
+ * weighed against before anything is allocated. */
+double util_physical_memory(void);
 /* Removes a folder of files that fathom made: each entry is unlinked (a link goes, what it points to
  * stays; a subfolder stays, and with it the folder), then the folder. */
 void util_remove_folder(const char *dir);

@@ -69,8 +69,7 @@ static bool check_readable(const char *path, GDALRasterBandH band, int W, int H,
         return err_set(err, "DEM '%s' is %dx%d: the largest side fathom reads is %d texels; cut or resample it "
                             "(gdal_translate -outsize)", path, W, H, max_side);
     double need = (double)W * (double)H * DEM_BYTES_PER_TEXEL;
-    long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
-    double have = pages > 0 && page > 0 ? (double)pages * (double)page : INFINITY;
+    double have = util_physical_memory();
     if (need > have)
         return err_set(err, "DEM '%s' is %dx%d: drawing it takes about %.0f GB and this machine has %.0f GB; cut or "
                             "resample it (gdal_translate -outsize)", path, W, H, need / 1e9, have / 1e9);

@@ -265,10 +265,9 @@ static bool read_image(const char *path, int want_channels, int max_side, int *w
     /* what reading takes, against the machine's memory, before anything is allocated: a small file's
      * header may claim any size */
     double need = (double)sizeof(T) * (double)n * (double)(nread + nc);
-    long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
-    if (pages > 0 && page > 0 && need > (double)pages * (double)page)
+    if (need > util_physical_memory())
         return err_set(err, "image '%s' is %dx%d: reading it takes %.1f GB and this machine has %.1f GB; scale it down",
-                       path, spec.width, spec.height, need / 1e9, (double)pages * (double)page / 1e9);
+                       path, spec.width, spec.height, need / 1e9, util_physical_memory() / 1e9);
     /* rows in blocks into memory the kernel commits as it is written: a file whose data stops short
      * (a forged header) fails at its first missing block, not after touching the whole image */
     std::unique_ptr<T, decltype(&std::free)> file((T *)std::malloc(sizeof(T) * n * (size_t)nread), &std::free);

@@ -128,7 +128,8 @@ static bool heights_fit(const char *path, err_t *err)
     double range[2];
     dem_info info;
     err_t later; /* a file that cannot be probed is heightfield_load's to report */
-    if (dem_is_image(path) || !dem_probe(path, &w, &h, range, &info, &later))
+    if (dem_is_image(path) || !dem_probe(path, &w, &h, range, &info, &later) ||
+        (double)w * (double)h * DEM_BYTES_PER_TEXEL > util_physical_memory()) /* the load says so, at once */
         return true;
     heightfield stub = {.width = w, .height = h, .pw = 1 << log2i(w - 1), .ph = 1 << log2i(h - 1)};
     stub.levels = log2i(stub.pw > stub.ph ? stub.pw : stub.ph) + 1;
