@@ -476,6 +476,34 @@ static void projections_rays(void **st)
     assert_near(camera_pixel_angle(&c, 100), 2 * tan(GLM_PI / 6) / 50, TOL);
 }
 
+/* Which eye is where (issue 58 items 14 and 17: the top-bottom eyes swapped and omnidirectional stereo's offset
+ * sign survived the tests; the docs said ODS converges at the focus). Top-bottom: the top half is the left eye.
+ * Omnidirectional: a pixel's two rays are parallel whatever the focus (they converge at infinity), from eyes
+ * ∓sep/2 along the ray's own right: looking ahead (−Z) the left eye is at −X, looking east (+X) at −Z. */
+static void stereo_eyes_and_convergence(void **st)
+{
+    (void)st;
+    camera c = camera_look_at((double[3]){0, 0, 0}, (double[3]){0, 0, -1}, (float)(GLM_PI / 3));
+    double o[3], o2[3];
+    vec3 d, d2;
+    c.lens = (camera_lens){.stereo = STEREO_TOP_BOTTOM, .eye_separation = 0.2f, .focus = 5};
+    camera_ray_from(&c, 200, 200, 99.5f, 149.5f, o, d); /* GL rows count up: 149.5 is the top half */
+    assert_near(o[0], -0.1, 1e-6);
+    camera_ray_from(&c, 200, 200, 99.5f, 49.5f, o, d);
+    assert_near(o[0], 0.1, 1e-6);
+    c.lens = (camera_lens){.projection = PROJECTION_EQUIRECTANGULAR, .stereo = STEREO_SIDE_BY_SIDE,
+                           .eye_separation = 0.2f, .focus = 5};
+    const float xs[2] = {199.5f, 299.5f}; /* per eye of 400: λ = 0 (ahead) and λ = 90° (east) */
+    for (int k = 0; k < 2; k++) {
+        camera_ray_from(&c, 800, 200, xs[k], 99.5f, o, d);
+        camera_ray_from(&c, 800, 200, xs[k] + 400, 99.5f, o2, d2);
+        for (int i = 0; i < 3; i++)
+            assert_near(d[i], d2[i], 1e-6); /* parallel: no disparity at infinity, none made at the focus */
+        assert_near(k == 0 ? o[0] : o[2], -0.1, 1e-6);
+        assert_near(k == 0 ? o2[0] : o2[2], 0.1, 1e-6);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -487,6 +515,7 @@ int main(void)
         cmocka_unit_test(roll_and_free_orientation),
         cmocka_unit_test(free_turns),
         cmocka_unit_test(projections_rays),
+        cmocka_unit_test(stereo_eyes_and_convergence),
         cmocka_unit_test(slide_never_enters_a_solid),
         cmocka_unit_test(slide_never_stalls),
         cmocka_unit_test(deep_positions),

@@ -346,6 +346,32 @@ static void roll_keys(void **st)
     path_free(&p);
 }
 
+/* Issue 58, item 14: docs/flights.md says docs/flight/deep_zoom.json covers a tenth of its way in decades every
+ * second; it eased in (0.11 decades in its first second, 2.04 in its last). Each second against the mean. */
+static void deep_zoom_flight_is_constant_rate(void **st)
+{
+    (void)st;
+    char file[1024];
+    snprintf(file, sizeof file, "%s/docs/flight/deep_zoom.json", getenv("FATHOM_DATA_DIR") ? getenv("FATHOM_DATA_DIR") : ".");
+    path p;
+    err_t e;
+    if (!path_load(file, &p, &e))
+        fail_msg("%s", e.msg);
+    const double *z = p.keys[0].zoom_to;
+    double d[11], worst = 0;
+    for (int t = 0; t <= 10; t++) {
+        path_sample a;
+        path_eval(&p, t, &a);
+        d[t] = sqrt(pow(a.position[0] - z[0], 2) + pow(a.position[1] - z[1], 2) + pow(a.position[2] - z[2], 2));
+    }
+    double mean = log10(d[0] / d[10]) / 10;
+    for (int t = 0; t < 10; t++)
+        worst = fmax(worst, fabs(log10(d[t] / d[t + 1]) / mean - 1));
+    print_message("deep_zoom.json: %.2f decades a second, each second within %.2g of it\n", mean, worst);
+    assert_true(worst < 0.01);
+    path_free(&p);
+}
+
 /* A deep zoom keeps its scale: from 2 m to 2e-12 m of a point in 10 s, the distance shrinks by the
  * same factor every frame (10^-1.2 a second) and passes 2e-6 m at 5 s, where a plain segment is still
  * about 1 m away; the zoom point moving 1e-13 between keys drifts in proportion to the distance left,
@@ -528,7 +554,8 @@ int main(void)
         cmocka_unit_test(passes_through_keys),       cmocka_unit_test(continuous_at_keys),
         cmocka_unit_test(unit_quaternions_no_flip),  cmocka_unit_test(constant_speed_by_arc_length),
         cmocka_unit_test(straight_line_is_exact),    cmocka_unit_test(file_round_trip_and_errors),
-        cmocka_unit_test(recorded_keys), cmocka_unit_test(roll_keys), cmocka_unit_test(zoom_keeps_its_scale),             cmocka_unit_test(frames_and_names),
+        cmocka_unit_test(recorded_keys), cmocka_unit_test(roll_keys), cmocka_unit_test(zoom_keeps_its_scale),
+        cmocka_unit_test(deep_zoom_flight_is_constant_rate),             cmocka_unit_test(frames_and_names),
         cmocka_unit_test(recorded_flight_clears_the_box),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -3,15 +3,16 @@
  * libavcodec and its encoders' libraries load only when a run first writes or reads a video: the
  * encoder lives in fathom_video.so (data/lazy.h), reached through video_lazy.c.
  *
- * Colour: the frames are sRGB; the video is BT.709 YCbCr, limited range, tagged so (players show
- * the frames' colours). A 360° flight (equirectangular) is tagged as spherical video and a stereo one
+ * Colour: the frames are sRGB; the video is YCbCr with BT.709's primaries and matrix, limited range, and
+ * the frames' own sRGB transfer curve (IEC 61966-2-1, not BT.709's), each tagged so (players show the
+ * frames' colours). A 360° flight (equirectangular) is tagged as spherical video and a stereo one
  * with its layout, where the container holds it (MP4: the sv3d and st3d boxes, Matroska/WebM:
  * projection and stereo mode), so VR players show it as one.
  *
  * Options (--video, comma-separated KEY=VALUE): codec=h264|av1|vp9 (default: h264 for .mp4 and .mkv,
- * vp9 for .webm), crf=N (constant quality: lower is better; 0-51 for h264, 0-63 else; defaults 18 for
- * h264, 6 for vp9, 3 for av1 (SVT-AV1 at preset 8): each gives 40.5-41 dB (RGB PSNR, worst frame) on the
- * csg flight at 640x360, whose floor is about 42 dB in yuv420p), pix_fmt=yuv420p|yuv444p
+ * vp9 for .webm), crf=N (constant quality: lower is better; 0-51 for h264, 0-63 else; defaults 12 for
+ * h264, 3 for vp9, 1 for av1 (SVT-AV1 at preset 8): each keeps the worst frame of the csg flight at
+ * 640x360 over 40.5 dB RGB PSNR, at 1 and 3 frames a second), pix_fmt=yuv420p|yuv444p
  * (default yuv420p: what every player plays; it needs an even width and height). */
 #ifndef FATHOM_VIDEO_H
 #define FATHOM_VIDEO_H

@@ -25,7 +25,8 @@
  * aperture · |d − focus| / d on the focal plane (the circle of confusion).
  * Stereo: the eyes sit at ∓eye_separation/2 along right and aim so that the focal plane has no
  * disparity (off-axis, as a lens offset); for equirectangular, omnidirectional stereo: each ray's eye
- * lies on the circle of radius eye_separation/2, at right angles to the ray's horizontal direction.
+ * lies on the circle of radius eye_separation/2, at right angles to the ray's horizontal direction, and
+ * a pixel's two rays are parallel: they converge at infinity, whatever the focus.
  * fov is the vertical field of view in radians.
  */
 #ifndef FATHOM_CAMERA_H
