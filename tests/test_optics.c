@@ -388,7 +388,9 @@ static void matrix_of(const char *path, const char *key, double m[16])
 
 /* An EXR with the position and albedo AOVs and the camera's matrices, from a rolled camera (and orthographic): every
  * hit pixel's P lies on the sphere (the scene's own geometry), P through worldToNDC lands in that
- * pixel's centre, and worldToCamera puts P at its depth along the view (+z, left-handed). */
+ * pixel's centre, and worldToCamera puts P at its depth along the view (+z, left-handed). Stereo, side by side
+ * and top-bottom (issue 58 item 10: the centre's matrix put left-eye points ~156 px off): each half's P through
+ * its eye's matrices (worldToNDC, rightWorldToNDC) lands in its pixel's centre. */
 static void exr_position_and_camera(void **st)
 {
     (void)st;
@@ -396,19 +398,26 @@ static void exr_position_and_camera(void **st)
     static const double SP[][4] = {{0.3, 0.2, 0, 1.1}};
     scene s;
     spheres_scene(SP, 1, false, NULL, &s);
-    for (int ortho = 0; ortho < 2; ortho++) {
+    for (int run = 0; run < 6; run++) {
+        int ortho = run % 2, stereo = run / 2; /* STEREO_NONE, _SIDE_BY_SIDE, _TOP_BOTTOM */
         camera cam = cam_at(1.5, 1, 5, 0, 0, 0, 40);
         cam.roll = 0.4f;
-        cam.lens = (camera_lens){.projection = ortho ? PROJECTION_ORTHOGRAPHIC : PROJECTION_PERSPECTIVE, .focus = 5};
+        cam.lens = (camera_lens){.projection = ortho ? PROJECTION_ORTHOGRAPHIC : PROJECTION_PERSPECTIVE, .focus = 5,
+                                 .stereo = (camera_stereo)stereo, .eye_separation = 0.3f};
         const char *out = "fathom-test-optics.exr";
-        offline_desc d = {.scene = &s, .cam = cam, .width = XW, .height = XH, .spp = 1, .output = out,
+        offline_desc d = {.scene = &s, .cam = cam, .width = stereo == 1 ? 2 * XW : XW,
+                          .height = stereo == 2 ? 2 * XH : XH, .spp = 1, .output = out,
                           .aovs = AOV_DEPTH | AOV_POSITION | AOV_ALBEDO, .quiet = true};
         err_t e = {{0}};
         if (!offline_render_current(&d, &e))
             fail_msg("%s", e.msg);
-        double w2c[16], w2n[16];
+        double w2c[16], w2n[16], right_w2c[16], right_w2n[16];
         matrix_of(out, "worldtocamera", w2c);
         matrix_of(out, "worldtoNDC", w2n);
+        if (stereo) {
+            matrix_of(out, "rightWorldToCamera", right_w2c);
+            matrix_of(out, "rightWorldToNDC", right_w2n);
+        }
         float *px;
         int w, h, nc;
         if (!image_read_f32(out, 0, 16384, &w, &h, &nc, &px, &e))
@@ -427,12 +436,14 @@ static void exr_position_and_camera(void **st)
                     continue;
                 hits++;
                 double P[4] = {q[5], q[6], q[7], 1}, ndc[4] = {0}, c[4] = {0};
+                bool right = (stereo == 1 && x >= w / 2) || (stereo == 2 && row >= h / 2); /* top: the left eye */
+                const double *M = right ? right_w2n : w2n, *C = right ? right_w2c : w2c;
                 worst_surface = fmax(worst_surface, fabs(sqrt(pow(P[0] - SP[0][0], 2) + pow(P[1] - SP[0][1], 2) +
                                                               pow(P[2] - SP[0][2], 2)) - SP[0][3]));
                 for (int k = 0; k < 4; k++)
                     for (int j = 0; j < 4; j++) {
-                        ndc[k] += P[j] * w2n[4 * j + k];
-                        c[k] += P[j] * w2c[4 * j + k];
+                        ndc[k] += P[j] * M[4 * j + k];
+                        c[k] += P[j] * C[4 * j + k];
                     }
                 worst_pixel = fmax(worst_pixel, hypot(ndc[0] / ndc[3] * w - (x + 0.5), ndc[1] / ndc[3] * h - (row + 0.5)));
                 double along = 0; /* the depth along the view, from the eye (orthographic: its plane) */
@@ -441,9 +452,10 @@ static void exr_position_and_camera(void **st)
                 worst_depth = fmax(worst_depth, fabs(c[2] - along));
             }
         free(px);
-        print_message("%s, rolled: %d hits; P off the sphere by %.2g at most, P through worldToNDC %.3f pixels from "
-                      "its pixel, worldToCamera z off by %.2g\n", ortho ? "orthographic" : "perspective", hits,
-                      worst_surface, worst_pixel, worst_depth);
+        print_message("%s%s, rolled: %d hits; P off the sphere by %.2g at most, P through worldToNDC %.3f pixels from "
+                      "its pixel, worldToCamera z off by %.2g\n", ortho ? "orthographic" : "perspective",
+                      (const char *[]){"", " side by side", " top-bottom"}[stereo], hits, worst_surface, worst_pixel,
+                      worst_depth);
         assert_true(hits > XW * XH / 8);
         assert_true(worst_surface < 2e-3);
         assert_true(worst_pixel < 0.02);

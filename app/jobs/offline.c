@@ -70,18 +70,24 @@ static bool is_png(const char *path)
 
 /* The camera as OpenEXR's worldToCamera and worldToNDC (view/camera.h) for the whole image, which
  * compositors read: CAMERA_KEY's text, "16 numbers;16 numbers" (the second empty where there is no
- * such matrix), %.9g so each float is exact; a tile keeps it for the poster stitched from it. */
+ * such matrix), %.9g so each float is exact; a tile keeps it for the poster stitched from it. A stereo image
+ * is the left eye's, then ";16;16" the right eye's (as rightWorldToCamera and rightWorldToNDC): each maps a
+ * point to where its eye drew it (the centre's mapped a left-eye point ~156 px off). */
 #define CAMERA_KEY "fathom_camera"
-static void camera_text(const camera *cam, int width, int height, char out[800])
+enum { CAMERA_TEXT_MAX = 1600 };
+static void camera_text(const camera *cam, int width, int height, char out[CAMERA_TEXT_MAX])
 {
-    float m[2][16];
-    bool ndc = camera_matrices(cam, width, height, m[0], m[1]);
     size_t at = 0;
-    for (int k = 0; k < 2; k++)
-        for (int i = 0; i < 16 && (k == 0 || ndc); i++)
-            at += (size_t)snprintf(out + at, 800 - at, "%s%.9g", i ? " " : k ? ";" : "", (double)m[k][i]);
-    if (!ndc)
-        at += (size_t)snprintf(out + at, 800 - at, ";");
+    for (int eye = -1; eye <= (cam->lens.stereo != STEREO_NONE ? 1 : -1); eye += 2) {
+        float m[2][16];
+        bool ndc = camera_matrices(cam, width, height, eye, m[0], m[1]);
+        for (int k = 0; k < 2; k++)
+            for (int i = 0; i < 16 && (k == 0 || ndc); i++)
+                at += (size_t)snprintf(out + at, CAMERA_TEXT_MAX - at, "%s%.9g", i ? " " : k || eye > 0 ? ";" : "",
+                                       (double)m[k][i]);
+        if (!ndc)
+            at += (size_t)snprintf(out + at, CAMERA_TEXT_MAX - at, ";");
+    }
 }
 
 /* cam_text: camera_text's, or NULL (none, and a PNG takes none). */
@@ -90,14 +96,18 @@ static image_writer *open_writer(const char *path, int width, int height, unsign
 {
     const char *names[MAX_CHANNELS];
     int src[MAX_CHANNELS];
-    char m[2][800] = {"", ""};
-    const char *semi = cam_text && !is_png(path) ? strchr(cam_text, ';') : NULL;
-    if (semi && (size_t)(semi - cam_text) < sizeof m[0]) {
-        snprintf(m[0], sizeof m[0], "%.*s", (int)(semi - cam_text), cam_text);
-        snprintf(m[1], sizeof m[1], "%s", semi + 1);
+    char m[4][CAMERA_TEXT_MAX / 2] = {"", "", "", ""}; /* left (or only) eye's two matrices, the right eye's */
+    const char *at = cam_text && !is_png(path) ? cam_text : NULL;
+    for (int k = 0; at && k < 4; k++) {
+        size_t n = strcspn(at, ";");
+        if (n < sizeof m[k])
+            snprintf(m[k], sizeof m[k], "%.*s", (int)n, at);
+        at = at[n] ? at + n + 1 : NULL;
     }
-    const char *texts[] = {SHOT_KEY, description, TILE_KEY, tile, CAMERA_KEY, semi ? cam_text : NULL,
-                           "m44f:worldtocamera", m[0][0] ? m[0] : NULL, "m44f:worldtoNDC", m[1][0] ? m[1] : NULL, NULL};
+    const char *texts[] = {SHOT_KEY, description, TILE_KEY, tile, CAMERA_KEY, m[0][0] ? cam_text : NULL,
+                           "m44f:worldtocamera", m[0][0] ? m[0] : NULL, "m44f:worldtoNDC", m[1][0] ? m[1] : NULL,
+                           "m44f:rightWorldToCamera", m[2][0] ? m[2] : NULL, "m44f:rightWorldToNDC",
+                           m[3][0] ? m[3] : NULL, NULL};
     if (is_png(path))
         return image_writer_open_text(path, width, height, 3, false, NULL, texts, err);
     return image_writer_open_text(path, width, height, exr_channels(aovs, names, src), true, names, texts, err);
@@ -270,7 +280,7 @@ bool offline_render_current(const offline_desc *desc, err_t *err)
     strbuf described = {0};
     if (d->description)
         shot_note_renderer(d->description, renderer, &described);
-    char cam_text[800];
+    char cam_text[CAMERA_TEXT_MAX];
     camera_text(&d->cam, d->width, d->height, cam_text);
     image_writer *w = open_writer(d->output, d->width, rows, d->aovs, described.data, tile[0] ? tile : NULL, cam_text, err);
     sb_free(&described);

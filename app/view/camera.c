@@ -415,10 +415,13 @@ float camera_footprint_t0(const camera *c)
     return c->lens.projection == PROJECTION_ORTHOGRAPHIC ? camera_focus(c) : 0.0f;
 }
 
-bool camera_matrices(const camera *c, int width, int height, float world_to_camera[16], float world_to_ndc[16])
+bool camera_matrices(const camera *c, int width, int height, int eye, float world_to_camera[16], float world_to_ndc[16])
 {
     camera_basis b = camera_get_basis(c);
     const float *axes[3] = {b.right, b.up, b.forward};
+    bool stereo = c->lens.stereo != STEREO_NONE;
+    eye = stereo ? (eye > 0 ? 1 : -1) : 0;
+    float e = (float)eye * 0.5f * c->lens.eye_separation; /* the eye's place along right */
     float *m = world_to_camera;
     for (int j = 0; j < 3; j++) { /* column j: the camera axis; the last row: −eye · axis */
         double t = 0;
@@ -426,25 +429,28 @@ bool camera_matrices(const camera *c, int width, int height, float world_to_came
             m[4 * i + j] = axes[j][i];
             t += c->position[i] * (double)axes[j][i];
         }
-        m[12 + j] = (float)-t;
+        m[12 + j] = (float)-t - (j == 0 ? e : 0.0f);
         m[4 * j + 3] = 0;
     }
     m[15] = 1;
     int w, h;
     camera_eye_size(c, width, height, &w, &h);
-    float ty = tanf(0.5f * c->fov_y), tx = ty * (float)w / (float)h;
+    float ty = tanf(0.5f * c->fov_y), tx = ty * (float)w / (float)h, focus = camera_focus(c);
     bool ortho = c->lens.projection == PROJECTION_ORTHOGRAPHIC;
     if (!ortho && c->lens.projection != PROJECTION_PERSPECTIVE)
         return false;
     /* camera (x, y, z, 1) → (X, Y, Z, W): perspective X/W = ½ + ½ x / (z tx), Y/W = ½ − ½ y / (z ty),
-     * W = z, Z = 1; orthographic the same with focus for z in the scale and W = 1, Z = z */
-    float s = ortho ? camera_focus(c) : 1.0f, p[16] = {0};
+     * W = z, Z = 1; orthographic the same with focus for z in the scale and W = 1, Z = z. An eye aims so
+     * that the focal plane has no disparity (camera_ray_from): its x shifts by e·z/focus (orthographic) or
+     * its x/z by e/focus (perspective) */
+    float s = ortho ? focus : 1.0f, p[16] = {0};
     p[0] = 0.5f / (tx * s);
     p[5] = -0.5f / (ty * s);
     if (ortho) {
         p[10] = 1, p[12] = 0.5f, p[13] = 0.5f, p[15] = 1;
+        p[8] = e / (2 * tx * focus * focus);
     } else {
-        p[8] = 0.5f, p[9] = 0.5f, p[11] = 1, p[14] = 1;
+        p[8] = 0.5f + e / (2 * tx * focus), p[9] = 0.5f, p[11] = 1, p[14] = 1;
     }
     for (int r = 0; r < 4; r++) /* world_to_ndc = world_to_camera · p */
         for (int k = 0; k < 4; k++) {
@@ -453,5 +459,11 @@ bool camera_matrices(const camera *c, int width, int height, float world_to_came
                 v += m[4 * r + j] * p[4 * j + k];
             world_to_ndc[4 * r + k] = v;
         }
+    /* the eye's half of the whole image: side by side the left eye left, top-bottom the left eye on top; a
+     * coordinate u of the eye is (u + half) / 2 of the image, u·W being column 0 (x) or 1 (y) */
+    int col = c->lens.stereo == STEREO_SIDE_BY_SIDE ? 0 : 1;
+    float half = eye > 0 ? 1.0f : 0.0f;
+    for (int r = 0; stereo && r < 4; r++)
+        world_to_ndc[4 * r + col] = 0.5f * (world_to_ndc[4 * r + col] + half * world_to_ndc[4 * r + 3]);
     return true;
 }

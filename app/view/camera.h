@@ -186,8 +186,10 @@ float camera_focus(const camera *c);
  * OpenEXR's: left-handed, x right, y up, z along the view, the eye at the origin. NDC: x from 0 (left
  * edge) to 1 (right), y from 0 (top) to 1 (bottom), after the divide by w (the depth along the view,
  * perspective; 1, orthographic); z/w = 1/depth (perspective), depth (orthographic). Equirectangular and
- * fisheye have no such matrix: false, and only world_to_camera is filled. With stereo, the centre's
- * (the eyes sit ∓eye_separation/2 along x). width and height: the whole image (one eye's NDC spans it). */
-bool camera_matrices(const camera *c, int width, int height, float world_to_camera[16], float world_to_ndc[16]);
+ * fisheye have no such matrix: false, and only world_to_camera is filled. width and height: the whole image.
+ * With stereo, eye's (−1 left, +1 right; 0 is taken as left): its camera sits eye_separation/2 along x, and its
+ * NDC is the whole image's, so a point seen by the left eye lands in the left (side by side) or top
+ * (top-bottom) half where that eye drew it. Without stereo, eye is ignored. */
+bool camera_matrices(const camera *c, int width, int height, int eye, float world_to_camera[16], float world_to_ndc[16]);
 
 #endif
