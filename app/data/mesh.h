@@ -93,14 +93,20 @@ typedef struct mesh_topology {
     bool closed_manifold;        /* no open, non-manifold or degenerate faces */
 } mesh_topology;
 
+/* One vertex a position: vertices at exactly the same place merged (the first one's normal and colour kept),
+ * as a file without indices (STL) or a reader that merges positions sees them; the number merged. Faces it
+ * collapses are mesh_drop_fins'. */
+long long mesh_weld(mesh *m);
+/* Drops the vertices no triangle uses (after a simplification or a repair), keeping their normals and colours. */
+void mesh_compact(mesh *m);
 /* Checks m (no change to it). */
 void mesh_check(const mesh *m, mesh_topology *t);
 /* Drops faces that repeat another's corners (a simplification's collapsed slivers: two faces back to
  * back) and faces with a repeated corner; the number dropped. */
 long long mesh_drop_fins(mesh *m);
 /* A vertex whose faces form several fans (joined across edges of exactly two faces, one each way) gets
- * a copy for each fan past the first: sheets that touch at a vertex or along an edge part there. The
- * number of vertices added. */
+ * a copy for each fan past the first, moved a thousandth of the way into its fan (so no two vertices share a
+ * position): sheets that touch at a vertex or along an edge part there. The number of vertices added. */
 long long mesh_split_pinches(mesh *m);
 /* Closes each loop of open edges with a fan of triangles; the number of holes filled. */
 long long mesh_fill_holes(mesh *m);

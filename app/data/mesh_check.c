@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "data/mesh.h"
+#include "util.h"
 
 uint32_t mesh_add_vertex(mesh *m, const float p[3], const float n[3])
 {
@@ -258,6 +259,88 @@ long long mesh_keep_largest(mesh *m)
     return shells > 1 ? shells - 1 : 0;
 }
 
+static const float *weld_pos;
+
+static int cmp_position(const void *a, const void *b)
+{
+    const float *p = weld_pos + 3 * (size_t)*(const uint32_t *)a, *q = weld_pos + 3 * (size_t)*(const uint32_t *)b;
+    for (int k = 0; k < 3; k++)
+        if (p[k] != q[k])
+            return p[k] < q[k] ? -1 : 1;
+    return 0;
+}
+
+/* An attribute (3 floats a vertex, or NULL) kept for the first vertex of each position. */
+static float *keep_first(const float *a, const uint32_t *order, const uint32_t *remap, size_t nv, size_t n)
+{
+    if (!a)
+        return NULL;
+    float *out = util_alloc((n ? n : 1) * 3 * sizeof(float), "mesh weld");
+    for (size_t i = nv; i-- > 0;) /* backwards: the first of each position writes last */
+        memcpy(out + 3 * (size_t)remap[order[i]], a + 3 * (size_t)order[i], 3 * sizeof(float));
+    return out;
+}
+
+long long mesh_weld(mesh *m)
+{
+    uint32_t *order = util_alloc((m->nv ? m->nv : 1) * sizeof *order, "mesh weld");
+    uint32_t *remap = util_alloc((m->nv ? m->nv : 1) * sizeof *remap, "mesh weld");
+    for (size_t v = 0; v < m->nv; v++)
+        order[v] = (uint32_t)v;
+    weld_pos = m->pos;
+    qsort(order, m->nv, sizeof *order, cmp_position);
+    size_t n = 0;
+    for (size_t i = 0; i < m->nv; i++) {
+        if (i == 0 || cmp_position(&order[i - 1], &order[i]) != 0)
+            n++;
+        remap[order[i]] = (uint32_t)(n - 1);
+    }
+    long long merged = (long long)(m->nv - n);
+    if (merged) {
+        float *pos = keep_first(m->pos, order, remap, m->nv, n), *nrm = keep_first(m->nrm, order, remap, m->nv, n),
+              *col = keep_first(m->col, order, remap, m->nv, n);
+        for (size_t i = 0; i < 3 * m->nt; i++)
+            m->tri[i] = remap[m->tri[i]];
+        free(m->pos), free(m->nrm), free(m->col);
+        m->pos = pos, m->nrm = nrm, m->col = col;
+        m->nv = m->cap_v = n;
+    }
+    free(order);
+    free(remap);
+    return merged;
+}
+
+void mesh_compact(mesh *m)
+{
+    uint32_t *remap = util_alloc((m->nv ? m->nv : 1) * sizeof *remap, "mesh vertices");
+    for (size_t v = 0; v < m->nv; v++)
+        remap[v] = UINT32_MAX;
+    size_t n = 0;
+    for (size_t i = 0; i < 3 * m->nt; i++) {
+        uint32_t v = m->tri[i];
+        if (remap[v] == UINT32_MAX) {
+            remap[v] = (uint32_t)n++;
+        }
+        m->tri[i] = remap[v];
+    }
+    float *arrays[3] = {m->pos, m->nrm, m->col};
+    for (int a = 0; a < 3; a++) {
+        if (!arrays[a])
+            continue;
+        float *out = util_alloc((n ? n : 1) * 3 * sizeof(float), "mesh vertices");
+        for (size_t v = 0; v < m->nv; v++)
+            if (remap[v] != UINT32_MAX)
+                memcpy(out + 3 * (size_t)remap[v], arrays[a] + 3 * v, 3 * sizeof(float));
+        free(arrays[a]);
+        arrays[a] = out;
+    }
+    m->pos = arrays[0];
+    m->nrm = arrays[1];
+    m->col = arrays[2];
+    m->nv = m->cap_v = n;
+    free(remap);
+}
+
 static int cmp_face(const void *a, const void *b)
 {
     const uint32_t *x = a, *y = b;
@@ -313,6 +396,33 @@ static const dedge *manifold_reverse(const dedge *e, size_t ne, uint64_t key)
     return r && !(r + 1 < e + ne && r[1].key == rev) ? r : NULL;
 }
 
+/* Each copy made at a pinch (vertices old_nv on) moved a thousandth of the way toward the centre of its own fan's
+ * faces: at the same place as the original, a reader that merges positions (a slicer, STL) would join the sheets
+ * again. */
+static void part_copies(mesh *m, size_t old_nv)
+{
+    size_t n = m->nv - old_nv;
+    if (!n)
+        return;
+    double (*sum)[4] = util_calloc(n, sizeof *sum, "mesh pinches");
+    for (size_t f = 0; f < m->nt; f++)
+        for (int i = 0; i < 3; i++) {
+            uint32_t v = m->tri[3 * f + (size_t)i];
+            if (v < old_nv)
+                continue;
+            for (int j = 0; j < 3; j++)
+                for (int k = 0; k < 3; k++)
+                    sum[v - old_nv][k] += m->pos[3 * (size_t)m->tri[3 * f + (size_t)j] + (size_t)k] / 3.0;
+            sum[v - old_nv][3] += 1;
+        }
+    for (size_t i = 0; i < n; i++)
+        for (int k = 0; k < 3 && sum[i][3] > 0; k++) {
+            float *p = m->pos + 3 * (old_nv + i) + (size_t)k;
+            *p += (float)(1e-3 * (sum[i][k] / sum[i][3] - *p));
+        }
+    free(sum);
+}
+
 long long mesh_split_pinches(mesh *m)
 {
     size_t ne = 3 * m->nt;
@@ -352,8 +462,10 @@ long long mesh_split_pinches(mesh *m)
             added++;
         }
     }
+    size_t old_nv = m->nv - (size_t)added;
     for (size_t c = 0; c < ne; c++) /* every corner to its fan's vertex */
         m->tri[c] = copy[root(parent, c)];
+    part_copies(m, old_nv);
     free(copy);
     free(first);
     free(parent);

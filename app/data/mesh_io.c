@@ -115,42 +115,6 @@ bool mesh_io_write(const mesh *m, const char *path, err_t *err)
     return ok;
 }
 
-static const float *weld_pos;
-
-static int cmp_position(const void *a, const void *b)
-{
-    const float *p = weld_pos + 3 * (size_t)*(const uint32_t *)a, *q = weld_pos + 3 * (size_t)*(const uint32_t *)b;
-    for (int k = 0; k < 3; k++)
-        if (p[k] != q[k])
-            return p[k] < q[k] ? -1 : 1;
-    return 0;
-}
-
-/* An STL file's triangles each have their own corners: the same positions joined, as a slicer does. */
-static void weld(mesh *m)
-{
-    uint32_t *order = util_alloc((m->nv ? m->nv : 1) * sizeof *order, "mesh weld");
-    uint32_t *remap = util_alloc((m->nv ? m->nv : 1) * sizeof *remap, "mesh weld");
-    for (size_t v = 0; v < m->nv; v++)
-        order[v] = (uint32_t)v;
-    weld_pos = m->pos;
-    qsort(order, m->nv, sizeof *order, cmp_position);
-    size_t n = 0;
-    float *pos = util_alloc((m->nv ? m->nv : 1) * 3 * sizeof(float), "mesh weld");
-    for (size_t i = 0; i < m->nv; i++) {
-        if (i == 0 || cmp_position(&order[i - 1], &order[i]) != 0)
-            memcpy(pos + 3 * n++, m->pos + 3 * (size_t)order[i], 3 * sizeof(float));
-        remap[order[i]] = (uint32_t)(n - 1);
-    }
-    for (size_t i = 0; i < 3 * m->nt; i++)
-        m->tri[i] = remap[m->tri[i]];
-    free(m->pos);
-    m->pos = pos;
-    m->nv = n;
-    free(order);
-    free(remap);
-}
-
 bool mesh_io_read(const char *path, mesh *m, err_t *err)
 {
     mesh_free(m);
@@ -171,43 +135,12 @@ bool mesh_io_read(const char *path, mesh *m, err_t *err)
     m->nv = m->cap_v = nv;
     m->nt = m->cap_t = nt;
     const char *dot = strrchr(path, '.');
-    if (dot && !strcasecmp(dot, ".stl"))
-        weld(m);
-    m->nrm = util_calloc(nv ? 3 * nv : 1, sizeof(float), "mesh normals");
+    if (dot && !strcasecmp(dot, ".stl")) /* its triangles each have their own corners: joined, as a slicer does */
+        mesh_weld(m);
+    m->nrm = util_calloc(m->nv ? 3 * m->nv : 1, sizeof(float), "mesh normals");
     return true;
 }
 
-/* Drops the vertices no triangle uses (after a simplification), keeping their normals and colours. */
-static void compact(mesh *m)
-{
-    uint32_t *remap = util_alloc((m->nv ? m->nv : 1) * sizeof *remap, "mesh vertices");
-    for (size_t v = 0; v < m->nv; v++)
-        remap[v] = UINT32_MAX;
-    size_t n = 0;
-    for (size_t i = 0; i < 3 * m->nt; i++) {
-        uint32_t v = m->tri[i];
-        if (remap[v] == UINT32_MAX) {
-            remap[v] = (uint32_t)n++;
-        }
-        m->tri[i] = remap[v];
-    }
-    float *arrays[3] = {m->pos, m->nrm, m->col};
-    for (int a = 0; a < 3; a++) {
-        if (!arrays[a])
-            continue;
-        float *out = util_alloc((n ? n : 1) * 3 * sizeof(float), "mesh vertices");
-        for (size_t v = 0; v < m->nv; v++)
-            if (remap[v] != UINT32_MAX)
-                memcpy(out + 3 * (size_t)remap[v], arrays[a] + 3 * v, 3 * sizeof(float));
-        free(arrays[a]);
-        arrays[a] = out;
-    }
-    m->pos = arrays[0];
-    m->nrm = arrays[1];
-    m->col = arrays[2];
-    m->nv = m->cap_v = n;
-    free(remap);
-}
 
 bool mesh_io_simplify(mesh *m, size_t target, double tolerance, double *error, err_t *err)
 {
@@ -222,6 +155,6 @@ bool mesh_io_simplify(mesh *m, size_t target, double tolerance, double *error, e
     m->tri = out;
     m->nt = m->cap_t = nt;
     *error = e;
-    compact(m);
+    mesh_compact(m);
     return true;
 }

@@ -229,6 +229,22 @@ static void copy_mesh(mesh *to, const mesh *from)
         mesh_add_triangle(to, from->tri[3 * f], from->tri[3 * f + 1], from->tri[3 * f + 2]);
 }
 
+/* Faces folded back to back or collapsed dropped; if that leaves it not closed and manifold, vertices where
+ * sheets touch parted and holes closed. The counts in r: fins, pinches, holes. */
+static void repair(mesh *m, mesh_topology *top, long long r[3])
+{
+    r[0] = mesh_drop_fins(m), r[1] = r[2] = 0;
+    mesh_check(m, top);
+    if (!top->closed_manifold) { /* sheets touching: parted at their vertices; holes left: closed */
+        r[1] = mesh_split_pinches(m);
+        mesh_check(m, top);
+        r[2] = top->open_edges ? mesh_fill_holes(m) : 0;
+        if (r[2])
+            mesh_check(m, top);
+    }
+    mesh_compact(m); /* a dropped face's corners may belong to no face now */
+}
+
 /* Toward d->triangles within the tolerance; meshoptimizer's collapses keep no promise of a manifold, so
  * faces folded back to back are dropped and vertices where sheets came to touch are parted; a result
  * still not closed and manifold is tried again with a quarter more triangles (up to 8 times), and the
@@ -241,22 +257,13 @@ static bool simplify(const mesh_desc *d, mesh *m, double unit, bool field_scene,
     copy_mesh(&whole, m);
     size_t target = d->triangles;
     mesh_topology top = {0};
-    long long fins = 0, pinches = 0, holes = 0;
+    long long r[3] = {0, 0, 0};
     bool failed = false;
     for (int round = 0; round < 8 && target < whole.nt; round++, target += target / 4) {
         copy_mesh(&t, &whole);
-        pinches = holes = 0;
         if ((failed = !mesh_io_simplify(&t, target, tol, &e, err)))
             break;
-        fins = mesh_drop_fins(&t);
-        mesh_check(&t, &top);
-        if (!top.closed_manifold) { /* sheets touching: parted at their vertices; holes left: closed */
-            pinches = mesh_split_pinches(&t);
-            mesh_check(&t, &top);
-            holes = top.open_edges ? mesh_fill_holes(&t) : 0;
-            if (holes)
-                mesh_check(&t, &top);
-        }
+        repair(&t, &top, r);
         if (top.closed_manifold)
             break;
     }
@@ -268,9 +275,9 @@ static bool simplify(const mesh_desc *d, mesh *m, double unit, bool field_scene,
         printf("simplified: toward %zu triangles within %.4g (%.3g %s): %zu%s, deviation %.4g (%.3f %s)\n", d->triangles,
                tol, tol / unit, u, m->nt, target > d->triangles ? " (more than asked: fewer broke the manifold)" : "", e,
                e / unit, u);
-        if (fins || pinches || holes)
+        if (r[0] || r[1] || r[2])
             printf("repaired: %lld faces back to back dropped, %lld vertices where sheets touched parted, %lld holes "
-                   "closed\n", fins, pinches, holes);
+                   "closed\n", r[0], r[1], r[2]);
     } else if (!failed) {
         printf("simplified: no simplification toward %zu triangles within %.3g %s stayed closed and manifold: the mesh "
                "is kept whole\n", d->triangles, tol / unit, u);
@@ -284,6 +291,15 @@ static bool finish(job *j, mesh *m, double unit, float iso, bool field_scene, er
 {
     const mesh_desc *d = j->d;
     double worst, mean;
+    /* one vertex a position, so an STL (no indices) or a reader that merges positions has the topology reported
+     * here: coincident vertices merged, the faces that collapses (zero area on the --box's faces) dropped */
+    long long merged = mesh_weld(m), r[3] = {0, 0, 0};
+    mesh_topology top;
+    if (merged) {
+        repair(m, &top, r);
+        printf("welded: %lld vertices at a position another held merged; %lld faces collapsed or back to back "
+               "dropped, %lld vertices where sheets touched parted, %lld holes closed\n", merged, r[0], r[1], r[2]);
+    }
     describe(m, "mesh");
     if (field_scene && vertex_error(j, m, iso, unit, &worst, &mean, err))
         printf("error: vertices within %.3f voxels of the surface by the field (mean %.3f)\n", worst, mean);
