@@ -298,6 +298,11 @@ expect mesh-options-elsewhere 2 "belong to fathom mesh" 1 -- "$fathom" --resolut
 expect mesh-with-size 2 "fathom mesh writes a mesh: --size" 1 -- "$fathom" mesh --size 64x36 $mesh_out
 expect mesh-empty-box 1 "no surface to write to '$tmp/out.ply': the mesh is empty" 1 -- \
     "$fathom" mesh --scene torus --box 5,5,5,6,6,6 --resolution 8 $mesh_out
+# an option of the other kind of scene: refused, not ignored (issue 58 item 20)
+expect mesh-base-on-a-field 1 "--base sets how far a DEM's solid reaches below its lowest point; 'torus' is not" 1 -- \
+    "$fathom" mesh --scene torus --base 5 --resolution 8 $mesh_out
+expect mesh-box-on-a-dem 1 "--box chooses the part of a distance-field scene to mesh; a DEM's solid is its whole grid" 1 -- \
+    "$fathom" mesh --scene jacksboro --box 0,0,0,1,1,1 $mesh_out
 ls "$tmp"/out.ply "$tmp"/.out.ply.* >/dev/null 2>&1 && { failed=$((failed + 1)); echo "FAIL mesh: a file was left"; }
 
 # GIS: viewshed and track options, an observer off the DEM, a sun date that does not exist, imagery that

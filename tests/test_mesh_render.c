@@ -118,6 +118,37 @@ static void formats(void **state)
     assert_string_equal(head, "ISO-10303-21");
 }
 
+/* Issue 58, item 20: a printed STL or 3MF (+Z up) has its lowest corner on the origin (the quarter turn left it at
+ * −y) and its longest side the size asked. */
+static void printed_at_the_origin(void **state)
+{
+    (void)state;
+    static const char *const ext[] = {"stl", "3mf"};
+    for (int i = 0; i < 2; i++) {
+        char path[PATH_MAX_LEN];
+        snprintf(path, sizeof path, "%s/printed.%s", dir, ext[i]);
+        mesh_desc d = {.scene = "torus", .output = path, .resolution = 24, .print_mm = 100, .quiet = true};
+        err_t e;
+        if (!mesh_job_run(&d, &e))
+            fail_msg("%s", e.msg);
+        mesh m = {0};
+        mesh_topology t;
+        read_back(path, &m, &t);
+        float lo[3] = {1e9f, 1e9f, 1e9f}, hi[3] = {-1e9f, -1e9f, -1e9f};
+        for (size_t v = 0; v < m.nv; v++)
+            for (int k = 0; k < 3; k++) {
+                lo[k] = fminf(lo[k], m.pos[3 * v + (size_t)k]);
+                hi[k] = fmaxf(hi[k], m.pos[3 * v + (size_t)k]);
+            }
+        fprintf(stderr, "  printed .%s: %.4g %.4g %.4g to %.4g %.4g %.4g mm\n", ext[i], (double)lo[0], (double)lo[1],
+                (double)lo[2], (double)hi[0], (double)hi[1], (double)hi[2]);
+        for (int k = 0; k < 3; k++)
+            assert_true(fabsf(lo[k]) < 1e-3f);
+        assert_true(fabsf(fmaxf(hi[0], fmaxf(hi[1], hi[2])) - 100) < 1e-3f && hi[2] < 30); /* the torus lies flat */
+        mesh_free(&m);
+    }
+}
+
 /* Orders positions and edges by their bytes: equal ones next to each other. */
 static int cmp_pos(const void *a, const void *b) { return memcmp(a, b, 3 * sizeof(double)); }
 static int cmp_edge(const void *a, const void *b) { return memcmp(a, b, 2 * sizeof(long long)); }
@@ -340,6 +371,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {cmocka_unit_test(torus_closed_form), cmocka_unit_test(formats),
                                        cmocka_unit_test(mandelbulb_field), cmocka_unit_test(simplified),
-                                       cmocka_unit_test(dem_solid), cmocka_unit_test(watertight_by_position)};
+                                       cmocka_unit_test(dem_solid), cmocka_unit_test(watertight_by_position),
+                                       cmocka_unit_test(printed_at_the_origin)};
     return cmocka_run_group_tests(tests, setup, teardown);
 }

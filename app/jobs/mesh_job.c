@@ -210,9 +210,9 @@ static void place(const mesh_desc *d, mesh *m)
         float *p = m->pos + 3 * v, *n = m->nrm + 3 * v;
         for (int k = 0; k < 3 && scale != 1; k++) /* printed: the lowest corner at the origin */
             p[k] = (float)((p[k] - lo[k]) * scale);
-        if (z_up) { /* (x, y, z) → (x, −z, y): a quarter turn about x */
+        if (z_up) { /* (x, y, z) → (x, −z, y): a quarter turn about x; printed, moved back onto the origin */
             float y = p[1], ny = n[1];
-            p[1] = -p[2], p[2] = y;
+            p[1] = (scale != 1 ? (float)((hi[2] - lo[2]) * scale) : 0.0f) - p[2], p[2] = y;
             n[1] = -n[2], n[2] = ny;
         }
     }
@@ -331,11 +331,18 @@ bool mesh_job_scene(const mesh_desc *d, const scene *s, err_t *err)
     const char *exporter = NULL;
     if (!mesh_io_format(d->output, &exporter, err))
         return false;
+    bool dem = s->terrain.heightmap[0] != '\0';
+    if (dem && d->has_box) /* each option is one kind's: given to the other it would do nothing, silently */
+        return err_set(err, "--box chooses the part of a distance-field scene to mesh; a DEM's solid is its whole grid "
+                            "(cut the DEM first: gdal_translate -projwin)");
+    if (!dem && d->base > 0)
+        return err_set(err, "--base sets how far a DEM's solid reaches below its lowest point; '%s' is not a DEM scene "
+                            "(its solid is the surface itself)", s->name);
     job j = {.d = d, .s = s, .t0 = util_now()};
     mesh m = {0};
     double unit = 0;
     float iso = 0;
-    bool ok = s->terrain.heightmap[0] != '\0' ? mesh_terrain(&j, &m, &unit, err) && finish(&j, &m, unit, 0, false, err)
+    bool ok = dem ? mesh_terrain(&j, &m, &unit, err) && finish(&j, &m, unit, 0, false, err)
                                               : mesh_field(&j, &m, &unit, &iso, err) && finish(&j, &m, unit, iso, true, err);
     mesh_free(&m);
     free(j.out);
