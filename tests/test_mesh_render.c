@@ -99,13 +99,14 @@ static void formats(void **state)
                 hi[k] = fmaxf(hi[k], m.pos[3 * v + (size_t)k]);
             }
         bool z_up = i == 1 || i == 4; /* the torus lies in fathom's xz plane: thin along y, or along z in print formats */
+        float mm = i == 4 ? 1000 : 1; /* 3MF is in millimetres: the scene's metres written 1000 to one (item 20) */
         fprintf(stderr, "  .%s: %zu triangles, closed %d, extent %.3f %.3f %.3f\n", ext[i], m.nt, t.closed_manifold,
                 (double)(hi[0] - lo[0]), (double)(hi[1] - lo[1]), (double)(hi[2] - lo[2]));
         first = first ? first : m.nt;
         assert_int_equal(m.nt, first);
         assert_true(t.closed_manifold);
-        assert_true(fabs(hi[z_up ? 2 : 1] - lo[z_up ? 2 : 1] - 0.6) < 0.02);
-        assert_true(fabs(hi[z_up ? 1 : 2] - lo[z_up ? 1 : 2] - 2.6) < 0.02);
+        assert_true(fabs((hi[z_up ? 2 : 1] - lo[z_up ? 2 : 1]) / mm - 0.6) < 0.02);
+        assert_true(fabs((hi[z_up ? 1 : 2] - lo[z_up ? 1 : 2]) / mm - 2.6) < 0.02);
         mesh_free(&m);
     }
     char path[PATH_MAX_LEN], head[16] = {0};
@@ -116,6 +117,23 @@ static void formats(void **state)
     assert_int_equal(fread(head, 1, 12, f), 12);
     fclose(f);
     assert_string_equal(head, "ISO-10303-21");
+    /* its length unit is a millimetre (assimp's "METRE" is defined as 1 mm): the torus 2.6 m across is 2,600 of them */
+    char *text = NULL;
+    err_t e;
+    assert_true(util_read_file_max(path, UTIL_TEXT_FILE_MAX, &text, NULL, &e));
+    assert_non_null(strstr(text, "SI_UNIT(.MILLI.,.METRE.)"));
+    double most = 0;
+    for (const char *p = text; (p = strstr(p, "CARTESIAN_POINT('',(")) != NULL;) {
+        p += strlen("CARTESIAN_POINT('',(");
+        for (int k = 0; k < 3; k++) {
+            char *end;
+            most = fmax(most, fabs(strtod(p, &end)));
+            p = *end == ',' ? end + 1 : end;
+        }
+    }
+    free(text);
+    fprintf(stderr, "  .stp: millimetres, the farthest point %.1f from the origin along an axis\n", most);
+    assert_true(most > 1200 && most < 1400);
 }
 
 /* Issue 58, item 20: a printed STL or 3MF (+Z up) has its lowest corner on the origin (the quarter turn left it at

@@ -205,19 +205,27 @@ static void place(const mesh_desc *d, mesh *m)
             hi[k] = fmax(hi[k], m->pos[3 * v + (size_t)k]);
         }
     double ext = fmax(hi[0] - lo[0], fmax(hi[1] - lo[1], hi[2] - lo[2]));
-    double scale = d->print_mm > 0 && ext > 0 ? d->print_mm / ext : 1;
+    bool printed = d->print_mm > 0 && ext > 0;
+    /* 3MF and STEP say millimetres (assimp writes them so): a scene's metres are written as 1000 of them */
+    bool mm = dot && (!strcasecmp(dot, ".3mf") || !strcasecmp(dot, ".stp"));
+    double scale = printed ? d->print_mm / ext : mm ? 1000 : 1, origin[3] = {0, 0, 0};
+    if (printed) /* printed: the lowest corner at the origin */
+        memcpy(origin, lo, sizeof origin);
     for (size_t v = 0; v < m->nv; v++) {
         float *p = m->pos + 3 * v, *n = m->nrm + 3 * v;
-        for (int k = 0; k < 3 && scale != 1; k++) /* printed: the lowest corner at the origin */
-            p[k] = (float)((p[k] - lo[k]) * scale);
+        for (int k = 0; k < 3 && scale != 1; k++)
+            p[k] = (float)((p[k] - origin[k]) * scale);
         if (z_up) { /* (x, y, z) → (x, −z, y): a quarter turn about x; printed, moved back onto the origin */
             float y = p[1], ny = n[1];
-            p[1] = (scale != 1 ? (float)((hi[2] - lo[2]) * scale) : 0.0f) - p[2], p[2] = y;
+            p[1] = (printed ? (float)((hi[2] - lo[2]) * scale) : 0.0f) - p[2], p[2] = y;
             n[1] = -n[2], n[2] = ny;
         }
     }
-    if (scale != 1)
+    if (printed)
         printf("print: scaled by %.6g, the longest side %.4g mm%s\n", scale, d->print_mm, z_up ? ", +Z up" : "");
+    else if (mm)
+        printf("units: the file's are millimetres: the scene's units written as metres, 1000 to one (--print-size MM "
+               "for a size)\n");
 }
 
 static void copy_mesh(mesh *to, const mesh *from)
