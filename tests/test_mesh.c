@@ -87,6 +87,12 @@ static void extract(sdf_fn f, double ext, int res, float step, mesh *m, mesh_sta
     mesh_grid g = {.lo = {-ext, -ext, -ext}, .hi = {ext, ext, ext}, .res = res, .step = step, .field = eval, .user = &fl};
     err_t err;
     assert_true(mesh_extract(&g, m, st, &err));
+    /* the estimate made before a long extraction (issue 58 item 20): the grid's samples, at most those evaluated;
+     * the layers' memory, at most the peak */
+    double samples, bytes;
+    assert_true(mesh_extract_size(&g, &samples, &bytes));
+    assert_true(samples == (double)(st->cells[0] + 1) * (st->cells[1] + 1) * (st->cells[2] + 1));
+    assert_true((double)st->evaluated <= samples && bytes <= (double)st->peak_bytes);
 }
 
 /* The worst |sdf| over vertices, in voxels. */

@@ -397,10 +397,34 @@ static bool ctx_init(mesh_ctx *c, const mesh_grid *g, mesh *out, mesh_stats *st,
     return true;
 }
 
+/* The layers' own arrays (ctx_init's): samples, crossings, cell configurations, block visits. */
+static size_t layer_bytes(const int n[3], const int nb[3])
+{
+    size_t P = (size_t)(n[0] + 1) * (size_t)(n[1] + 1), cells = (size_t)n[0] * (size_t)n[1];
+    return 3 * (P * 12 + cells) + 2 * (P * 4 + cells * 5 + (size_t)nb[0] * (size_t)nb[1]) + P;
+}
+
+bool mesh_extract_size(const mesh_grid *g, double *samples, double *bytes)
+{
+    double ext = 0;
+    for (int k = 0; k < 3; k++)
+        ext = fmax(ext, g->hi[k] - g->lo[k]);
+    if (!(ext > 0) || g->res < 2 || g->res > MESH_MAX_RES)
+        return false;
+    int n[3], nb[3];
+    *samples = 1;
+    for (int k = 0; k < 3; k++) { /* as ctx_init counts them */
+        n[k] = (int)ceil((g->hi[k] - g->lo[k]) / (ext / g->res) - 1e-9) + 2;
+        nb[k] = (n[k] + MESH_BLOCK - 1) / MESH_BLOCK;
+        *samples *= n[k] + 1;
+    }
+    *bytes = (double)layer_bytes(n, nb);
+    return true;
+}
+
 static size_t ctx_bytes(const mesh_ctx *c)
 {
-    size_t cells = (size_t)c->n[0] * (size_t)c->n[1], blocks = (size_t)c->nb[0] * (size_t)c->nb[1];
-    size_t fixed = 3 * (c->P * 12 + cells) + 2 * (c->P * 4 + cells * 5 + blocks) + c->P;
+    size_t fixed = layer_bytes(c->n, c->nb);
     size_t xb = (c->plane[0].cap + c->plane[1].cap + c->plane[2].cap + c->slab[0].cap + c->slab[1].cap) *
                 (sizeof(crossing) + sizeof(float[9]));
     return fixed + xb + c->pts_cap * 16 + c->mid_cap * sizeof(float[4]) + c->cell_cap * sizeof(int32_t[2]);

@@ -73,6 +73,9 @@ typedef struct mesh_stats {
 /* Extracts g's surface into out (emptied first). False with err on a field error, or a grid over
  * MESH_MAX_RES. */
 bool mesh_extract(const mesh_grid *g, mesh *out, mesh_stats *st, err_t *err);
+/* What an extraction of g takes before it starts: *samples, the grid's (the bound skips empty blocks, so at most
+ * this many are evaluated), and *bytes, its layers' working memory (the mesh it makes comes on top). */
+bool mesh_extract_size(const mesh_grid *g, double *samples, double *bytes);
 void mesh_free(mesh *m);
 /* The signed distance from p to the box [lo, hi] (negative inside): the clip. */
 double mesh_box_distance(const double lo[3], const double hi[3], const float p[3]);
