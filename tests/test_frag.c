@@ -69,7 +69,7 @@ static void annotations(void **st)
     q = param(&f, "Glint"); /* color[LO,DEFAULT,HI,R,G,B]: the colour, then its intensity in w */
     assert_true(q->type == FORMULA_COLOR4 && q->def[0] == 0.1f && q->def[2] == 0.3f && q->def[3] == 0.5f);
     assert_true(q->lo == 0 && q->hi == 2);
-    assert_true(param(&f, "Detailed")->locked && !param(&f, "Radius")->locked);
+    assert_true(param(&f, "Detailed")->locked && !param(&f, "Radius")->locked); /* Radius: NotLocked */
     q = param(&f, "time");
     assert_true(q->type == FORMULA_FLOAT && q->def[0] == 0);
     assert_string_equal(param(&f, "BaseColor")->group, "Coloring");
@@ -169,6 +169,9 @@ static void refusals(void **st)
         {"up.frag", "#include \"../outside.frag\"\n", "#include \"../outside.frag\": a '..' part"},
         {"abs.frag", "#include \"/etc/passwd\"\n", "#include \"/etc/passwd\": an absolute path"},
         {"link2.frag", "#include \"link.frag\"\n", "#include \"link.frag\": it leads out of the fragment's folder"},
+        /* a link into a folder beside `in` whose name starts as its does (`inx`): out, though a bare prefix test
+         * passes it (issue 58 item 17) */
+        {"sib2.frag", "#include \"sib.frag\"\n", "#include \"sib.frag\": it leads out of the fragment's folder"},
         {"token.frag", "#include \"token.txt\"\n", "#include \"token.txt\": not a .frag file"},
         /* in/Include is a planted link to the folder above: not the collection's Include folder */
         {"planted.frag", "#include \"outside.frag\"\n", "#include \"outside.frag\": no such file"},
@@ -177,10 +180,16 @@ static void refusals(void **st)
         {"replace.frag", "+#replace \"a\" \"b\"\n", "#replace"},
         {"julia.frag", "+uniform float julia; slider[0,1,2]\n", "parameter 'julia': the name of a key of every fractal block"},
         {"ctl.frag", "#include \"DE-Raytracer.frag\"\nfloat DE(vec3 p) { return 1.0; }\x01\n", "ctl.frag:2: a control character (0x01)"},
+        {"del.frag", "#include \"DE-Raytracer.frag\"\nfloat DE(vec3 p) { return 1.0; }\x7f\n", "del.frag:2: a control character (0x7f)"},
     };
     put(dir, "outside.frag", "#donotrun\nfloat leak() { return 1.0; }\n");
     snprintf(cmd, sizeof cmd, "ln -s ../outside.frag '%s/link.frag' && ln -s .. '%s/Include'", inner, inner);
     assert_int_equal(system(cmd), 0);
+    snprintf(cmd, sizeof cmd, "mkdir '%sx' && ln -s ../inx/evil.frag '%s/sib.frag'", inner, inner);
+    assert_int_equal(system(cmd), 0);
+    char sib[PATH_MAX_LEN + 2];
+    snprintf(sib, sizeof sib, "%sx", inner);
+    put(sib, "evil.frag", "#donotrun\nfloat leak() { return 1.0; }\n");
     put(inner, "token.txt", "a secret\n");
     strbuf t = {0};
     for (size_t i = 0; i < sizeof CASES / sizeof *CASES; i++) {
@@ -285,6 +294,9 @@ static void presets(void **st)
     assert_true(has_set(&d, "fractal.Hollow=true"));
     assert_true(has_set(&d, "fractal.Glint=0.4,0.5,0.6,1.5")); /* RGB, then the intensity */
     assert_true(has_set(&d, "fractal.Spare=1,0.2,0.3,0.4"));   /* 9 is past the slider: clamped */
+    /* Detail 2 and MaxRaySteps 100000 clamped to fathom's bounds (issue 58 item 17: dropping either survived) */
+    assert_true(has_set(&d, "fractal.hit_distance=1"));
+    assert_true(has_set(&d, "quality.max_steps=4096"));
     shot_free(&d);
     sb_free(&text);
     assert_false(frag_preset_shot(path, "Nope", &text, NULL, &e));

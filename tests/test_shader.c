@@ -94,6 +94,33 @@ static void include_errors_name_file_and_line(void **st)
     sb_free(&out);
 }
 
+/* The include jail's two rules each hold alone (issue 58 item 17: dropping either survived): a link to a folder
+ * beside the root whose name only starts like the root's (ROOT + "x") leads out, though a bare prefix test
+ * passes it; a ".." part is refused as such, even where it would resolve inside. */
+static void include_jail_rules(void **st)
+{
+    (void)st;
+    char sibling[128], cmd[1024];
+    snprintf(sibling, sizeof sibling, "%sx", root);
+    snprintf(cmd, sizeof cmd, "mkdir -p '%s' && echo 'float evil;' > '%s/evil.glsl' && ln -sf '%s/evil.glsl' '%s/common/sib.glsl'",
+             sibling, sibling, sibling, root);
+    assert_int_equal(system(cmd), 0);
+    put("sib.frag", "#include \"common/sib.glsl\"\nvoid main() {}\n");
+    put("dots.frag", "#include \"common/../common/b.glsl\"\nvoid main() {}\n");
+    strbuf out = {0};
+    shader_files files = {0};
+    err_t e;
+    assert_false(shader_expand(root, "sib.frag", NULL, 0, &out, &files, &e));
+    assert_non_null(strstr(e.msg, "it leads out of the folder it is found in"));
+    sb_free(&out);
+    files.count = 0;
+    assert_false(shader_expand(root, "dots.frag", NULL, 0, &out, &files, &e));
+    assert_non_null(strstr(e.msg, "a '..' part"));
+    sb_free(&out);
+    snprintf(cmd, sizeof cmd, "rm -rf '%s' '%s/common/sib.glsl'", sibling, root);
+    assert_int_equal(system(cmd), 0);
+}
+
 static void translates_driver_logs(void **st)
 {
     (void)st;
@@ -118,6 +145,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(expands_with_line_directives),
         cmocka_unit_test(include_errors_name_file_and_line),
+        cmocka_unit_test(include_jail_rules),
         cmocka_unit_test(translates_driver_logs),
     };
     return cmocka_run_group_tests(tests, setup, NULL);

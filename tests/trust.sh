@@ -132,6 +132,13 @@ check "formula-quote-in-path: refused" '[ $code -eq 1 ] && grep -q "rename it" "
 run "$fathom" --formula fm/long.glsl $png
 check "formula-10000-statements: refused with one line, no crash" \
     '[ $code -eq 1 ] && [ "$(wc -l <"$tmp/stderr")" -eq 1 ] && grep -q "shorten it" "$tmp/stderr"'
+# the statement bound alone: 2,001 empty statements in 3 KB, under the byte bound (issue 58 item 17)
+{ printf '// @formula semis\nfloat formulaDE(vec3 p, out float trap) {\n trap = 0.0;\n'
+  i=0; while [ $i -lt 2001 ]; do printf ';'; i=$((i + 1)); done
+  printf '\n return length(p) - 1.0;\n}\n'; } >fm/semis.glsl
+run "$fathom" --formula fm/semis.glsl $png
+check "formula-2001-statements-in-3-kb: refused by the statement bound" \
+    '[ $code -eq 1 ] && grep -q "more than 2000 statements" "$tmp/stderr"'
 
 # ---- 5. names mean one thing ---------------------------------------------------------------------
 mkdir -p user
@@ -182,6 +189,7 @@ formula_case formula-fractional-iterations "whole numbers from 1 to 1000" "// @f
 long=uA; i=0; while [ $i -lt 60 ]; do long="${long}bcde"; i=$((i + 1)); done
 formula_case formula-long-uniform "uniform name is at most 47 characters" "// @formula f\nuniform float $long; // @param 1 [0, 2] a\n$de"
 formula_case formula-escape-byte "a control character (0x1b)" "// @formula f \033[31mred\n$de"
+formula_case formula-del-byte "a control character (0x7f)" "// @formula f del\177\n$de" # DEL too (issue 58 item 17)
 printf '\357\273\277// @formula with a BOM and CRLF\r\nuniform float uA; // @param 1 [0, 2] a\r\nfloat formulaDE(vec3 p, out float trap) { trap = 0.0; return length(p) - uA; }\r\n' >fm/crlf.glsl
 run "$fathom" --formula fm/crlf.glsl $png
 check "formula-bom-and-crlf: read as the text it is" '[ $code -eq 0 ] && [ -s o.png ]'

@@ -3,7 +3,7 @@
 #include "DE-Raytracer.frag"
 #group Sphere
 // the sphere's radius
-uniform float Radius; slider[0.1,1,3]
+uniform float Radius; slider[0.1,1,3] NotLocked
 // where its centre is
 uniform vec3 Centre; slider[(-2,-2,-2),(0,0,0),(2,2,2)]
 uniform int Iterations; slider[0,4,20]
@@ -45,6 +45,8 @@ Centre = 0,0.5,0
 Hollow = true
 Glint = 0.4,0.5,0.6,1.5
 Spare = 9,0.2,0.3,0.4
+Detail = 2
+MaxRaySteps = 100000
 #endpreset
 
 #preset KeyFrame.001
