@@ -108,6 +108,16 @@ static void colour_and_refusals(void **state)
         assert_true(fabsf(noon[k] - 1) < 1e-6f && night[k] == 0);
     assert_true(low[0] > low[1] && low[1] > low[2] && low[2] < 0.3f); /* reddened and dimmed */
     assert_true(fabs(sun_refraction(0) - 0.4819) < 0.01); /* 1735 arcsec: the textbook half degree */
+    /* against Bennett's formula (1982), R = cot(h + 7.31 / (h + 4.4)) arcminutes at the apparent elevation h, over
+     * each of NOAA's pieces, and the pieces meeting at −0.575° (issue 58 item 17: a coefficient off by 10 survived) */
+    static const double at[] = {2, 6, 10, 45};
+    for (size_t i = 0; i < sizeof at / sizeof *at; i++) {
+        double r = sun_refraction(at[i]), h = at[i] + r;
+        double bennett = 1 / tan((h + 7.31 / (h + 4.4)) * 3.14159265358979323846 / 180) / 60;
+        print_message("refraction at %g°: NOAA %.4f°, Bennett %.4f°\n", at[i], r, bennett);
+        assert_true(fabs(r / bennett - 1) < 0.03);
+    }
+    assert_true(fabs(sun_refraction(-0.5749) - sun_refraction(-0.5751)) < 0.01 * sun_refraction(-0.5751));
     double t;
     assert_false(sun_time("2026-02-29", 12, 0, &t));
     assert_false(sun_time("2026-13-01", 12, 0, &t));
