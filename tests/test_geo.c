@@ -442,6 +442,51 @@ static void viewshed_drapes_see_through(void **st)
     assert_int_equal(wrong, 0);
 }
 
+/* Issue 58, item 17: a south-up DEM (positive y pixel size, its first row the southernmost) is the same place as
+ * its north-up twin: the viewshed from the same longitude and latitude is the same, written north-up on the
+ * same grid (a wrong south-up origin survived the tests). */
+static void south_up_dem_is_the_same_place(void **st)
+{
+    (void)st;
+    GDALDatasetH ds = GDALCreate(GDALGetDriverByName("GTiff"), in_dir("south.tif"), W, H, 1, GDT_Float32, NULL);
+    const double gt[6] = {DEM_GT[0], 1000, 0, DEM_GT[3] - H * 1000, 0, 1000};
+    GDALSetGeoTransform(ds, (double *)gt);
+    OGRSpatialReferenceH s = srs_of(32633);
+    GDALSetSpatialRef(ds, s);
+    OSRDestroySpatialReference(s);
+    float v[W * H];
+    for (int j = 0; j < H; j++) /* file row j is the north-up row H − 1 − j */
+        for (int i = 0; i < W; i++)
+            v[j * W + i] = (float)hill(i, H - 1 - j);
+    assert_int_equal(GDALRasterIO(GDALGetRasterBand(ds, 1), GF_Write, 0, 0, W, H, v, W, H, GDT_Float32, 0, 0), CE_None);
+    GDALClose(ds);
+    double lon, lat;
+    utm_to_lonlat(DEM_GT[0] + 20.5 * 1000, DEM_GT[3] - 30.5 * 1000, &lon, &lat);
+    err_t e;
+    const char *dems[2] = {in_dir("dem.tif"), in_dir("south.tif")}, *outs[2] = {in_dir("vs-n.tif"), in_dir("vs-s.tif")};
+    unsigned char got[2][W * H];
+    for (int radius = 0; radius <= 7500; radius += 7500) { /* the whole DEM, and a window of it read from disk */
+        double g[2][6];
+        int size[2][2];
+        for (int k = 0; k < 2; k++) {
+            gis_options o = {.command = GIS_VIEWSHED, .dem = dems[k], .output = outs[k], .lon = lon, .lat = lat,
+                             .observer_height = 10, .refraction = 0.13, .radius = radius};
+            if (!gis_viewshed_run(&o, &e))
+                fail_msg("%s", e.msg);
+            GDALDatasetH r = GDALOpen(outs[k], GA_ReadOnly);
+            assert_true(GDALGetGeoTransform(r, g[k]) == CE_None);
+            size[k][0] = GDALGetRasterXSize(r), size[k][1] = GDALGetRasterYSize(r);
+            assert_true(GDALRasterIO(GDALGetRasterBand(r, 1), GF_Read, 0, 0, size[k][0], size[k][1], got[k], size[k][0],
+                                     size[k][1], GDT_Byte, 0, 0) == CE_None);
+            GDALClose(r);
+        }
+        for (int i = 0; i < 6; i++)
+            assert_true(g[0][i] == g[1][i] && (radius || g[0][i] == DEM_GT[i]));
+        assert_true(size[0][0] == size[1][0] && size[0][1] == size[1][1]);
+        assert_memory_equal(got[0], got[1], (size_t)size[0][0] * (size_t)size[0][1]);
+    }
+}
+
 /* The track's points as OGR reads them: lon, lat, z (or the "ele" field), time (seconds). */
 static int ogr_points(const char *file, const char *layer, double (*out)[4], int max)
 {
@@ -768,6 +813,7 @@ int main(void)
         cmocka_unit_test(tracks_as_the_guide_says), cmocka_unit_test(sun_on_a_polar_grid),
         cmocka_unit_test(viewshed_radius_crops), cmocka_unit_test(viewshed_drapes_see_through),
         cmocka_unit_test(set_layers_from_the_users_folder), cmocka_unit_test(imagery_off_the_dem_refused),
+        cmocka_unit_test(south_up_dem_is_the_same_place),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }
