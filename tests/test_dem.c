@@ -164,6 +164,32 @@ static void vertical_units(void **st)
     }
 }
 
+/* A window read from disk (dem_read_window, issue 58 item 6) is the whole DEM's texels there, and a window not
+ * inside the DEM is refused by name (not left to GDAL's own error). */
+static void windows(void **st)
+{
+    (void)st;
+    enum { W = 40, H = 30 };
+    double v[W * H];
+    for (int j = 0; j < H; j++)
+        for (int i = 0; i < W; i++)
+            v[j * W + i] = (float)wave(i, j);
+    const double gt[6] = {500000, 30, 0, 5200000, 0, -30};
+    const char *p = write_tif(&(tif){"window.tif", GDT_Float32, W, H, gt, 32633, false, 0, 0, 0}, v);
+    int w = 7, h = 5;
+    float *hts;
+    dem_info info;
+    err_t e;
+    assert_true(dem_read_window(p, 30, 20, &w, &h, 16384, &hts, &info, &e));
+    for (int j = 0; j < h; j++)
+        for (int i = 0; i < w; i++)
+            assert_true(hts[j * w + i] == (float)v[(20 + j) * W + 30 + i]);
+    free(hts);
+    w = 11, h = 5; /* columns 30-40: one past the edge */
+    assert_false(dem_read_window(p, 30, 20, &w, &h, 16384, &hts, &info, &e));
+    assert_non_null(strstr(e.msg, "is not inside its 40x30 texels"));
+}
+
 /* Great-circle distance on the IUGG mean sphere (haversine): an independent reference for the
  * spacing of a geographic DEM. */
 static double haversine(double lat1, double lon1, double lat2, double lon2)
@@ -531,7 +557,7 @@ static void dem_scene_frames_any_dem(void **st)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(projected_float),  cmocka_unit_test(projected_feet), cmocka_unit_test(vertical_units),   cmocka_unit_test(geographic_int16_nodata),
+        cmocka_unit_test(projected_float),  cmocka_unit_test(projected_feet), cmocka_unit_test(vertical_units), cmocka_unit_test(windows),   cmocka_unit_test(geographic_int16_nodata),
         cmocka_unit_test(south_up_is_flipped), cmocka_unit_test(holes_and_fill), cmocka_unit_test(refused),
         cmocka_unit_test(ascii_grid),          cmocka_unit_test(dem_scene_frames_any_dem),
         cmocka_unit_test(hostile_numbers),     cmocka_unit_test(no_network),     cmocka_unit_test(georeference_lonlat),

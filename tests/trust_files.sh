@@ -69,10 +69,10 @@ touch ".other.png.tmp$$-0.png" # a live writer's (this shell's): kept
 run "$fathom" --output s.png --size 16x9 --spp 1 --quiet
 check "live-temporary: kept" '[ -e ".other.png.tmp$$-0.png" ]'
 # a user's own files that only look like temporaries, beside the output: not fathom's to remove
-touch ".notes.tmp$dead.md" ".s.png.tmp$dead.txt" ".s.png.tmp$dead-x.png"
+touch ".notes.tmp$dead.md" ".s.png.tmp$dead.txt" ".s.png.tmp$dead-x.png" ".s.png.tmp$dead.pn"
 run "$fathom" --output s.png --size 16x9 --spp 1 --quiet
 check "user-files-like-temporaries: kept" \
-    '[ $code -eq 0 ] && [ -e ".notes.tmp$dead.md" ] && [ -e ".s.png.tmp$dead.txt" ] && [ -e ".s.png.tmp$dead-x.png" ]'
+    '[ $code -eq 0 ] && [ -e ".notes.tmp$dead.md" ] && [ -e ".s.png.tmp$dead.txt" ] && [ -e ".s.png.tmp$dead-x.png" ] && [ -e ".s.png.tmp$dead.pn" ]'
 
 # ---- 4. no formula or fragment takes fathom down: bounds on what the compiler sees, loops that never end ---
 formula() { # formula FILE BODY-EXPRESSION [DEFINES...]: a formula whose distance adds the expression

@@ -207,36 +207,6 @@ bool geo_write_mask_file(const char *dem_path, const char *out_path, int x0, int
 
 /* A Byte RGB(A) or grey view of src (a VRT in memory): a palette expanded to RGBA, other types scaled
  * from their own range to 0–255. NULL with a message when GDAL cannot. */
-/* A palette raster's colours with its nodata entry clear: GeoTIFF keeps no alpha in a colour table, so a nodata
- * value (the viewshed's 255) would expand to an opaque colour. A VRT over src with the table changed, or src. */
-static GDALDatasetH palette_with_clear_nodata(GDALDatasetH src, bool *made)
-{
-    GDALRasterBandH b1 = GDALGetRasterBand(src, 1);
-    *made = false;
-    if (!GDALGetRasterColorTable(b1))
-        return src;
-    int has = 0;
-    double nd = GDALGetRasterNoDataValue(b1, &has);
-    GDALColorTableH ct = GDALGetRasterColorTable(b1);
-    if (!has || !(nd >= 0 && nd < GDALGetColorEntryCount(ct)) || nd != floor(nd))
-        return src;
-    char **argv = CSLAddString(CSLAddString(NULL, "-of"), "VRT");
-    GDALTranslateOptions *o = GDALTranslateOptionsNew(argv, NULL);
-    CSLDestroy(argv);
-    GDALDatasetH v = o ? GDALTranslate("", src, o, NULL) : NULL;
-    GDALTranslateOptionsFree(o);
-    if (!v)
-        return src;
-    GDALColorTableH clear = GDALCloneColorTable(ct);
-    GDALColorEntry e = *GDALGetColorEntry(clear, (int)nd);
-    e.c4 = 0;
-    GDALSetColorEntry(clear, (int)nd, &e);
-    GDALSetRasterColorTable(GDALGetRasterBand(v, 1), clear);
-    GDALDestroyColorTable(clear);
-    *made = true;
-    return v;
-}
-
 static GDALDatasetH byte_view(GDALDatasetH src, const char *path, err_t *err)
 {
     GDALRasterBandH b1 = GDALGetRasterBand(src, 1);
@@ -370,9 +340,7 @@ bool geo_drape(const char *dem_path, const char *imagery, int max_side, unsigned
     if (ok && (!GDALGetSpatialRef(src) && !GDALGetGCPCount(src)))
         ok = err_set(err, "the imagery '%s' has no georeferencing: fathom cannot tell where it lies on the DEM "
                           "(give it a CRS and geotransform, e.g. gdal_translate -a_srs -a_ullr)", imagery);
-    bool made = false;
-    GDALDatasetH base = ok ? palette_with_clear_nodata(src, &made) : NULL; /* outlives the view over it */
-    GDALDatasetH view = ok ? byte_view(base, imagery, err) : NULL;
+    GDALDatasetH view = ok ? byte_view(src, imagery, err) : NULL;
     ok = view != NULL;
     int bands = ok ? GDALGetRasterCount(view) : 0;
     bool alpha = ok && GDALGetRasterColorInterpretation(GDALGetRasterBand(view, bands)) == GCI_AlphaBand;
@@ -405,8 +373,6 @@ bool geo_drape(const char *dem_path, const char *imagery, int max_side, unsigned
         GDALClose(dst);
     if (view)
         GDALClose(view);
-    if (made)
-        GDALClose(base);
     if (src)
         GDALClose(src);
     OSRDestroySpatialReference(g.srs);

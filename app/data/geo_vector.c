@@ -66,8 +66,8 @@ static bool feature_points(OGRGeometryH geo, OGRCoordinateTransformationH t, dou
     return true;
 }
 
-/* The layer a track is read from: GPX's track points (they carry times), else its route points, else the first
- * layer with features that is not GPX's waypoints (a GPX's loose waypoints are places, not a way), else those. */
+/* The layer a track is read from: GPX's track points (they carry times), else its route points (never its loose
+ * waypoints while it has a way), else the first layer with features. */
 static OGRLayerH track_layer(GDALDatasetH ds)
 {
     static const char *const PREFERRED[] = {"track_points", "route_points"};
@@ -76,16 +76,12 @@ static OGRLayerH track_layer(GDALDatasetH ds)
         if (l && OGR_L_GetFeatureCount(l, 1) > 0)
             return l;
     }
-    OGRLayerH waypoints = NULL;
     for (int i = 0; i < GDALDatasetGetLayerCount(ds); i++) {
         OGRLayerH l = GDALDatasetGetLayer(ds, i);
-        if (OGR_L_GetFeatureCount(l, 1) <= 0)
-            continue;
-        if (strcmp(OGR_L_GetName(l), "waypoints") != 0)
+        if (OGR_L_GetFeatureCount(l, 1) > 0)
             return l;
-        waypoints = l;
     }
-    return waypoints;
+    return NULL;
 }
 
 bool geo_track_read(const char *path, geo_point **pts, int *n, err_t *err)
