@@ -81,17 +81,23 @@ static const char *write_tif(const tif *t, const double *values)
 
 static double wave(int i, int j) { return 100 + 37 * sin(0.3 * i) + 21 * cos(0.17 * j) + 0.25 * i; }
 
+/* A w × h Float32 GeoTIFF of the wave in UTM 33N, 30 m texels east and dz north, into v as well. */
+static const char *write_wave(const char *name, int w, int h, double dz, double *v)
+{
+    for (int j = 0; j < h; j++)
+        for (int i = 0; i < w; i++)
+            v[j * w + i] = (float)wave(i, j);
+    const double gt[6] = {500000, 30, 0, 5200000, 0, -dz};
+    return write_tif(&(tif){name, GDT_Float32, w, h, gt, 32633, false, 0, 0, 0}, v);
+}
+
 /* Projected metres: the geotransform's pixel size is the spacing; Float32 heights come back exactly. */
 static void projected_float(void **st)
 {
     (void)st;
     enum { W = 40, H = 30 };
     double v[W * H];
-    for (int j = 0; j < H; j++)
-        for (int i = 0; i < W; i++)
-            v[j * W + i] = (float)wave(i, j);
-    const double gt[6] = {500000, 30, 0, 5200000, 0, -25};
-    const char *p = write_tif(&(tif){"utm.tif", GDT_Float32, W, H, gt, 32633, false, 0, 0, 0}, v);
+    const char *p = write_wave("utm.tif", W, H, 25, v);
     int w, h;
     float *hts;
     dem_info info;
@@ -171,11 +177,7 @@ static void windows(void **st)
     (void)st;
     enum { W = 40, H = 30 };
     double v[W * H];
-    for (int j = 0; j < H; j++)
-        for (int i = 0; i < W; i++)
-            v[j * W + i] = (float)wave(i, j);
-    const double gt[6] = {500000, 30, 0, 5200000, 0, -30};
-    const char *p = write_tif(&(tif){"window.tif", GDT_Float32, W, H, gt, 32633, false, 0, 0, 0}, v);
+    const char *p = write_wave("window.tif", W, H, 30, v);
     int w = 7, h = 5;
     float *hts;
     dem_info info;
