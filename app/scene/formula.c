@@ -127,7 +127,7 @@ static bool param_line(const char *line, const char *at, formula_param *q, char 
     return true;
 }
 
-/* The directives of a formula's estimate: @escape, @de, @trap, @deep (formula.h). *handled: the
+/* The directives of a formula's estimate: @escape, @de, @trap, @exact, @deep (formula.h). *handled: the
  * directive was one of them; then a problem is written to why (empty: none). */
 static void estimate_directive(formula *f, const char *at, char *why, size_t n, bool *handled)
 {
@@ -160,6 +160,8 @@ static void estimate_directive(formula *f, const char *at, char *why, size_t n, 
         snprintf(f->loops, sizeof f->loops, "%s", skip_space(at + 6));
         if (!f->loops[0])
             snprintf(why, n, "expected @loops EXPR: the loop iterations one estimate runs (e.g. iterations * 3)");
+    } else if (!strncmp(at, "@exact", 6) && !at[6 + strspn(at + 6, " \t")]) {
+        f->exact = true;
     } else if (!strncmp(at, "@deep", 5)) {
         f->deep = true;
         p = skip_space(at + 5);
@@ -229,7 +231,7 @@ static bool directive(formula *f, const char *line, const char *at, char *why, s
         f->require_count++;
     } else {
         return snprintf(why, n, "unknown directive (known: @formula @iterations @bound @step @escape @de @trap @loops "
-                                "@deep @require @param @color)") < 0;
+                                "@exact @deep @require @param @color)") < 0;
     }
     return true;
 }

@@ -19,6 +19,8 @@
  *   // @deep whole power           written against real/real3 (fractal/common.glsl), so it compiles
  *   //                             in double for a deep zoom; "whole KEY..." names parameters that
  *   //                             must be whole numbers there (the Mandelbulb's power)
+ *   // @exact                      its estimate is the exact distance, not only a bound (the Menger
+ *   //                             sponge's): `fathom mesh` meshes its zero level, not half a voxel out
  *   uniform float uPower;   // @param 8 [2, 16] the exponent n of z -> z^n + c
  *   uniform float uScale;   // @param 2 [-4, 4] not (-1.05, 1.05) the scale factor s
  *   uniform int uFolds;     // @param 3 [1, 8] folds per iteration

@@ -58,6 +58,7 @@ typedef struct formula {
     bool de_log;                  /* @de log: ½ ln r · r / dr; else r / dr */
     char escape[FORMULA_EXPR_MAX]; /* @escape: an expression of the parameters */
     bool deep;                    /* @deep: compiles in double */
+    bool exact;                   /* @exact: the estimate is the exact distance (fathom mesh meshes level 0) */
     char deep_whole[FORMULA_TEXT_MAX]; /* @deep whole KEY...: keys that must be whole numbers in double */
     int param_count;
     formula_param params[FORMULA_MAX_PARAMS];

@@ -5,6 +5,7 @@
 // @trap 0 1
 // @loops 4 * iterations + 1
 // @deep
+// @exact
 //
 // Its loops: up to 2ᴺ paths of N levels, but the pruning below keeps an estimate to at most 2N + 3
 // loop iterations wherever check-formula probes it (N = 1 … 7); @loops declares twice that.
