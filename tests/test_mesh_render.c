@@ -47,6 +47,15 @@ static void read_back(const char *path, mesh *m, mesh_topology *t)
     mesh_check(m, t);
 }
 
+/* `fathom mesh` as d says, and its file read back and checked. */
+static void made(const mesh_desc *d, mesh *m, mesh_topology *t)
+{
+    err_t e;
+    if (!mesh_job_run(d, &e))
+        fail_msg("fathom mesh %s -> %s: %s", d->scene, d->output, e.msg);
+    read_back(d->output, m, t);
+}
+
 static double sd_torus(const float *p)
 {
     double q = sqrt((double)p[0] * p[0] + (double)p[2] * p[2]) - 1.0;
@@ -145,13 +154,9 @@ static void printed_at_the_origin(void **state)
     for (int i = 0; i < 2; i++) {
         char path[PATH_MAX_LEN];
         snprintf(path, sizeof path, "%s/printed.%s", dir, ext[i]);
-        mesh_desc d = {.scene = "torus", .output = path, .resolution = 24, .print_mm = 100, .quiet = true};
-        err_t e;
-        if (!mesh_job_run(&d, &e))
-            fail_msg("%s", e.msg);
         mesh m = {0};
         mesh_topology t;
-        read_back(path, &m, &t);
+        made(&(mesh_desc){.scene = "torus", .output = path, .resolution = 24, .print_mm = 100, .quiet = true}, &m, &t);
         float lo[3] = {1e9f, 1e9f, 1e9f}, hi[3] = {-1e9f, -1e9f, -1e9f};
         for (size_t v = 0; v < m.nv; v++)
             for (int k = 0; k < 3; k++) {
@@ -176,13 +181,10 @@ static void menger_exact_volume(void **state)
     char path[PATH_MAX_LEN];
     snprintf(path, sizeof path, "%s/menger.ply", dir);
     const char *sets[] = {"fractal.iterations=2", "fractal.size=1"};
-    mesh_desc d = {.scene = "menger", .sets = sets, .set_count = 2, .output = path, .resolution = 96, .quiet = true};
-    err_t e;
-    if (!mesh_job_run(&d, &e))
-        fail_msg("%s", e.msg);
     mesh m = {0};
     mesh_topology t;
-    read_back(path, &m, &t);
+    made(&(mesh_desc){.scene = "menger", .sets = sets, .set_count = 2, .output = path, .resolution = 96, .quiet = true},
+         &m, &t);
     double want = 8 * (20.0 / 27) * (20.0 / 27);
     fprintf(stderr, "  menger level 2 at 96 cells: volume %.5f (exact %.5f), closed %d\n", t.volume, want,
             t.closed_manifold);
