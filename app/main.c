@@ -7,18 +7,18 @@
 #include <sys/stat.h>
 #include <string.h>
 
-#include "jobs/bench.h"
-#include "jobs/check.h"
-#include "jobs/flight.h"
-#include "jobs/mesh_job.h"
-#include "jobs/gis_job.h"
-#include "cli.h"
+#include "jobs/bench/bench.h"
+#include "jobs/check/check.h"
+#include "jobs/capture/flight.h"
+#include "jobs/mesh/mesh_job.h"
+#include "jobs/gis/gis_job.h"
+#include "cli/cli.h"
 #include "window/explore.h"
-#include "data/image_io.h"
-#include "jobs/offline.h"
+#include "data/media/image_io.h"
+#include "jobs/capture/offline.h"
 #include "gpu/render.h"
 #include "scene/scene.h"
-#include "scene/frag.h"
+#include "scene/formula/frag.h"
 #include "view/shot.h"
 #include "view/views.h"
 

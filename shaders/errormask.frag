@@ -9,7 +9,7 @@
 // thread thinner than the pixel that a third may find, but its neighbours have often seen it (the
 // Mandelbulb at 240×135, tolerance 0.008, tests/test_gl.c: RMSE to every pixel's 16 samples 0.0126
 // alone, 0.0007 with the block, at 3.9 and 7.0 samples a pixel). Bands and tiles of an image are
-// rendered with margin rows for it (app/jobs/offline.c), so they agree with the whole image.
+// rendered with margin rows for it (app/jobs/capture/offline.c), so they agree with the whole image.
 uniform sampler2D uAccum;   // target 0: Σ radiance, alpha the pixel's samples
 uniform sampler2D uSquares; // target 3: Σ radiance²
 uniform float uExposure;

@@ -63,7 +63,7 @@ expect webm-h264 2 "a WebM file holds vp9 or av1" 1 -- "$fathom" render --path "
 expect egl-device-missing 1 "FATHOM_EGL_DEVICE=99: no such hardware EGL device" 1 -- env FATHOM_EGL_DEVICE=99 "$fathom" $out
 expect egl-device-bad 1 "FATHOM_EGL_DEVICE='gpu0' is not a device number" 1 -- env FATHOM_EGL_DEVICE=gpu0 "$fathom" $out
 # a binary without its modules (copied alone): the image library it needs for an EXR is named, the
-# PNG it writes itself still works (data/lazy.h)
+# PNG it writes itself still works (data/lazy/lazy.h)
 mkdir "$tmp/lonely" && cp "$fathom" "$tmp/lonely/fathom"
 expect module-missing 1 "fathom_image.so, which reads and writes images through OpenImageIO, is not beside" 1 -- \
     "$tmp/lonely/fathom" --output "$tmp/out.exr" --size 33x21 --spp 1 --quiet

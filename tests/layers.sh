@@ -1,10 +1,12 @@
 #!/bin/sh
 # layers.sh SOURCE_DIR: the tree shows the architecture, and the words about it cannot go stale.
-#  1. Every #include "..." in app/ names a header by its path under app/ and goes down the layers
-#     (a file may include its own folder's headers): main.c > window/ > jobs/ > cli > gpu/ > scene/ >
-#     view/ > data/ > util.
+#  1. The layers are the table in docs/guide/how-it-works.md ("## The layers"), top to bottom: every
+#     folder of app/ that holds files is a row and every row exists. Every #include "..." in app/
+#     names a header by its path under app/ and goes down the rows (a file may include its own
+#     folder's headers).
 #  2. No include cycle between modules (X.c and X.h are module X): tsort finds none.
-#  3. No function in app/ or shaders/ is longer than 80 lines (style.md, rule 16).
+#  3. No function in app/ or shaders/ is longer than 80 lines (style.md, rule 16), and no file in
+#     app/, shaders/ or tests/ is longer than 600.
 #  4. Every source file that a comment, README.md or docs/ cites (app/..., shaders/..., tests/...,
 #     a bare NAME.c/.h/.glsl/.frag/.vert) exists.
 #  6. The pure library (CMakeLists.txt's fathom_pure: no GL, tested under the sanitizers) includes no
@@ -12,34 +14,47 @@
 #  5. Every global function in app/*.c carries its module's prefix: the file name's first word and '_'
 #     (scene_json.c: scene_, res_csg_list.c: res_), or one of the few names below that a module owns
 #     for its types (quality.c: knob_ and preset_, the QUALITY_KNOBS table's rows and presets).
+# (Calls in a circle between files are tests/calls.sh's, on the built libraries.)
 set -u
 cd "$1" || exit 2
 fail=0
 say() { echo "layers: $*"; fail=1; }
 
-floor() { # the layer of a path under app/ (lower numbers are higher up)
-    case $1 in
-    main.c) echo 0 ;; window/*) echo 1 ;; jobs/*) echo 2 ;; cli.c | cli.h | cli_*.c | cli_*.h) echo 3 ;; gpu/*) echo 4 ;;
-    scene/*) echo 5 ;; view/*) echo 6 ;; data/*) echo 7 ;; util.c | util.h) echo 8 ;; *) echo x ;;
-    esac
-}
-
 edges=$(mktemp)
-trap 'rm -f "$edges"' EXIT INT TERM
-for f in $(cd app && find . -name '*.c' -o -name '*.h' -o -name '*.cpp' | sed 's#^\./##' | sort); do
-    from=$(floor "$f")
-    [ "$from" = x ] && say "app/$f is in no layer: put it in a layer's folder (tests/layers.sh lists them)"
+trap 'rm -f "$edges" "$edges".*' EXIT INT TERM
+# the rows: the first column of the guide's table, `main.c`, `window/`, ... `util.c`
+sed -n '/^## The layers/,/^## /p' docs/guide/how-it-works.md | sed -n 's/^| `\([^`]*\)` |.*/\1/p' >"$edges.rows"
+[ -s "$edges.rows" ] || say "docs/guide/how-it-works.md has no layer table under '## The layers'"
+for row in $(grep '/$' "$edges.rows"); do
+    [ -d "app/$row" ] || say "the guide's layer table names app/$row, which does not exist"
+done
+for d in $(cd app && find . -mindepth 1 -type d | sed 's#^\./##' | sort); do
+    [ -n "$(find "app/$d" -maxdepth 1 -type f -print -quit)" ] || continue # a folder of folders
+    grep -qxF "$d/" "$edges.rows" || say "app/$d/ is no row of the guide's layer table (docs/guide/how-it-works.md)"
+done
+files=$(cd app && find . -name '*.c' -o -name '*.h' -o -name '*.cpp' | sed 's#^\./##' | sort)
+# each file's row: the longest row that names it or a folder above it
+echo "$files" | awk 'NR == FNR { row[++n] = $0; next }
+    { best = "x"; len = 0
+      for (i = 1; i <= n; i++) {
+          r = row[i]
+          if ((r ~ /\/$/ ? index($0, r) == 1 : $0 == r) && length(r) > len) { best = i; len = length(r) }
+      }
+      print $0, best }' "$edges.rows" - >"$edges.floor"
+for f in $files; do
     for inc in $(sed -n 's/^[[:space:]]*#[[:space:]]*include[[:space:]]*"\([^"]*\)".*/\1/p' "app/$f"); do
         [ -f "app/$inc" ] || { say "app/$f includes \"$inc\", which is no app/ path"; continue; }
-        to=$(floor "$inc")
-        # (a module split into rooms, cli.c and cli_shot.c, shares its header: X_*.c may include X.h)
-        if [ "${f%.*}" != "${inc%.*}" ] && [ "${f%%_*}" != "${inc%.*}" ] && [ "${f%/*}" != "${inc%/*}" ] &&
-            [ "$to" != x ] && [ "$to" -le "$from" ]; then
-            say "app/$f (layer $from) includes $inc (layer $to): includes go down the layers only"
-        fi
         echo "$f $inc" >>"$edges"
     done
 done
+bad=$(awk 'NR == FNR { floor[$1] = $2; next }
+    function dir(p) { return p ~ /\// ? substr(p, 1, match(p, /\/[^\/]*$/)) : "" }
+    { from = floor[$1]; to = floor[$2]
+      if (from == "x") { if (!(($1) in told)) print "app/" $1 " is in no row of the layer table: put it in a row'"'"'s folder"; told[$1] = 1; next }
+      if (dir($1) != dir($2) && to != "x" && to + 0 <= from + 0)
+          print "app/" $1 " (row " from ") includes " $2 " (row " to "): includes go down the rows only" }' \
+    "$edges.floor" "$edges")
+[ -n "$bad" ] && say "$bad"
 # Module X is X.c (or .cpp) with X.h. A header without a .c of its own (types, inline helpers, a
 # module's internal declarations) is no module: what it includes counts for the files that include it.
 sources=$(cd app && find . -name '*.c' -o -name '*.cpp' | sed 's#^\./##' | tr '\n' ' ')
@@ -66,6 +81,11 @@ long=$(find app shaders -name '*.c' -o -name '*.cpp' -o -name '*.h' -o -name '*.
            -o -name '*.vert' | sort | xargs awk -v MAX=80 -f tests/funclen.awk)
 [ -n "$long" ] && say "functions over 80 lines (split them into named steps):
 $long"
+big=$(find app shaders -type f \( -name '*.c' -o -name '*.cpp' -o -name '*.h' -o -name '*.glsl' -o -name '*.frag' \
+          -o -name '*.vert' -o -name '*.comp' -o -name '*.sh' -o -name '*.txt' \) -not -path 'tests/golden/*' | sort |
+      xargs wc -l | awk '$2 != "total" && $1 > 600 { print "  " $2 ": " $1 " lines" }')
+[ -n "$big" ] && say "files over 600 lines (split them by what they cover):
+$big"
 
 # 4. cited files exist
 cited=$(grep -rhoE '(app|shaders|tests|docs)/[A-Za-z0-9_./-]*[A-Za-z0-9_]\.(c|h|cpp|glsl|frag|vert|sh|md|json)\b' \

@@ -11,7 +11,7 @@
 
 #include <cmocka.h>
 
-#include "data/bvh.h"
+#include "data/droplets/bvh.h"
 
 static double frand(unsigned *seed)
 {

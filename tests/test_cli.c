@@ -8,7 +8,7 @@
 
 #include "check.h"
 
-#include "cli.h"
+#include "cli/cli.h"
 
 #define ARGV(...) ((char *[]){"fathom", __VA_ARGS__, NULL})
 #define ARGC(...) ((int)(sizeof((char *[]){"fathom", __VA_ARGS__}) / sizeof(char *)))

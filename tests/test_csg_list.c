@@ -1,4 +1,4 @@
-/* The csg program's primitive list (shaders/csg/list.glsl behind app/data/bvh.c): map() from the list is
+/* The csg program's primitive list (shaders/csg/list.glsl behind app/data/droplets/bvh.c): map() from the list is
  * the same function as map() compiled as code, and for 10,000 spheres the exact distance to the
  * nearest one (brute force in double); such a scene compiles and renders within this test's timeout. */
 #include <math.h>

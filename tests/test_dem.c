@@ -21,9 +21,9 @@
 #include <ogr_srs_api.h>
 
 #include "check.h"
-#include "data/dem.h"
+#include "data/geo/dem.h"
 #include "scene/scene.h"
-#include "data/terrain.h"
+#include "data/geo/terrain.h"
 
 static char dir[] = "/tmp/fathom-dem-XXXXXX";
 

@@ -22,7 +22,7 @@
 #include <cmocka.h>
 
 #include "check.h"
-#include "data/droplets.h"
+#include "data/droplets/droplets.h"
 #include "gltest.h"
 #include "gpu/render.h"
 #include "gpu/render_probe.h"

@@ -1,4 +1,4 @@
-/* Droplet files and the droplets' grid (app/data/droplets.c), without GL:
+/* Droplet files and the droplets' grid (app/data/droplets/droplets.c), without GL:
  *  - ParaView's CSV (quoted headers, extra columns, diameter), plain x,y,z,r, no header;
  *  - bad files get one error naming file, line and column: empty, missing columns, not a number,
  *    NaN, negative or zero radius, short rows, coordinates out of range; 10⁷ rows load within memory;
@@ -19,7 +19,7 @@
 #include <cmocka.h>
 
 #include "check.h"
-#include "data/droplets.h"
+#include "data/droplets/droplets.h"
 
 static double frand(unsigned *seed)
 {

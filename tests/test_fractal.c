@@ -16,7 +16,7 @@
 #include "gltest.h"
 #include "gpu/render.h"
 #include "gpu/render_probe.h"
-#include "jobs/check.h"
+#include "jobs/check/check.h"
 
 static uint32_t rng = 987654321u;
 static double rnd(double lo, double hi)

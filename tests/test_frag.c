@@ -1,4 +1,4 @@
-/* Fragmentarium fragments read as data (scene/frag.h), without GL: every annotation a parameter with
+/* Fragmentarium fragments read as data (scene/formula/frag.h), without GL: every annotation a parameter with
  * its type, default, range, group and description; presets as views (the camera from Eye, Target, Up
  * and FOV; Detail, FudgeFactor, MaxRaySteps and the parameters as overrides); the translation keeps
  * every line where it was and renames the fragment's own names; and each refusal in one line that
@@ -17,8 +17,8 @@
 
 #include <cmocka.h>
 
-#include "scene/formula.h"
-#include "scene/frag.h"
+#include "scene/formula/formula.h"
+#include "scene/formula/frag.h"
 #include "view/camera.h"
 #include "view/shot.h"
 

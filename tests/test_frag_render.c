@@ -1,4 +1,4 @@
-/* Fragmentarium fragments drawn (scene/frag.h, shaders/frag/): what each must draw, against closed
+/* Fragmentarium fragments drawn (scene/formula/frag.h, shaders/frag/): what each must draw, against closed
  * forms — a sphere fragment's depth at every pixel, Detail's absolute hit distance growing its
  * silhouette by exactly that distance, the renderers' orbit-trap colouring and the baseColor() hook
  * as albedo, init() once a pixel, MathUtils' rotation convention through a helper from the fragment's
@@ -19,7 +19,7 @@
 
 #include "gltest.h"
 #include "gpu/render.h"
-#include "scene/frag.h"
+#include "scene/formula/frag.h"
 #include "view/shot.h"
 
 enum { FW = 64, FH = 48 };

@@ -1,4 +1,4 @@
-/* GIS in and out (data/geo.h, jobs/gis_job.h), each checked with GDAL and OGR called here directly:
+/* GIS in and out (data/geo/geo.h, jobs/gis/gis_job.h), each checked with GDAL and OGR called here directly:
  *  - imagery in another CRS (a WGS 84 checkerboard on a UTM DEM) lands where its squares are: every
  *    drape pixel away from a square's edge has its square's colour, and each edge crossed by the middle
  *    row lies within half a drape pixel of its longitude; where the imagery does not reach, alpha is 0;
@@ -25,11 +25,11 @@
 #include <ogr_api.h>
 #include <ogr_srs_api.h>
 
-#include "data/dem.h"
-#include "data/geo.h"
-#include "data/sun.h"
-#include "data/viewshed.h"
-#include "jobs/gis_job.h"
+#include "data/geo/dem.h"
+#include "data/geo/geo.h"
+#include "data/sky/sun.h"
+#include "data/geo/viewshed.h"
+#include "jobs/gis/gis_job.h"
 #include "scene/scene.h"
 #include "view/path.h"
 

@@ -1,5 +1,5 @@
 /* GIS on the GPU. The physical sky (shaders/common/sky.glsl) against its double-precision twin
- * (data/sky.h) pixel by pixel, and aerial perspective dimming a hit as the twin's transmittance says.
+ * (data/sky/sky.h) pixel by pixel, and aerial perspective dimming a hit as the twin's transmittance says.
  * Imagery on the rendered terrain (gpu/res_imagery.c, shaders/terrain/layers.glsl): a UTM DEM draped
  * with an image whose western half is red and eastern half blue, and whose northern half has green, in
  * another CRS (WGS 84), split at a known longitude and latitude: every pixel whose hit (the position AOV) lies more than a texel from that meridian
@@ -23,7 +23,7 @@
 #include <ogr_srs_api.h>
 
 #include "gltest.h"
-#include "data/sky.h"
+#include "data/sky/sky.h"
 #include "gpu/render.h"
 
 static char dir[] = "/tmp/fathom-drape-XXXXXX";
@@ -211,7 +211,7 @@ static void opacity_zero_is_no_imagery(void **st)
 }
 
 /* The sky seen from 2 km up, looking 25° above the horizon: each sky pixel's radiance against
- * data/sky.h's march with 256 steps (the shader takes 16 and 8), the sun's disc left out. */
+ * data/sky/sky.h's march with 256 steps (the shader takes 16 and 8), the sun's disc left out. */
 static void sky_matches_its_twin(void **st)
 {
     (void)st;

@@ -14,10 +14,10 @@
 #include <epoxy/gl.h>
 
 #include "check.h"
-#include "cli.h"
+#include "cli/cli.h"
 #include "gpu/gpu.h"
-#include "data/image_io.h"
-#include "jobs/offline.h"
+#include "data/media/image_io.h"
+#include "jobs/capture/offline.h"
 #include "reference.h"
 #include "gpu/render.h"
 #include "gpu/render_probe.h"

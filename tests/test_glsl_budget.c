@@ -1,4 +1,4 @@
-/* glsl_budget: the compiler's view of a stranger's GLSL, macros expanded (app/scene/glsl_budget.h).
+/* glsl_budget: the compiler's view of a stranger's GLSL, macros expanded (app/scene/formula/glsl_budget.h).
  * Counts against expansions worked out by hand, every bound met just inside and just past, the bombs
  * that took Mesa's compiler down (issue 50, item 4) refused at once, and recursion that must end. */
 #include <setjmp.h>
@@ -11,7 +11,7 @@
 
 #include <cmocka.h>
 
-#include "scene/glsl_budget.h"
+#include "scene/formula/glsl_budget.h"
 #include "util.h"
 
 static glsl_measure measure_ok(const char *src)

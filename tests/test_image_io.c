@@ -13,8 +13,8 @@
 
 #include <cmocka.h>
 
-#include "data/image_io.h"
-#include "data/lazy.h"
+#include "data/media/image_io.h"
+#include "data/lazy/lazy.h"
 
 enum { W = 7, H = 5 };
 static char dir[64];

@@ -1,4 +1,4 @@
-/* Mesh extraction against closed forms (data/mesh.h): a sphere, an offset box (its faces flat and its
+/* Mesh extraction against closed forms (data/mesh/mesh.h): a sphere, an offset box (its faces flat and its
  * edges sharp), a torus and a block with a hole through it (genus 1), two linked-by-overlap tori (genus
  * 2), at several resolutions: closed, manifold, oriented, Euler characteristic 2 − 2g, area and volume
  * within the resolution's bound, every vertex on the surface; the sparse blocks give the dense mesh
@@ -13,7 +13,7 @@
 
 #include <cmocka.h>
 
-#include "data/mesh.h"
+#include "data/mesh/mesh.h"
 
 typedef double (*sdf_fn)(const double p[3]);
 

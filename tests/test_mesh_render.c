@@ -1,4 +1,4 @@
-/* `fathom mesh` end to end (jobs/mesh_job.h): the scene's map() on the GPU, the mesh written by assimp
+/* `fathom mesh` end to end (jobs/mesh/mesh_job.h): the scene's map() on the GPU, the mesh written by assimp
  * and read back by assimp (the stand-in for Blender and a slicer), then checked: the torus program
  * against its closed form in every format, the Mandelbulb against its own field, a simplification
  * within its tolerance, one shell, and the Jacksboro DEM as a solid (its top on the heightfield the
@@ -14,13 +14,13 @@
 
 #include <cmocka.h>
 
-#include "data/mesh.h"
-#include "data/mesh_io.h"
-#include "data/terrain.h"
+#include "data/mesh/mesh.h"
+#include "data/mesh/mesh_io.h"
+#include "data/geo/terrain.h"
 #include "gltest.h"
 #include "gpu/render.h"
 #include "gpu/render_probe.h"
-#include "jobs/mesh_job.h"
+#include "jobs/mesh/mesh_job.h"
 #include "scene/scene.h"
 
 static char dir[64];

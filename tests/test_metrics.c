@@ -12,8 +12,8 @@
 #include <cmocka.h>
 
 #include "check.h"
-#include "jobs/gnuplot.h"
-#include "jobs/metrics.h"
+#include "jobs/bench/gnuplot.h"
+#include "jobs/bench/metrics.h"
 #include "view/aov.h"
 
 enum { W = 5, H = 3, N = W * H };

@@ -16,10 +16,10 @@
 
 #include <cmocka.h>
 
-#include "cli.h"
-#include "data/image_io.h"
+#include "cli/cli.h"
+#include "data/media/image_io.h"
 #include "gltest.h"
-#include "jobs/offline.h"
+#include "jobs/capture/offline.h"
 
 static const char *const ONE_SAMPLE[] = {"quality.spp=1", "effects.aa=off"};
 

@@ -44,7 +44,7 @@
 
 #include <cmocka.h>
 
-#include "data/image_io.h"
+#include "data/media/image_io.h"
 #include "gltest.h"
 
 enum { PW = 48, PH = 27 };

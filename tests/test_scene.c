@@ -16,7 +16,7 @@
 
 #include "scene/overrides.h"
 #include "scene/params.h"
-#include "scene/formula.h"
+#include "scene/formula/formula.h"
 #include "scene/scene.h"
 #include "view/shot.h"
 #include "view/views.h"

@@ -1,4 +1,4 @@
-/* The atmosphere (data/sky.h) against closed forms: Beer–Lambert along a short horizontal path
+/* The atmosphere (data/sky/sky.h) against closed forms: Beer–Lambert along a short horizontal path
  * (constant air: T = exp(−σ(h) L)) and straight up (the exponential profiles and the ozone tent
  * integrate exactly); the march's convergence at the shader's sample counts; and what a sky must do:
  * blue overhead, red toward a low sun, darker with altitude, multiple scattering adding light, the
@@ -13,7 +13,7 @@
 
 #include <cmocka.h>
 
-#include "data/sky.h"
+#include "data/sky/sky.h"
 
 static void horizontal_beer_lambert(void **state)
 {

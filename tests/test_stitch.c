@@ -13,8 +13,8 @@
 #include <cmocka.h>
 
 #include "check.h"
-#include "data/image_io.h"
-#include "jobs/offline.h"
+#include "data/media/image_io.h"
+#include "jobs/capture/offline.h"
 #include "view/shot.h"
 
 static char dir[] = "/tmp/fathom-stitch-XXXXXX";

@@ -1,4 +1,4 @@
-/* The sun's position (data/sun.h) against the NREL SPA's published example and, over a year at three
+/* The sun's position (data/sky/sun.h) against the NREL SPA's published example and, over a year at three
  * latitudes, against an algorithm that shares none of NOAA's series: the Astronomical Almanac's
  * low-precision formulas as Michalsky (1988) gives them (good to 0.01° in 1950-2050), written here
  * from the paper. Then the beam's colour and the date parser's refusals. */
@@ -12,7 +12,7 @@
 
 #include <cmocka.h>
 
-#include "data/sun.h"
+#include "data/sky/sun.h"
 #include "util.h"
 
 static double rad(double d) { return d * M_PI / 180; }

@@ -19,10 +19,10 @@
 
 #include "check.h"
 #include "gltest.h"
-#include "data/image_io.h"
+#include "data/media/image_io.h"
 #include "gpu/render.h"
 #include "gpu/render_probe.h"
-#include "data/terrain.h"
+#include "data/geo/terrain.h"
 
 /* ---- the reference: a ray against the solid column under a bilinear heightfield, in double ------- */
 

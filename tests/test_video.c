@@ -1,4 +1,4 @@
-/* Videos (data/video.h) decoded back with libavformat and compared with the frames they were made
+/* Videos (data/media/video.h) decoded back with libavformat and compared with the frames they were made
  * from: frame count, size, rate, codec, the 360° and stereo tags, and every frame's PSNR (at least
  * 40.5 dB on the worst frame at the default quality) for H.264 in MP4, VP9 in WebM and AV1 in MP4; the option errors.
  * With arguments, `test_video VIDEO FRAMES_PATTERN N` checks a video fathom wrote against its N frames
@@ -14,8 +14,8 @@
 
 #include <cmocka.h>
 
-#include "data/image_io.h"
-#include "data/video.h"
+#include "data/media/image_io.h"
+#include "data/media/video.h"
 #include "view/path.h"
 
 enum { VW = 192, VH = 128, FRAMES = 12, FPS = 24 };

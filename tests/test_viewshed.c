@@ -1,4 +1,4 @@
-/* The viewshed (data/viewshed.h) against a brute-force reference that shares only the surface's
+/* The viewshed (data/geo/viewshed.h) against a brute-force reference that shares only the surface's
  * definition: every cell in the line's bounding box is clipped by its own slab test, and the clearance
  * there is evaluated directly (bilinear height at the point, the drop (1 − k) d² / 2R from the
  * metres travelled) at three points in long double, whose parabola gives the exact minimum (the
@@ -15,7 +15,7 @@
 
 #include <cmocka.h>
 
-#include "data/viewshed.h"
+#include "data/geo/viewshed.h"
 
 typedef long double ld;
 

@@ -40,7 +40,7 @@ static size_t d_cells_or_nodes(const droplets *d)
     return d->nodes ? 2 * (size_t)d->node_count : droplets_cell_count(d) + 1;
 }
 
-/* The file, its grid (or BVH), three texture buffers (app/data/droplets.h). */
+/* The file, its grid (or BVH), three texture buffers (app/data/droplets/droplets.h). */
 static bool set(const scene *s, err_t *err)
 {
     if (!s->has_droplets || !(s->effects & (1u << EFFECT_DROPLETS))) {

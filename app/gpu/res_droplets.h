@@ -2,7 +2,7 @@
 #ifndef FATHOM_RES_DROPLETS_H
 #define FATHOM_RES_DROPLETS_H
 
-#include "data/droplets.h"
+#include "data/droplets/droplets.h"
 #include "gpu/render_resource.h"
 
 /* The loaded droplets (NULL without), and the seconds reading the file and building the grid took. */

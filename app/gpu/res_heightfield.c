@@ -1,5 +1,5 @@
 /* res_heightfield — a terrain's heights and max pyramid on the GPU, in texture-array tiles when the
- * grid is larger than one texture (app/data/terrain.h has the pyramid; shaders/terrain/terrain.glsl
+ * grid is larger than one texture (app/data/geo/terrain.h has the pyramid; shaders/terrain/terrain.glsl
  * walks it). Kept while the next scene reads the same unchanged file the same way (a flight's frames,
  * preset and knob switches): a big DEM is read once. */
 #include "gpu/res_heightfield.h"
@@ -9,7 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "data/dem.h"
+#include "data/geo/dem.h"
 
 static struct {
     GLuint height_tex, height_max_tex, height_top_tex; /* heights, max pyramid (tiles, top) */

@@ -2,7 +2,7 @@
 #ifndef FATHOM_RES_HEIGHTFIELD_H
 #define FATHOM_RES_HEIGHTFIELD_H
 
-#include "data/terrain.h"
+#include "data/geo/terrain.h"
 #include "gpu/render_resource.h"
 
 /* The loaded grid's description (NULL without one) and its texture tiles (1 x 1 when it fits one). */

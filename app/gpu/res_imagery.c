@@ -1,5 +1,5 @@
 /* res_imagery — a terrain's drape: its imagery (terrain.imagery), every layer warped by GDAL onto the
- * DEM's extent in its CRS (data/geo.h), then its vectors (terrain.vectors: tracks, paths, places burnt
+ * DEM's extent in its CRS (data/geo/geo.h), then its vectors (terrain.vectors: tracks, paths, places burnt
  * in their colour and width), composited in order with their opacity ("over"), one sRGB texture with
  * mipmaps and the driver's anisotropic filtering where it has it. Alpha is the imagery's coverage:
  * shaders/terrain/layers.glsl shows the terrain's own layers where it is 0. Kept while the next scene
@@ -9,7 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "data/geo.h"
+#include "data/geo/geo.h"
 #include "gpu/render_resource.h"
 #include "gpu/texture.h"
 

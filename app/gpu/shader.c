@@ -8,8 +8,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "scene/frag.h"
-#include "scene/glsl_budget.h"
+#include "scene/formula/frag.h"
+#include "scene/formula/glsl_budget.h"
 
 enum { MAX_INCLUDE_DEPTH = 16 };
 
@@ -133,7 +133,7 @@ static bool expand(const char *root, const char *file, const shader_virtual *vir
     for (int i = 0; i < nvirt; i++)
         if (!strcmp(virt[i].name, file))
             src = virt[i].text, generated = true;
-    if (!src && file[0] == '/' && (src = frag_text(file))) /* a fragment as fathom translated it (scene/frag.h) */
+    if (!src && file[0] == '/' && (src = frag_text(file))) /* a fragment as fathom translated it (scene/formula/frag.h) */
         generated = true;
     const char *ext = strrchr(file, '.'); /* never the raw file: its annotations are not GLSL */
     if (!src && file[0] == '/' && ext && (!strcmp(ext, ".frag") || !strcmp(ext, ".frag:prelude") ||

@@ -3,7 +3,7 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "data/image_io.h"
+#include "data/media/image_io.h"
 
 GLuint texture_mipmapped_2d(GLint internal, int w, int h, GLenum format, GLenum type, const void *px, GLint align,
                             GLint wrap)

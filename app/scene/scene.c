@@ -9,7 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "data/droplets.h"
+#include "data/droplets/droplets.h"
 #include "scene/scene_parse.h"
 
 /* A block that holds another program's shape is a mistake, not something to ignore. */

@@ -14,7 +14,7 @@
  * intersection and difference give a bound (the smooth variants a bound within k/4 of it).
  * Material of a surface point = the material of the primitive whose surface it is.
  * Many primitives: bounded primitives at the top level (or in plain unions, without position or
- * rotation) go to a primitive list behind a bounding volume hierarchy (app/data/bvh.h) once there are
+ * rotation) go to a primitive list behind a bounding volume hierarchy (app/data/droplets/bvh.h) once there are
  * CSG_LIST_MIN of them, so 10,000 compile like 10; at most CSG_CODE_MAX primitives are compiled as
  * code (inside other operations), a limit stated in the error before anything compiles.
  */
@@ -24,9 +24,9 @@
 #include <stdbool.h>
 
 #include "util.h"
-#include "data/sky.h"
+#include "data/sky/sky.h"
 #include "scene/effect.h"
-#include "scene/formula.h"
+#include "scene/formula/formula.h"
 #include "scene/program.h"
 #include "scene/quality.h"
 #include "scene/uniforms.h"
@@ -117,7 +117,7 @@ typedef struct scene {
     bool has_cubemap;
     char cubemap[6][PATH_MAX_LEN]; /* +X -X +Y -Y +Z -Z */
 
-    bool has_sky; /* "environment": {"sky": "physical"}: Hillaire's atmosphere (data/sky.h, scene_sun.c) */
+    bool has_sky; /* "environment": {"sky": "physical"}: Hillaire's atmosphere (data/sky/sky.h, scene_sun.c) */
     struct scene_sky {
         float sun[3];           /* toward the sun: the sun light's direction */
         float irradiance[3];    /* the sun's above the atmosphere: its light's colour × intensity */
@@ -184,7 +184,7 @@ typedef struct scene {
         double convergence;        /* degrees from the DEM's grid north to true north at its centre (0: none) */
     } sun;
 
-    /* "droplets": liquid spheres from a file (app/data/droplets.h), a layer any program can hold; the file
+    /* "droplets": liquid spheres from a file (app/data/droplets/droplets.h), a layer any program can hold; the file
      * is read when the scene goes to the GPU (render_scene.c), like a terrain's heightmap */
     bool has_droplets;
     struct scene_droplets {

@@ -9,7 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "data/bvh.h"
+#include "data/droplets/bvh.h"
 #include "scene/scene_parse.h"
 
 #define DEG2RAD 0.017453292519943295

@@ -5,7 +5,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "scene/frag.h"
+#include "scene/formula/frag.h"
 #include "scene/scene_parse.h"
 
 /* ---- fractals: the "fractal" block ------------------------------------------------------------ */

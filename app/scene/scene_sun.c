@@ -1,6 +1,6 @@
 /* scene_sun — the "sun" block: a directional light placed by a date, a local hour and a place
- * (data/sun.h: NOAA's solar position), its colour the direct beam's through the air. The place is the
- * DEM's centre (data/geo.h) unless the block gives latitude and longitude. The hour is a number so a
+ * (data/sky/sun.h: NOAA's solar position), its colour the direct beam's through the air. The place is the
+ * DEM's centre (data/geo/geo.h) unless the block gives latitude and longitude. The hour is a number so a
  * flight's "set" track can run a day ("sun.hour": 6 → 20) and the panel shows it as a slider. */
 #define _XOPEN_SOURCE 700 /* M_PI is XSI */
 #include "scene/scene.h"
@@ -9,10 +9,10 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "data/dem.h"
-#include "data/geo.h"
-#include "data/sky.h"
-#include "data/sun.h"
+#include "data/geo/dem.h"
+#include "data/geo/geo.h"
+#include "data/sky/sky.h"
+#include "data/sky/sun.h"
 #include "scene/scene_parse.h"
 
 bool scene_parse_sun(scene_ctx *c, const cJSON *root)
@@ -85,7 +85,7 @@ bool scene_apply_sun(scene *s, err_t *err)
     sun->azimuth = p.azimuth, sun->elevation = p.elevation;
     scene_light *l = &s->lights[sun->light];
     double az = (p.azimuth + sun->convergence) * M_PI / 180, el = p.elevation * M_PI / 180;
-    /* east is +X, grid north −Z (data/terrain.h) */
+    /* east is +X, grid north −Z (data/geo/terrain.h) */
     l->vec[0] = (float)(cos(el) * sin(az));
     l->vec[1] = (float)sin(el);
     l->vec[2] = (float)(-cos(el) * cos(az));

@@ -8,7 +8,7 @@
 #include <string.h>
 
 #include "scene/scene_parse.h"
-#include "data/terrain.h"
+#include "data/geo/terrain.h"
 
 /* ---- terrains: the "terrain" block ------------------------------------------------------------ */
 

@@ -13,7 +13,7 @@
 #include <strings.h>
 #include <sys/stat.h>
 
-#include "data/image_io.h"
+#include "data/media/image_io.h"
 
 /* A shipped scene's name ("mandelbulb" for <data>/scenes/fractals/mandelbulb.json's folder set), or
  * false for a file of the user's. */
@@ -247,7 +247,7 @@ static bool cache_path(const shot_formula *f, const char *hash, char *out, size_
     for (const char *c = base; *c && *c != '.' && k + 1 < sizeof name - 5; c++)
         name[k++] = (isalnum((unsigned char)*c) || *c == '_' || *c == '-') ? *c : '_';
     size_t fl = strlen(f->file);
-    bool fragment = fl > 5 && !strcmp(f->file + fl - 5, ".frag"); /* read as a fragment again (scene/frag.h) */
+    bool fragment = fl > 5 && !strcmp(f->file + fl - 5, ".frag"); /* read as a fragment again (scene/formula/frag.h) */
     snprintf(name + k, sizeof name - k, "%s%s", k ? "" : "formula", fragment ? ".frag" : ".glsl");
     int len = xdg && *xdg ? snprintf(dir, sizeof dir, "%s", xdg) : snprintf(dir, sizeof dir, "%s/.cache", home ? home : ".");
     const char *const parts[] = {"", "/fathom", "/formulas", "/"};

@@ -5,7 +5,7 @@
 
 #include <stdbool.h>
 
-#include "cli.h"
+#include "cli/cli.h"
 #include "util.h"
 
 /* Runs until Esc / window close (or opt->frames frames). False with err on a fatal error. */

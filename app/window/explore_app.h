@@ -7,7 +7,7 @@
 
 #include <stdbool.h>
 
-#include "cli.h"
+#include "cli/cli.h"
 #include "gpu/render.h"
 #include "scene/quality.h"
 #include "view/resolution.h"

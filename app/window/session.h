@@ -7,8 +7,8 @@
 
 #include <stdbool.h>
 
-#include "cli.h"
-#include "data/dem.h"
+#include "cli/cli.h"
+#include "data/geo/dem.h"
 #include "scene/overrides.h"
 #include "scene/params.h"
 #include "scene/scene.h"

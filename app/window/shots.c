@@ -8,9 +8,9 @@
 #include <time.h>
 
 #include "gpu/render.h"
-#include "jobs/mesh_job.h"
-#include "jobs/offline.h"
-#include "scene/frag.h"
+#include "jobs/mesh/mesh_job.h"
+#include "jobs/capture/offline.h"
+#include "scene/formula/frag.h"
 #include "scene/program.h"
 #include "view/views.h"
 

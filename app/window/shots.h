@@ -30,12 +30,12 @@ shots_opened shots_views(session *s, const camera *cam, bool save, int recall, i
 /* Saves to, copies, loads from `path` or pastes a preset. */
 shots_opened shots_presets(struct GLFWwindow *win, session *s, const camera *cam, shots_preset_ask ask, const char *path,
                            int w, int h, char *message, size_t n);
-/* J (step +1) or Shift+J (−1): a fragment's next or previous preset (scene/frag.h), *current its index
+/* J (step +1) or Shift+J (−1): a fragment's next or previous preset (scene/formula/frag.h), *current its index
  * (−1 before the first); nothing for another scene. */
 shots_opened shots_fragment_preset(session *s, int step, int *current, char *message, size_t n);
 /* P: the converged image (finished first, or drawn once at full size) to fathom-DATE-TIME.png. */
 void shots_screenshot(const session *s, const camera *cam, int w, int h, char *message, size_t n);
-/* M: the scene's surface as a mesh, fathom-DATE-TIME.glb (`fathom mesh` at its defaults: jobs/mesh_job.h),
+/* M: the scene's surface as a mesh, fathom-DATE-TIME.glb (`fathom mesh` at its defaults: jobs/mesh/mesh_job.h),
  * its report and progress in the terminal. */
 void shots_mesh(const session *s, char *message, size_t n);
 

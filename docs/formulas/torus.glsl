@@ -7,7 +7,7 @@
 // A formula file is GLSL that defines formulaDE(): a distance bound at a world point and an orbit
 // trap, a number that @trap spreads over the palette (here the angle around the ring). Each
 // annotated uniform is a parameter: its scene key is its name without the 'u', in snake case, and
-// fathom checks the range declared here. app/scene/formula.h has the whole format (step formulas,
+// fathom checks the range declared here. app/scene/formula/formula.h has the whole format (step formulas,
 // deep zoom). Try it:
 //   fathom --formula docs/formulas/torus.glsl --set fractal.tube=0.4
 // then copy it into ~/.config/fathom/formulas/ to use it by name ("formula": "torus").

@@ -35,7 +35,7 @@
 //                      colours its surface (fractals: orbit traps; terrains: layers); textures then
 //                      do not apply.
 // A program reads its parameters from uniforms it declares itself, one named uniform per parameter
-// (uPower, uSize, uTerrainSpacing…); a formula declares its own (app/scene/formula.h). It
+// (uPower, uSize, uTerrainSpacing…); a formula declares its own (app/scene/formula/formula.h). It
 // reads the #defines of the preamble (app/scene/scene.c scene_preamble): PROGRAM_<name>, FX_<EFFECT>,
 // the quality knobs (MAX_STEPS, HIT_K, … from QUALITY_KNOBS in app/scene/quality.h), NUM_LIGHTS,
 // NUM_MATERIALS, and its own (FRACTAL_ITERATIONS, TERRAIN_MAXMIP).

@@ -1,4 +1,4 @@
-// Liquid droplets (the droplets paper, §3.2; app/data/droplets.h): analytic spheres read from a file, found
+// Liquid droplets (the droplets paper, §3.2; app/data/droplets/droplets.h): analytic spheres read from a file, found
 // through a uniform grid walked in 3D-DDA order (Amanatides & Woo 1987). Sub-pixel droplets are not
 // traced: the ray goes straight through, dimmed by the droplet's mean transmittance (DROPLET_LOD).
 // Needs: fresnelDielectric (common/brdf.glsl), footprintAt (common/uniforms.glsl).
@@ -14,7 +14,7 @@ uniform vec3 uDropletLo, uDropletHi, uDropletCell;
 uniform ivec3 uDropletDims;
 uniform float uDropletIor, uDropletRoughness;
 uniform vec3 uDropletAbsorption;      // per metre inside (Bouguer–Beer–Lambert)
-// The level of detail's quadrature over a droplet's disc (app/data/droplets.c droplets_lod_table):
+// The level of detail's quadrature over a droplet's disc (app/data/droplets/droplets.c droplets_lod_table):
 // mean transmittance = Σ weight_k · exp(−σ · 2r · cosT_k); mean reflectance uDropletReflect.
 uniform float uDropletLodWeight[8], uDropletLodCosT[8];
 uniform float uDropletReflect;

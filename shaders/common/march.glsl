@@ -29,7 +29,7 @@ float positionFloor(float t)
 
 float hitEps(float t)
 {
-#ifdef HIT_DISTANCE // an absolute hit distance (a fragment's Detail: app/scene/frag.h), not the footprint rule
+#ifdef HIT_DISTANCE // an absolute hit distance (a fragment's Detail: app/scene/formula/frag.h), not the footprint rule
     return max(HIT_DISTANCE, positionFloor(t));
 #else
     return max(max(float(HIT_K) * footprintAt(t), HIT_EPS_MIN), positionFloor(t));

@@ -1,4 +1,4 @@
-// The physical sky (FX_SKY): the Earth's atmosphere after Hillaire 2020 (app/data/sky.h has the model,
+// The physical sky (FX_SKY): the Earth's atmosphere after Hillaire 2020 (app/data/sky/sky.h has the model,
 // its parameters and its double-precision twin, which the tests compare with this): the sun's single
 // scattering by Rayleigh and Mie along the view ray, Hillaire's isotropic multiple scattering Ψ_ms from
 // a table by altitude the CPU fills for the scene's sun, ozone absorbing, the Earth's shadow; the sun's

@@ -1,5 +1,5 @@
 // The csg program's primitive list: bounded primitives read from textures and found through a
-// bounding volume hierarchy (app/data/bvh.h, packed by app/scene/scene_csg.c), so thousands of primitives cost
+// bounding volume hierarchy (app/data/droplets/bvh.h, packed by app/scene/scene_csg.c), so thousands of primitives cost
 // a few dozen distance evaluations per map() call instead of thousands of lines of shader.
 // Included by the generated program.glsl after listShape(), which it defines for the shapes present.
 //

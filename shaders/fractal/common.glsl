@@ -1,4 +1,4 @@
-// Shared by every fractal formula (app/scene/formula.h has the file format): the precision-neutral
+// Shared by every fractal formula (app/scene/formula/formula.h has the file format): the precision-neutral
 // types, the bounding sphere, orbit-trap colouring, and the pieces several formulas are made of.
 //
 // Precision. A formula is written once against `real`, `real3`, `real4` and `realMat3`. Normally

@@ -1,4 +1,4 @@
-// The escape-time loop of the step formulas (app/scene/formula.h): a formula that declares @de and
+// The escape-time loop of the step formulas (app/scene/formula/formula.h): a formula that declares @de and
 // @escape gives only its map f as `formulaStep(z, dr, trap)`, z ← f(z) and dr ← |f′(z)| · dr (and
 // its orbit trap: the smallest of some measure of z along the orbit), and this loop adds c. app/scene/scene_programs.c includes it after the formula, renaming each formula's
 // step (formulaStepA, and formulaStepB for a hybrid's second formula).

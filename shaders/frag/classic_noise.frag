@@ -1,4 +1,4 @@
-// fathom's Classic-Noise.frag for Fragmentarium fragments (app/scene/frag.h): cnoise(), classic
+// fathom's Classic-Noise.frag for Fragmentarium fragments (app/scene/formula/frag.h): cnoise(), classic
 // gradient ("Perlin") noise over 2 and 3 dimensions (K. Perlin, "Improving noise", SIGGRAPH 2002: a
 // pseudo-random gradient at each lattice point, blended with the quintic 6t⁵ − 15t⁴ + 10t³), about
 // −1 to 1. The gradients come from fathom's own integer hash, so the pattern is not Fragmentarium's

@@ -1,4 +1,4 @@
-// fathom's Complex.frag for Fragmentarium fragments (app/scene/frag.h): complex numbers as vec2
+// fathom's Complex.frag for Fragmentarium fragments (app/scene/formula/frag.h): complex numbers as vec2
 // (x the real part, y the imaginary), the names fragments call, from the textbook identities.
 
 vec2 cMul(vec2 a, vec2 b) { return vec2(a.x * b.x - a.y * b.y, a.x * b.y + a.y * b.x); }

@@ -1,4 +1,4 @@
-// A Fragmentarium fragment as a formula (app/scene/frag.h, app/scene/scene_programs.c includes this
+// A Fragmentarium fragment as a formula (app/scene/formula/frag.h, app/scene/scene_programs.c includes this
 // after the fragment's translation): its DE() is the estimate, init() runs once per pixel, and the
 // surface is coloured as DE renderers colour it from orbitTrap. The fragment's DE is marched as it
 // is, with no bounding sphere (FORMULA_EXACT): fragments declare none.

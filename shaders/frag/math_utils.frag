@@ -1,4 +1,4 @@
-// fathom's MathUtils.frag for Fragmentarium fragments (app/scene/frag.h): the names and contracts
+// fathom's MathUtils.frag for Fragmentarium fragments (app/scene/formula/frag.h): the names and contracts
 // fragments call, written here from what they must return, not copied. Angles are in degrees.
 //
 // Fragmentarium's rotation matrices are filled row by row into GLSL's column-major constructor, so
@@ -6,7 +6,7 @@
 // that, and these matrices are the same ones. Rodrigues: R = c·I + (1 − c)·v vᵀ + s·[v]×, with [v]×
 // the cross-product matrix (R rotates by +angle, right-handed).
 
-// (FLT_MAX, FLT_MIN and PI come with every fragment: app/scene/frag.c's HOST_MACROS)
+// (FLT_MAX, FLT_MIN and PI come with every fragment: app/scene/formula/frag.c's HOST_MACROS)
 mat3 rotationMatrix3(vec3 v, float angle)
 {
     float c = cos(radians(angle)), s = sin(radians(angle));

@@ -1,4 +1,4 @@
-// fathom's QuilezLib.frag for Fragmentarium fragments (app/scene/frag.h): the distance functions of
+// fathom's QuilezLib.frag for Fragmentarium fragments (app/scene/formula/frag.h): the distance functions of
 // I. Quilez's article "Distance functions" (iquilezles.org/articles/distfunctions), by the names and
 // contracts Fragmentarium's library gives them (ud: unsigned, sd: signed), written here from the
 // formulas.

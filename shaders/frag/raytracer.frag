@@ -1,4 +1,4 @@
-// fathom's DE renderer for Fragmentarium fragments (app/scene/frag.h): what a fragment gets from
+// fathom's DE renderer for Fragmentarium fragments (app/scene/formula/frag.h): what a fragment gets from
 // DE-Raytracer.frag and the other DE renderers it may include: the orbitTrap its DE lowers, the
 // colouring parameters and the hooks. Written here from the documented contract; the march, the
 // lights, the camera and the hit rule are fathom's own (a preset's Detail, FudgeFactor and

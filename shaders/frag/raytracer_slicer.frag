@@ -1,4 +1,4 @@
-// DE-Raytracer-Slicer for fathom (app/scene/frag.h): the DE renderer contract of frag/raytracer.frag
+// DE-Raytracer-Slicer for fathom (app/scene/formula/frag.h): the DE renderer contract of frag/raytracer.frag
 // for fragments whose estimate takes a second argument, DE(pos, type), the renderer asking type 0 for
 // the surface it draws.
 #include "DE-Raytracer.frag"

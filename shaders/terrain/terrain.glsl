@@ -1,4 +1,4 @@
-// The terrain program: a heightfield under the contract in app/data/terrain.h (texel centres on a regular
+// The terrain program: a heightfield under the contract in app/data/geo/terrain.h (texel centres on a regular
 // grid, bilinear between them, Y up, metres). Primary rays use either
 //  - the max-mipmap traversal (TERRAIN_MAXMIP; Tevs, Ihrke, Seidel 2008): descend a pyramid of cell
 //    maxima, skipping every node the ray passes above, and intersect the bilinear patch of each cell
@@ -51,7 +51,7 @@ float nodeMax(ivec2 node, int level)
     ivec2 tile = node >> shift;
     return texelFetch(uHeightMax, ivec3(node - (tile << shift), tile.y * uTerrainTilesX + tile.x), level - 1).r;
 }
-// Nodata texels hold −1e30 (app/data/terrain.h TERRAIN_HOLE): a cell with one at a corner has no surface,
+// Nodata texels hold −1e30 (app/data/geo/terrain.h TERRAIN_HOLE): a cell with one at a corner has no surface,
 // and a height interpolated with any weight on one is far below every real height.
 bool isHole(float h) { return h < -1e20; }
 bool cellSolid(ivec2 cell)

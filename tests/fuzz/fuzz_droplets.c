@@ -4,7 +4,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "data/droplets.h"
+#include "data/droplets/droplets.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 

@@ -13,9 +13,9 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "jobs/offline.h"
-#include "scene/formula.h"
-#include "scene/frag.h"
+#include "jobs/capture/offline.h"
+#include "scene/formula/formula.h"
+#include "scene/formula/frag.h"
 #include "view/path.h"
 #include "view/shot.h"
 

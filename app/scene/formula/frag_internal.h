@@ -1,0 +1,40 @@
+/* frag_internal — what frag.c, frag_uniform.c and frag_presets.c share (frag.h). Pure C. */
+#ifndef FATHOM_FRAG_INTERNAL_H
+#define FATHOM_FRAG_INTERNAL_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "scene/formula/formula_types.h"
+#include "scene/formula/frag_lex.h"
+#include "util.h"
+
+/* A fragment declares no bound: fathom frames it like Fragmentarium's default camera (Eye 10 away,
+ * FOV 0.4: ±4 in view) and marches its DE without a bounding sphere (FORMULA_EXACT). */
+#define FRAG_BOUND "4"
+
+enum { FRAG_SEEN_MAX = 24 };
+
+typedef struct frag_ctx {
+    formula *f;
+    err_t *err;
+    char root[PATH_MAX_LEN];       /* the fragment's folder (real path): its includes stay inside */
+    char include_dir[PATH_MAX_LEN]; /* its collection's Include folder (real path), or "" */
+    char chain[1024];              /* " (included from A.frag:3)..." for messages */
+    char seen[FRAG_SEEN_MAX][PATH_MAX_LEN];
+    int seen_count;
+    char group[FORMULA_KEY_MAX];   /* the #group the next parameter is in */
+    char comment[FORMULA_TEXT_MAX]; /* the comment line just before: the next parameter's description */
+    bool in_vertex, in_preset, has_de, has_renderer;
+    size_t statements;             /* in the stranger's files (not fathom's include set) */
+    int depth;                     /* of braces, in the file being read */
+    strbuf functions, macros;      /* the names the files define at the top level, each followed by '\n' */
+} frag_ctx;
+
+/* Reads a fragment file: plain text, at most FRAG_FILE_MAX bytes (shown: its name in messages). */
+bool frag_read(const char *path, const char *shown, char **text, err_t *err);
+/* Translates the file at path (absolute; `ours`: one of fathom's include set) and its includes. */
+bool frag_translate(frag_ctx *x, const char *path, const char *shown, bool ours, int depth);
+/* A "uniform ..." line (code: its code, comments blanked): a parameter and its translated line. */
+bool frag_uniform(frag_ctx *x, const char *line, const char *code, const char *shown, int n, strbuf *out);
+#endif

@@ -1,0 +1,247 @@
+/* frag_presets — a fragment's #preset blocks as named views (frag.h). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "scene/formula/frag.h"
+#include "scene/formula/frag_internal.h"
+#include "view/shot.h"
+
+enum { PRESET_LINES_MAX = 256, PRESET_LINE_MAX = 256 };
+
+/* One preset's "KEY = VALUE" lines. */
+typedef struct preset {
+    char name[FRAG_PRESET_NAME_MAX];
+    char key[PRESET_LINES_MAX][64], value[PRESET_LINES_MAX][160];
+    int count;
+} preset;
+
+/* KeyFrame.001 ...: a flight's keys, not a view (left to a flight: not read yet). */
+static bool keyframe(const char *name) { return !strncmp(name, "KeyFrame", 8) || !strncmp(name, "Keyframe", 8); }
+
+/* The preset `name` (NULL: Default, else the first) of the fragment's text; false when there is none.
+ * names/count: every preset's name (count may be NULL). */
+static bool find(const char *text, const char *name, preset *out, char names[][FRAG_PRESET_NAME_MAX], int max,
+                 int *count)
+{
+    char line[PRESET_LINE_MAX];
+    const char *p = text;
+    bool in = false, found = false, take = false;
+    int n = 0;
+    while (frag_next_line(&p, line, sizeof line)) {
+        const char *c = frag_skip(line);
+        if (!in && !strncmp(c, "#preset", 7)) {
+            in = true;
+            char this[FRAG_PRESET_NAME_MAX];
+            snprintf(this, sizeof this, "%s", frag_skip(c + 7));
+            for (char *e = this + strlen(this); e > this && (e[-1] == ' ' || e[-1] == '\t'); e--)
+                e[-1] = '\0';
+            if (keyframe(this))
+                continue;
+            if (names && n < max)
+                snprintf(names[n], FRAG_PRESET_NAME_MAX, "%s", this);
+            n++;
+            take = !found && out && (name ? !strcmp(this, name) : !strcmp(this, "Default") || !out->name[0]);
+            if (take)
+                *out = (preset){0}, snprintf(out->name, sizeof out->name, "%s", this);
+            found |= take && (name || !strcmp(this, "Default"));
+        } else if (in && !strncmp(c, "#endpreset", 10)) {
+            in = take = false;
+        } else if (in && take && out->count < PRESET_LINES_MAX) {
+            const char *eq = strchr(c, '=');
+            if (!eq)
+                continue;
+            int k = (int)(eq - c);
+            while (k > 0 && (c[k - 1] == ' ' || c[k - 1] == '\t'))
+                k--;
+            snprintf(out->key[out->count], sizeof out->key[0], "%.*s", k, c);
+            snprintf(out->value[out->count], sizeof out->value[0], "%s", frag_skip(eq + 1));
+            out->count++;
+        }
+    }
+    if (count)
+        *count = n;
+    return out && out->name[0] && (found || !name);
+}
+
+int frag_presets(const char *path, char names[][FRAG_PRESET_NAME_MAX], int max, err_t *err)
+{
+    char *text;
+    if (!frag_read(path, path, &text, err))
+        return -1;
+    int n = 0;
+    find(text, NULL, NULL, names, max, &n);
+    free(text);
+    return n < max ? n : max;
+}
+
+/* The value's numbers (a "Locked"/"NotLocked" word after them is the host's lock state). */
+static int numbers_of(const char *v, double *out, int max)
+{
+    int n = 0;
+    for (const char *c = v; n < max;) {
+        char *end;
+        double d = strtod(c, &end);
+        if (end == c || !isfinite(d))
+            break;
+        out[n++] = d;
+        c = frag_skip(end);
+        if (*c != ',')
+            break;
+        c++;
+    }
+    return n;
+}
+
+/* The camera keys of 3D.frag: true when key was one (taken into cam, or a wrong value: *bad). */
+static bool camera_key(const char *key, const char *value, double eye[3], double target[3], double up[3], camera *cam,
+                       bool *bad)
+{
+    double v[3];
+    int n = numbers_of(value, v, 3);
+    if (!strcmp(key, "Eye") || !strcmp(key, "Target") || !strcmp(key, "Up")) {
+        double *to = key[0] == 'E' ? eye : key[0] == 'T' ? target : up;
+        *bad |= n != 3;
+        for (int i = 0; i < n; i++)
+            to[i] = v[i];
+    } else if (!strcmp(key, "FOV")) { /* tan of half the vertical field of view (3D.frag scales y in [-1, 1]) */
+        *bad |= n != 1 || v[0] <= 0;
+        cam->fov_y = n == 1 && v[0] > 0 ? (float)(2 * atan(v[0])) : cam->fov_y;
+    } else if (!strcmp(key, "Aperture")) {
+        cam->lens.aperture = n == 1 && v[0] > 0 ? (float)v[0] : 0;
+    } else if (!strcmp(key, "FocalPlane")) {
+        cam->lens.focus = n == 1 && v[0] > 0 ? (float)v[0] : 0;
+    } else if (!strcmp(key, "EquiRectangular")) {
+        cam->lens.projection = !strncmp(value, "true", 4) ? PROJECTION_EQUIRECTANGULAR : PROJECTION_PERSPECTIVE;
+    } else {
+        return false;
+    }
+    return true;
+}
+
+/* A parameter's override from a preset's value, clamped into its range (noted in *clamped). */
+static bool param_set(const formula_param *q, const char *value, char *out, size_t n, bool *clamped)
+{
+    double v[4];
+    int comps = formula_components(q->type), got;
+    if (q->type == FORMULA_BOOL) {
+        bool t = !strncmp(value, "true", 4), f = !strncmp(value, "false", 5);
+        snprintf(out, n, "fractal.%s=%s", q->key, t ? "true" : "false");
+        return t || f;
+    }
+    if ((got = numbers_of(value, v, 4)) != comps)
+        return false;
+    int at = snprintf(out, n, "fractal.%s=", q->key);
+    for (int i = 0; i < comps && at > 0 && (size_t)at < n; i++) {
+        double lo = q->lo, hi = q->hi;
+        if (q->type == FORMULA_COLOR4 && i < 3) /* the colour; the range is its intensity's */
+            lo = 0, hi = 1;
+        double c = fmin(fmax(v[i], lo), hi);
+        *clamped |= c != v[i];
+        at += snprintf(out + at, n - (size_t)at, q->type == FORMULA_INT ? "%s%.0f" : "%s%.9g", i ? "," : "", c);
+    }
+    return true;
+}
+
+/* The renderer's accuracy keys, onto fathom's: Detail (an absolute hit distance 10^Detail), FudgeFactor
+ * (the step factor), MaxRaySteps, Iterations. */
+static bool quality_key(const formula *f, const char *key, const char *value, char *out, size_t n)
+{
+    double v;
+    if (numbers_of(value, &v, 1) != 1)
+        return false;
+    if (!strcmp(key, "Detail"))
+        snprintf(out, n, "fractal.hit_distance=%.9g", fmin(pow(10, fmin(v, 0)), 1));
+    else if (!strcmp(key, "FudgeFactor"))
+        snprintf(out, n, "quality.step_factor=%.9g", fmin(fmax(v, 0.01), 1));
+    else if (!strcmp(key, "MaxRaySteps"))
+        snprintf(out, n, "quality.max_steps=%d", (int)fmin(fmax(v, 8), 4096));
+    else if (!strcmp(key, "Iterations") && f->iterations_hi > 1)
+        snprintf(out, n, "fractal.iterations=%d", (int)fmin(fmax(v, f->iterations_lo), f->iterations_hi));
+    else
+        return false;
+    return true;
+}
+
+/* Every line of the preset: the camera into cam, the rest as overrides into sets; what fathom does not
+ * take goes to ignored. */
+static void preset_sets(const preset *pr, const formula *f, camera *cam, char (*sets)[256], int *count, strbuf *ignored)
+{
+    double eye[3] = {0, 0, -10}, target[3] = {0, 0, 0}, up[3] = {0, 1, 0}; /* 3D.frag's defaults */
+    bool bad = false, clamped = false;
+    *count = 0;
+    sets[(*count)++][0] = '\0'; /* the formula's override: frag_preset_shot */
+    for (int i = 0; i < pr->count; i++) {
+        const char *key = pr->key[i], *value = pr->value[i];
+        if (camera_key(key, value, eye, target, up, cam, &bad))
+            continue;
+        char set[256];
+        bool taken = *count < SHOT_SET_MAX && quality_key(f, key, value, set, sizeof set);
+        for (int k = 0; !taken && k < f->param_count && *count < SHOT_SET_MAX; k++)
+            if (!strcmp(f->params[k].key, key))
+                taken = param_set(&f->params[k], value, set, sizeof set, &clamped);
+        if (taken)
+            snprintf(sets[(*count)++], 256, "%s", set);
+        else
+            sb_printf(ignored, "%s%s", ignored->len ? ", " : "", key);
+    }
+    double fov = cam->fov_y;
+    camera_lens lens = cam->lens;
+    *cam = camera_degenerate(eye, target) ? camera_look_at(eye, (double[3]){0, 0, 0}, (float)fov)
+                                          : camera_look_at_up(eye, target, up, (float)fov);
+    cam->lens = lens;
+    if (clamped)
+        sb_printf(ignored, "%s(values outside a slider's range were clamped into it)", ignored->len ? "; " : "");
+}
+
+bool frag_preset_shot(const char *path, const char *name, strbuf *shot, char **ignored_out, err_t *err)
+{
+    formula f;
+    char *text;
+    if (!frag_load(path, &f, err) || !frag_read(path, path, &text, err))
+        return false;
+    preset *pr = calloc(1, sizeof *pr);
+    char (*sets)[256] = calloc(SHOT_SET_MAX, 256);
+    char names[FRAG_PRESET_MAX][FRAG_PRESET_NAME_MAX];
+    int count = 0;
+    bool ok = pr && sets;
+    if (ok && !find(text, name, pr, names, FRAG_PRESET_MAX, &count)) {
+        strbuf known = {0};
+        for (int i = 0; i < count && i < FRAG_PRESET_MAX; i++)
+            sb_printf(&known, "%s\"%s\"", i ? ", " : "", names[i]);
+        ok = name ? err_set(err, "%s has no preset \"%s\" (its presets: %s)", f.name, name, known.data ? known.data : "none")
+                  : err_set(err, "%s has no presets", f.name);
+        sb_free(&known);
+    }
+    free(text);
+    if (ok) {
+        camera cam = {.fov_y = (float)(2 * atan(0.4))}; /* 3D.frag's default FOV */
+        strbuf ignored = {0};
+        int n;
+        preset_sets(pr, &f, &cam, sets, &n, &ignored);
+        snprintf(sets[0], 256, "fractal.formula=%s", path);
+        const char *list[SHOT_SET_MAX];
+        for (int i = 0; i < n; i++)
+            list[i] = sets[i];
+        char scene[PATH_MAX_LEN], lens[3][256];
+        int k = 0; /* the lens is the scene's (camera.*), not the shot camera's */
+        if (cam.lens.aperture > 0)
+            snprintf(lens[k++], 256, "camera.aperture=%.9g", (double)cam.lens.aperture);
+        if (cam.lens.focus > 0 && cam.lens.aperture > 0)
+            snprintf(lens[k++], 256, "camera.focus=%.9g", (double)cam.lens.focus);
+        if (cam.lens.projection == PROJECTION_EQUIRECTANGULAR)
+            snprintf(lens[k++], 256, "camera.projection=equirectangular");
+        for (int i = 0; i < k && n < SHOT_SET_MAX; i++)
+            list[n++] = lens[i];
+        snprintf(scene, sizeof scene, "%s/scenes/fractals/fractal.json", util_data_dir());
+        shot_describe(scene, list, n, &cam, 1280, 720, shot); /* fathom's default size */
+        if (ignored_out)
+            *ignored_out = ignored.data;
+        else
+            sb_free(&ignored);
+    }
+    free(pr);
+    free(sets);
+    return ok;
+}
