@@ -7,7 +7,7 @@
 // two samples (the window's edge mask left it at its centre sample) stays stopped. A pixel goes on
 // while any pixel of its 3×3 block is above the tolerance: two samples that agree say little about a
 // thread thinner than the pixel that a third may find, but its neighbours have often seen it (the
-// Mandelbulb at 240×135, tolerance 0.008, tests/test_gl.c: RMSE to every pixel's 16 samples 0.0126
+// Mandelbulb at 240×135, tolerance 0.008, tests/gpu/test_gl.c: RMSE to every pixel's 16 samples 0.0126
 // alone, 0.0007 with the block, at 3.9 and 7.0 samples a pixel). Bands and tiles of an image are
 // rendered with margin rows for it (app/jobs/capture/offline.c), so they agree with the whole image.
 uniform sampler2D uAccum;   // target 0: Σ radiance, alpha the pixel's samples

@@ -1,6 +1,6 @@
 /* scene_camera — the scene file's camera block (scene_parse.h): where it stands and looks, or "auto"
  * (framed by the program's own hook: program.h), and its lens. Above the programs' block parsers,
- * which never call it (tests/calls.sh). */
+ * which never call it (tests/tree/calls.sh). */
 #include <math.h>
 #include <string.h>
 

@@ -58,7 +58,7 @@ float hitEps(float t)
 // bracket [outside, inside] is narrowed by REFINE_STEPS Illinois regula-falsi steps (Dowell &
 // Jarratt 1971); the hit is the bracket's outside end, so depth is never behind the surface. A ray
 // that passes within eps of a surface without crossing it is a miss: silhouettes, thin shells and
-// narrow gaps keep their true size (tests/test_silhouette.c). A program whose surface *is* defined
+// narrow gaps keep their true size (tests/gpu/test_silhouette.c). A program whose surface *is* defined
 // by the footprint (fractals at a level of detail: PROGRAM_FOOTPRINT_SURFACE) keeps the plain rule.
 // (A secant step toward the predicted crossing converged faster on grazing hits, but stepped across
 // corner slivers up to 2 eps thick, and as a guess for rays out of steps it put hits behind a crossing

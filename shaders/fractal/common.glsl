@@ -94,7 +94,7 @@ real realLog(real x) { return real(log(float(x))); }
 // The Mandelbulb's "triplex" power (D. White and P. Nylander, 2009): z = r (sin θ cos φ, cos θ,
 // sin θ sin φ) with θ from +Y and φ around it goes to rⁿ (sin nθ cos nφ, cos nθ, sin nθ sin nφ).
 // Returns rⁿ⁻¹ (for the running derivative n rⁿ⁻¹). At r → 0 and on the axis, acos and atan are
-// 0/0 and undefined: each falls back to its limit (tests/test_fractal.c fails without the guards).
+// 0/0 and undefined: each falls back to its limit (tests/fractal/test_fractal.c fails without the guards).
 // In double precision (no trigonometry) and for a whole n it is exact algebra: (cos θ + i sin θ)ⁿ
 // and ((x + i z) / ρ)ⁿ by repeated complex products, ρ = √(x² + z²).
 #ifndef BULB_GUARDS // tests compile them out (0) to show what each prevents

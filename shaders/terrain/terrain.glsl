@@ -5,7 +5,7 @@
 //    it reaches exactly (a quadratic along the ray). Exact: no ray tunnels through a ridge.
 //  - the height-field lab's search: enter the slab [hmin, hmax], step linearly with steps growing by
 //    STEP_GROWTH, and refine the first bracketed crossing by BINARY_STEPS bisections. A step can jump
-//    over a ridge thinner than itself (tests/test_terrain.c shows where).
+//    over a ridge thinner than itself (tests/geo/test_terrain.c shows where).
 // Hit.steps counts height samples (texel fetches of four corners count once) for --aov steps.
 // The grid in tiles (app/gpu/render_scene.c; one tile when it fits a texture): R32F metres, texel (i, j) =
 // column i (west → east), row j (north → south), in layer (j / tile.y) · tilesX + i / tile.x.

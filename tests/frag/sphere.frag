@@ -1,4 +1,4 @@
-#info A sphere of radius Radius about Centre: fathom's test of Fragmentarium fragments (tests/test_frag.c)
+#info A sphere of radius Radius about Centre: fathom's test of Fragmentarium fragments (tests/scene/test_frag.c)
 #include "MathUtils.frag"
 #include "DE-Raytracer.frag"
 #group Sphere

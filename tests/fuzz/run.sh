@@ -7,7 +7,7 @@
 # Findings (crash-*, leak-*, timeout-*) land in build-fuzz/findings-TARGET; the corpus grows in
 # build-fuzz/corpus-TARGET.
 # Usage: tests/fuzz/run.sh [MINUTES] [scene|droplets|readers]   (needs: apt-get install clang)
-# FUZZ_BUILD=DIR uses a folder already configured with -DFATHOM_FUZZ=ON (tests/build_types.sh), and
+# FUZZ_BUILD=DIR uses a folder already configured with -DFATHOM_FUZZ=ON (tests/tree/build_types.sh), and
 # FUZZ_SECONDS=N runs N seconds instead of MINUTES (a smoke run).
 set -eu
 minutes=${1:-5}

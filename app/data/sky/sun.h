@@ -4,7 +4,7 @@
  * spreadsheet, after Meeus, "Astronomical Algorithms", 1991): the sun's apparent longitude from its
  * mean longitude and anomaly, the obliquity with nutation, the equation of time, then the hour angle
  * at the longitude. NOAA states its positions good to about 0.01° for years 1800–2100 (past ±72° of
- * latitude sunrise and sunset times lose accuracy, not the angles); tests/test_sun.c checks it
+ * latitude sunrise and sunset times lose accuracy, not the angles); tests/sky/test_sun.c checks it
  * against the NREL SPA's published example (Reda & Andreas 2004) and an independent algorithm (the
  * Astronomical Almanac's, Michalsky 1988) over a year at three latitudes.
  *

@@ -1,5 +1,5 @@
 /* bench_load — what the bench's files share, below them all (no bench file calls another's and is
- * called back: tests/calls.sh). */
+ * called back: tests/tree/calls.sh). */
 #ifndef FATHOM_BENCH_LOAD_H
 #define FATHOM_BENCH_LOAD_H
 

@@ -186,7 +186,7 @@ static void summary_header(const bench_results *r, FILE *f)
     sb_free(&sets);
     if (o->path_truth)
         fprintf(f, "**Reference: the truth**, the path tracer (`quality.integrator=1`: unbiased light transport through "
-                   "the same map() and materials, tested against closed forms in tests/test_pathtrace.c) at %d spp, "
+                   "the same map() and materials, tested against closed forms in tests/gpu/test_pathtrace.c) at %d spp, "
                    "hit threshold 0.0625 footprints, 16 bounces (%.0f ms per image): every error below is what the "
                    "model's approximations (direct light, AO, soft-shadow penumbrae, one-level glass, constant "
                    "ambient) and its knobs cost against light transport. **Converged?** A path-traced render with "

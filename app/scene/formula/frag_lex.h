@@ -1,5 +1,5 @@
 /* frag_lex — the reading of a fragment's text that frag.c, frag_uniform.c and frag_presets.c share:
- * lines, blanks, numbers and lists of names (below them all: tests/calls.sh). Pure C. */
+ * lines, blanks, numbers and lists of names (below them all: tests/tree/calls.sh). Pure C. */
 #ifndef FATHOM_FRAG_LEX_H
 #define FATHOM_FRAG_LEX_H
 

@@ -1,6 +1,6 @@
 /* listen_count PORTFILE COUNTFILE SECONDS: listens on 127.0.0.1 at a free port (written to PORTFILE) and
  * keeps COUNTFILE holding the number of connections made to it, for SECONDS or until SIGTERM. Each
- * connection is answered with nothing and closed. tests/trust_gis.sh counts what a stranger's file makes
+ * connection is answered with nothing and closed. tests/trust/trust_gis.sh counts what a stranger's file makes
  * fathom connect to with it; only loopback is ever listened on. */
 #include <arpa/inet.h>
 #include <netinet/in.h>

@@ -1,4 +1,4 @@
-/* A fault for the write protocol's tests (tests/bad_input.sh), preloaded (LD_PRELOAD): with
+/* A fault for the write protocol's tests (tests/cli/bad_input.sh), preloaded (LD_PRELOAD): with
  * FATHOM_TEST_FAULT=fsync a file's fsync fails with EIO, =dirfsync a folder's, =rename every rename;
  * anything else passes each call on. Only the tests build it; fathom never loads it. */
 #define _GNU_SOURCE

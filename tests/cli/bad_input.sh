@@ -145,7 +145,7 @@ expect camera-at-look-at 1 "camera.look_at: is the camera's position" 1 -- "$fat
 expect cli-camera-at-look-at 2 "--camera and --look-at are the same point" 1 -- "$fathom" --camera 0,1,5 --look-at 0,1,5 $out
 expect no-display-bad-scene 1 "unknown scene 'nosuch'" 1 -- env -u DISPLAY -u WAYLAND_DISPLAY "$fathom" --scene nosuch --frames 1
 
-# droplet files: each bad one is one line naming file, line and column (tests/test_droplets.c has more)
+# droplet files: each bad one is one line naming file, line and column (tests/droplets/test_droplets.c has more)
 drops() { # NAME CSV-TEXT EXPECTED
     printf '%b' "$2" >"$tmp/drops.csv"
     expect "droplets-$1" 1 "$3" 1 -- "$fathom" --set droplets.file="$tmp/drops.csv" $out
@@ -330,7 +330,7 @@ expect sky-unknown 1 "unknown sky 'blue'" 1 -- "$fathom" --scene himalaya --set 
 expect imagery-missing 1 "$tmp/none.tif" 1 -- "$fathom" --scene himalaya --set terrain.imagery="$tmp/none.tif" $out
 ls "$tmp"/out.* "$tmp"/.out.* >/dev/null 2>&1 && { failed=$((failed + 1)); echo "FAIL gis: a file was left"; }
 
-# the write protocol's own faults, injected (tests/fault_shim.c): a file's fsync, the rename, the
+# the write protocol's own faults, injected (tests/lib/fault_shim.c): a file's fsync, the rename, the
 # folder's fsync after it; each leaves no file (nor a temporary one) and exits non-zero, and a file
 # that was there before is kept as it was where the new one never replaced it
 if [ -n "$shim" ] && [ ! -f "$shim" ]; then

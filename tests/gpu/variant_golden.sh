@@ -23,7 +23,7 @@ if diff -u "$golden" "$tmp"; then
     echo "variant_golden: $(grep -c '^== ' "$tmp") passed, 0 failed"
 else
     echo "variant_golden: the preambles differ from $golden (above); if that change is on purpose, run"
-    echo "  sh tests/variant_golden.sh build/fathom . --update"
+    echo "  sh tests/gpu/variant_golden.sh build/fathom . --update"
     echo "variant_golden: 0 passed, 1 failed"
     exit 1
 fi

@@ -2,7 +2,7 @@
  * from: frame count, size, rate, codec, the 360° and stereo tags, and every frame's PSNR (at least
  * 40.5 dB on the worst frame at the default quality) for H.264 in MP4, VP9 in WebM and AV1 in MP4; the option errors.
  * With arguments, `test_video VIDEO FRAMES_PATTERN N` checks a video fathom wrote against its N frames
- * on disk (tests/video_resume.sh: a flight killed and resumed). */
+ * on disk (tests/capture/video_resume.sh: a flight killed and resumed). */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>

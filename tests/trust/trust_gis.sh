@@ -8,7 +8,7 @@
 fathom=$1
 src=$2
 listen=$3
-. "$src/tests/trust_lib.sh"
+. "$src/tests/lib/trust_lib.sh"
 extra_cleanup='kill "$lpid" 2>/dev/null'
 
 "$listen" "$tmp/port" "$tmp/count" 3600 &

@@ -1,5 +1,5 @@
 /* The renderer on llvmpipe through headless EGL, at small odd sizes, probed against independent
- * double-precision references (tests/reference.c). */
+ * double-precision references (tests/lib/reference.c). */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -879,7 +879,7 @@ static void coverage_against_the_exact_disc(void **st)
             enum { SUB = 16 };
             int inside = 0;
             for (int j = 0; j < SUB; j++)
-                for (int i = 0; i < SUB; i++) { /* the camera's ray convention (tests/gltest.c pixel_ray) */
+                for (int i = 0; i < SUB; i++) { /* the camera's ray convention (tests/lib/gltest.c pixel_ray) */
                     double sx = (2.0 * (x + (i + 0.5) / SUB) / W - 1.0) * t * W / H;
                     double sy = (2.0 * ((H - 1 - row) + (j + 0.5) / SUB) / H - 1.0) * t;
                     double d[3], len = 0, bo = 0, oo = 0;

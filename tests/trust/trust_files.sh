@@ -5,7 +5,7 @@
 # Each case failed on the code before its fix. Usage: trust_files.sh FATHOM SRC
 fathom=$1
 src=$2
-. "$src/tests/trust_lib.sh"
+. "$src/tests/lib/trust_lib.sh"
 dem=$src/terrains/himalaya.tif
 flight=$src/docs/flight/csg.json
 small="--fps 2 --size 32x18 --spp 1 --quiet"

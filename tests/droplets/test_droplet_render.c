@@ -411,7 +411,7 @@ static void no_holes_in(const char *kind)
                 double best = INFINITY, cl;
                 if (r.d[1] < 0) /* the ground's top face, y = 0 */
                     best = -r.o[1] / r.d[1];
-                if (best > 6) /* far, grazing ground: the marcher's own tolerance (tests/test_silhouette.c) */
+                if (best > 6) /* far, grazing ground: the marcher's own tolerance (tests/gpu/test_silhouette.c) */
                     continue;
                 bool drop = false, tangent = false;
                 for (int i = 0; i < N; i++) {

@@ -14,7 +14,7 @@
 #  5. Every global function in app/*.c carries its module's prefix: the file name's first word and '_'
 #     (scene_json.c: scene_, res_csg_list.c: res_), or one of the few names below that a module owns
 #     for its types (quality.c: knob_ and preset_, the QUALITY_KNOBS table's rows and presets).
-# (Calls in a circle between files are tests/calls.sh's, on the built libraries.)
+# (Calls in a circle between files are tests/tree/calls.sh's, on the built libraries.)
 set -u
 cd "$1" || exit 2
 fail=0
@@ -78,7 +78,7 @@ fi
 rm -f "$edges.err" "$edges.mod"
 
 long=$(find app shaders -name '*.c' -o -name '*.cpp' -o -name '*.h' -o -name '*.glsl' -o -name '*.frag' \
-           -o -name '*.vert' | sort | xargs awk -v MAX=80 -f tests/funclen.awk)
+           -o -name '*.vert' | sort | xargs awk -v MAX=80 -f tests/lib/funclen.awk)
 [ -n "$long" ] && say "functions over 80 lines (split them into named steps):
 $long"
 big=$(find app shaders -type f \( -name '*.c' -o -name '*.cpp' -o -name '*.h' -o -name '*.glsl' -o -name '*.frag' \

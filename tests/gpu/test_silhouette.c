@@ -1,5 +1,5 @@
 /* Silhouettes against the truth: the csg program's hit masks and depths against an analytic CSG ray
- * tracer in double precision (tests/csgref.c: exact ray–primitive spans and interval CSG), for
+ * tracer in double precision (tests/lib/csgref.c: exact ray–primitive spans and interval CSG), for
  * scenes with every primitive type and every sharp operation, rotated and translated, from seven
  * cameras (front, side, oblique, above, below, grazing along a face, far away) at an odd size, one
  * unjittered sample per pixel. A hit must be a surface, not a near miss: thin tubes and narrow gaps

@@ -3,7 +3,7 @@
 # fails on the code before the fix (the closing note of issue 34 lists them). Usage: trust.sh FATHOM SRC
 fathom=$1
 src=$2
-. "$src/tests/trust_lib.sh"
+. "$src/tests/lib/trust_lib.sh"
 quick="--size 16x9 --runs 1 --knob resolution_scale=0.5 --quiet"
 
 # a preset that carries its own small scene, under the name NAME
