@@ -11,6 +11,7 @@
 
 #include "gpu/gpu.h"
 #include "gpu/render.h"
+#include "gpu/render_probe.h"
 
 
 int gl_setup(void **st)
@@ -40,6 +41,23 @@ void load_text(const char *json, const char *const *sets, int nsets, scene *s)
     snprintf(path, sizeof path, "%s/tests/probe.json", FATHOM_SOURCE_DIR);
     if (!scene_load_text(json, path, sets, nsets, s, &e))
         fail_msg("scene: %s", e.msg);
+}
+
+void load_fractal(const char *program, const char *fractal, const char *quality_json, scene *s)
+{
+    char json[1024];
+    snprintf(json, sizeof json,
+             "{\"program\": \"%s\", \"environment\": {\"intensity\": 0.5},"
+             " \"lights\": [{\"type\": \"directional\", \"direction\": [0.4, 0.8, 0.3], \"shadow\": \"soft\"}],"
+             " \"fractal\": %s, \"quality\": %s}", program, fractal, quality_json);
+    load_text(json, NULL, 0, s);
+}
+
+void gl_probe(const scene *s, const char *extra, const float *pts, int n, float *out)
+{
+    err_t e;
+    if (!render_probe(s, extra, pts, n, out, &e))
+        fail_msg("probe: %s", e.msg);
 }
 
 void draw(const scene *s, const camera *cam, int w, int h, int spp, const char *extra, float *aov, float *rgba)

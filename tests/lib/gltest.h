@@ -14,6 +14,11 @@ enum { W = 97, H = 61, AOV = AOV_FLOATS };
 int gl_setup(void **st);
 int gl_teardown(void **st);
 void load_text(const char *json, const char *const *sets, int nsets, scene *s);
+/* A fractal scene of `program` with the "fractal" block and "quality" block given as JSON, lit by a sun. */
+void load_fractal(const char *program, const char *fractal, const char *quality_json, scene *s);
+/* The scene's map() at n points (3 floats each; 2 floats each into out: distance, material), the
+ * program compiled with `extra` #defines (NULL: none); a failure fails the test. */
+void gl_probe(const scene *s, const char *extra, const float *pts, int n, float *out);
 /* Renders `spp` samples of s; fills aov (w*h*8, top row first) and rgba (w*h*4) when not NULL. */
 void draw(const scene *s, const camera *cam, int w, int h, int spp, const char *extra, float *aov, float *rgba);
 camera cam_at(double ex, double ey, double ez, double tx, double ty, double tz, double fov_deg);

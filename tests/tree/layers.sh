@@ -81,7 +81,7 @@ long=$(find app shaders -name '*.c' -o -name '*.cpp' -o -name '*.h' -o -name '*.
            -o -name '*.vert' | sort | xargs awk -v MAX=80 -f tests/lib/funclen.awk)
 [ -n "$long" ] && say "functions over 80 lines (split them into named steps):
 $long"
-big=$(find app shaders -type f \( -name '*.c' -o -name '*.cpp' -o -name '*.h' -o -name '*.glsl' -o -name '*.frag' \
+big=$(find app shaders tests -type f \( -name '*.c' -o -name '*.cpp' -o -name '*.h' -o -name '*.glsl' -o -name '*.frag' \
           -o -name '*.vert' -o -name '*.comp' -o -name '*.sh' -o -name '*.txt' \) -not -path 'tests/golden/*' | sort |
       xargs wc -l | awk '$2 != "total" && $1 > 600 { print "  " $2 ": " $1 " lines" }')
 [ -n "$big" ] && say "files over 600 lines (split them by what they cover):
@@ -139,5 +139,5 @@ for f in $pure; do
     grep -q '^[[:space:]]*#[[:space:]]*include[[:space:]]*"\(gpu\|window\)/' "$f" && fail=1
 done
 
-[ $fail = 0 ] && echo "layers: ok ($(wc -l <"$edges") includes, every layer downwards, no cycle, no long function, every cited file exists, every global function prefixed, the pure library free of GL headers)"
+[ $fail = 0 ] && echo "layers: ok ($(wc -l <"$edges") includes, every folder a row of the guide's table and every include down the rows, no cycle, no long function or file, every cited file exists, every global function prefixed, the pure library free of GL headers)"
 exit $fail
