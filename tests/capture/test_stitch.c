@@ -28,9 +28,7 @@ static int setup(void **st)
 static int teardown(void **st)
 {
     (void)st;
-    char cmd[128];
-    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
-    return system(cmd);
+    return remove_tree(dir);
 }
 
 /* A W × rows tile (PNG, or EXR with `channels` channels) whose record is `record`. */

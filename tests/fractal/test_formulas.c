@@ -215,9 +215,7 @@ static void user_formula(void **st)
     render_read_aovs(again);
     assert_near(again[((H / 2) * W + W / 2) * AOV + AOV_SLOT_DEPTH], 2.5, 1e-3);
     scene_free(&s);
-    char cmd[300];
-    snprintf(cmd, sizeof cmd, "rm -rf %s", user_dir);
-    assert_int_equal(system(cmd), 0);
+    assert_int_equal(remove_tree(user_dir), 0);
     unsetenv("FATHOM_FORMULAS");
 }
 

@@ -22,6 +22,7 @@
 #include <gdal.h>
 #include <ogr_srs_api.h>
 
+#include "check.h"
 #include "gltest.h"
 #include "data/sky/sky.h"
 #include "gpu/render.h"
@@ -94,9 +95,7 @@ static int setup(void **st)
 
 static int teardown(void **st)
 {
-    char cmd[300];
-    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
-    return (system(cmd) == 0 ? 0 : -1) | gl_teardown(st);
+    return remove_tree(dir) | gl_teardown(st);
 }
 
 static void render_with(const char *imagery, float *aov, float *rgba, scene *s)

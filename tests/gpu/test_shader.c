@@ -10,6 +10,8 @@
 
 #include <cmocka.h>
 
+#include "check.h"
+
 #include "gpu/shader.h"
 
 static char root[64];
@@ -39,6 +41,12 @@ static int setup(void **st)
     put("broken.frag", "#include \"common/missing.glsl\"\n");
     put("bad_syntax.frag", "\n\n  #include common/a.glsl\n");
     return 0;
+}
+
+static int teardown(void **st)
+{
+    (void)st;
+    return remove_tree(root);
 }
 
 static void expands_with_line_directives(void **st)
@@ -141,5 +149,5 @@ int main(void)
         cmocka_unit_test(include_jail_rules),
         cmocka_unit_test(translates_driver_logs),
     };
-    return cmocka_run_group_tests(tests, setup, NULL);
+    return cmocka_run_group_tests(tests, setup, teardown);
 }

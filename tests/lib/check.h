@@ -5,6 +5,9 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
+
+#include "util.h"
 
 #define assert_near(a, b, tol)                                                                      \
     do {                                                                                            \
@@ -13,13 +16,21 @@
             fail_msg("%s = %.9g, expected %.9g within %g", #a, a_, b_, (double)(tol));              \
     } while (0)
 
-/* Writes text to path (a test's fixture file); a failure fails the test. */
-static inline void write_text(const char *path, const char *text)
+/* Writes text to file (a test's fixture file); a failure fails the test. */
+static inline void write_text(const char *file, const char *text)
 {
-    FILE *f = fopen(path, "w");
+    FILE *f = fopen(file, "w");
     assert_non_null(f);
     fputs(text, f);
     assert_int_equal(fclose(f), 0);
+}
+
+/* Removes the folder dir and all in it (a test's temporary folder): 0 when done, else -1. */
+static inline int remove_tree(const char *dir)
+{
+    char cmd[PATH_MAX_LEN + 16];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    return system(cmd) == 0 ? 0 : -1;
 }
 
 #endif

@@ -46,9 +46,7 @@ int fixture_setup(void **st)
 int fixture_teardown(void **st)
 {
     (void)st;
-    char cmd[300];
-    snprintf(cmd, sizeof cmd, "rm -rf %s", fixture_dir);
-    return system(cmd) == 0 ? 0 : -1;
+    return remove_tree(fixture_dir);
 }
 
 /* UTM 33N x, y to longitude and latitude, by OSR here. */

@@ -18,6 +18,7 @@
 #include <ogr_api.h>
 #include <ogr_srs_api.h>
 
+#include "check.h"
 #include "data/geo/dem.h"
 #include "data/geo/geo.h"
 #include "data/sky/sun.h"

@@ -13,6 +13,8 @@
 
 #include <cmocka.h>
 
+#include "check.h"
+
 #include "data/media/image_io.h"
 #include "data/lazy/lazy.h"
 
@@ -24,6 +26,12 @@ static int setup(void **st)
     (void)st;
     strcpy(dir, "/tmp/fathom-io-XXXXXX");
     return mkdtemp(dir) ? 0 : -1;
+}
+
+static int teardown(void **st)
+{
+    (void)st;
+    return remove_tree(dir);
 }
 
 /* A value no other pixel or channel shares, so any flip or swap shows. */
@@ -259,5 +267,5 @@ int main(void)
         cmocka_unit_test(oversized_images_are_refused),
         cmocka_unit_test(fast_reads_equal_openimageio),
     };
-    return cmocka_run_group_tests(tests, setup, NULL);
+    return cmocka_run_group_tests(tests, setup, teardown);
 }

@@ -96,6 +96,13 @@ for p in $cited; do
     case $p in tests/probe.json | *NAME* | *FILE*) continue ;; esac # written by the GL tests; placeholders
     [ -e "$p" ] || say "'$p' is cited but does not exist (grep -rn '$p' to find where)"
 done
+# a test cited with one of its cases (`test_gl adaptive_sampling`) is a test file with that case
+for cite in $(grep -rhoE '`test_[a-z_0-9]+ [a-z_0-9]+`' README.md docs --include='*.md' | tr ' ' ':' | tr -d '`' | sort -u); do
+    file=$(find tests -name "${cite%%:*}.c" | head -1)
+    if [ -z "$file" ] || ! grep -q "^static void ${cite#*:}(void \*\*" "$file"; then
+        say "'${cite%%:*} ${cite#*:}' is cited but no test file ${cite%%:*}.c has the case ${cite#*:}"
+    fi
+done
 # (a Fragmentarium include's name, DE-Raytracer.frag, is the host's file, not fathom's: app/scene/frag*.[ch]
 # and shaders/frag/ name them)
 names=$(grep -rhE '[A-Za-z0-9_]+\.(c|h|cpp|glsl|frag|vert)\b' app shaders --include='*.c' --include='*.h' \
