@@ -2,8 +2,8 @@
 # Every command the README, the user guide (docs/guide/*.md) and docs/flights.md show in a ```sh block
 # (after the README's two set-up commands) runs and succeeds, at a tiny size, and the words about the
 # program that those pages quote are what it prints: the pages are exactly what the program accepts.
-# Sizes become 32x18, spp 1, bench runs 1, mesh resolutions 24; window commands get --frames 1 under xvfb-run (skipped
-# without it). A command shown on several pages runs once (the first time it is shown), in the order
+# Sizes become 32x18, spp 1, bench runs 1 (a sweep --quick), check-formula --quick, mesh resolutions 24;
+# window commands get --frames 1 under xvfb-run (skipped without it). A command shown on several pages runs once (the first time it is shown), in the order
 # of the pages below, all from one folder that links build/fathom, scenes, terrains, textures, shaders
 # and docs, so a later command may open what an earlier one wrote.
 # Usage: readme_examples.sh FATHOM SOURCE_DIR
@@ -37,13 +37,16 @@ tab=$(printf '\t')
 while IFS="$tab" read -r from line; do
     cmd=$(echo "$line" | sed -E 's/--size [0-9]+x[0-9]+/--size 32x18/; s/--spp [0-9]+/--spp 1/; s/--runs [0-9]+/--runs 1/')
     case "$cmd" in
-    build/fathom\ check-formula*) ;; # a report: it takes no size, frames or output
+    build/fathom\ check-formula*) # a report: it takes no size, frames or output; the defaults only
+        echo "$cmd" | grep -q -- --quick || cmd="$cmd --quick" ;;
     build/fathom\ viewshed* | build/fathom\ track*) ;; # GIS files: no size, spp or frames
     build/fathom\ mesh*) cmd=$(echo "$cmd" | sed -E 's/--resolution [0-9]+/--resolution 24/') # a mesh: no size or spp
         echo "$cmd" | grep -q -- --resolution || cmd="$cmd --resolution 24"
         cmd="$cmd --quiet" ;;
     build/fathom\ bench*) cmd="$cmd --quiet" # options are given once: only what the example lacks is added
         echo "$cmd" | grep -q -- --runs || cmd="$cmd --runs 1"
+        echo "$cmd" | grep -q -- '--quick\|--full\|--frame-times\|--interactive\|--terrain-scale\|--final-frame\|--viewshed' ||
+            cmd="$cmd --quick"
         echo "$cmd" | grep -q -- --size || cmd="$cmd --size 32x18" ;;
     build/fathom*--output* | build/fathom*--print-variant* | build/fathom*--list-scenes* | build/fathom*--help* | \
         build/fathom*--list-formulas*)
