@@ -4,11 +4,9 @@
 #include "jobs/bench/bench_load.h"
 
 #include <epoxy/gl.h>
-#include <fcntl.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include "data/droplets/droplets.h"

@@ -1,5 +1,4 @@
 /* frag_uniform — a fragment's annotated uniforms as formula parameters (frag.h). */
-#include <ctype.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
