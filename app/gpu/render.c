@@ -165,7 +165,11 @@ void render_preamble(const scene *s, const char *extra_defines, strbuf *out)
 
 bool render_set_scene(const scene *s, const char *extra_defines, err_t *err)
 {
-    GLuint prog = render_programs_get(s, state->backend == BACKEND_COMPUTE ? "sdf.comp" : "sdf.frag", extra_defines, err);
+    strbuf defines = {0}; /* the caller's, and what the scene's resources need (a streamed terrain's feedback) */
+    sb_append(&defines, extra_defines ? extra_defines : "");
+    res_heightfield_defines(s, &defines);
+    GLuint prog = render_programs_get(s, state->backend == BACKEND_COMPUTE ? "sdf.comp" : "sdf.frag", defines.data, err);
+    sb_free(&defines);
     if (!prog || !render_scene_set(s, err))
         return false;
     state->prog = prog;

@@ -155,6 +155,7 @@ typedef struct scene {
         bool exaggeration_set; /* the scene (or an override) gives it: "camera": "auto" keeps it */
         bool maxmip;      /* method: "maxmip" (exact, hierarchical) or "linear" (the lab's search) */
         bool fill_nodata; /* nodata: "hole" (rays pass) or "fill" (GDALFillNodata) */
+        int cache_mb;     /* the GPU's share of a DEM in MB (0: auto); a larger DEM streams (gpu/res_heightfield.c) */
         bool patch_normals; /* normals: "smooth" (vertex normals blended across the cell) or "patch" (exact) */
         float sand_line, snow_line; /* metres: sand below, snow above (after exaggeration) */
         bool elevation_ramp;        /* "colors": "elevation": a hypsometric tint by true height, no layers */

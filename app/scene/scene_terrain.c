@@ -107,7 +107,7 @@ bool scene_heightmap_parse(scene_ctx *c, const cJSON *root)
     const cJSON *tb = cJSON_GetObjectItemCaseSensitive(root, "terrain");
     static const char *const keys[] = {"heightmap", "spacing", "height_min", "height_max", "exaggeration", "method",
                                        "sand_line", "snow_line", "grass_slope", "nodata", "normals", "colors", "imagery",
-                                       "vectors", NULL};
+                                       "vectors", "cache_mb", NULL};
     if (!tb)
         return scene_fail(c, "terrain", "a terrain scene needs a \"terrain\" block with a \"heightmap\"");
     if (!scene_check_keys(c, tb, "terrain", keys))
@@ -140,7 +140,8 @@ bool scene_heightmap_parse(scene_ctx *c, const cJSON *root)
         !scene_get_num(c, tb, "terrain", "exaggeration", 1, 0.01f, 100, &t->exaggeration) ||
         !scene_get_num(c, tb, "terrain", "sand_line", -1e9f, -1e9f, 1e9f, &t->sand_line) ||
         !scene_get_num(c, tb, "terrain", "snow_line", 1e9f, -1e9f, 1e9f, &t->snow_line) ||
-        !scene_get_num(c, tb, "terrain", "grass_slope", 0.8f, 0, 1, &t->grass_slope))
+        !scene_get_num(c, tb, "terrain", "grass_slope", 0.8f, 0, 1, &t->grass_slope) ||
+        !scene_get_int(c, tb, "terrain", "cache_mb", 0, 0, 1 << 20, &t->cache_mb))
         return false;
     if (t->height_min > t->height_max)
         return scene_fail(c, "terrain.height_max", "%g is below height_min %g: height_min is the height of black, "

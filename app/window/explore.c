@@ -353,6 +353,19 @@ static bool focus_lens(int w, int h)
     return edit(kv);
 }
 
+/* A streamed terrain (gpu/res_heightfield.h): the tiles the last sample asked for, a few a frame so the
+ * window keeps its pace; the image restarts with them (what it drew in their place was a plateau). */
+static void stream_tiles(void)
+{
+    enum { LOADS_PER_FRAME = 8 };
+    long before = res_heightfield_get_stats().loaded;
+    err_t e;
+    if (res_heightfield_settle(LOADS_PER_FRAME, &e) == TERRAIN_FAILED)
+        fprintf(stderr, "fathom: %s\n", e.msg);
+    if (res_heightfield_get_stats().loaded != before)
+        render_begin(&app.fly.cam);
+}
+
 /* One frame's sample. Moving (or restarted): one sample at the internal resolution the controller
  * picks for the target frame rate, stretched to the window. Still: full resolution, samples
  * accumulating up to the preset's spp in bands of about one frame's time. True while there is work. */
@@ -398,6 +411,8 @@ static bool draw(int w, int h, bool restart, camera *shown, bool *moved)
             res_update(&app.res, ms + app.stats.overhead_ms, (double)iw * ih, (double)w * h);
         else if (refining && ms > 0) /* the next band: as many rows as fit the target */
             app.band_rows *= fmin(fmax(app.res.target_ms / ms, 0.5), 2.0);
+        if (complete && res_heightfield_streamed())
+            stream_tiles();
         if (render_samples() == 1)
             app.unresolved = -1;
         if (!moving && refining && render_samples() == spp) {

@@ -3,6 +3,7 @@
 
 #include <stdio.h>
 
+#include "gpu/res_heightfield.h"
 #include "window/hud.h"
 
 /* The converged image's rays that found no answer: said, never hidden (they are drawn as misses). */
@@ -64,6 +65,11 @@ void explore_hud(const explore_app *a, int w, int h)
     }
     if (a->unresolved > 0)
         sb_printf(&t, "%s\n", explore_unresolved_text(a));
+    if (res_heightfield_streamed()) { /* what is resident, and what the image still draws as plateaus */
+        res_heightfield_stats st = res_heightfield_get_stats();
+        sb_printf(&t, "terrain streamed: %d of %d tiles resident (%d slots), %d pending%s\n", st.resident, st.tiles,
+                  st.slots, st.pending, st.pending ? ": plateaus where they go" : "");
+    }
     if (a->cursor_info[0])
         sb_printf(&t, "%s\n", a->cursor_info);
     if (a->message[0] && !a->panel)

@@ -7,16 +7,19 @@
 //    STEP_GROWTH, and refine the first bracketed crossing by BINARY_STEPS bisections. A step can jump
 //    over a ridge thinner than itself (tests/geo/test_terrain.c shows where).
 // Hit.steps counts height samples (texel fetches of four corners count once) for --aov steps.
-// The grid in tiles (app/gpu/render_scene.c; one tile when it fits a texture): R32F metres, texel (i, j) =
-// column i (west → east), row j (north → south), in layer (j / tile.y) · tilesX + i / tile.x.
+// The grid in tiles (app/data/geo/terrain_tiles.h, app/gpu/res_heightfield.c): a tile holds 2^shift cells and
+// their corners (its last column and row are its neighbours' first), R32F metres, in the texture layer
+// the page table names (−1: not resident, streamed from disk). Texel (i, j) = column i (west → east), row
+// j (north → south).
 uniform sampler2DArray uHeight;
 // The max pyramid: level 0 (cells between four centres) is not stored (the walk intersects a cell
-// instead); levels 1 … uTerrainTileLevel per tile (mip k − 1 = level k), the levels above in uHeightMaxTop.
+// instead); levels 1 … uTerrainTileLevel − 1 per tile (mip k − 1 = level k), the levels from whole tiles
+// up (uTerrainTileLevel …) in uHeightMaxTop.
 uniform sampler2DArray uHeightMax;
 uniform sampler2D uHeightMaxTop;
-uniform ivec2 uTerrainTile;      // texels per height tile
-uniform int uTerrainTilesX;
-uniform ivec2 uTerrainTileShift; // log2 of cells per pyramid tile
+uniform isampler2D uTerrainPages; // tile → its layer, −1 when not resident
+uniform ivec2 uTerrainTiles;
+uniform ivec2 uTerrainTileShift; // log2 of cells a tile
 uniform int uTerrainTileLevel;
 uniform vec2 uTerrainOrigin;     // x0, z0: the north-west corner of the grid
 uniform vec2 uTerrainSpacing;    // dx, dz: metres per texel
@@ -25,6 +28,32 @@ uniform float uTerrainStepScale; // 1 / sqrt(1 + L²), L the steepest slope: (y 
 uniform int uTerrainTopLevel;    // the max pyramid's top level
 uniform ivec2 uTerrainSize;      // texels
 uniform int uTerrainMaxNodes;    // the max-mipmap traversal's node budget: enough for any ray across the grid
+
+#if TERRAIN_STREAM
+// A streamed terrain's feedback, one bit a tile: words [0, n) the tiles asked for and not resident,
+// [n, 2n) the resident tiles used. res_heightfield_settle reads it, loads what was asked and draws again.
+uniform int uTerrainFeedbackWords;
+layout(std430) buffer TerrainFeedback { uint uTerrainFeedback[]; };
+int gTerrainLastTile = -1; // this invocation's last tile: marked once a run of lookups
+#endif
+
+// The layer holding tile `tile`, −1 when it is not resident.
+int terrainSlot(ivec2 tile)
+{
+    tile = clamp(tile, ivec2(0), uTerrainTiles - 1);
+    int slot = texelFetch(uTerrainPages, tile, 0).r;
+#if TERRAIN_STREAM
+    int idx = tile.y * uTerrainTiles.x + tile.x;
+    if (idx != gTerrainLastTile) {
+        gTerrainLastTile = idx;
+        atomicOr(uTerrainFeedback[(idx >> 5) + (slot < 0 ? 0 : uTerrainFeedbackWords)], 1u << uint(idx & 31));
+    }
+#endif
+    return slot;
+}
+
+// A tile's highest cell (the top pyramid's node at the tile level): what a missing tile stands as.
+float terrainTileMax(ivec2 tile) { return texelFetch(uHeightMaxTop, tile, 0).r; }
 
 #include "common/hit.glsl"
 
@@ -35,21 +64,34 @@ uniform int uTerrainMaxNodes;    // the max-mipmap traversal's node budget: enou
 
 // Cell space: c = (xz − x0z0) / dxdz − ½ puts texel centres on integers; cell (i, j) is [i, i+1]×[j, j+1].
 vec2 toCell(vec2 xz) { return (xz - uTerrainOrigin) / uTerrainSpacing - 0.5; }
-float texelHeight(ivec2 t)
+
+// The heights at cell `cell`'s corners (h00, h10, h01, h11), from the tile holding the cell; a tile not
+// resident stands as a plateau at its maximum (conservative: never below the ground it holds). A cell
+// beyond the grid has no surface (holes).
+vec4 cellCorners(ivec2 cell)
 {
-    t = clamp(t, ivec2(0), uTerrainSize - 1);
-    ivec2 tile = t / uTerrainTile;
-    return texelFetch(uHeight, ivec3(t - tile * uTerrainTile, tile.y * uTerrainTilesX + tile.x), 0).r;
+    if (any(lessThan(cell, ivec2(0))) || any(greaterThan(cell, uTerrainSize - 2)))
+        return vec4(-1e30);
+    ivec2 tile = cell >> uTerrainTileShift;
+    int slot = terrainSlot(tile);
+    if (slot < 0)
+        return vec4(terrainTileMax(tile));
+    ivec2 p = cell - (tile << uTerrainTileShift);
+    return vec4(texelFetch(uHeight, ivec3(p, slot), 0).r, texelFetch(uHeight, ivec3(p + ivec2(1, 0), slot), 0).r,
+                texelFetch(uHeight, ivec3(p + ivec2(0, 1), slot), 0).r, texelFetch(uHeight, ivec3(p + ivec2(1, 1), slot), 0).r);
 }
 
 // The maximum of pyramid node `node` at `level` (≥ 1).
 float nodeMax(ivec2 node, int level)
 {
-    if (level > uTerrainTileLevel)
-        return texelFetch(uHeightMaxTop, node, level - uTerrainTileLevel - 1).r;
+    if (level >= uTerrainTileLevel)
+        return texelFetch(uHeightMaxTop, node, level - uTerrainTileLevel).r;
     ivec2 shift = max(uTerrainTileShift - level, 0); // log2 of this level's nodes per tile
     ivec2 tile = node >> shift;
-    return texelFetch(uHeightMax, ivec3(node - (tile << shift), tile.y * uTerrainTilesX + tile.x), level - 1).r;
+    int slot = terrainSlot(tile);
+    if (slot < 0)
+        return terrainTileMax(tile);
+    return texelFetch(uHeightMax, ivec3(node - (tile << shift), slot), level - 1).r;
 }
 // Nodata texels hold −1e30 (app/data/geo/terrain.h TERRAIN_HOLE): a cell with one at a corner has no surface,
 // and a height interpolated with any weight on one is far below every real height.
@@ -58,8 +100,8 @@ bool cellSolid(ivec2 cell)
 {
     if (any(lessThan(cell, ivec2(0))) || any(greaterThan(cell, uTerrainSize - 2)))
         return false;
-    return !isHole(min(min(texelHeight(cell), texelHeight(cell + ivec2(1, 0))),
-                       min(texelHeight(cell + ivec2(0, 1)), texelHeight(cell + ivec2(1, 1)))));
+    vec4 h = cellCorners(cell);
+    return !isHole(min(min(h.x, h.y), min(h.z, h.w)));
 }
 
 float heightAtCell(vec2 c)
@@ -67,8 +109,8 @@ float heightAtCell(vec2 c)
     c = clamp(c, vec2(0.0), vec2(uTerrainSize - 1));
     ivec2 i = min(ivec2(floor(c)), uTerrainSize - 2);
     vec2 f = c - vec2(i);
-    float h00 = texelHeight(i), h10 = texelHeight(i + ivec2(1, 0));
-    float h01 = texelHeight(i + ivec2(0, 1)), h11 = texelHeight(i + ivec2(1, 1));
+    vec4 k = cellCorners(i);
+    float h00 = k.x, h10 = k.y, h01 = k.z, h11 = k.w;
     if (isHole(min(min(h00, h10), min(h01, h11))))
         return -1e30; // no surface in a cell with a nodata corner, even on its edges
     return mix(mix(h00, h10, f.x), mix(h01, h11, f.x), f.y);
@@ -109,8 +151,8 @@ vec2 terrainSlab(vec3 ro, vec3 rd)
 // cell-space position at s = 0, cd its cell-space velocity, y0 and dy its height and climb.
 float intersectCell(ivec2 cell, vec2 c0, vec2 cd, float y0, float dy, float sEnd)
 {
-    float h00 = texelHeight(cell), h10 = texelHeight(cell + ivec2(1, 0));
-    float h01 = texelHeight(cell + ivec2(0, 1)), h11 = texelHeight(cell + ivec2(1, 1));
+    vec4 k = cellCorners(cell);
+    float h00 = k.x, h10 = k.y, h01 = k.z, h11 = k.w;
     if (isHole(min(min(h00, h10), min(h01, h11))))
         return -1.0; // a nodata hole: rays pass (the max pyramid skips it; the linear search comes here)
     float a = h10 - h00, b = h01 - h00, c = h00 - h10 - h01 + h11;
@@ -249,8 +291,8 @@ vec3 patchNormal(vec2 c)
 {
     ivec2 i = clamp(ivec2(floor(c)), ivec2(0), uTerrainSize - 2);
     vec2 f = clamp(c - vec2(i), 0.0, 1.0);
-    float h00 = texelHeight(i), h10 = texelHeight(i + ivec2(1, 0));
-    float h01 = texelHeight(i + ivec2(0, 1)), h11 = texelHeight(i + ivec2(1, 1));
+    vec4 q = cellCorners(i);
+    float h00 = q.x, h10 = q.y, h01 = q.z, h11 = q.w;
     float a = h10 - h00, b = h01 - h00, k = h00 - h10 - h01 + h11;
     vec2 g = vec2(a + k * f.y, b + k * f.x) / uTerrainSpacing; // dh/dx, dh/dz in metres per metre
     return normalize(vec3(-g.x, 1.0, -g.y));

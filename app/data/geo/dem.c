@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <strings.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "data/geo/geo_internal.h"
@@ -57,7 +58,8 @@ static bool georeference(GDALDatasetH ds, const char *path, int h, dem_info *inf
 /* What dem_read refuses before reading: no band, complex values, a side over max_side, more memory
  * than the machine has (app/data/geo/terrain.h: heights on the CPU and the GPU, the pyramid), so that a
  * file is refused up front rather than after minutes of reading. */
-static bool check_readable(const char *path, GDALRasterBandH band, int W, int H, int max_side, err_t *err)
+static bool check_readable(const char *path, GDALRasterBandH band, int W, int H, int max_side, double bytes_per_texel,
+                           err_t *err)
 {
     GDALDataType type = band ? GDALGetRasterDataType(band) : GDT_Unknown;
     if (!band)
@@ -68,9 +70,9 @@ static bool check_readable(const char *path, GDALRasterBandH band, int W, int H,
     if (W > max_side || H > max_side)
         return err_set(err, "DEM '%s' is %dx%d: the largest side fathom reads is %d texels; cut or resample it "
                             "(gdal_translate -outsize)", path, W, H, max_side);
-    double need = (double)W * (double)H * DEM_BYTES_PER_TEXEL;
+    double need = (double)W * (double)H * bytes_per_texel;
     double have = util_physical_memory();
-    if (need > have)
+    if (bytes_per_texel > 0 && need > have)
         return err_set(err, "DEM '%s' is %dx%d: drawing it takes about %.0f GB and this machine has %.0f GB; cut or "
                             "resample it (gdal_translate -outsize)", path, W, H, need / 1e9, have / 1e9);
     return true;
@@ -188,7 +190,7 @@ bool dem_read_window(const char *path, int x0, int y0, int *w, int *h, int max_s
     bool ok = x0 >= 0 && y0 >= 0 && x0 + *w <= W && y0 + *h <= H;
     if (!ok)
         err_set(err, "DEM '%s': the window %d,%d + %dx%d is not inside its %dx%d texels", path, x0, y0, *w, *h, W, H);
-    ok = ok && check_readable(path, band, *w, *h, max_side, err);
+    ok = ok && check_readable(path, band, *w, *h, max_side, DEM_BYTES_PER_TEXEL, err);
     if (ok) {
         GDALDataType type = GDALGetRasterDataType(band);
         snprintf(info->type, sizeof info->type, "%s", GDALGetDataTypeName(type));
@@ -212,6 +214,87 @@ bool dem_read_window(const char *path, int x0, int y0, int *w, int *h, int max_s
     }
     GDALClose(ds);
     return ok;
+}
+
+struct dem_stream {
+    GDALDatasetH ds;
+    GDALRasterBandH band;
+    char path[PATH_MAX_LEN];
+    int width, height;
+    bool south_up;
+    dem_info info;
+    unsigned long long bytes; /* read so far: texels asked for times the band's bytes a texel */
+};
+
+dem_stream *dem_stream_open(const char *path, int *w, int *h, dem_info *info, err_t *err)
+{
+    geo_gdal_init();
+    GDALDatasetH ds = geo_open(path, GDAL_OF_RASTER, "read DEM", err);
+    if (!ds)
+        return NULL;
+    dem_stream *s = util_calloc(1, sizeof *s, "a DEM reader");
+    s->ds = ds;
+    snprintf(s->path, sizeof s->path, "%s", path);
+    s->width = GDALGetRasterXSize(ds), s->height = GDALGetRasterYSize(ds);
+    s->band = GDALGetRasterCount(ds) > 0 ? GDALGetRasterBand(ds, 1) : NULL;
+    bool ok = check_readable(path, s->band, s->width, s->height, DEM_STREAM_MAX_SIDE, -1, err);
+    if (ok) {
+        GDALDataType type = GDALGetRasterDataType(s->band);
+        snprintf(s->info.type, sizeof s->info.type, "%s", GDALGetDataTypeName(type));
+        s->info.is_float = GDALDataTypeIsFloating(type);
+        ok = georeference(ds, path, s->height, &s->info, err) && vertical_unit(ds, s->band, path, &s->info, err);
+    }
+    double gt[6];
+    s->south_up = GDALGetGeoTransform(ds, gt) == CE_None && gt[5] > 0;
+    if (!ok) {
+        dem_stream_close(s);
+        return NULL;
+    }
+    *w = s->width, *h = s->height;
+    *info = s->info;
+    return s;
+}
+
+bool dem_stream_read(dem_stream *s, int x0, int y0, int w, int h, float *out, err_t *err)
+{
+    if (x0 < 0 || y0 < 0 || w <= 0 || h <= 0 || x0 + w > s->width || y0 + h > s->height)
+        return err_set(err, "DEM '%s': the window %d,%d + %dx%d is not inside its %dx%d texels", s->path, x0, y0, w, h,
+                       s->width, s->height);
+    if (!read_rows(s->path, s->band, x0, s->south_up ? s->height - y0 - h : y0, w, h, out, err))
+        return false;
+    s->bytes += (unsigned long long)w * (unsigned long long)h *
+                (unsigned long long)GDALGetDataTypeSizeBytes(GDALGetRasterDataType(s->band));
+    dem_info info = s->info; /* its holes are the window's */
+    to_heights(s->band, out, (size_t)w * (size_t)h, &info);
+    flip_south_up(s->ds, out, w, h);
+    return true;
+}
+
+unsigned long long dem_stream_bytes(const dem_stream *s) { return s->bytes; }
+
+void dem_stream_identity(const dem_stream *s, strbuf *key)
+{
+    char **files = GDALGetFileList(s->ds);
+    for (char **f = files; f && *f; f++) {
+        struct stat st;
+        if (stat(*f, &st) == 0)
+            sb_printf(key, "%s|%lld|%lld.%09ld;", *f, (long long)st.st_size, (long long)st.st_mtim.tv_sec,
+                      st.st_mtim.tv_nsec);
+        else
+            sb_printf(key, "%s;", *f);
+    }
+    CSLDestroy(files);
+    if (!files) /* no files behind it (a /vsimem/ or a driver's own): its path */
+        sb_printf(key, "%s;", s->path);
+}
+
+void dem_stream_close(dem_stream *s)
+{
+    if (!s)
+        return;
+    if (s->ds)
+        GDALClose(s->ds);
+    free(s);
 }
 
 bool dem_probe(const char *path, int *w, int *h, double range[2], dem_info *info, err_t *err)

@@ -45,6 +45,20 @@ bool dem_read(const char *path, int max_side, int *w, int *h, float **heights, d
 bool dem_read_window(const char *path, int x0, int y0, int *w, int *h, int max_side, float **heights, dem_info *info,
                      err_t *err);
 
+/* A DEM read a window at a time, whatever its size (a terrain larger than memory: gpu/res_heightfield.c):
+ * the file stays open; each read gives what dem_read_window would (metres, NaN holes, row 0 north). Not
+ * shared between threads: each opens its own. Sides up to DEM_STREAM_MAX_SIDE. */
+#define DEM_STREAM_MAX_SIDE (1 << 22)
+typedef struct dem_stream dem_stream;
+dem_stream *dem_stream_open(const char *path, int *w, int *h, dem_info *info, err_t *err);
+bool dem_stream_read(dem_stream *s, int x0, int y0, int w, int h, float *out, err_t *err);
+/* The bytes of the file's values read so far (what the windows asked for, in the band's type). */
+unsigned long long dem_stream_bytes(const dem_stream *s);
+/* Appends "file|bytes|mtime;" for every file GDAL reads for it (a VRT's sources too): what a cache of
+ * facts about the DEM is keyed by. */
+void dem_stream_identity(const dem_stream *s, strbuf *key);
+void dem_stream_close(dem_stream *s);
+
 /* What framing a camera needs, without reading every texel: size, georeferencing and the height range
  * (GDAL's approximate minimum and maximum, scale and offset applied). */
 bool dem_probe(const char *path, int *w, int *h, double range[2], dem_info *info, err_t *err);

@@ -63,3 +63,38 @@ bool dem_write_hills(const char *path, int n, err_t *err)
     LAZY_FN(bool (*f)(const char *, int, err_t *), lazy_symbol(LAZY_DEM, "dem_write_hills", err));
     return f && f(path, n, err);
 }
+
+dem_stream *dem_stream_open(const char *path, int *w, int *h, dem_info *info, err_t *err)
+{
+    LAZY_FN(dem_stream * (*f)(const char *, int *, int *, dem_info *, err_t *),
+            lazy_symbol(LAZY_DEM, "dem_stream_open", err));
+    return f ? f(path, w, h, info, err) : NULL;
+}
+
+bool dem_stream_read(dem_stream *s, int x0, int y0, int w, int h, float *out, err_t *err)
+{
+    LAZY_FN(bool (*f)(dem_stream *, int, int, int, int, float *, err_t *), lazy_symbol(LAZY_DEM, "dem_stream_read", err));
+    return f && f(s, x0, y0, w, h, out, err);
+}
+
+unsigned long long dem_stream_bytes(const dem_stream *s)
+{
+    LAZY_FN(unsigned long long (*f)(const dem_stream *), lazy_symbol(LAZY_DEM, "dem_stream_bytes", NULL));
+    return f ? f(s) : 0;
+}
+
+void dem_stream_identity(const dem_stream *s, strbuf *key)
+{
+    LAZY_FN(void (*f)(const dem_stream *, strbuf *), lazy_symbol(LAZY_DEM, "dem_stream_identity", NULL));
+    if (f)
+        f(s, key);
+}
+
+void dem_stream_close(dem_stream *s)
+{
+    if (!s)
+        return;
+    LAZY_FN(void (*f)(dem_stream *), lazy_symbol(LAZY_DEM, "dem_stream_close", NULL));
+    if (f)
+        f(s);
+}

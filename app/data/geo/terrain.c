@@ -216,39 +216,97 @@ static bool heights_in_range(const char *path, double lo, double hi, err_t *err)
                         "(gdalinfo) or the height range", path, lo, hi, TERRAIN_HEIGHT_MAX);
 }
 
+/* What a DEM's georeferencing says (the about line) and the spacing it gives when the scene gives none. */
+static bool dem_spacing(const heightfield_desc *d, const dem_info *info, int w, int h, float spacing[2], strbuf *about,
+                        err_t *err)
+{
+    sb_printf(about, "%s: %dx%d %s", d->path, w, h, info->type);
+    if (info->georeferenced) {
+        sb_printf(about, ", %s", info->crs);
+        if (info->geographic)
+            sb_printf(about, " (geographic: %.1f x %.1f m per texel at %.2f°%c)", info->spacing[0], info->spacing[1],
+                      fabs(info->latitude), info->latitude >= 0 ? 'N' : 'S');
+        else
+            sb_printf(about, " (%.1f x %.1f m per texel)", info->spacing[0], info->spacing[1]);
+    }
+    if (spacing[0] == 0 && info->georeferenced) {
+        if (!terrain_spacing_ok(info->spacing[0]) || !terrain_spacing_ok(info->spacing[1]))
+            return bad_spacing(d->path, info->spacing, err);
+        spacing[0] = (float)info->spacing[0];
+        spacing[1] = (float)info->spacing[1];
+    } else if (spacing[0] != 0 && info->georeferenced) {
+        sb_printf(about, ", spacing from the scene");
+    } else if (spacing[0] == 0 && info->pixel[0] > 0) {
+        return no_crs(d->path, info, err);
+    }
+    return true;
+}
+
+static bool heights_are_metres(const heightfield_desc *d, float lo, float hi, err_t *err)
+{
+    return (lo == 0 && hi == 0) ||
+           err_set(err, "heightmap '%s' is a DEM whose values are heights already: remove terrain.height_min and "
+                        "terrain.height_max (they map an 8/16-bit image's grey levels)", d->path);
+}
+
 /* A DEM through GDAL: metres, and the spacing from its georeferencing when the scene gives none. */
 static bool read_dem(const heightfield_desc *d, float spacing[2], float lo, float hi, int *w, int *h, float **heights,
                      strbuf *about, err_t *err)
 {
-    if (lo != 0 || hi != 0)
-        return err_set(err, "heightmap '%s' is a DEM whose values are heights already: remove terrain.height_min and "
-                            "terrain.height_max (they map an 8/16-bit image's grey levels)", d->path);
+    if (!heights_are_metres(d, lo, hi, err))
+        return false;
     dem_info info;
     if (!dem_read(d->path, TERRAIN_MAX_SIDE, w, h, heights, &info, err))
         return false;
-    sb_printf(about, "%s: %dx%d %s", d->path, *w, *h, info.type);
-    if (info.georeferenced) {
-        sb_printf(about, ", %s", info.crs);
-        if (info.geographic)
-            sb_printf(about, " (geographic: %.1f x %.1f m per texel at %.2f°%c)", info.spacing[0], info.spacing[1],
-                      fabs(info.latitude), info.latitude >= 0 ? 'N' : 'S');
-        else
-            sb_printf(about, " (%.1f x %.1f m per texel)", info.spacing[0], info.spacing[1]);
-    }
-    if (spacing[0] == 0 && info.georeferenced) {
-        if (!terrain_spacing_ok(info.spacing[0]) || !terrain_spacing_ok(info.spacing[1])) {
-            free(*heights);
-            return bad_spacing(d->path, info.spacing, err);
-        }
-        spacing[0] = (float)info.spacing[0];
-        spacing[1] = (float)info.spacing[1];
-    } else if (spacing[0] != 0 && info.georeferenced) {
-        sb_printf(about, ", spacing from the scene");
-    } else if (spacing[0] == 0 && info.pixel[0] > 0) {
+    if (!dem_spacing(d, &info, *w, *h, spacing, about, err)) {
         free(*heights);
-        return no_crs(d->path, &info, err);
+        *heights = NULL;
+        return false;
     }
     return true;
+}
+
+bool heightfield_open_stream(const heightfield_desc *d, heightfield *hf, dem_stream **out, err_t *err)
+{
+    *out = NULL;
+    *hf = (heightfield){0};
+    float spacing[2] = {d->spacing[0], d->spacing[1]}, lo = d->height_min, hi = d->height_max;
+    if (!read_sidecar(d->path, spacing, &lo, &hi, err) || !heights_are_metres(d, lo, hi, err))
+        return false;
+    if (d->fill_nodata)
+        return err_set(err, "heightmap '%s' is streamed from disk (it is larger than terrain.cache_mb), and filling "
+                            "nodata needs the whole DEM at once: fill it first (gdal_fillnodata.py) or raise "
+                            "terrain.cache_mb", d->path);
+    int w, h;
+    dem_info info;
+    dem_stream *s = dem_stream_open(d->path, &w, &h, &info, err);
+    if (!s)
+        return false;
+    strbuf about = {0};
+    bool ok = dem_spacing(d, &info, w, h, spacing, &about, err);
+    if (ok && !(spacing[0] > 0 && spacing[1] > 0))
+        ok = err_set(err, "heightmap '%s': no spacing (set terrain.spacing=[dx,dz] in metres per texel, or give the "
+                          "DEM a CRS)", d->path);
+    if (ok && (w < 2 || h < 2))
+        ok = err_set(err, "heightmap '%s' is %dx%d: it needs at least 2x2 texels", d->path, w, h);
+    if (ok) {
+        *hf = (heightfield){.width = w, .height = h, .dx = spacing[0], .dz = spacing[1]};
+        hf->x0 = -0.5f * (float)w * hf->dx;
+        hf->z0 = -0.5f * (float)h * hf->dz;
+        snprintf(hf->about, sizeof hf->about, "%s", about.data);
+        *out = s;
+    } else {
+        dem_stream_close(s);
+    }
+    sb_free(&about);
+    return ok;
+}
+
+bool heightfield_stream_check(const heightfield_desc *d, const heightfield *hf, err_t *err)
+{
+    if (hf->holes == (size_t)hf->width * (size_t)hf->height)
+        return err_set(err, "heightmap '%s' has no heights: all %zu texels are nodata or NaN", d->path, hf->holes);
+    return heights_in_range(d->path, hf->hmin, hf->hmax, err);
 }
 
 bool heightfield_load(const heightfield_desc *d, heightfield *hf, err_t *err)

@@ -67,6 +67,13 @@ bool terrain_spacing_ok(double metres);
  * Refuses what cannot be drawn: a missing or non-finite spacing or height range, a reversed range, a
  * height range on a GDAL DEM (its values are metres already), a DEM without one real height. */
 bool heightfield_load(const heightfield_desc *d, heightfield *hf, err_t *err);
+/* A GDAL DEM for reading in windows (gpu/res_heightfield.c streams one larger than its cache): *hf gets the
+ * grid, spacing, origin and the about line heightfield_load would give, without one height read (hmin,
+ * hmax, lipschitz and holes are the caller's, from the tiles: then heightfield_stream_check). */
+struct dem_stream;
+bool heightfield_open_stream(const heightfield_desc *d, heightfield *hf, struct dem_stream **stream, err_t *err);
+/* heightfield_load's refusals of what the heights hold (no real height; heights beyond the limit). */
+bool heightfield_stream_check(const heightfield_desc *d, const heightfield *hf, err_t *err);
 /* From heights already in memory (tests): w × h metres, row 0 north; NaN marks a hole. */
 void heightfield_from(const float *heights, int w, int h, float dx, float dz, heightfield *hf);
 void heightfield_free(heightfield *hf);

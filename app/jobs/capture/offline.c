@@ -1,6 +1,7 @@
 #include "jobs/capture/offline.h"
 
 #include <epoxy/gl.h>
+#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -14,6 +15,7 @@
 #include "gpu/render.h"
 #include "gpu/render_probe.h"
 #include "gpu/render_programs.h"
+#include "gpu/res_heightfield.h"
 #include "view/shot.h"
 
 /* A band: about 2 Mpixel by default; at most 16 Mpixel whatever --strip-rows asks (GPU targets 52 bytes
@@ -202,35 +204,93 @@ bool offline_tile_name(const char *output, int index, int count, char *out, size
     return true;
 }
 
+/* A streamed terrain (gpu/res_heightfield.h): passes of one sample until one asks for no tile the GPU lacks
+ * (each loads what the last asked for). TERRAIN_OVER_BUDGET: the band needs more tiles than the cache. */
+static res_heightfield_settled stream_in(const camera *cam, err_t *err)
+{
+    res_heightfield_watch();
+    for (;;) {
+        render_begin(cam);
+        render_sample();
+        res_heightfield_settled r = res_heightfield_settle(INT_MAX, err);
+        if (r != TERRAIN_LOADED)
+            return r;
+    }
+}
+
+typedef struct band_run {
+    const offline_desc *d;
+    image_writer *w;
+    int margin;
+    long *unresolved;
+    double *pixel_samples, t0;
+    int done_rows, rows; /* the progress: rows written of the rows to render */
+} band_run;
+
+/* Rows [band_top, band_top + h) of the image, with margin rows above and below where adaptive sampling
+ * needs them; a streamed terrain's band whose tiles do not fit the cache is cut in two (even rows). */
+static bool render_band(band_run *b, int band_top, int h, err_t *err)
+{
+    const offline_desc *d = b->d;
+    int below = d->height - band_top - h;
+    int above = band_top < b->margin ? band_top : b->margin, under = below < b->margin ? below : b->margin;
+    for (;;) {
+        render_resize(d->width, above + h + under);
+        render_set_window(d->width, d->height, 0, band_top - above);
+        render_begin(&d->cam);
+        res_heightfield_settled r = TERRAIN_SETTLED;
+        if (res_heightfield_streamed() && (r = stream_in(&d->cam, err)) == TERRAIN_SETTLED)
+            render_begin(&d->cam);
+        for (int i = 0; r == TERRAIN_SETTLED && i < d->spp; i++) {
+            render_sample();
+            glFinish();
+            if (!d->quiet)
+                progress((int)((b->done_rows + (double)h * (i + 1) / d->spp) * d->spp / b->rows + 0.5), d->spp,
+                         util_now() - b->t0);
+        }
+        if (r == TERRAIN_SETTLED && res_heightfield_streamed()) /* a jittered sample may have asked for more */
+            r = res_heightfield_settle(INT_MAX, err);
+        if (r == TERRAIN_SETTLED)
+            break;
+        if (r == TERRAIN_FAILED)
+            return false;
+        if (r == TERRAIN_OVER_BUDGET) {
+            if (h <= 2)
+                return err_set(err, "cannot render '%s': two rows of this view need more terrain tiles than "
+                                    "terrain.cache_mb holds (%d); raise terrain.cache_mb", d->output,
+                               res_heightfield_get_stats().slots);
+            int top_rows = (h / 2) & ~1; /* even: pixel quads keep their parity */
+            return render_band(b, band_top, top_rows, err) && render_band(b, band_top + top_rows, h - top_rows, err);
+        }
+    }
+    GLenum e = glGetError();
+    if (e != GL_NO_ERROR)
+        return err_set(err, "cannot render '%s': the GL failed on a %dx%d band (%s); try a smaller --strip-rows",
+                       d->output, d->width, h, e == GL_OUT_OF_MEMORY ? "out of GPU memory" : "GL error");
+    b->unresolved[0] += render_unresolved_pixels(&b->unresolved[1]); /* (margin rows counted too) */
+    *b->pixel_samples += render_mean_samples() * d->width * h; /* (margin rows as many a pixel) */
+    b->done_rows += h;
+    return write_band(b->w, d->output, d->width, above, h, d->aovs, err);
+}
+
 /* Renders rows [top, top + height) of the d->width × d->height image (all of it, or one tile) into w.
  * Each band is rendered with margin rows of the image above and below it where adaptive sampling's
  * 3x3 blocks need them (render_adaptive_margin), so bands and tiles agree with the whole image. */
 static bool render_bands(const offline_desc *d, int top, int height, image_writer *w, long unresolved[2],
                          double *pixel_samples, err_t *err)
 {
-    int rows = band_rows(d, height), bands = (height + rows - 1) / rows, margin = render_adaptive_margin(d->scene, d->spp);
-    double t0 = util_now();
+    int rows = band_rows(d, height), bands = (height + rows - 1) / rows;
+    band_run b = {.d = d, .w = w, .margin = render_adaptive_margin(d->scene, d->spp), .unresolved = unresolved,
+                  .pixel_samples = pixel_samples, .t0 = util_now(), .rows = height};
     for (int k = 0; k < bands; k++) {
         int bottom = (bands - 1 - k) * rows, h = height - bottom < rows ? height - bottom : rows;
-        int band_top = top + height - bottom - h, below = d->height - band_top - h;
-        int above = band_top < margin ? band_top : margin, under = below < margin ? below : margin;
-        render_resize(d->width, above + h + under);
-        render_set_window(d->width, d->height, 0, band_top - above);
-        render_begin(&d->cam);
-        for (int i = 0; i < d->spp; i++) {
-            render_sample();
-            glFinish();
-            if (!d->quiet)
-                progress(k * d->spp + i + 1, bands * d->spp, util_now() - t0);
-        }
-        GLenum e = glGetError();
-        if (e != GL_NO_ERROR)
-            return err_set(err, "cannot render '%s': the GL failed on a %dx%d band (%s); try a smaller --strip-rows",
-                           d->output, d->width, h, e == GL_OUT_OF_MEMORY ? "out of GPU memory" : "GL error");
-        unresolved[0] += render_unresolved_pixels(&unresolved[1]); /* (margin rows counted too) */
-        *pixel_samples += render_mean_samples() * d->width * h; /* (margin rows as many a pixel) */
-        if (!write_band(w, d->output, d->width, above, h, d->aovs, err))
+        if (!render_band(&b, top + height - bottom - h, h, err))
             return false;
+    }
+    if (res_heightfield_streamed() && !d->quiet) {
+        res_heightfield_stats st = res_heightfield_get_stats();
+        fprintf(stderr, "terrain: %ld tiles read from disk (%.0f MB of the DEM), %d of %d resident (%d slots)\n",
+                st.loaded, (double)st.bytes_read / 1e6, st.resident, st.tiles, st.slots);
     }
     return true;
 }
