@@ -163,7 +163,7 @@ static bench_desc bench_of(const cli_options *o)
                         .height = o->height, .runs = o->runs, .knobs = o->knobs, .knob_count = o->knob_count,
                         .out = o->out, .name = o->name, .quick = o->quick, .full = o->full, .quiet = o->quiet,
                         .path_truth = o->path_truth, .frame_times = o->frame_times, .interactive = o->interactive,
-                        .terrain_scale = o->terrain_scale, .final_frame = o->final_frame,
+                        .terrain_scale = o->terrain_scale, .terrain_stream = o->terrain_stream, .final_frame = o->final_frame,
                         .viewshed = o->viewshed, .fps = o->fps};
 }
 

@@ -48,6 +48,9 @@ static const char USAGE[] =
     "  internal resolution for N fps [30]): frame times, internal size, error, time to converge [1280x720].\n"
     "  bench --terrain-scale [--knob side=N1,N2,...]: generated DEMs from 256² to 32768²: load time, peak\n"
     "  memory, frame time and height samples per pixel, maxmip and linear [640x360].\n"
+    "  bench --terrain-stream [--knob side=N1,N2,...]: DEMs past memory (VRT mosaics of a generated\n"
+    "  4096² tile, 4096² to 65536²) streamed from disk: open, first image, shot, warm frames against\n"
+    "  in core, peak memory, bytes read [640x360].\n"
     "  bench --final-frame: the final preset's whole shot as a process, every pixel sampled against\n"
     "  adaptive sampling (quality.tolerance) in turn: time, samples a pixel, difference [1920x1080].\n"
     "  bench --viewshed [--knob side=N1,N2,...]: the exact viewshed on generated DEMs [512² to 4096²]\n"
@@ -387,6 +390,7 @@ static bool set_flag(const char *a, cli_options *o)
         {"--quick", offsetof(cli_options, quick)},         {"--full", offsetof(cli_options, full)},
         {"--interactive", offsetof(cli_options, interactive)},
         {"--terrain-scale", offsetof(cli_options, terrain_scale)},
+        {"--terrain-stream", offsetof(cli_options, terrain_stream)},
         {"--final-frame", offsetof(cli_options, final_frame)}, {"--viewshed", offsetof(cli_options, viewshed)},
         {"--panel", offsetof(cli_options, panel)},
         {"--one-shell", offsetof(cli_options, one_shell)},
@@ -461,9 +465,10 @@ static bool check_combinations(const cli_options *o, err_t *err)
         return err_set(err, "--panel is the window's: it does not apply here");
     if (o->interactive && !o->bench)
         return err_set(err, "--interactive belongs to fathom bench");
-    if ((o->terrain_scale || o->final_frame || o->viewshed) && !o->bench)
+    if ((o->terrain_scale || o->terrain_stream || o->final_frame || o->viewshed) && !o->bench)
         return err_set(err, "%s belongs to fathom bench",
-                       o->final_frame ? "--final-frame" : o->viewshed ? "--viewshed" : "--terrain-scale");
+                       o->final_frame ? "--final-frame" : o->viewshed ? "--viewshed"
+                       : o->terrain_stream ? "--terrain-stream" : "--terrain-scale");
     if (o->has_frames && o->output && !o->path)
         return err_set(err, "--frames counts the window's frames (or a flight's, with --path): an offline shot "
                             "(--output without --path) is one image");

@@ -86,6 +86,7 @@ typedef struct cli_options {
     bool quick, full;  /* bench: a short run (160x90, 3 runs, 3 values a knob) or a long one (640x360, 9 runs) */
     bool interactive;  /* bench: a scripted flight as the window flies it */
     bool terrain_scale; /* bench: generated DEMs from 256² up: load time, memory, frame time */
+    bool terrain_stream; /* bench: VRT mosaics past memory, streamed: open, first image, shot, memory */
     bool final_frame;   /* bench: the final preset's whole shot, every pixel against adaptive */
     bool viewshed;      /* bench --viewshed: the exact viewshed's cost against GDAL's */
     const char *knobs[CLI_MAX_SETS]; /* bench: "NAME=v1,v2,..." sweeps (none: every knob, default values) */

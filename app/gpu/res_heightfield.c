@@ -308,7 +308,7 @@ static bool open_streamed(const heightfield_desc *d, int tile_cells, double budg
     hf->pw = g->pw, hf->ph = g->ph, hf->levels = g->levels;
     state.stats.summary_s = sum.seconds;
     state.stats.summary_cached = sum.cached;
-    state.stats.bytes_read = sum.bytes;
+    state.stats.summary_bytes = sum.bytes;
     if (!heightfield_stream_check(d, hf, err)) {
         terrain_summary_free(&sum);
         return false;
@@ -554,6 +554,8 @@ res_heightfield_stats res_heightfield_get_stats(void)
     res_heightfield_stats st = state.stats;
     st.slots = state.slots;
     st.tiles = state.tiles;
+    st.gpu_bytes = state.slots * 4.0 * ((double)state.grid.slot_w * state.grid.slot_h +
+                                        (double)terrain_tile_level_floats(&state.grid));
     st.resident = 0;
     for (int i = 0; i < state.slots; i++)
         st.resident += state.slot_tile && state.slot_tile[i] >= 0;

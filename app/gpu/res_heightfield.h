@@ -31,7 +31,9 @@ res_heightfield_settled res_heightfield_settle(int max_loads, err_t *err);
 typedef struct res_heightfield_stats {
     int tiles, slots, resident, pending; /* pending: asked for at the last settle and not loaded */
     long loaded, evicted;
-    unsigned long long bytes_read; /* from the DEM: the summary's build and the tiles */
+    unsigned long long bytes_read;    /* from the DEM for the tiles */
+    unsigned long long summary_bytes; /* from the DEM to build the summary (0: it was in the cache folder) */
+    double gpu_bytes; /* the slots' textures: heights and their levels */
     double summary_s;
     bool summary_cached;
 } res_heightfield_stats;

@@ -410,6 +410,8 @@ bool bench_run(const bench_desc *desc, err_t *err)
         return bench_final_frame(opt, opt->width ? opt->width : 1920, opt->height ? opt->height : 1080, err);
     if (opt->viewshed)
         return bench_viewshed(opt, err);
+    if (opt->terrain_stream)
+        return bench_terrain_stream(opt, opt->width ? opt->width : 640, opt->height ? opt->height : 360, err);
     if (opt->terrain_scale)
         return bench_terrain_scale(opt, opt->width ? opt->width : 640, opt->height ? opt->height : 360, err);
     if (opt->interactive)

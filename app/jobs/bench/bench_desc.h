@@ -16,7 +16,7 @@ typedef struct bench_desc {
     const char *out, *name;    /* the folder for files (NULL: print only) and their prefix (NULL: the scene's) */
     bool quick, full, quiet;
     bool path_truth;           /* error against the path tracer, not the reference preset */
-    bool frame_times, interactive, terrain_scale, final_frame, viewshed; /* the other modes */
+    bool frame_times, interactive, terrain_scale, terrain_stream, final_frame, viewshed; /* the other modes */
     int fps;                   /* --interactive: the frame rate to hold (0: 30) */
 } bench_desc;
 

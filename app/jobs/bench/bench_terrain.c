@@ -21,7 +21,7 @@
 #include "data/geo/terrain.h"
 
 /* kB of the process's current (VmRSS) or peak (VmHWM) resident memory */
-static long status_kb(const char *key)
+long bench_status_kb(const char *key)
 {
     FILE *f = fopen("/proc/self/status", "r");
     char line[256];
@@ -35,7 +35,7 @@ static long status_kb(const char *key)
     return kb;
 }
 
-static void reset_peak(void)
+void bench_reset_peak(void)
 {
     FILE *f = fopen("/proc/self/clear_refs", "w"); /* "5": reset the peak RSS to the current RSS */
     if (f) {
@@ -44,7 +44,7 @@ static void reset_peak(void)
     }
 }
 
-static double frame_ms(int w, int h, const camera *cam)
+double bench_frame_ms(int w, int h, const camera *cam)
 {
     render_resize(w, h);
     render_begin(cam);
@@ -86,23 +86,23 @@ static bool one_side(int n, const char *dir, int w, int h, int runs, const char 
         scene s;
         if (!(ok = scene_load_text(json, file, NULL, 0, &s, err)))
             break;
-        long base = status_kb("VmRSS:");
-        reset_peak();
+        long base = bench_status_kb("VmRSS:");
+        bench_reset_peak();
         double t0 = util_now();
         ok = render_set_scene(&s, NULL, err);
         glFinish();
         if (m == 0) { /* the second method reuses the loaded DEM */
             load_s = util_now() - t0;
-            peak_mb = (double)(status_kb("VmHWM:") - base) / 1024.0;
-            kept_mb = (double)(status_kb("VmRSS:") - base) / 1024.0; /* what stays once loaded */
+            peak_mb = (double)(bench_status_kb("VmHWM:") - base) / 1024.0;
+            kept_mb = (double)(bench_status_kb("VmRSS:") - base) / 1024.0; /* what stays once loaded */
             render_terrain_tiles(&tx, &ty);
         }
         if (ok) {
             camera cam = scene_camera(&s, s.cam_position, s.cam_look_at, s.cam_fov_deg);
             double *t = util_alloc(sizeof(double) * (size_t)runs, "bench timings");
-            frame_ms(w, h, &cam);
+            bench_frame_ms(w, h, &cam);
             for (int r = 0; r < runs; r++)
-                t[r] = frame_ms(w, h, &cam);
+                t[r] = bench_frame_ms(w, h, &cam);
             ms[m] = util_median(t, runs);
             free(t);
             float *aov = util_alloc(sizeof(float) * (size_t)w * (size_t)h * AOV_FLOATS, "a bench image");
@@ -132,30 +132,46 @@ static bool one_side(int n, const char *dir, int w, int h, int runs, const char 
     return true;
 }
 
-bool bench_terrain_scale(const bench_desc *opt, int w, int h, err_t *err)
+static bool scale_side(int n, const bench_side_run *r, err_t *err)
 {
-    const char *sides = "256,1024,4096,8192,16384,32768";
+    return one_side(n, r->dir, r->w, r->h, r->runs, r->csv, err);
+}
+
+bool bench_sides(const bench_desc *opt, const char *mode, const char *sides, long lo, long hi, long step,
+                 const char **out, const char *name, const char *header, char csv_path[PATH_MAX_LEN], err_t *err)
+{
     for (int i = 0; i < opt->knob_count; i++) {
         if (strncmp(opt->knobs[i], "side=", 5))
-            return err_set(err, "bench --terrain-scale takes --knob side=N1,N2,... only");
+            return err_set(err, "bench %s takes --knob side=N1,N2,... only", mode);
         sides = opt->knobs[i] + 5;
     }
     for (const char *p = sides; *p; p += strcspn(p, ","), p += *p == ',') {
         char *end;
         long n = strtol(p, &end, 10);
-        if (end == p || (*end && *end != ',') || n < 2 || n > TERRAIN_MAX_SIDE)
-            return err_set(err, "--knob side: expected whole numbers from 2 to %d, e.g. side=256,4096", TERRAIN_MAX_SIDE);
+        if (end == p || (*end && *end != ',') || n < lo || n > hi || n % step)
+            return err_set(err, "--knob side: expected whole numbers from %ld to %ld%s, e.g. side=%ld,%ld", lo, hi,
+                           step > 1 ? ", multiples of the tile" : "", lo, lo * 4);
     }
-    char csv_path[PATH_MAX_LEN] = "";
-    if (opt->out) {
-        snprintf(csv_path, sizeof csv_path, "%s/terrain-scale.csv", opt->out);
-        FILE *csv = fopen(csv_path, "w");
-        if (!csv)
-            return err_set(err, "cannot write '%s'", csv_path);
-        fprintf(csv, "side,texels,file_mb,load_s,peak_mb,peak_bytes_per_texel,kept_mb,kept_bytes_per_texel,tiles,maxmip_ms,"
-                     "maxmip_samples,linear_ms,linear_samples\n");
-        fclose(csv);
-    }
+    *out = sides;
+    csv_path[0] = '\0';
+    if (!opt->out)
+        return true;
+    snprintf(csv_path, PATH_MAX_LEN, "%s/%s", opt->out, name);
+    FILE *csv = fopen(csv_path, "w");
+    if (!csv)
+        return err_set(err, "cannot write '%s'", csv_path);
+    fprintf(csv, "%s\n", header);
+    return fclose(csv) == 0 || err_set(err, "cannot write '%s' (disk full?)", csv_path);
+}
+
+bool bench_terrain_scale(const bench_desc *opt, int w, int h, err_t *err)
+{
+    const char *sides;
+    char csv_path[PATH_MAX_LEN];
+    if (!bench_sides(opt, "--terrain-scale", "256,1024,4096,8192,16384,32768", 2, TERRAIN_MAX_SIDE, 1, &sides,
+                     "terrain-scale.csv", "side,texels,file_mb,load_s,peak_mb,peak_bytes_per_texel,kept_mb,"
+                     "kept_bytes_per_texel,tiles,maxmip_ms,maxmip_samples,linear_ms,linear_samples", csv_path, err))
+        return false;
     char dir[] = "/tmp/fathom-scale-XXXXXX";
     if (!mkdtemp(dir))
         return err_set(err, "cannot make a temporary folder in /tmp");
@@ -165,13 +181,22 @@ bool bench_terrain_scale(const bench_desc *opt, int w, int h, err_t *err)
            "%10s\n", w, h, opt->runs, "side", "file MB", "load s", "peak MB", "B/texel", "kept MB", "B/texel", "tiles",
            "maxmip ms", "samples/px", "linear ms", "samples/px");
     fflush(stdout);
+    bench_side_run run = {dir, w, h, opt->runs, opt->out ? csv_path : NULL};
+    bool ok = bench_fork_sides(sides, "--terrain-scale", scale_side, &run, err);
+    rmdir(dir);
+    return ok;
+}
+
+bool bench_fork_sides(const char *sides, const char *mode, bool (*side)(int n, const bench_side_run *r, err_t *err),
+                      const bench_side_run *r, err_t *err)
+{
     bool ok = true;
     for (const char *p = sides; ok && *p; p += strcspn(p, ","), p += *p == ',') {
         int n = atoi(p);
         pid_t pid = fork();
         if (pid == 0) {
             err_t e;
-            bool done = one_side(n, dir, w, h, opt->runs, opt->out ? csv_path : NULL, &e);
+            bool done = side(n, r, &e);
             if (!done)
                 fprintf(stderr, "fathom: side %d: %s\n", n, e.msg);
             fflush(NULL);
@@ -179,9 +204,8 @@ bool bench_terrain_scale(const bench_desc *opt, int w, int h, err_t *err)
         }
         int status = 0;
         if (pid < 0 || waitpid(pid, &status, 0) < 0 || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
-            ok = err_set(err, "bench --terrain-scale: side %d failed%s", n,
+            ok = err_set(err, "bench %s: side %d failed%s", mode, n,
                          pid > 0 && WIFSIGNALED(status) ? " (killed: out of memory?)" : "");
     }
-    rmdir(dir);
     return ok;
 }
