@@ -13,12 +13,15 @@
  * knob switches): a big DEM is read once. */
 #include "gpu/res_heightfield.h"
 
+#include "gpu/res_heightfield_state.h"
+
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "data/geo/dem.h"
+#include "data/geo/terrain_loader.h"
 #include "data/geo/terrain_stream.h"
 
 enum {
@@ -28,43 +31,31 @@ enum {
     AUTO_CACHE_MB = 1536, /* terrain.cache_mb's most when auto: an eighth of the memory, at most this */
 };
 
-static struct {
-    GLuint height_tex, max_tex, top_tex, pages_tex, feedback_buf;
-    terrain_grid grid;
-    int slots, tiles, words; /* texture layers; tiles; feedback words a bit set */
-    int *slot_tile, *tile_slot;
-    unsigned *slot_used; /* the settle pass that last used the slot: the oldest unused one is evicted */
-    unsigned pass;
-    bool streamed;
-    struct dem_stream *stream;
-    float ex;
-    float *tile_buf, *level_buf;
-    res_heightfield_stats stats;
-    char key[PATH_MAX_LEN + 192];
-    heightfield hf; /* the grid's description; its heights and pyramid live on the GPU */
-} state;
+res_heightfield_state res_heightfield_now;
+static res_heightfield_state *const S = &res_heightfield_now;
 
 static void release(void)
 {
-    glDeleteTextures(1, &state.height_tex); /* each on its own: 0 names are ignored */
-    glDeleteTextures(1, &state.max_tex);
-    glDeleteTextures(1, &state.top_tex);
-    glDeleteTextures(1, &state.pages_tex);
-    glDeleteBuffers(1, &state.feedback_buf);
-    heightfield_free(&state.hf);
-    dem_stream_close(state.stream);
-    free(state.slot_tile);
-    free(state.tile_slot);
-    free(state.slot_used);
-    free(state.tile_buf);
-    free(state.level_buf);
-    memset(&state, 0, sizeof state);
+    terrain_loader_stop(S->loader); /* first: it reads the grid below */
+    glDeleteTextures(1, &S->height_tex); /* each on its own: 0 names are ignored */
+    glDeleteTextures(1, &S->max_tex);
+    glDeleteTextures(1, &S->top_tex);
+    glDeleteTextures(1, &S->pages_tex);
+    glDeleteBuffers(1, &S->feedback_buf);
+    heightfield_free(&S->hf);
+    dem_stream_close(S->stream);
+    free(S->slot_tile);
+    free(S->tile_slot);
+    free(S->slot_used);
+    free(S->tile_buf);
+    free(S->level_buf);
+    memset(S, 0, sizeof *S);
 }
 
 static int held(void)
 {
-    return (state.height_tex != 0) + (state.max_tex != 0) + (state.top_tex != 0) + (state.pages_tex != 0) +
-           (state.feedback_buf != 0);
+    return (S->height_tex != 0) + (S->max_tex != 0) + (S->top_tex != 0) + (S->pages_tex != 0) +
+           (S->feedback_buf != 0);
 }
 
 bool res_heightfield_can_stream(void)
@@ -164,15 +155,14 @@ static GLuint plain_texture(void)
     return t;
 }
 
-/* Tile `tile`'s heights (its window, w × h) and levels (state.level_buf) into `slot`, and the page table. */
-static void upload_tile(int tile, const float *heights, int w, int h, int slot)
+void res_heightfield_upload(int tile, const float *heights, const float *levels, int w, int h, int slot)
 {
-    const terrain_grid *g = &state.grid;
+    const terrain_grid *g = &S->grid;
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    glBindTexture(GL_TEXTURE_2D_ARRAY, state.height_tex);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, S->height_tex);
     glTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, slot, w, h, 1, GL_RED, GL_FLOAT, heights);
-    glBindTexture(GL_TEXTURE_2D_ARRAY, state.max_tex);
-    const float *lv = state.level_buf;
+    glBindTexture(GL_TEXTURE_2D_ARRAY, S->max_tex);
+    const float *lv = levels;
     for (int k = 1; k < g->tile_level; k++) {
         int nx, ny;
         terrain_tile_level_size(g, k, &nx, &ny);
@@ -180,87 +170,87 @@ static void upload_tile(int tile, const float *heights, int w, int h, int slot)
         lv += (size_t)nx * (size_t)ny;
     }
     int tx = tile % g->tiles_x, ty = tile / g->tiles_x;
-    glBindTexture(GL_TEXTURE_2D, state.pages_tex);
+    glBindTexture(GL_TEXTURE_2D, S->pages_tex);
     glTexSubImage2D(GL_TEXTURE_2D, 0, tx, ty, 1, 1, GL_RED_INTEGER, GL_INT, &slot);
-    int old = state.slot_tile[slot];
+    int old = S->slot_tile[slot];
     if (old >= 0 && old != tile) {
-        state.tile_slot[old] = -1;
+        S->tile_slot[old] = -1;
         int none = -1, ox = old % g->tiles_x, oy = old / g->tiles_x;
         glTexSubImage2D(GL_TEXTURE_2D, 0, ox, oy, 1, 1, GL_RED_INTEGER, GL_INT, &none);
-        state.stats.evicted++;
+        S->stats.evicted++;
     }
-    state.slot_tile[slot] = tile;
-    state.tile_slot[tile] = slot;
+    S->slot_tile[slot] = tile;
+    S->tile_slot[tile] = slot;
 }
 
 /* The textures for `slots` tiles, the page table (every tile absent) and the top pyramid. */
 static void allocate(int slots, float **top)
 {
-    const terrain_grid *g = &state.grid;
-    state.slots = slots;
-    state.tiles = g->tiles_x * g->tiles_y;
-    state.height_tex = array_texture(g->slot_w, g->slot_h, slots, 1);
+    const terrain_grid *g = &S->grid;
+    S->slots = slots;
+    S->tiles = g->tiles_x * g->tiles_y;
+    S->height_tex = array_texture(g->slot_w, g->slot_h, slots, 1);
     int nx, ny, mips = g->tile_level > 1 ? g->tile_level - 1 : 1;
     terrain_tile_level_size(g, 1, &nx, &ny);
-    state.max_tex = array_texture(nx, ny, slots, mips);
-    state.pages_tex = plain_texture();
-    int *none = util_alloc(sizeof(int) * (size_t)state.tiles, "the terrain's page table");
-    for (int i = 0; i < state.tiles; i++)
+    S->max_tex = array_texture(nx, ny, slots, mips);
+    S->pages_tex = plain_texture();
+    int *none = util_alloc(sizeof(int) * (size_t)S->tiles, "the terrain's page table");
+    for (int i = 0; i < S->tiles; i++)
         none[i] = -1;
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
     glTexImage2D(GL_TEXTURE_2D, 0, GL_R32I, g->tiles_x, g->tiles_y, 0, GL_RED_INTEGER, GL_INT, none);
     free(none);
-    state.top_tex = plain_texture();
+    S->top_tex = plain_texture();
     int levels = g->levels - g->tile_level;
     for (int m = 0; m < levels; m++) {
         terrain_top_size(g, g->tile_level + m, &nx, &ny);
         glTexImage2D(GL_TEXTURE_2D, m, GL_R32F, nx, ny, 0, GL_RED, GL_FLOAT, top[m]);
     }
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, levels - 1);
-    state.slot_tile = util_alloc(sizeof(int) * (size_t)slots, "the terrain's slots");
-    state.tile_slot = util_alloc(sizeof(int) * (size_t)state.tiles, "the terrain's page table");
-    state.slot_used = util_calloc((size_t)slots, sizeof(unsigned), "the terrain's slots");
+    S->slot_tile = util_alloc(sizeof(int) * (size_t)slots, "the terrain's slots");
+    S->tile_slot = util_alloc(sizeof(int) * (size_t)S->tiles, "the terrain's page table");
+    S->slot_used = util_calloc((size_t)slots, sizeof(unsigned), "the terrain's slots");
     for (int i = 0; i < slots; i++)
-        state.slot_tile[i] = -1;
-    for (int i = 0; i < state.tiles; i++)
-        state.tile_slot[i] = -1;
-    free(state.level_buf);
-    state.level_buf = util_alloc(sizeof(float) * (terrain_tile_level_floats(g) + 1), "a terrain tile's levels");
+        S->slot_tile[i] = -1;
+    for (int i = 0; i < S->tiles; i++)
+        S->tile_slot[i] = -1;
+    free(S->level_buf);
+    S->level_buf = util_alloc(sizeof(float) * (terrain_tile_level_floats(g) + 1), "a terrain tile's levels");
 }
 
-/* Tile t's window of a grid held whole, into state.tile_buf (or the grid itself when it is one tile). */
+/* Tile t's window of a grid held whole, into S->tile_buf (or the grid itself when it is one tile). */
 static const float *window_of(const heightfield *hf, int t, int *w, int *h)
 {
-    const terrain_grid *g = &state.grid;
+    const terrain_grid *g = &S->grid;
     int x0, y0;
     terrain_tile_window(g, t % g->tiles_x, t / g->tiles_x, &x0, &y0, w, h);
     if (g->tiles_x * g->tiles_y == 1)
         return hf->h;
     for (int j = 0; j < *h; j++)
-        memcpy(state.tile_buf + (size_t)j * (size_t)*w, hf->h + (size_t)(y0 + j) * (size_t)hf->width + (size_t)x0,
+        memcpy(S->tile_buf + (size_t)j * (size_t)*w, hf->h + (size_t)(y0 + j) * (size_t)hf->width + (size_t)x0,
                sizeof(float) * (size_t)*w);
-    return state.tile_buf;
+    return S->tile_buf;
 }
 
 /* A DEM in core: read whole (heightfield_load) and every tile uploaded. */
 static bool load_in_core(const heightfield_desc *d, int tile_cells, err_t *err)
 {
-    if (!heightfield_load(d, &state.hf, err))
+    if (!heightfield_load(d, &S->hf, err))
         return false;
-    heightfield *hf = &state.hf;
+    heightfield *hf = &S->hf;
     heightfield_drop_pyramid(hf); /* the tiles build their own levels: the same values */
     GLint max_side = 0, max_layers = 0;
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_side);
     glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &max_layers);
     if (!tile_cells && (hf->width > max_side || hf->height > max_side))
         tile_cells = TILE_IN_CORE < max_side ? TILE_IN_CORE : max_side / 2;
-    terrain_grid *g = &state.grid;
+    terrain_grid *g = &S->grid;
     terrain_grid_plan(hf->width, hf->height, tile_cells, g);
     int tiles = g->tiles_x * g->tiles_y;
     if (tiles > max_layers)
         return err_set(err, "heightmap '%s' (%dx%d) needs %d tiles; this GPU holds %d: cut the DEM", d->path,
                        hf->width, hf->height, tiles, max_layers);
-    state.tile_buf = tiles > 1 ? util_alloc(sizeof(float) * (size_t)g->slot_w * (size_t)g->slot_h, "a terrain tile") : NULL;
+    S->tile_buf = tiles > 1 ? util_alloc(sizeof(float) * (size_t)g->slot_w * (size_t)g->slot_h, "a terrain tile") : NULL;
     float *tile_max = util_alloc(sizeof(float) * (size_t)tiles, "the terrain's tiles");
     for (int t = 0; t < tiles; t++) { /* the maxima first: the top pyramid is allocated with the textures */
         int w, h;
@@ -277,13 +267,13 @@ static bool load_in_core(const heightfield_desc *d, int tile_cells, err_t *err)
         int w, h;
         const float *win = window_of(hf, t, &w, &h);
         terrain_tile_stats st;
-        terrain_tile_build(g, t % g->tiles_x, t / g->tiles_x, win, hf->dx, hf->dz, state.level_buf, &st);
-        upload_tile(t, win, w, h, t);
+        terrain_tile_build(g, t % g->tiles_x, t / g->tiles_x, win, hf->dx, hf->dz, S->level_buf, &st);
+        res_heightfield_upload(t, win, S->level_buf, w, h, t);
     }
     free(hf->h); /* the heights live on the GPU from here: a DEM is not held twice */
     hf->h = NULL;
-    free(state.tile_buf);
-    state.tile_buf = NULL;
+    free(S->tile_buf);
+    S->tile_buf = NULL;
     return true;
 }
 
@@ -295,10 +285,10 @@ static bool open_streamed(const heightfield_desc *d, int tile_cells, double budg
         return err_set(err, "heightmap '%s' is larger than terrain.cache_mb and streaming it needs OpenGL 4.3 (shader "
                             "storage buffers); this GL has %d.%d: raise terrain.cache_mb or resample the DEM",
                        d->path, epoxy_gl_version() / 10, epoxy_gl_version() % 10);
-    heightfield *hf = &state.hf;
-    if (!heightfield_open_stream(d, hf, &state.stream, err))
+    heightfield *hf = &S->hf;
+    if (!heightfield_open_stream(d, hf, &S->stream, err))
         return false;
-    terrain_grid *g = &state.grid;
+    terrain_grid *g = &S->grid;
     terrain_grid_plan(hf->width, hf->height, tile_cells ? tile_cells : TILE_STREAMED, g);
     float ex = d->exaggeration > 0 ? d->exaggeration : 1.0f;
     terrain_summary sum;
@@ -306,9 +296,9 @@ static bool open_streamed(const heightfield_desc *d, int tile_cells, double budg
         return false;
     hf->hmin = sum.hmin, hf->hmax = sum.hmax, hf->lipschitz = sum.lipschitz, hf->holes = sum.holes;
     hf->pw = g->pw, hf->ph = g->ph, hf->levels = g->levels;
-    state.stats.summary_s = sum.seconds;
-    state.stats.summary_cached = sum.cached;
-    state.stats.summary_bytes = sum.bytes;
+    S->stats.summary_s = sum.seconds;
+    S->stats.summary_cached = sum.cached;
+    S->stats.summary_bytes = sum.bytes;
     if (!heightfield_stream_check(d, hf, err)) {
         terrain_summary_free(&sum);
         return false;
@@ -334,15 +324,17 @@ static bool open_streamed(const heightfield_desc *d, int tile_cells, double budg
     terrain_summary_free(&sum);
     allocate(slots, top);
     terrain_top_free(g, top);
-    state.tile_buf = util_alloc(sizeof(float) * (size_t)g->slot_w * (size_t)g->slot_h, "a terrain tile");
-    state.words = (tiles + 31) / 32;
-    glGenBuffers(1, &state.feedback_buf);
-    glBindBuffer(GL_SHADER_STORAGE_BUFFER, state.feedback_buf);
-    glBufferData(GL_SHADER_STORAGE_BUFFER, (GLsizeiptr)(sizeof(unsigned) * 2 * (size_t)state.words), NULL, GL_DYNAMIC_READ);
+    S->tile_buf = util_alloc(sizeof(float) * (size_t)g->slot_w * (size_t)g->slot_h, "a terrain tile");
+    S->words = (tiles + 31) / 32;
+    glGenBuffers(1, &S->feedback_buf);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, S->feedback_buf);
+    unsigned *zero = util_calloc(2 * (size_t)S->words, sizeof(unsigned), "the terrain's feedback");
+    glBufferData(GL_SHADER_STORAGE_BUFFER, (GLsizeiptr)(sizeof(unsigned) * 2 * (size_t)S->words), zero, GL_DYNAMIC_READ);
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
-    state.streamed = true;
-    state.ex = ex;
-    res_heightfield_watch();
+    free(zero);
+    S->streamed = true;
+    S->ex = ex;
+    snprintf(S->path, sizeof S->path, "%s", d->path);
     return true;
 }
 
@@ -352,8 +344,8 @@ static bool fault_or_oom(const char *path, err_t *err)
     err_t fault;
     if (glGetError() != GL_OUT_OF_MEMORY && !render_resource_fault("heightfield", &fault))
         return true;
-    const terrain_grid *g = &state.grid;
-    double mb = 4.0 * (double)g->slot_w * g->slot_h * state.slots / 1048576.0;
+    const terrain_grid *g = &S->grid;
+    double mb = 4.0 * (double)g->slot_w * g->slot_h * S->slots / 1048576.0;
     int W = g->width, H = g->height;
     release();
     return err_set(err, "heightmap '%s' (%dx%d): the GPU driver refused its %.0f MB of heights (llvmpipe holds at most "
@@ -375,7 +367,7 @@ static bool set(const scene *s, err_t *err)
         return false;
     double budget = budget_bytes(s);
     bool streamed = streams(s, &w, &h);
-    char key[sizeof state.key];
+    char key[sizeof S->key];
     snprintf(key, sizeof key, "%.9g %.9g|%.9g %.9g|%.9g|%d|%d|%d %.0f;", (double)d.spacing[0], (double)d.spacing[1],
              (double)d.height_min, (double)d.height_max, (double)d.exaggeration, d.fill_nodata, tile_cells, streamed,
              streamed ? budget : 0.0);
@@ -383,7 +375,7 @@ static bool set(const scene *s, err_t *err)
     char side[PATH_MAX_LEN]; /* the sidecar (spacing, height range) counts too */
     terrain_sidecar_path(d.path, side, sizeof side);
     render_file_key(side, key, sizeof key);
-    if (state.height_tex && !strcmp(key, state.key))
+    if (S->height_tex && !strcmp(key, S->key))
         return true;
     release();
     while (glGetError() != GL_NO_ERROR)
@@ -394,17 +386,17 @@ static bool set(const scene *s, err_t *err)
     }
     if (!fault_or_oom(d.path, err))
         return false;
-    const terrain_grid *g = &state.grid;
-    fprintf(stderr, "fathom: %s\n", state.hf.about);
-    if (state.streamed)
+    const terrain_grid *g = &S->grid;
+    fprintf(stderr, "fathom: %s\n", S->hf.about);
+    if (S->streamed)
         fprintf(stderr, "fathom: streamed from disk: %d x %d tiles of %d x %d cells, %d resident at most (%.0f MB; "
                         "terrain.cache_mb), heights %.6g to %.6g m, summary %s in %.2f s\n", g->tiles_x, g->tiles_y,
-                1 << g->shift_x, 1 << g->shift_y, state.slots, budget / 1048576.0, (double)state.hf.hmin,
-                (double)state.hf.hmax,
-                state.stats.summary_cached ? "from the cache folder" : "built", state.stats.summary_s);
-    else if (state.tiles > 1)
+                1 << g->shift_x, 1 << g->shift_y, S->slots, budget / 1048576.0, (double)S->hf.hmin,
+                (double)S->hf.hmax,
+                S->stats.summary_cached ? "from the cache folder" : "built", S->stats.summary_s);
+    else if (S->tiles > 1)
         fprintf(stderr, "fathom: %d x %d tiles of %d x %d texels\n", g->tiles_x, g->tiles_y, g->slot_w, g->slot_h);
-    snprintf(state.key, sizeof state.key, "%s", key);
+    snprintf(S->key, sizeof S->key, "%s", key);
     return true;
 }
 
@@ -416,14 +408,14 @@ static void uniforms(const scene *s, const uniform_sink *u, int unit)
     uniform_i(u, "uHeightMax", unit + 1);
     uniform_i(u, "uHeightMaxTop", unit + 2); /* the pyramid's upper levels, from whole tiles up */
     uniform_i(u, "uTerrainPages", unit + 3);
-    if (!state.height_tex)
+    if (!S->height_tex)
         return;
-    const heightfield *hf = &state.hf;
-    const terrain_grid *g = &state.grid;
+    const heightfield *hf = &S->hf;
+    const terrain_grid *g = &S->grid;
     uniform_iv(u, "uTerrainTiles", 2, 1, (const int[]){g->tiles_x, g->tiles_y});
     uniform_iv(u, "uTerrainTileShift", 2, 1, (const int[]){g->shift_x, g->shift_y});
     uniform_i(u, "uTerrainTileLevel", g->tile_level);
-    uniform_i(u, "uTerrainFeedbackWords", state.words);
+    uniform_i(u, "uTerrainFeedbackWords", S->words);
     uniform_fv(u, "uTerrainOrigin", 2, 1, (const float[]){hf->x0, hf->z0});
     uniform_fv(u, "uTerrainSpacing", 2, 1, (const float[]){hf->dx, hf->dz});
     uniform_f(u, "uTerrainHeightMin", hf->hmin);
@@ -440,15 +432,15 @@ static void uniforms(const scene *s, const uniform_sink *u, int unit)
 static void bind(int unit)
 {
     glActiveTexture(GL_TEXTURE0 + (GLenum)unit);
-    glBindTexture(GL_TEXTURE_2D_ARRAY, state.height_tex);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, S->height_tex);
     glActiveTexture(GL_TEXTURE0 + (GLenum)unit + 1);
-    glBindTexture(GL_TEXTURE_2D_ARRAY, state.max_tex);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, S->max_tex);
     glActiveTexture(GL_TEXTURE0 + (GLenum)unit + 2);
-    glBindTexture(GL_TEXTURE_2D, state.top_tex);
+    glBindTexture(GL_TEXTURE_2D, S->top_tex);
     glActiveTexture(GL_TEXTURE0 + (GLenum)unit + 3);
-    glBindTexture(GL_TEXTURE_2D, state.pages_tex);
-    if (state.feedback_buf) /* the terrain's block is the only shader storage block: binding 0 */
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, state.feedback_buf);
+    glBindTexture(GL_TEXTURE_2D, S->pages_tex);
+    if (S->feedback_buf) /* the terrain's block is the only shader storage block: binding 0 */
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, S->feedback_buf);
 }
 
 const render_resource res_heightfield = {"heightfield", set, 4, uniforms, bind, release, held};
@@ -456,108 +448,9 @@ const render_resource res_heightfield = {"heightfield", set, 4, uniforms, bind, 
 const heightfield *res_heightfield_loaded(int *tiles_x, int *tiles_y)
 {
     if (tiles_x)
-        *tiles_x = state.grid.tiles_x;
+        *tiles_x = S->grid.tiles_x;
     if (tiles_y)
-        *tiles_y = state.grid.tiles_y;
-    return state.height_tex ? &state.hf : NULL;
+        *tiles_y = S->grid.tiles_y;
+    return S->height_tex ? &S->hf : NULL;
 }
 
-void res_heightfield_watch(void)
-{
-    if (!state.feedback_buf)
-        return;
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT); /* after the passes before it, before the ones after */
-    glBindBuffer(GL_SHADER_STORAGE_BUFFER, state.feedback_buf);
-    unsigned *zero = util_calloc(2 * (size_t)state.words, sizeof(unsigned), "the terrain's feedback");
-    glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, (GLsizeiptr)(sizeof(unsigned) * 2 * (size_t)state.words), zero);
-    glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
-    free(zero);
-}
-
-/* The slot for a new tile: a free one, else the one unused longest among those this pass did not use. */
-static int free_slot(const unsigned *used)
-{
-    int best = -1;
-    for (int i = 0; i < state.slots; i++) {
-        int t = state.slot_tile[i];
-        if (t < 0)
-            return i;
-        if (!(used[t >> 5] >> (t & 31) & 1u) && (best < 0 || state.slot_used[i] < state.slot_used[best]))
-            best = i;
-    }
-    return best;
-}
-
-static bool load_tile(int tile, int slot, err_t *err)
-{
-    const terrain_grid *g = &state.grid;
-    int tx = tile % g->tiles_x, ty = tile / g->tiles_x, x0, y0, w, h;
-    terrain_tile_window(g, tx, ty, &x0, &y0, &w, &h);
-    unsigned long long before = dem_stream_bytes(state.stream);
-    if (!terrain_read_tile(state.stream, g, tx, ty, state.ex, state.tile_buf, err))
-        return false;
-    state.stats.bytes_read += dem_stream_bytes(state.stream) - before;
-    terrain_tile_stats st;
-    terrain_tile_build(g, tx, ty, state.tile_buf, state.hf.dx, state.hf.dz, state.level_buf, &st);
-    upload_tile(tile, state.tile_buf, w, h, slot);
-    state.stats.loaded++;
-    return true;
-}
-
-res_heightfield_settled res_heightfield_settle(int max_loads, err_t *err)
-{
-    if (!state.feedback_buf)
-        return TERRAIN_SETTLED;
-    size_t words = (size_t)state.words;
-    unsigned *bits = util_alloc(sizeof(unsigned) * 2 * words, "the terrain's feedback");
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT); /* the shaders' writes, seen by the read below */
-    glBindBuffer(GL_SHADER_STORAGE_BUFFER, state.feedback_buf);
-    glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, (GLsizeiptr)(sizeof(unsigned) * 2 * words), bits);
-    glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
-    const unsigned *want = bits, *used = bits + words;
-    state.pass++;
-    int wanted = 0, in_use = 0;
-    for (int t = 0; t < state.tiles; t++) {
-        bool u = used[t >> 5] >> (t & 31) & 1u;
-        if (u && state.tile_slot[t] >= 0)
-            state.slot_used[state.tile_slot[t]] = state.pass, in_use++;
-        if ((want[t >> 5] >> (t & 31) & 1u) && state.tile_slot[t] < 0)
-            wanted++;
-    }
-    state.stats.pending = wanted;
-    res_heightfield_settled r = wanted == 0 ? TERRAIN_SETTLED
-                                : wanted + in_use > state.slots ? TERRAIN_OVER_BUDGET : TERRAIN_LOADED;
-    int loads = 0;
-    for (int t = 0; t < state.tiles && r != TERRAIN_SETTLED && loads < max_loads; t++) {
-        if (!(want[t >> 5] >> (t & 31) & 1u) || state.tile_slot[t] >= 0)
-            continue;
-        int slot = free_slot(used);
-        if (slot < 0)
-            break;
-        if (!load_tile(t, slot, err)) {
-            r = TERRAIN_FAILED;
-            break;
-        }
-        state.slot_used[slot] = state.pass;
-        loads++;
-        state.stats.pending--;
-    }
-    free(bits);
-    res_heightfield_watch();
-    return r;
-}
-
-bool res_heightfield_streamed(void) { return state.streamed; }
-
-res_heightfield_stats res_heightfield_get_stats(void)
-{
-    res_heightfield_stats st = state.stats;
-    st.slots = state.slots;
-    st.tiles = state.tiles;
-    st.gpu_bytes = state.slots * 4.0 * ((double)state.grid.slot_w * state.grid.slot_h +
-                                        (double)terrain_tile_level_floats(&state.grid));
-    st.resident = 0;
-    for (int i = 0; i < state.slots; i++)
-        st.resident += state.slot_tile && state.slot_tile[i] >= 0;
-    return st;
-}

@@ -23,10 +23,15 @@ typedef enum res_heightfield_settled {
     TERRAIN_LOADED,      /* they asked for tiles, now loaded (up to max_loads): draw again */
     TERRAIN_OVER_BUDGET, /* they asked for more than the cache holds beside the tiles they used: draw less */
     TERRAIN_FAILED,      /* a tile could not be read (*err says why) */
+    TERRAIN_PENDING,     /* (async) they asked for tiles the loader is still reading: draw again later */
 } res_heightfield_settled;
 /* Reads what the passes since the last watch asked for and used, loads up to max_loads of the tiles they
  * asked for (into free slots, else ones they did not use), then watches afresh. */
 res_heightfield_settled res_heightfield_settle(int max_loads, err_t *err);
+
+/* The window's: the same, but the tiles are read by a loader thread (data/geo/terrain_loader.h); this asks
+ * for what the passes wanted and uploads up to max_uploads tiles that are ready, without waiting. */
+res_heightfield_settled res_heightfield_settle_async(int max_uploads, err_t *err);
 
 typedef struct res_heightfield_stats {
     int tiles, slots, resident, pending; /* pending: asked for at the last settle and not loaded */

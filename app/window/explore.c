@@ -353,16 +353,17 @@ static bool focus_lens(int w, int h)
     return edit(kv);
 }
 
-/* A streamed terrain (gpu/res_heightfield.h): the tiles the last sample asked for, a few a frame so the
- * window keeps its pace; the image restarts with them (what it drew in their place was a plateau). */
+/* A streamed terrain (gpu/res_heightfield.h): the tiles the last sample asked for go to the loader thread,
+ * and the ones it has read are uploaded, a few a frame so the window keeps its pace; the image restarts
+ * with them (what it drew in their place was a plateau). */
 static void stream_tiles(void)
 {
-    enum { LOADS_PER_FRAME = 8 };
-    long before = res_heightfield_get_stats().loaded;
+    enum { UPLOADS_PER_FRAME = 8 };
     err_t e;
-    if (res_heightfield_settle(LOADS_PER_FRAME, &e) == TERRAIN_FAILED)
+    res_heightfield_settled r = res_heightfield_settle_async(UPLOADS_PER_FRAME, &e);
+    if (r == TERRAIN_FAILED)
         fprintf(stderr, "fathom: %s\n", e.msg);
-    if (res_heightfield_get_stats().loaded != before)
+    if (r == TERRAIN_LOADED)
         render_begin(&app.fly.cam);
 }
 
@@ -566,6 +567,11 @@ bool explore_run(const cli_options *opt, err_t *err)
         char what[256];
         snprintf(what, sizeof what, "%s backend, %s", render_backend_name(render_backend_used()), gpu_describe());
         framestats_summary(&app.stats, w, h, app.panel, what);
+        if (res_heightfield_streamed()) {
+            res_heightfield_stats st = res_heightfield_get_stats();
+            fprintf(stderr, "fathom: terrain streamed: %ld tiles read from disk, %d of %d resident (%d slots), %d "
+                            "pending at the last frame\n", st.loaded, st.resident, st.tiles, st.slots, st.pending);
+        }
     }
     framestats_free(&app.stats);
     panel_shutdown();

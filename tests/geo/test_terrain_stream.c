@@ -10,6 +10,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 
 #include <cmocka.h>
@@ -22,6 +23,7 @@
 #include "data/geo/terrain_tiles.h"
 #include "data/media/image_io.h"
 #include "gpu/render.h"
+#include "view/aov.h"
 #include "gpu/res_heightfield.h"
 #include "jobs/capture/offline.h"
 
@@ -169,6 +171,50 @@ static void streamed_equals_in_core(void **st)
     unsetenv("FATHOM_TERRAIN_TILE");
 }
 
+/* The window's way (res_heightfield_settle_async): frames go on while a loader thread reads the tiles they
+ * asked for; once it has caught up (a frame asks for nothing), the frame equals the in-core one, bit for bit,
+ * and the frames before it said they were waiting (TERRAIN_PENDING) rather than stalling. */
+static void loader_thread_catches_up(void **st)
+{
+    (void)st;
+    enum { FW = 120, FH = 72, FRAMES = 4000 };
+    char json[1024];
+    snprintf(json, sizeof json, JSON, dem);
+    camera cam = cam_at(-15000, 4800, 14000, 14000, 4000, -14000, 30);
+    setenv("FATHOM_TERRAIN_TILE", "64", 1);
+    float *core = malloc(sizeof(float) * FW * FH * (AOV_FLOATS + 4)), *streamed = malloc(sizeof(float) * FW * FH * (AOV_FLOATS + 4));
+    scene s;
+    const char *in_core[] = {"terrain.cache_mb=4000"}, *small[] = {"terrain.cache_mb=3"};
+    load_text(json, in_core, 1, &s);
+    draw(&s, &cam, FW, FH, 1, NULL, core, core + FW * FH * AOV_FLOATS);
+    scene_free(&s);
+    render_release_scene();
+    load_text(json, small, 1, &s);
+    err_t e = {{0}};
+    if (!render_set_scene(&s, NULL, &e))
+        fail_msg("%s", e.msg);
+    int frames = 0, pending = 0;
+    for (res_heightfield_settled r = TERRAIN_LOADED; r != TERRAIN_SETTLED; frames++) {
+        assert_true(frames < FRAMES);
+        render_resize(FW, FH);
+        render_begin(&cam);
+        render_sample();
+        r = res_heightfield_settle_async(4, &e);
+        assert_int_not_equal(r, TERRAIN_FAILED);
+        pending += r == TERRAIN_PENDING;
+        if (r == TERRAIN_PENDING)
+            nanosleep(&(struct timespec){0, 1000000}, NULL); /* a millisecond for the loader */
+    }
+    draw(&s, &cam, FW, FH, 1, NULL, streamed, streamed + FW * FH * AOV_FLOATS);
+    print_message("loader: %d frames (%d waiting for it), %ld tiles read\n", frames, pending,
+                  res_heightfield_get_stats().loaded);
+    assert_memory_equal(core, streamed, sizeof(float) * FW * FH * (AOV_FLOATS + 4));
+    scene_free(&s);
+    render_release_scene();
+    unsetenv("FATHOM_TERRAIN_TILE");
+    free(core), free(streamed);
+}
+
 /* The summary: built the first time, read from the cache folder the next, built again when the DEM changes
  * (and its new heights drawn: the range follows them). */
 static void summary_is_kept_and_rebuilt(void **st)
@@ -263,6 +309,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(tiles_equal_the_whole_pyramid),
         cmocka_unit_test(streamed_equals_in_core),
+        cmocka_unit_test(loader_thread_catches_up),
         cmocka_unit_test(summary_is_kept_and_rebuilt),
         cmocka_unit_test(too_small_a_cache_says_so),
     };
