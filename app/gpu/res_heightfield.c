@@ -93,15 +93,16 @@ static bool streams(const scene *s, int *w, int *h)
         return memo.streams;
     }
     dem_info info;
-    err_t later; /* a file that cannot be opened is the load's to report */
+    err_t later; /* a file that cannot be opened: the streamed open reports it (its side limit is the larger) */
     struct dem_stream *d = dem_stream_open(path, w, h, &info, &later);
     if (!d)
-        return false;
+        return res_heightfield_can_stream();
     dem_stream_close(d);
     snprintf(memo.key, sizeof memo.key, "%s", key);
     memo.w = *w;
     memo.rows = *h;
-    memo.streams = (double)*w * (double)*h * DEM_BYTES_PER_TEXEL > budget_bytes(s);
+    memo.streams = (double)*w * (double)*h * DEM_BYTES_PER_TEXEL > budget_bytes(s) || *w > TERRAIN_MAX_SIDE ||
+                   *h > TERRAIN_MAX_SIDE;
     return memo.streams;
 }
 
@@ -281,15 +282,27 @@ static bool load_in_core(const heightfield_desc *d, int tile_cells, err_t *err)
  * holds, no tile yet. */
 static bool open_streamed(const heightfield_desc *d, int tile_cells, double budget, err_t *err)
 {
+    heightfield *hf = &S->hf;
+    if (!heightfield_open_stream(d, hf, &S->stream, err))
+        return false;
     if (!res_heightfield_can_stream())
         return err_set(err, "heightmap '%s' is larger than terrain.cache_mb and streaming it needs OpenGL 4.3 (shader "
                             "storage buffers); this GL has %d.%d: raise terrain.cache_mb or resample the DEM",
                        d->path, epoxy_gl_version() / 10, epoxy_gl_version() % 10);
-    heightfield *hf = &S->hf;
-    if (!heightfield_open_stream(d, hf, &S->stream, err))
-        return false;
     terrain_grid *g = &S->grid;
     terrain_grid_plan(hf->width, hf->height, tile_cells ? tile_cells : TILE_STREAMED, g);
+    GLint max_layers = 0;
+    glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &max_layers);
+    double slot_bytes = 4.0 * ((double)g->slot_w * g->slot_h + (double)terrain_tile_level_floats(g));
+    int tiles = g->tiles_x * g->tiles_y;
+    double fit = floor(budget / slot_bytes);
+    int slots = fit < tiles ? (int)fit : tiles;
+    slots = slots < max_layers ? slots : max_layers;
+    double one_texture = 1073741823.0 / (4.0 * g->slot_w * g->slot_h); /* llvmpipe's most in one texture: 1 GB */
+    slots = slots < one_texture ? slots : (int)one_texture;
+    if (slots < 4) /* said before the summary is built: that reads the whole DEM */
+        return err_set(err, "heightmap '%s': terrain.cache_mb=%.0f holds %d of its %.1f MB tiles; give it at least %.0f",
+                       d->path, budget / 1048576.0, slots, slot_bytes / 1048576.0, ceil(4 * slot_bytes / 1048576.0));
     float ex = d->exaggeration > 0 ? d->exaggeration : 1.0f;
     terrain_summary sum;
     if (!terrain_summary_get(d->path, g, hf->dx, hf->dz, ex, &sum, err))
@@ -306,20 +319,6 @@ static bool open_streamed(const heightfield_desc *d, int tile_cells, double budg
     size_t hole_part = strlen(hf->about);
     if (hf->holes)
         snprintf(hf->about + hole_part, sizeof hf->about - hole_part, ", %zu nodata texels left as holes", hf->holes);
-    GLint max_layers = 0;
-    glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &max_layers);
-    double slot_bytes = 4.0 * ((double)g->slot_w * g->slot_h + (double)terrain_tile_level_floats(g));
-    int tiles = g->tiles_x * g->tiles_y;
-    double fit = floor(budget / slot_bytes);
-    int slots = fit < tiles ? (int)fit : tiles;
-    slots = slots < max_layers ? slots : max_layers;
-    double one_texture = 1073741823.0 / (4.0 * g->slot_w * g->slot_h); /* llvmpipe's most in one texture: 1 GB */
-    slots = slots < one_texture ? slots : (int)one_texture;
-    if (slots < 4) {
-        terrain_summary_free(&sum);
-        return err_set(err, "heightmap '%s': terrain.cache_mb=%.0f holds %d of its %.1f MB tiles; give it at least %.0f",
-                       d->path, budget / 1048576.0, slots, slot_bytes / 1048576.0, ceil(4 * slot_bytes / 1048576.0));
-    }
     float **top = terrain_top_build(g, sum.tile_max);
     terrain_summary_free(&sum);
     allocate(slots, top);

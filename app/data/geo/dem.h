@@ -29,8 +29,9 @@ typedef struct dem_info {
     char height_unit_name[32]; /* that unit as the file names it ("metre" when it names none) */
 } dem_info;
 
-/* Memory a DEM takes per texel while it is loaded (docs/terrain-scale: 9.3 at its peak at 16384²,
- * rounded up): a DEM that needs more than the machine's memory is refused before it is read. */
+/* Memory a DEM takes per texel while it is read whole (docs/terrain-scale: 9.3 at its peak at 16384²,
+ * rounded up): dem_read refuses one that needs more than the machine's memory before reading it (the viewshed
+ * and the mesh's DEM solid read so); a terrain larger than its cache streams instead (gpu/res_heightfield.c). */
 #define DEM_BYTES_PER_TEXEL 12.0
 
 /* True for a path fathom reads as a plain image (OpenImageIO: PNG, JPEG, EXR, HDR, PFM), whose values

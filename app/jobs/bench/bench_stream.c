@@ -64,6 +64,7 @@ static bool set_dem(const char *dem, int cache_mb, scene *s, camera *cam, err_t 
 typedef struct row {
     bool streamed;
     double open_cold, open_warm, first_ms, shot_s, frame_ms, core_ms, peak_mb, gpu_mb, read_mb;
+    double frame_range[2], core_range[2]; /* the frames' fastest and slowest: the spread around the median */
     long loaded;
     int tiles, slots, passes;
 } row;
@@ -99,6 +100,13 @@ static bool streamed_frames(const char *dem, int cache_mb, int w, int h, int run
     return ok;
 }
 
+static void range(const double *t, int n, double out[2])
+{
+    out[0] = out[1] = t[0];
+    for (int i = 1; i < n; i++)
+        out[0] = t[i] < out[0] ? t[i] : out[0], out[1] = t[i] > out[1] ? t[i] : out[1];
+}
+
 /* Streamed frames, in-core frames where it fits (≤ 16384²), streamed again: each median over both blocks of
  * its kind, so the order costs neither side. */
 static bool compare_frames(const char *dem, int n, int cache_mb, int w, int h, int runs, row *r, err_t *err)
@@ -116,8 +124,10 @@ static bool compare_frames(const char *dem, int n, int cache_mb, int w, int h, i
         render_release_scene();
         ok = ok && streamed_frames(dem, cache_mb, w, h, runs, t + runs, r, err);
         r->core_ms = ok ? util_median(core, runs) : 0;
+        range(core, runs, r->core_range);
     }
     r->frame_ms = util_median(t, n <= 16384 ? 2 * runs : runs);
+    range(t, n <= 16384 ? 2 * runs : runs, r->frame_range);
     free(t);
     return ok;
 }
@@ -180,20 +190,22 @@ static bool one_side(int n, const char *dir, int w, int h, int runs, const char 
         fprintf(stderr, "fathom: could not remove '%s' or '%s'\n", cache, dem);
     if (!ok)
         return false;
-    char core[32] = "-", ratio[32] = "-";
+    char frame[48], core[48] = "-", ratio[32] = "-";
+    snprintf(frame, sizeof frame, "%.1f (%.0f-%.0f)", r.frame_ms, r.frame_range[0], r.frame_range[1]);
     if (r.core_ms > 0) {
-        snprintf(core, sizeof core, "%.1f", r.core_ms);
+        snprintf(core, sizeof core, "%.1f (%.0f-%.0f)", r.core_ms, r.core_range[0], r.core_range[1]);
         snprintf(ratio, sizeof ratio, "%.2f", r.frame_ms / r.core_ms);
     }
-    printf("%7d %9s %10.2f %9.2f %9.0f %7.2f %6d %8.1f %8s %6s %8.0f %8.0f %8ld %9.0f %7d\n", n,
-           r.streamed ? "streamed" : "in core", r.open_cold, r.open_warm, r.first_ms, r.shot_s, r.passes, r.frame_ms,
+    printf("%7d %9s %10.2f %9.2f %9.0f %7.2f %6d %18s %18s %6s %8.0f %8.0f %8ld %9.0f %7d\n", n,
+           r.streamed ? "streamed" : "in core", r.open_cold, r.open_warm, r.first_ms, r.shot_s, r.passes, frame,
            core, ratio, r.peak_mb, r.gpu_mb, r.loaded, r.read_mb, r.tiles);
     fflush(stdout);
     FILE *csv = csv_path ? fopen(csv_path, "a") : NULL;
     if (csv) {
-        fprintf(csv, "%d,%s,%.0f,%.3f,%.3f,%.1f,%.3f,%d,%.1f,%.1f,%.0f,%.0f,%ld,%.0f,%d,%d\n", n,
+        fprintf(csv, "%d,%s,%.0f,%.3f,%.3f,%.1f,%.3f,%d,%.1f,%.1f,%.1f,%.1f,%.1f,%.1f,%.0f,%.0f,%ld,%.0f,%d,%d\n", n,
                 r.streamed ? "streamed" : "in core", (double)n * n, r.open_cold, r.open_warm, r.first_ms, r.shot_s,
-                r.passes, r.frame_ms, r.core_ms, r.peak_mb, r.gpu_mb, r.loaded, r.read_mb, r.tiles, r.slots);
+                r.passes, r.frame_ms, r.frame_range[0], r.frame_range[1], r.core_ms, r.core_range[0], r.core_range[1],
+                r.peak_mb, r.gpu_mb, r.loaded, r.read_mb, r.tiles, r.slots);
         fclose(csv);
     }
     return true;
@@ -210,7 +222,7 @@ bool bench_terrain_stream(const bench_desc *opt, int w, int h, err_t *err)
     char csv_path[PATH_MAX_LEN];
     if (!bench_sides(opt, "--terrain-stream", "4096,16384,65536", TILE, DEM_STREAM_MAX_SIDE, TILE, &sides,
                      "terrain-stream.csv", "side,mode,texels,open_cold_s,open_warm_s,first_ms,shot_s,passes,frame_ms,"
-                     "in_core_ms,peak_mb,gpu_mb,tiles_read,read_mb,tiles,slots", csv_path, err))
+                     "frame_min_ms,frame_max_ms,in_core_ms,in_core_min_ms,in_core_max_ms,peak_mb,gpu_mb,tiles_read,read_mb,tiles,slots", csv_path, err))
         return false;
     char dir[] = "/tmp/fathom-stream-XXXXXX", tile[PATH_MAX_LEN];
     if (!mkdtemp(dir))
@@ -222,8 +234,8 @@ bool bench_terrain_stream(const bench_desc *opt, int w, int h, err_t *err)
     }
     printf("DEMs past memory, streamed: %dx%d, 1 sample per pixel at the interactive preset, frames the median of %d;\n"
            "each side in a process of its own with an empty cache folder and the default terrain.cache_mb (64 MB up to\n"
-           "8192², which fit the default); frame ms: the median of two blocks around the in-core one\n"
-           "%7s %9s %10s %9s %9s %7s %6s %8s %8s %6s %8s %8s %8s %9s %7s\n", w, h, opt->runs, "side", "mode", "open cold", "open warm",
+           "8192², which fit the default); frame ms: the median of two blocks around the in-core one (fastest-slowest)\n"
+           "%7s %9s %10s %9s %9s %7s %6s %18s %18s %6s %8s %8s %8s %9s %7s\n", w, h, opt->runs, "side", "mode", "open cold", "open warm",
            "first ms", "shot s", "passes", "frame ms", "core ms", "ratio", "peak MB", "GPU MB", "tiles rd", "read MB",
            "tiles");
     fflush(stdout);
