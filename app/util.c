@@ -153,6 +153,21 @@ bool err_set_lines(err_t *err, const char *fmt, ...)
     return false;
 }
 
+bool util_cache_folder(const char *sub, const char *leaf, char *out, size_t n)
+{
+    const char *xdg = getenv("XDG_CACHE_HOME"), *home = getenv("HOME");
+    int len = xdg && *xdg ? snprintf(out, n, "%s", xdg) : snprintf(out, n, "%s/.cache", home ? home : ".");
+    const char *const parts[] = {"", "/fathom", "/", sub, leaf ? "/" : NULL, leaf}; /* a folder made after each name */
+    for (int i = 0; i < 6 && parts[i] && len < (int)n; i++) {
+        len += snprintf(out + len, n - (size_t)len, "%s", parts[i]);
+        if ((i == 0 || i % 2 == 1) && len < (int)n && mkdir(out, 0700) != 0 && errno != EEXIST)
+            return false; /* out: the folder that could not be made */
+    }
+    if (len >= (int)n)
+        errno = ENAMETOOLONG;
+    return len < (int)n;
+}
+
 void util_remove_folder(const char *dir)
 {
     DIR *d = opendir(dir);
@@ -160,6 +175,25 @@ void util_remove_folder(const char *dir)
         char path[PATH_MAX_LEN + 256];
         if (strcmp(e->d_name, ".") && strcmp(e->d_name, "..") &&
             snprintf(path, sizeof path, "%s/%s", dir, e->d_name) < (int)sizeof path)
+            unlink(path);
+    }
+    if (d)
+        closedir(d);
+    rmdir(dir);
+}
+
+void util_remove_tree(const char *dir)
+{
+    DIR *d = opendir(dir);
+    for (struct dirent *e; d && (e = readdir(d));) {
+        char path[PATH_MAX_LEN + 256];
+        struct stat st;
+        if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, "..") ||
+            snprintf(path, sizeof path, "%s/%s", dir, e->d_name) >= (int)sizeof path || lstat(path, &st) != 0)
+            continue;
+        if (S_ISDIR(st.st_mode))
+            util_remove_tree(path);
+        else
             unlink(path);
     }
     if (d)

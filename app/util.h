@@ -103,6 +103,13 @@ double util_physical_memory(void);
 /* Removes a folder of files that fathom made: each entry is unlinked (a link goes, what it points to
  * stays; a subfolder stays, and with it the folder), then the folder. */
 void util_remove_folder(const char *dir);
+/* Removes a folder fathom made and everything under it, subfolders too (links are removed, never followed). */
+void util_remove_tree(const char *dir);
+
+/* <cache>/fathom/SUB/LEAF ($XDG_CACHE_HOME, else ~/.cache; leaf may be NULL) into out, each folder made where
+ * missing, only this user may write them. False with errno set (ENAMETOOLONG when out is too small); out
+ * then holds the folder that could not be made. */
+bool util_cache_folder(const char *sub, const char *leaf, char *out, size_t n);
 
 /* Where shaders/, scenes/, textures/ and terrains/ live: $FATHOM_DATA_DIR, else found beside the
  * binary (installed: <prefix>/bin/../share/fathom), else the source tree it was built from. */

@@ -184,8 +184,23 @@ void res_heightfield_upload(int tile, const float *heights, const float *levels,
     S->tile_slot[tile] = slot;
 }
 
-/* The textures for `slots` tiles, the page table (every tile absent) and the top pyramid. */
-static void allocate(int slots, float **top)
+/* The top pyramid from every tile's maximum (tiles_x × tiles_y). */
+static void upload_top(const float *tile_max)
+{
+    const terrain_grid *g = &S->grid;
+    float **top = terrain_top_build(g, tile_max);
+    S->top_tex = plain_texture();
+    int levels = g->levels - g->tile_level, nx, ny;
+    for (int m = 0; m < levels; m++) {
+        terrain_top_size(g, g->tile_level + m, &nx, &ny);
+        glTexImage2D(GL_TEXTURE_2D, m, GL_R32F, nx, ny, 0, GL_RED, GL_FLOAT, top[m]);
+    }
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, levels - 1);
+    terrain_top_free(g, top);
+}
+
+/* The textures for `slots` tiles and the page table (every tile absent). */
+static void allocate(int slots)
 {
     const terrain_grid *g = &S->grid;
     S->slots = slots;
@@ -201,13 +216,6 @@ static void allocate(int slots, float **top)
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
     glTexImage2D(GL_TEXTURE_2D, 0, GL_R32I, g->tiles_x, g->tiles_y, 0, GL_RED_INTEGER, GL_INT, none);
     free(none);
-    S->top_tex = plain_texture();
-    int levels = g->levels - g->tile_level;
-    for (int m = 0; m < levels; m++) {
-        terrain_top_size(g, g->tile_level + m, &nx, &ny);
-        glTexImage2D(GL_TEXTURE_2D, m, GL_R32F, nx, ny, 0, GL_RED, GL_FLOAT, top[m]);
-    }
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, levels - 1);
     S->slot_tile = util_alloc(sizeof(int) * (size_t)slots, "the terrain's slots");
     S->tile_slot = util_alloc(sizeof(int) * (size_t)S->tiles, "the terrain's page table");
     S->slot_used = util_calloc((size_t)slots, sizeof(unsigned), "the terrain's slots");
@@ -252,25 +260,18 @@ static bool load_in_core(const heightfield_desc *d, int tile_cells, err_t *err)
         return err_set(err, "heightmap '%s' (%dx%d) needs %d tiles; this GPU holds %d: cut the DEM", d->path,
                        hf->width, hf->height, tiles, max_layers);
     S->tile_buf = tiles > 1 ? util_alloc(sizeof(float) * (size_t)g->slot_w * (size_t)g->slot_h, "a terrain tile") : NULL;
+    allocate(tiles);
     float *tile_max = util_alloc(sizeof(float) * (size_t)tiles, "the terrain's tiles");
-    for (int t = 0; t < tiles; t++) { /* the maxima first: the top pyramid is allocated with the textures */
-        int w, h;
-        const float *win = window_of(hf, t, &w, &h);
-        terrain_tile_stats st;
-        terrain_tile_build(g, t % g->tiles_x, t / g->tiles_x, win, hf->dx, hf->dz, NULL, &st);
-        tile_max[t] = st.max;
-    }
-    float **top = terrain_top_build(g, tile_max);
-    free(tile_max);
-    allocate(tiles, top);
-    terrain_top_free(g, top);
-    for (int t = 0; t < tiles; t++) {
+    for (int t = 0; t < tiles; t++) { /* each tile's levels and upload; its maximum for the top */
         int w, h;
         const float *win = window_of(hf, t, &w, &h);
         terrain_tile_stats st;
         terrain_tile_build(g, t % g->tiles_x, t / g->tiles_x, win, hf->dx, hf->dz, S->level_buf, &st);
         res_heightfield_upload(t, win, S->level_buf, w, h, t);
+        tile_max[t] = st.max;
     }
+    upload_top(tile_max);
+    free(tile_max);
     free(hf->h); /* the heights live on the GPU from here: a DEM is not held twice */
     hf->h = NULL;
     free(S->tile_buf);
@@ -319,10 +320,9 @@ static bool open_streamed(const heightfield_desc *d, int tile_cells, double budg
     size_t hole_part = strlen(hf->about);
     if (hf->holes)
         snprintf(hf->about + hole_part, sizeof hf->about - hole_part, ", %zu nodata texels left as holes", hf->holes);
-    float **top = terrain_top_build(g, sum.tile_max);
+    allocate(slots);
+    upload_top(sum.tile_max);
     terrain_summary_free(&sum);
-    allocate(slots, top);
-    terrain_top_free(g, top);
     S->tile_buf = util_alloc(sizeof(float) * (size_t)g->slot_w * (size_t)g->slot_h, "a terrain tile");
     S->words = (tiles + 31) / 32;
     glGenBuffers(1, &S->feedback_buf);

@@ -141,7 +141,7 @@ bool scene_heightmap_parse(scene_ctx *c, const cJSON *root)
         !scene_get_num(c, tb, "terrain", "sand_line", -1e9f, -1e9f, 1e9f, &t->sand_line) ||
         !scene_get_num(c, tb, "terrain", "snow_line", 1e9f, -1e9f, 1e9f, &t->snow_line) ||
         !scene_get_num(c, tb, "terrain", "grass_slope", 0.8f, 0, 1, &t->grass_slope) ||
-        !scene_get_int(c, tb, "terrain", "cache_mb", 0, 0, 1 << 20, &t->cache_mb))
+        !scene_get_int(c, tb, "terrain", "cache_mb", 0, 0, 999999, &t->cache_mb))
         return false;
     if (t->height_min > t->height_max)
         return scene_fail(c, "terrain.height_max", "%g is below height_min %g: height_min is the height of black, "

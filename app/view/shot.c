@@ -240,7 +240,7 @@ void shot_free(shot_desc *d)
  * (only this user may write them), NAME the original's base name made safe */
 static bool cache_path(const shot_formula *f, const char *hash, char *out, size_t n, err_t *err)
 {
-    const char *xdg = getenv("XDG_CACHE_HOME"), *home = getenv("HOME"), *base = strrchr(f->file, '/');
+    const char *base = strrchr(f->file, '/');
     char dir[PATH_MAX_LEN], name[64];
     base = base ? base + 1 : f->file;
     size_t k = 0;
@@ -249,14 +249,10 @@ static bool cache_path(const shot_formula *f, const char *hash, char *out, size_
     size_t fl = strlen(f->file);
     bool fragment = fl > 5 && !strcmp(f->file + fl - 5, ".frag"); /* read as a fragment again (scene/formula/frag.h) */
     snprintf(name + k, sizeof name - k, "%s%s", k ? "" : "formula", fragment ? ".frag" : ".glsl");
-    int len = xdg && *xdg ? snprintf(dir, sizeof dir, "%s", xdg) : snprintf(dir, sizeof dir, "%s/.cache", home ? home : ".");
-    const char *const parts[] = {"", "/fathom", "/formulas", "/"};
-    for (int i = 0; i < 4 && len < (int)sizeof dir; i++) { /* each folder made where missing */
-        len += snprintf(dir + len, sizeof dir - (size_t)len, "%s%s", parts[i], i == 3 ? hash : "");
-        if (len < (int)sizeof dir && mkdir(dir, 0700) != 0 && errno != EEXIST)
-            return err_set(err, "cannot keep the shot's formula in '%s': %s", dir, strerror(errno));
-    }
-    if (len >= (int)sizeof dir || snprintf(out, n, "%s/%s", dir, name) >= (int)n)
+    if (!util_cache_folder("formulas", hash, dir, sizeof dir))
+        return errno == ENAMETOOLONG ? err_set(err, "cannot keep the shot's formula: the cache path is too long")
+                                     : err_set(err, "cannot keep the shot's formula in '%s': %s", dir, strerror(errno));
+    if (snprintf(out, n, "%s/%s", dir, name) >= (int)n)
         return err_set(err, "cannot keep the shot's formula: the cache path is too long");
     return true;
 }

@@ -115,6 +115,8 @@ printf '<VRTDataset rasterXSize="60000" rasterYSize="60000"><VRTRasterBand dataT
 # beyond memory it streams (tests/geo/test_terrain_stream.c); a cache too small for four tiles is said before
 # the DEM is read
 expect dem-cache-too-small 1 "terrain.cache_mb=1 holds 0 of its 1.3 MB tiles; give it at least 6" 1 -- "$fathom" --dem "$tmp/big.vrt" --set terrain.spacing=30,30 --set terrain.cache_mb=1 $out
+expect cache-below-range 1 "terrain.cache_mb: expected a number from 0 to 999999" 1 -- "$fathom" --scene himalaya --set terrain.cache_mb=-1 $out
+expect cache-above-range 1 "terrain.cache_mb: expected a number from 0 to 999999" 1 -- "$fathom" --scene himalaya --set terrain.cache_mb=1000000 $out
 printf '<VRTDataset rasterXSize="5000000" rasterYSize="2"><VRTRasterBand dataType="Int16" band="1"/></VRTDataset>' >"$tmp/wide.vrt"
 expect dem-beyond-side 1 "is 5000000x2: the largest side fathom reads is 4194304 texels" 1 -- "$fathom" --dem "$tmp/wide.vrt" --set terrain.spacing=30,30 $out
 expect dem-not-found 1 "--dem: file 'no/such.tif' not found (a path from the folder you are in)" 1 -- "$fathom" --dem no/such.tif $out

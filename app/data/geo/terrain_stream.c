@@ -157,16 +157,9 @@ static uint64_t fnv1a(const char *s)
 /* <cache>/fathom/terrain/HASH.sum, its folders made; false (nothing kept) when there is no such folder. */
 static bool cache_file(const char *key, char *out, size_t n)
 {
-    const char *xdg = getenv("XDG_CACHE_HOME"), *home = getenv("HOME");
     char dir[PATH_MAX_LEN];
-    int len = xdg && *xdg ? snprintf(dir, sizeof dir, "%s", xdg) : snprintf(dir, sizeof dir, "%s/.cache", home ? home : ".");
-    const char *const parts[] = {"", "/fathom", "/terrain"};
-    for (int i = 0; i < 3 && len < (int)sizeof dir; i++) {
-        len += snprintf(dir + len, sizeof dir - (size_t)len, "%s", parts[i]);
-        if (len < (int)sizeof dir && mkdir(dir, 0700) != 0 && errno != EEXIST)
-            return false;
-    }
-    return len < (int)sizeof dir && snprintf(out, n, "%s/%016llx.sum", dir, (unsigned long long)fnv1a(key)) < (int)n;
+    return util_cache_folder("terrain", NULL, dir, sizeof dir) &&
+           snprintf(out, n, "%s/%016llx.sum", dir, (unsigned long long)fnv1a(key)) < (int)n;
 }
 
 static bool load(const char *file, const char *key, const terrain_grid *g, terrain_summary *out)

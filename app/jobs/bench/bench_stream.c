@@ -184,9 +184,8 @@ static bool one_side(int n, const char *dir, int w, int h, int runs, const char 
     bool ok = measure(dem, n, w, h, runs, &r, err);
     render_shutdown();
     gpu_close();
-    char rm[PATH_MAX_LEN + 16];
-    snprintf(rm, sizeof rm, "rm -rf '%s'", cache);
-    if (system(rm) != 0 || unlink(dem) != 0)
+    util_remove_tree(cache); /* the summary, and Mesa's shader cache (it follows XDG_CACHE_HOME too) */
+    if (util_file_exists(cache) || unlink(dem) != 0)
         fprintf(stderr, "fathom: could not remove '%s' or '%s'\n", cache, dem);
     if (!ok)
         return false;
