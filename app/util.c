@@ -163,26 +163,10 @@ bool util_cache_folder(const char *sub, const char *leaf, char *out, size_t n)
         if ((i == 0 || i % 2 == 1) && len < (int)n && mkdir(out, 0700) != 0 && errno != EEXIST)
             return false; /* out: the folder that could not be made */
     }
-    if (len >= (int)n)
-        errno = ENAMETOOLONG;
-    return len < (int)n;
+    return len < (int)n || (errno = ENAMETOOLONG, false);
 }
 
-void util_remove_folder(const char *dir)
-{
-    DIR *d = opendir(dir);
-    for (struct dirent *e; d && (e = readdir(d));) {
-        char path[PATH_MAX_LEN + 256];
-        if (strcmp(e->d_name, ".") && strcmp(e->d_name, "..") &&
-            snprintf(path, sizeof path, "%s/%s", dir, e->d_name) < (int)sizeof path)
-            unlink(path);
-    }
-    if (d)
-        closedir(d);
-    rmdir(dir);
-}
-
-void util_remove_tree(const char *dir)
+static void remove_entries(const char *dir, bool deep) /* util_remove_folder (deep: util_remove_tree) */
 {
     DIR *d = opendir(dir);
     for (struct dirent *e; d && (e = readdir(d));) {
@@ -191,8 +175,8 @@ void util_remove_tree(const char *dir)
         if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, "..") ||
             snprintf(path, sizeof path, "%s/%s", dir, e->d_name) >= (int)sizeof path || lstat(path, &st) != 0)
             continue;
-        if (S_ISDIR(st.st_mode))
-            util_remove_tree(path);
+        if (deep && S_ISDIR(st.st_mode))
+            remove_entries(path, true);
         else
             unlink(path);
     }
@@ -200,6 +184,9 @@ void util_remove_tree(const char *dir)
         closedir(d);
     rmdir(dir);
 }
+
+void util_remove_folder(const char *dir) { remove_entries(dir, false); }
+void util_remove_tree(const char *dir) { remove_entries(dir, true); }
 
 bool util_temp_path(const char *path, char *out, size_t n)
 {
