@@ -56,20 +56,19 @@ static void print_variant(const scene *s)
     sb_free(&pre);
 }
 
-/* A fragment's preset (--view NAME, else its Default or first preset) as the starting view: its camera
- * unless the command line gives one, its parameters under the command line's --set. */
+/* A fragment's preset (--view NAME, else where FragM starts: its default preset or the sliders' defaults)
+ * as the starting view: its camera unless the command line gives one, its parameters under the command
+ * line's --set. */
 static bool apply_preset(cli_options *o, shot_desc *shot, err_t *err)
 {
     const char *path = o->formula_set + strlen("fractal.formula=");
     strbuf text = {0};
-    char *ignored = NULL, names[1][FRAG_PRESET_NAME_MAX];
-    if (!o->view_name && frag_presets(path, names, 1, err) == 0)
-        return true; /* no presets: framed from its bound */
+    char *ignored = NULL;
     bool ok = frag_preset_shot(path, o->view_name, &text, &ignored, err) &&
               cli_apply_shot_text(o, text.data, path, shot, err);
     if (ok && ignored && !o->quiet)
-        fprintf(stderr, "fathom: note: the preset's %s are the Fragmentarium renderer's own settings: fathom's "
-                        "lights, quality and effects stand for them\n", ignored);
+        fprintf(stderr, "fathom: note: the preset's %s are settings of Fragmentarium's host or renderer that fathom "
+                        "does not draw (docs/guide/fragments.md)\n", ignored);
     free(ignored);
     sb_free(&text);
     return ok;

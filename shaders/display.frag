@@ -11,6 +11,10 @@ uniform sampler2D uPreview;     // the last moving image (render_keep_preview), 
 uniform vec2 uPreviewSize;      // its size; 0: none
 uniform float uInvRefSamples;
 uniform float uExposure;
+uniform int uPost;     // 1: a Fragmentarium fragment's own post (fractal.look = fragment) instead of ACES + sRGB
+uniform int uPostTone; // its ToneMapping: 1 linear, 2 exponential, 3 filmic, 4 Reinhard, 5 sigmoid
+uniform vec4 uPostGEBC; // its Gamma, Exposure, Brightness, Contrast
+uniform float uPostSaturation;
 uniform int uView;
 uniform float uMaxSteps;
 uniform vec2 uSrcSize; // the active image in the targets (bottom-left corner)
@@ -77,6 +81,40 @@ bool legend(out vec4 c)
     return p.y >= 0.0 && p.y <= 1.0 && p.x >= 0.0 && p.x <= 1.1;
 }
 
+// Fragmentarium's post of the mean sample (its BufferShader, with the controls of its 3D include):
+// exposure and one of five tone curves, brightness, saturation and contrast about mid-grey (the luminance
+// weights of Rec. 709), then 1/Gamma. The filmic curve is Hable's fit of Haarm-Pieter Duiker's (J. Hable,
+// "Filmic tonemapping operators", 2010), which holds a gamma of 2.2 of its own: taken back out before 1/Gamma.
+vec3 bcs(vec3 c)
+{
+    c *= uPostGEBC.z;
+    vec3 grey = vec3(dot(c, vec3(0.2125, 0.7154, 0.0721)));
+    return mix(vec3(0.5), mix(grey, c, uPostSaturation), uPostGEBC.w);
+}
+float sigmoid(float t)
+{
+    float k = 1.0 - 1.0 / (1.0 + exp(-0.5 * uPostGEBC.w * 5.0));
+    return (1.0 / (1.0 + exp(-(t - 0.5) * uPostGEBC.w * 5.0)) - k) / (1.0 - 2.0 * k);
+}
+vec3 fragmentPost(vec3 c)
+{
+    c *= uPostGEBC.y;
+    if (uPostTone == 1) {
+        c = bcs(c);
+    } else if (uPostTone == 2) {
+        c = bcs(vec3(1.0) - exp(-c));
+    } else if (uPostTone == 3) {
+        vec3 x = max(vec3(0.0), c - vec3(0.004));
+        c = bcs(pow((x * (6.2 * x + 0.5)) / (x * (6.2 * x + 1.7) + 0.06), vec3(2.2)));
+    } else if (uPostTone == 4) {
+        c = bcs(c / (1.0 + c));
+    } else {
+        c += vec3(uPostGEBC.z - 1.0);
+        c = vec3(sigmoid(c.x), sigmoid(c.y), sigmoid(c.z));
+    }
+    return clamp(pow(max(c, vec3(0.0)), vec3(1.0 / uPostGEBC.x)), 0.0, 1.0);
+}
+
 void main()
 {
     if (uView == 1) {
@@ -106,5 +144,5 @@ void main()
         a = mix(mix(t00 / max(t00.a, 1e-6), t10 / max(t10.a, 1e-6), f.x), mix(t01 / max(t01.a, 1e-6), t11 / max(t11.a, 1e-6), f.x), f.y);
     }
     vec3 c = a.rgb / max(a.a, 1e-6); // alpha counts each pixel's own samples (adaptive sampling)
-    oColor = vec4(linearToSrgb(acesFit(c * uExposure)), 1.0);
+    oColor = vec4(uPost != 0 ? fragmentPost(c * uExposure) : linearToSrgb(acesFit(c * uExposure)), 1.0);
 }

@@ -69,7 +69,7 @@ static const char USAGE[] =
 static const char USAGE_OPTIONS[] =
     "  --scene NAME|FILE     scene to load: a name from scenes/ (csg), a scene file path, or a PNG/EXR\n"
     "                        or .fathom preset fathom wrote (reopens its scene, overrides and view), or a\n"
-    "                        Fragmentarium DE fragment (.frag, unmodified: at its Default preset) [csg]\n"
+    "                        Fragmentarium DE fragment (.frag, unmodified: at its default preset) [csg]\n"
     "  --dem FILE            open any DEM GDAL reads (GeoTIFF, .hgt, .asc, netCDF, VRT, ...) with a\n"
     "                        camera framed from its extent (the dem scene, with terrain.heightmap=FILE)\n"
     "  --formula NAME|FILE   a fractal formula: a shipped or user name, your own .glsl file or a .frag\n"

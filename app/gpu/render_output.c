@@ -13,6 +13,7 @@
 #include "gpu/render_programs.h"
 #include "gpu/render_scene.h"
 #include "gpu/render_state.h"
+#include "scene/program.h"
 
 static render_state *const state = &render_shared;
 
@@ -58,6 +59,24 @@ void render_display(GLuint fbo, int width, int height, float exposure, render_vi
     glBindFramebuffer(GL_FRAMEBUFFER, fbo);
 }
 
+/* A fragment's own look's post (fractal.look = fragment, display.frag): its ToneMapping, Exposure, Gamma,
+ * Brightness, Contrast and Saturation, in that order, into post; false when the scene's look is fathom's. */
+static bool fragment_post(const scene *s, float post[6])
+{
+    static const char *const KEYS[6] = {"ToneMapping", "Exposure", "Gamma", "Brightness", "Contrast", "Saturation"};
+    static const float DEFAULTS[6] = {4, 1, 2, 1, 1, 1}; /* Fragmentarium's 3D include's */
+    if (!s || !program_is_fractal(s->program) || s->fractal.look != LOOK_FRAGMENT)
+        return false;
+    const formula *f = &s->fractal.formula;
+    for (int k = 0; k < 6; k++) {
+        post[k] = DEFAULTS[k];
+        for (int i = 0; i < f->param_count; i++)
+            if (!strcmp(f->params[i].key, KEYS[k]))
+                post[k] = s->fractal.values[i][0];
+    }
+    return true;
+}
+
 static void display_pass(GLuint fbo, int width, int height, float exposure, render_view view)
 {
     GLuint p = state->display_prog;
@@ -90,6 +109,14 @@ static void display_pass(GLuint fbo, int width, int height, float exposure, rend
                 : render_scene_current() ? (float)render_scene_current()->quality.max_steps : 1.0f;
     glUniform1f(glGetUniformLocation(p, "uMaxSteps"), top);
     glUniform1f(glGetUniformLocation(state->display_prog, "uExposure"), exposure);
+    float post[6]; /* ToneMapping, Exposure, Gamma, Brightness, Contrast, Saturation */
+    bool own = fragment_post(render_scene_current(), post);
+    glUniform1i(glGetUniformLocation(p, "uPost"), own);
+    if (own) {
+        glUniform1i(glGetUniformLocation(p, "uPostTone"), (GLint)post[0]);
+        glUniform4f(glGetUniformLocation(p, "uPostGEBC"), fmaxf(post[2], 1e-3f), post[1], post[3], post[4]);
+        glUniform1f(glGetUniformLocation(p, "uPostSaturation"), post[5]);
+    }
     glUniform2f(glGetUniformLocation(p, "uSrcSize"), (float)state->width, (float)state->height);
     glUniform2f(glGetUniformLocation(p, "uDstSize"), (float)width, (float)height);
     glBindVertexArray(render_programs_vao());

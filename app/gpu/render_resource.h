@@ -35,7 +35,8 @@ typedef struct render_resource {
     int (*held)(void);     /* the GL objects it holds (none after a failed set: tests check the promise) */
 } render_resource;
 
-extern const render_resource res_textures, res_envmap, res_heightfield, res_imagery, res_csg_list, res_droplets;
+extern const render_resource res_textures, res_envmap, res_heightfield, res_imagery, res_csg_list, res_droplets,
+    res_frag_textures;
 
 /* Fault injection for the tests: true when $FATHOM_RESOURCE_FAULT is this kind's name. Each kind then
  * fails halfway through its set, after its first GL object, as a refused allocation there would. */

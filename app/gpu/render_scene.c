@@ -9,7 +9,7 @@
 /* Upload order (and unit order: the material textures first, at 0): a failure leaves the later kinds
  * as they were. */
 static const render_resource *const RESOURCES[] = {&res_textures, &res_heightfield, &res_imagery, &res_csg_list, &res_droplets,
-                                                   &res_envmap};
+                                                   &res_envmap, &res_frag_textures};
 enum { RESOURCE_COUNT = sizeof RESOURCES / sizeof RESOURCES[0] };
 
 static struct {

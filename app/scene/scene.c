@@ -217,6 +217,19 @@ static void blame_override(const char *text, const char *path, const char *const
     }
     scene_free(&alone);
     const char *culprit = NULL;
+    /* the one without which the rest load (a fragment's preset comes as overrides too: the user's
+     * --set among them is named, not a preset line that only fails without the fragment), else the
+     * first that fails alone */
+    const char **rest = util_alloc(sizeof *rest * (size_t)(set_count > 1 ? set_count - 1 : 1), "the overrides");
+    for (int i = 0; i < set_count && !culprit; i++) {
+        int n = 0;
+        for (int k = 0; k < set_count; k++)
+            if (k != i)
+                rest[n++] = sets[k];
+        if (load_text(text, path, rest, n, &alone, false, NULL, &other))
+            scene_free(&alone), culprit = sets[i];
+    }
+    free(rest);
     for (int i = 0; i < set_count && !culprit; i++) {
         if (load_text(text, path, &sets[i], 1, &alone, false, NULL, &other))
             scene_free(&alone);

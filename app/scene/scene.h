@@ -71,6 +71,12 @@ typedef enum effect_mode { EFFECT_AUTO, EFFECT_ON, EFFECT_OFF } effect_mode;
 /* How a fractal's formula is computed: "auto" switches to double where a float cannot resolve the
  * view (the renderer decides, app/gpu/render.c), when the formula allows it (@deep). */
 typedef enum fractal_precision { PRECISION_AUTO, PRECISION_FLOAT, PRECISION_DOUBLE } fractal_precision;
+/* When a ray has hit (common/march.glsl): fathom's footprint rule (HIT_K pixel footprints, the quality
+ * presets' knob), or Fragmentarium's DE renderers' rule (relative to the distance travelled: frag.h). */
+typedef enum fractal_hit_rule { HIT_RULE_FOOTPRINT, HIT_RULE_FRAGMENT } fractal_hit_rule;
+/* How a fractal is lit and shown: fathom's lights, materials and effects, or a Fragmentarium fragment's own
+ * renderer (its camera light, spot light, AO, fog, glow, background and post: shaders/frag/look.glsl). */
+typedef enum fractal_look { LOOK_FATHOM, LOOK_FRAGMENT } fractal_look;
 /* A hybrid's second formula's uniforms are renamed with this prefix (uPower -> uHybrid_uPower). */
 #define HYBRID_PREFIX "uHybrid_"
 
@@ -96,7 +102,11 @@ typedef struct scene_fractal {
     float palette[3][3]; /* orbit-trap colours: near, middle, far */
     float glow;          /* glow strength; 0 = off */
     float glow_color[3];
-    float hit_distance;  /* an absolute hit distance (a fragment's Detail, 10^Detail); 0: the footprint rule */
+    float hit_distance;  /* an absolute hit distance; 0: the rule's own threshold */
+    fractal_hit_rule hit_rule; /* fathom's footprint rule, or Fragmentarium's (a fragment's default) */
+    float detail;        /* the Fragmentarium rule's Detail: a ray stops where DE·step_factor < 10^detail · t */
+    float max_distance;  /* the Fragmentarium rule's MaxDistance: rays past it are background */
+    fractal_look look;   /* a fragment's default: its own */
 } scene_fractal;
 
 typedef struct scene {

@@ -51,15 +51,31 @@ static bool get_palette(scene_ctx *c, const cJSON *f, float out[3][3])
 }
 
 static const float WARM[3] = {1.0f, 0.6f, 0.3f};
-enum { BLOCK_KEYS_MAX = FORMULA_MAX_PARAMS + 8 };
+enum { BLOCK_KEYS_MAX = FORMULA_MAX_PARAMS + 32 }; /* the parameters, the common keys (16) and NULL */
 static const float BOUND_MIN = 1e-3f, BOUND_MAX = 1e6f;
 
-/* Keys every fractal reads: the palette and the glow. */
+/* Keys every fractal reads: the palette, the glow and the hit rule (a fragment's default: its renderer's,
+ * Fragmentarium's, with the renderer's Detail and MaxDistance). */
 static bool fractal_common(scene_ctx *c, const cJSON *use, scene_fractal *fr)
 {
-    return get_palette(c, use, fr->palette) && scene_get_num(c, use, "fractal", "glow", 0, 0, 100, &fr->glow) &&
-           scene_get_vec3(c, use, "fractal", "glow_color", WARM, 0, 100, fr->glow_color) &&
-           scene_get_num(c, use, "fractal", "hit_distance", 0, 0, 1, &fr->hit_distance);
+    static const char *const RULES[] = {"footprint", "fragment", NULL}, *const LOOKS[] = {"fathom", "fragment", NULL};
+    const formula *f = &fr->formula;
+    int rule = HIT_RULE_FOOTPRINT, look = LOOK_FATHOM;
+    bool ok = get_palette(c, use, fr->palette) && scene_get_num(c, use, "fractal", "glow", 0, 0, 100, &fr->glow) &&
+              scene_get_vec3(c, use, "fractal", "glow_color", WARM, 0, 100, fr->glow_color) &&
+              scene_get_num(c, use, "fractal", "hit_distance", 0, 0, 1, &fr->hit_distance) &&
+              scene_get_enum(c, use, "fractal", "hit_rule", "hit rule", RULES,
+                             f->fragment ? HIT_RULE_FRAGMENT : HIT_RULE_FOOTPRINT, &rule) &&
+              scene_get_num(c, use, "fractal", "detail", f->fragment ? f->frag_detail : -2.3f, -7, 0, &fr->detail) &&
+              scene_get_num(c, use, "fractal", "max_distance", f->fragment ? f->frag_max_distance : 100000, 1e-3f,
+                            1e6f, &fr->max_distance) &&
+              scene_get_enum(c, use, "fractal", "look", "look", LOOKS, f->frag_look ? LOOK_FRAGMENT : LOOK_FATHOM, &look);
+    fr->hit_rule = (fractal_hit_rule)rule;
+    fr->look = (fractal_look)look;
+    if (ok && fr->look == LOOK_FRAGMENT && !f->fragment)
+        ok = scene_fail(c, "fractal.look", "fragment is a Fragmentarium fragment's own renderer: %s is none (take fathom)",
+                        f->name);
+    return ok;
 }
 
 /* Fractals are drawn with material 0; a scene may omit "materials". */
@@ -146,7 +162,7 @@ static bool formula_block(scene_ctx *c, const cJSON *use, const char *path, cons
 {
     const char *keys[BLOCK_KEYS_MAX];
     int n = 0;
-    while (common[n])
+    while (common[n] && n < BLOCK_KEYS_MAX - FORMULA_MAX_PARAMS - 1)
         keys[n] = common[n], n++;
     for (int i = 0; i < f->param_count; i++)
         keys[n++] = f->params[i].key;
@@ -370,8 +386,12 @@ void scene_fractal_defines(const scene *s, strbuf *out)
             frag_literal(&f->params[i], s->fractal.values[i], v, sizeof v);
             sb_printf(out, "#define FRAG_LOCKED_%s %s\n", f->params[i].uniform, v);
         }
-    if (s->fractal.hit_distance > 0) /* an absolute hit distance (a fragment's Detail): common/march.glsl */
+    if (s->fractal.hit_distance > 0) /* an absolute hit distance: common/march.glsl */
         sb_printf(out, "#define HIT_DISTANCE %.9g\n", (double)s->fractal.hit_distance);
+    else if (s->fractal.hit_rule == HIT_RULE_FRAGMENT) /* Fragmentarium's rule (uHitRelative): common/march.glsl */
+        sb_append(out, "#define HIT_RELATIVE 1\n");
+    if (s->fractal.look == LOOK_FRAGMENT) /* the fragment's own renderer: frag/look.glsl */
+        sb_printf(out, "#define FRAG_LOOK 1\n%s", f->frag_shadow_camera ? "#define FRAG_SHADOW_CAMERA_LIGHT 1\n" : "");
     if (s->fractal.deep_now) /* a deep zoom: common/uniforms.glsl, fractal/common.glsl */
         sb_append(out, "#extension GL_ARB_gpu_shader_fp64 : require\n#define PRECISION_DOUBLE 1\n");
 }
@@ -397,6 +417,8 @@ void scene_fractal_uniforms(const scene *s, const uniform_sink *u)
 {
     const scene_fractal *f = &s->fractal;
     uniform_f(u, "uBoundRadius", f->bound_radius);
+    uniform_f(u, "uHitRelative", powf(10, f->detail)); /* common/march.glsl: Fragmentarium's rule */
+    uniform_f(u, "uFragMaxDistance", f->max_distance);
     uniform_i(u, "uFormulaLoops", f->loops);
     /* a step formula's loop spends its share each iteration: 1 unless @loops says its step loops too */
     uniform_i(u, "uFormulaStepLoops", f->loops > f->iterations + 1 ? (f->loops - 1 + f->iterations - 1) / f->iterations : 1);

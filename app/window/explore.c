@@ -17,6 +17,7 @@
 #include "gpu/render.h"
 #include "gpu/render_probe.h"
 #include "gpu/res_heightfield.h"
+#include "scene/formula/frag.h"
 #include "scene/program.h"
 #include "view/resolution.h"
 #include "window/explore_app.h"
@@ -536,7 +537,7 @@ bool explore_run(const cli_options *opt, err_t *err)
     costs_init(&app.cost);
     framestats_init(&app.stats, opt->frames);
     app.ask.pending_scene = -1;
-    app.fragment_preset = 0; /* a fragment opens at its Default (usually its first) preset */
+    app.fragment_preset = -1; /* the preset showing (a fragment's: below) */
     app.unresolved = -1;
     app.exposure = DEFAULT_EXPOSURE;
     app.res = res_init((float)(opt->fps ? opt->fps : DEFAULT_FPS), RES_MIN_SCALE);
@@ -548,6 +549,8 @@ bool explore_run(const cli_options *opt, err_t *err)
         framestats_free(&app.stats);
         return false;
     }
+    if (program_is_fractal(first.program) && first.fractal.formula.fragment) /* where its presets start (J) */
+        app.fragment_preset = frag_preset_index(first.fractal.formula.file, opt->view_name);
     scene_free(&first);
     if (!gpu_open(&(gpu_desc){.width = opt->width, .height = opt->height, .title = "fathom"}, err)) {
         framestats_free(&app.stats);

@@ -31,6 +31,8 @@
 //   PROGRAM_SLOW_BOUND map() is a bound far below the distance (a globally Lipschitz-scaled field):
 //                      shadow rays step off by the offset in map()'s units (common/lights.glsl);
 //                      with NEAR_MIN_STEP its hits converge within the step budget (march.glsl).
+//   PROGRAM_PIXEL_START a function (vec3 ro, vec3 rd) run once a pixel sample with its primary ray, before any
+//                      march (a fragment's 3D.frag values: frag/glue.glsl).
 //   PROGRAM_ALBEDO     vec3 programAlbedo(vec3 p, vec3 n, vec3 dpdx, vec3 dpdy, vec3 base)
 //                      colours its surface (fractals: orbit traps; terrains: layers); textures then
 //                      do not apply.

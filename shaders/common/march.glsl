@@ -29,7 +29,9 @@ float positionFloor(float t)
 
 float hitEps(float t)
 {
-#ifdef HIT_DISTANCE // an absolute hit distance (a fragment's Detail: app/scene/formula/frag.h), not the footprint rule
+#ifdef HIT_RELATIVE // Fragmentarium's rule: relative to the distance travelled (castRay below; fractal/common.glsl)
+    return max(uHitRelative * t, positionFloor(t));
+#elif defined(HIT_DISTANCE) // an absolute hit distance (fractal.hit_distance), not the footprint rule
     return max(HIT_DISTANCE, positionFloor(t));
 #else
     return max(max(float(HIT_K) * footprintAt(t), HIT_EPS_MIN), positionFloor(t));
@@ -124,7 +126,7 @@ float refineCrossing(vec3 ro, vec3 rd, float side, float a, float fa, float b, f
     return min(a + da * float(STEP_FACTOR), b);
 }
 
-#ifndef PROGRAM_CAST_RAY // a program may march its own way (terrain)
+#ifndef PROGRAM_CAST_RAY
 // The distance the march steps by. A program may give a bound along the ray instead of around the
 // point (PROGRAM_MAP_ALONG: vec2 mapAlong(vec3 p, vec3 dir), no surface within that distance along
 // dir: Galin et al. 2020, "Segment tracing using local Lipschitz bounds"), which can be far longer
@@ -134,6 +136,47 @@ vec2 marchMap(vec3 p, vec3 dir) { return mapAlong(p, dir); }
 #else
 vec2 marchMap(vec3 p, vec3 dir) { return map(p); }
 #endif
+#endif
+
+#if defined(HIT_RELATIVE) && !defined(PROGRAM_CAST_RAY)
+// Fragmentarium's DE renderers' rule (app/scene/formula/frag.h), as their trace() has it (DE-Raytracer
+// of Syntopia's Fragmentarium and of 3Dickulus' FragM; Fast-, Soft-, IBL- and the DE-Kn renderers alike):
+// each step adds d·F (F = FudgeFactor, the step factor) to t, and the ray has hit when that step is
+// below 10^Detail · t, t taken after the step; the hit is then moved back by the difference,
+// t − (10^Detail·t − d·F). A ray that runs out of MaxRaySteps (MAX_STEPS), or goes past MaxDistance, is
+// background: no tail, no refinement. (The renderers also shorten the first step by a random share,
+// Dither, against banding; fathom's jittered samples do without.) The bounding sphere of fathom's own
+// formulas is stepped through, never stopped on.
+Hit castRay(vec3 ro, vec3 rd, float tmax, float side, float pathT)
+{
+    Hit h = Hit(false, 0.0, -1.0, 0, false, 0);
+    float t = 0.0;
+    tmax = min(tmax, uFragMaxDistance);
+    for (int i = 0; i < MAX_STEPS && loopSpend(1); i++) {
+        h.steps = i + 1;
+        vec2 d = map(ro + rd * t);
+        float step = side * d.x * float(STEP_FACTOR);
+        bool bound = isBound(d);
+        h.boundSteps += bound ? 1 : 0;
+        t += step;
+        float eps = hitEps(pathT + t);
+        if (!bound && step < eps) {
+            h.hit = true;
+            h.mat = d.y;
+            t = max(t - (eps - step), 0.0);
+            break;
+        }
+        if (t > tmax)
+            break;
+    }
+    if (loopOut) { // out of the loop budget (common/budget.glsl): unresolved
+        h.hit = false;
+        h.exhausted = true;
+    }
+    h.t = t;
+    return h;
+}
+#elif !defined(PROGRAM_CAST_RAY) // a program may march its own way (terrain)
 
 // A ray that runs out of MAX_STEPS short of tmax has found nothing yet: it is neither a hit nor a miss.
 // It goes on, up to TAIL_STEPS more, taking steps of at least TAIL_MIN_STEP thresholds (so it cannot

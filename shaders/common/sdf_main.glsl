@@ -439,6 +439,10 @@ vec3 coveredRadiance(Path P, Ray ray, vec3 radiance)
 }
 #endif
 
+#if defined(FRAG_LOOK) && !INTEGRATOR
+#include "frag/look.glsl" // a fragment's own look (fractal.look = fragment)
+#endif
+
 // One sample of the pixel whose centre is fragCoord (gl_FragCoord's convention: pixel + 0.5): its
 // colour (alpha 1: one sample) and the AOVs of the centre ray's own path. The entry points (sdf.frag,
 // sdf.comp) write them to the targets.
@@ -452,6 +456,9 @@ void renderPixel(vec2 fragCoord, out vec4 color, out vec4 normalDepth, out vec4 
         albedo = vec4(0.0);
         return;
     }
+#ifdef PROGRAM_PIXEL_START // what a program sets from the pixel's ray (a fragment's 3D.frag values)
+    PROGRAM_PIXEL_START(ray.o, ray.d);
+#endif
 #if INTEGRATOR
     PathSample S = tracePathSample(ray, fragCoord + uTileOffset); // seeded by the whole image's pixel
     color = vec4(S.radiance, 1.0);
@@ -459,6 +466,10 @@ void renderPixel(vec2 fragCoord, out vec4 color, out vec4 normalDepth, out vec4 
     bool cut = loopOut || loopsWereCut(); // common/budget.glsl: flagged, as below
     aux = vec4(cut ? -float(S.steps) - 0.5 : S.exhausted ? -float(S.steps) : float(S.steps), S.exitDir);
     albedo = vec4(S.firstAlbedo, 0.0);
+    return;
+#endif
+#if defined(FRAG_LOOK) && !INTEGRATOR // a fragment's own look: its renderer's image (frag/look.glsl)
+    fragPixel(ray.o, ray.d, color, normalDepth, aux, albedo);
     return;
 #endif
     Path P = startPath(ray);

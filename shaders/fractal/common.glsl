@@ -29,6 +29,8 @@ uniform int uFormulaLoops;  // loop iterations one estimate runs: the formula's 
 uniform int uFormulaStepLoops; // of them, those of one step of a step formula (1: its loop's own)
 uniform vec3 uPalette[3];   // orbit-trap colours: near, middle, far
 uniform vec2 uTrapRange;    // the formula's @trap: the orbit trap's values spread over the palette
+uniform float uHitRelative; // 10^fractal.detail: Fragmentarium's hit rule (common/march.glsl, HIT_RELATIVE)
+uniform float uFragMaxDistance; // fractal.max_distance: rays past it are background under that rule
 
 // A zoom goes as deep as positions resolve (common/march.glsl's positionFloor), not to a fixed
 // threshold in metres: the fractal has detail at every scale.

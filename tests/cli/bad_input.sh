@@ -71,6 +71,14 @@ expect backend-env-bad 1 "FATHOM_BACKEND='vulkan' is not a backend" 1 -- env FAT
 expect backend-bad 2 "bad --backend 'cuda': use auto, fragment or compute" 1 -- "$fathom" --backend cuda $out
 expect unknown-set-key 1 "materials.glass.iro: unknown key 'iro'" 1 -- "$fathom" --set materials.glass.iro=1.3 $out
 expect bad-set-value 1 "materials.glass.ior: expected a number from 1 to 4 (from the override materials.glass.ior=9)" 1 -- "$fathom" --set materials.glass.ior=9 $out
+# a fragment's own look is a fragment's only; the hit rules are two, by name; Detail within the renderers' range,
+# and the user's --set named as the culprit, not a line of the preset it overrides
+expect look-not-fragment 1 "fractal.look: fragment is a Fragmentarium fragment's own renderer: mandelbulb is none (take fathom)" 1 -- \
+    "$fathom" --scene mandelbulb --set fractal.look=fragment $out
+expect hit-rule-unknown 1 "fractal.hit_rule: unknown hit rule 'relative' (known: footprint, fragment)" 1 -- \
+    "$fathom" --scene mandelbulb --set fractal.hit_rule=relative $out
+expect detail-above-range 1 "fractal.detail: expected a number from -7 to 0 (from the override fractal.detail=0.5)" 1 -- \
+    "$fathom" --scene "$src/docs/fragments/mandelbox.frag" --set fractal.detail=0.5 $out
 expect unwritable-output 1 "folder '$tmp/no/such/dir' does not exist: make it (mkdir -p '$tmp/no/such/dir')" 1 -- "$fathom" --output "$tmp/no/such/dir/out.png" --size 33x21 --quiet
 
 # ---- hostile files ------------------------------------------------------------------------------

@@ -1,6 +1,6 @@
 /* Fragmentarium fragments drawn (scene/formula/frag.h, shaders/frag/): what each must draw, against closed
- * forms — a sphere fragment's depth at every pixel, Detail's absolute hit distance growing its
- * silhouette by exactly that distance, the renderers' orbit-trap colouring and the baseColor() hook
+ * forms — a sphere fragment's depth at every pixel, an absolute hit distance (fractal.hit_distance)
+ * growing its silhouette by exactly that distance, the renderers' orbit-trap colouring and the baseColor() hook
  * as albedo, init() once a pixel, MathUtils' rotation convention through a helper from the fragment's
  * own folder, a Locked parameter recompiled — and, when FATHOM_FRAG_CORPUS names a folder (the
  * public collections, not committed), every DE fragment under it: opened, compiled, drawn at its
@@ -10,14 +10,17 @@
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <cmocka.h>
 
 #include "gltest.h"
+#include "data/media/image_io.h"
 #include "gpu/render.h"
 #include "scene/formula/frag.h"
 #include "view/shot.h"
@@ -101,7 +104,7 @@ static void sphere_depth(void **st)
     scene_free(&s);
 }
 
-/* Detail: a ray stops where DE < 10^Detail, so the silhouette is the sphere grown by that distance. */
+/* fractal.hit_distance: a ray stops where DE < that distance, so the silhouette is the sphere grown by it. */
 static void absolute_hit_distance(void **st)
 {
     (void)st;
@@ -130,7 +133,10 @@ static void centre_albedo(const scene *s, float out[3])
     free(aov);
 }
 
-static float decode(double c) { return (float)pow(fmin(fmax(c, 0), 1), 2.2); }
+/* A fragment's colour as albedo: to the power Gamma (2 by default) in its own look (frag/look.glsl), from
+ * sRGB-ish display values (2.2) in fathom's (frag/glue.glsl). */
+static double decode_power = 2.0;
+static float decode(double c) { return (float)pow(fmin(fmax(c, 0), 1), decode_power); }
 
 static void trap_colouring(void **st)
 {
@@ -174,6 +180,16 @@ static void hooks(void **st)
     assert_float_equal(got[1], decode(0.25), 2e-3);
     assert_float_equal(got[2], decode(0.4), 2e-3);
     scene_free(&s);
+    /* fathom's look: the same colour, decoded as display values */
+    const char *fathom[] = {"fractal.Radius=0.5", "fractal.OrbitStrength=0.5", "fractal.BaseColor=1,0,0",
+                            "fractal.look=fathom"};
+    frag_scene("hooks.frag", fathom, 4, &s);
+    centre_albedo(&s, got);
+    decode_power = 2.2;
+    assert_float_equal(got[0], decode(0.6), 2e-3);
+    assert_float_equal(got[2], decode(0.4), 2e-3);
+    decode_power = 2.0;
+    scene_free(&s);
 }
 
 /* MathUtils' rotationMatrix3(z, 90°) is Fragmentarium's: the transpose of Rodrigues', so (1, 0, 0)
@@ -209,6 +225,65 @@ static void locked(void **st)
     frag_scene("locked.frag", sets, 1, &s);
     assert_true(against_sphere(&s, &cam, 0, 0, 0, 0.5, 0, &worst) == 0);
     scene_free(&s);
+}
+
+/* ---- textures --------------------------------------------------------------------------------------- */
+
+/* The textures' folder, made before and removed after the test (whether it passes or not). */
+static char tex_dir[] = "/tmp/fathom-fragtex-XXXXXX";
+static int make_tex_dir(void **st)
+{
+    (void)st;
+    memcpy(tex_dir, "/tmp/fathom-fragtex-XXXXXX", sizeof tex_dir);
+    return mkdtemp(tex_dir) ? 0 : -1;
+}
+static int remove_tex_dir(void **st)
+{
+    (void)st;
+    char path[PATH_MAX_LEN + 32];
+    for (const char *const *f = (const char *const[]){"quad.png", "tex.frag", NULL}; *f; f++)
+        snprintf(path, sizeof path, "%s/%s", tex_dir, *f), remove(path);
+    return rmdir(tex_dir);
+}
+
+/* A fragment's texture (uniform sampler2D tex; file[quad.png]) bound as FragM binds it: the image's bytes
+ * as they are (not decoded from sRGB), its bottom row first (texture() at (0.25, 0.25) is the lower-left
+ * texel), and a #TexParameter honoured (nearest: the texel itself between texel centres). */
+static void textures(void **st)
+{
+    (void)st;
+    char png[PATH_MAX_LEN + 16], frag[PATH_MAX_LEN + 16], json[2 * PATH_MAX_LEN];
+    const uint8_t px[16] = {200, 0, 0, 255, 0, 200, 0, 255, 0, 0, 200, 255, 200, 200, 200, 255}; /* red green / blue white */
+    err_t e;
+    snprintf(png, sizeof png, "%s/quad.png", tex_dir);
+    if (!image_write_u8(png, 2, 2, 4, px, &e))
+        fail_msg("%s", e.msg);
+    snprintf(frag, sizeof frag, "%s/tex.frag", tex_dir);
+    FILE *f = fopen(frag, "w");
+    assert_non_null(f);
+    fputs("#define providesColor\n#include \"DE-Raytracer.frag\"\nuniform sampler2D tex; file[quad.png]\n"
+          "#TexParameter tex GL_TEXTURE_MAG_FILTER GL_NEAREST\n"
+          "uniform vec2 At; slider[(0,0),(0.25,0.25),(1,1)]\nfloat DE(vec3 p) { return length(p) - 1.0; }\n"
+          "vec3 baseColor(vec3 p, vec3 n) { return texture(tex, At).rgb; }\n", f);
+    fclose(f);
+    snprintf(json, sizeof json, "{\"program\": \"fractal\", \"fractal\": {\"formula\": \"%s\"}}", frag);
+    static const struct { const char *at; float want[3]; } CASES[] = {
+        {"fractal.At=0.25,0.25", {0, 0, 200}}, /* the lower-left texel: blue */
+        {"fractal.At=0.75,0.75", {0, 200, 0}}, /* the upper-right: green */
+        {"fractal.At=0.6,0.4", {200, 200, 200}}, /* between texel centres, nearest: the lower-right, white */
+    };
+    for (size_t i = 0; i < sizeof CASES / sizeof *CASES; i++) {
+        scene s;
+        const char *sets[] = {"quality.spp=1", "effects.aa=off", "fractal.OrbitStrength=1", CASES[i].at};
+        load_text(json, sets, 4, &s);
+        float got[3];
+        centre_albedo(&s, got);
+        for (int k = 0; k < 3; k++) /* the look's albedo: the colour to the power Gamma (2) */
+            if (fabsf(got[k] - powf(CASES[i].want[k] / 255.0f, 2)) > 2e-3f)
+                fail_msg("%s: channel %d is %.4f, expected %.4f", CASES[i].at, k, (double)got[k],
+                         (double)powf(CASES[i].want[k] / 255.0f, 2));
+        scene_free(&s);
+    }
 }
 
 /* ---- the collections (FATHOM_FRAG_CORPUS) ----------------------------------------------------------- */
@@ -330,7 +405,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(sphere_depth),        cmocka_unit_test(absolute_hit_distance), cmocka_unit_test(trap_colouring),
         cmocka_unit_test(hooks),               cmocka_unit_test(rotation_convention),   cmocka_unit_test(locked),
-        cmocka_unit_test(collections),
+        cmocka_unit_test_setup_teardown(textures, make_tex_dir, remove_tex_dir), cmocka_unit_test(collections),
     };
     return cmocka_run_group_tests(tests, gl_setup, gl_teardown);
 }

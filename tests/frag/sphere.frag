@@ -31,6 +31,7 @@ FudgeFactor = 0.8
 Detail = -3
 MaxRaySteps = 300
 Specular = 0.4
+Reflection = 0.2
 #endpreset
 
 #preset Rolled

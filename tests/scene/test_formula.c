@@ -171,7 +171,8 @@ static void formula_scenes(void **st)
     scene_text_error(BOX, order, 2, "fractal.min_radius must be below fixed_radius");
     const char *unknown[] = {"fractal.power=8"};
     scene_text_error(BOX, unknown, 1, "unknown key 'power' (allowed here: formula, iterations, bound_radius, palette, "
-                                  "glow, glow_color, julia, julia_c, hybrid, steps, precision, hit_distance, scale, min_radius, "
+                                  "glow, glow_color, julia, julia_c, hybrid, steps, precision, hit_distance, hit_rule, detail, "
+                                  "max_distance, look, scale, min_radius, "
                                   "fixed_radius, fold_limit)");
     /* the formula switched by an override: its own keys apply */
     const char *bulb[] = {"fractal.formula=mandelbulb", "fractal.power=6"};

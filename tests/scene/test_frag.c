@@ -13,12 +13,14 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cmocka.h>
 
 #include "scene/formula/formula.h"
 #include "scene/formula/frag.h"
+#include "scene/scene.h"
 #include "view/camera.h"
 #include "view/shot.h"
 
@@ -150,7 +152,7 @@ static int remove_dir(void **st)
 static void refusals(void **st)
 {
     (void)st;
-    char inner[PATH_MAX_LEN], cmd[3 * PATH_MAX_LEN];
+    char inner[PATH_MAX_LEN], cmd[4 * PATH_MAX_LEN];
     snprintf(inner, sizeof inner, "%s/in", dir);
     assert_int_equal(system((snprintf(cmd, sizeof cmd, "mkdir '%s'", inner), cmd)), 0);
     const char *de = "#include \"DE-Raytracer.frag\"\nfloat DE(vec3 p) { return length(p) - 1.0; }\n";
@@ -175,7 +177,15 @@ static void refusals(void **st)
         {"token.frag", "#include \"token.txt\"\n", "#include \"token.txt\": not a .frag file"},
         /* in/Include is a planted link to the folder above: not the collection's Include folder */
         {"planted.frag", "#include \"outside.frag\"\n", "#include \"outside.frag\": no such file"},
-        {"tex.frag", "+uniform sampler2D tex; file[texture.jpg]\n", "tex.frag:3: 'sampler2D tex': a texture (file[...])"},
+        /* textures: found as includes are, images only, no more than four */
+        {"tex.frag", "+uniform sampler2D tex; file[texture.jpg]\n",
+         "tex.frag:3: texture 'tex': no such file in the fragment's folder or its collection's Include folder"},
+        {"texup.frag", "+uniform sampler2D tex; file[../x.png]\n", "texup.frag:3: texture 'tex': a '..' part"},
+        {"texabs.frag", "+uniform samplerCube sky; file[/etc/x.png]\n", "texabs.frag:3: texture 'sky': an absolute path"},
+        {"textok.frag", "+uniform sampler2D tex; file[token.txt]\n", "texture 'tex': not an image file"},
+        {"texlink.frag", "+uniform sampler2D tex; file[link.png]\n", "texture 'tex': it leads out of the fragment's folder"},
+        {"texfile.frag", "+uniform sampler2D tex; file(a.png)\n", "texture 'tex': expected file[IMAGE] after the sampler"},
+        {"texfloat.frag", "+uniform float F; file[a.png]\n", "'F': file[...] names a texture: it goes on a sampler2D"},
         {"slider.frag", "+uniform float S; slider[2,1]\n", "slider.frag:3: 'S': expected slider[LO,DEFAULT,HI]"},
         {"replace.frag", "+#replace \"a\" \"b\"\n", "#replace"},
         {"julia.frag", "+uniform float julia; slider[0,1,2]\n", "parameter 'julia': the name of a key of every fractal block"},
@@ -183,7 +193,9 @@ static void refusals(void **st)
         {"del.frag", "#include \"DE-Raytracer.frag\"\nfloat DE(vec3 p) { return 1.0; }\x7f\n", "del.frag:2: a control character (0x7f)"},
     };
     put(dir, "outside.frag", "#donotrun\nfloat leak() { return 1.0; }\n");
-    snprintf(cmd, sizeof cmd, "ln -s ../outside.frag '%s/link.frag' && ln -s .. '%s/Include'", inner, inner);
+    put(dir, "x.png", "outside the fragment's folder\n");
+    snprintf(cmd, sizeof cmd, "ln -s ../outside.frag '%s/link.frag' && ln -s .. '%s/Include' && ln -s ../x.png '%s/link.png'",
+             inner, inner, inner);
     assert_int_equal(system(cmd), 0);
     snprintf(cmd, sizeof cmd, "mkdir '%sx' && ln -s ../inx/evil.frag '%s/sib.frag'", inner, inner);
     assert_int_equal(system(cmd), 0);
@@ -201,9 +213,9 @@ static void refusals(void **st)
         if (CASES[i].want)
             refused(inner, CASES[i].name, CASES[i].want);
     }
-    /* no fixed cap below fathom's 128 (the renderer's 8 colouring parameters with them): 120 of the
-     * fragment's own open, 121 do not */
-    for (int n = 120; n <= 121; n++) {
+    /* no fixed cap below fathom's 160 (the renderer's 32 colouring and look parameters with them): 128 of
+     * the fragment's own open, 129 do not */
+    for (int n = 128; n <= 129; n++) {
         sb_free(&t);
         sb_append(&t, de);
         for (int i = 0; i < n; i++)
@@ -212,10 +224,10 @@ static void refusals(void **st)
         formula f;
         err_t e;
         bool ok = formula_load((snprintf(cmd, sizeof cmd, "%s/many.frag", inner), cmd), NULL, &f, &e);
-        if (n == 120)
-            assert_true(ok && f.param_count == 128 && formula_find(&f, "P119")->def[0] == 119);
+        if (n == 128)
+            assert_true(ok && f.param_count == 160 && formula_find(&f, "P127")->def[0] == 127);
         else
-            assert_true(!ok && strstr(e.msg, "more parameters than fathom's limit of 128"));
+            assert_true(!ok && strstr(e.msg, "more parameters than fathom's limit of 160"));
     }
     sb_free(&t);
 }
@@ -273,9 +285,10 @@ static void presets(void **st)
     assert_true(has_set(&d, "fractal.Radius=1.5"));
     assert_true(has_set(&d, "quality.step_factor=0.8"));
     assert_true(has_set(&d, "quality.max_steps=300"));
-    assert_true(has_set(&d, "fractal.hit_distance=0.001"));
+    assert_true(has_set(&d, "fractal.detail=-3")); /* Fragmentarium's rule: relative to the distance */
     assert_non_null(strstr(d.sets[0], "fractal.formula="));
-    assert_string_equal(ignored, "Specular"); /* the host's own light: fathom's stand for it */
+    assert_true(has_set(&d, "fractal.Specular=0.4")); /* the renderer's look: a parameter */
+    assert_string_equal(ignored, "Reflection"); /* a control fathom does not draw: said */
     free(ignored);
     shot_free(&d);
     sb_free(&text);
@@ -295,12 +308,80 @@ static void presets(void **st)
     assert_true(has_set(&d, "fractal.Glint=0.4,0.5,0.6,1.5")); /* RGB, then the intensity */
     assert_true(has_set(&d, "fractal.Spare=1,0.2,0.3,0.4"));   /* 9 is past the slider: clamped */
     /* Detail 2 and MaxRaySteps 100000 clamped to fathom's bounds (issue 58 item 17: dropping either survived) */
-    assert_true(has_set(&d, "fractal.hit_distance=1"));
+    assert_true(has_set(&d, "fractal.detail=0"));
+    assert_true(has_set(&d, "quality.step_factor=1")); /* silent: the renderer's FudgeFactor */
     assert_true(has_set(&d, "quality.max_steps=4096"));
     shot_free(&d);
     sb_free(&text);
     assert_false(frag_preset_shot(path, "Nope", &text, NULL, &e));
     assert_non_null(strstr(e.msg, "sphere has no preset \"Nope\" (its presets: \"Default\", \"Rolled\")"));
+}
+
+/* Where a fragment starts, as FragM starts it: the first preset whose name holds "default" (any case), else
+ * the sliders' defaults (3D.frag's camera, the renderer's MaxRaySteps 56 and FudgeFactor 1); the renderer's
+ * Detail and MaxDistance are the scene's defaults, with Fragmentarium's hit rule. */
+static void where_presets_start(void **st)
+{
+    (void)st;
+    const char *head = "#include \"Fast-Raytracer.frag\"\nfloat DE(vec3 p) { return length(p) - 1.0; }\n";
+    const char *views[] = {"#preset Wide\nEye = 0,0,-20\n#endpreset\n#preset My DEFAULT look\nEye = 0,3,-4\n"
+                           "Detail = -4\n#endpreset\n#preset Close\nEye = 0,0,-2\n#endpreset\n",
+                           "#preset Wide\nEye = 0,0,-20\n#endpreset\n#preset Close\nEye = 0,0,-2\n#endpreset\n", ""};
+    const int start[] = {1, -1, -1};
+    const double eye_y[] = {3, 0, 0}, eye_z[] = {-4, -10, -10};
+    for (int i = 0; i < 3; i++) {
+        char name[16], path[2 * PATH_MAX_LEN], text[1024];
+        snprintf(name, sizeof name, "start%d.frag", i);
+        snprintf(text, sizeof text, "%s%s", head, views[i]);
+        put(dir, name, text);
+        snprintf(path, sizeof path, "%s/%s", dir, name);
+        assert_int_equal(frag_preset_index(path, NULL), start[i]);
+        strbuf shot = {0};
+        shot_desc d;
+        err_t e;
+        if (!frag_preset_shot(path, NULL, &shot, NULL, &e) || !shot_parse(shot.data, path, &d, &e))
+            fail_msg("%s: %s", name, e.msg);
+        assert_float_equal(d.cam.position[1], eye_y[i], 1e-9);
+        assert_float_equal(d.cam.position[2], eye_z[i], 1e-9);
+        assert_float_equal(d.cam.fov_y, (float)(2 * atan(0.4)), 1e-6);
+        assert_true(has_set(&d, "quality.max_steps=56"));
+        assert_true(has_set(&d, "quality.step_factor=1"));
+        assert_true(has_set(&d, "fractal.detail=-4") == (i == 0));
+        scene s;
+        const char *sets[SHOT_SET_MAX];
+        for (int k = 0; k < d.set_count; k++)
+            sets[k] = d.sets[k];
+        if (!scene_load("fractal", sets, d.set_count, &s, &e))
+            fail_msg("%s: %s", name, e.msg);
+        assert_int_equal(s.fractal.hit_rule, HIT_RULE_FRAGMENT);
+        assert_float_equal(s.fractal.detail, i == 0 ? -4.0f : -2.3f, 1e-6);
+        assert_float_equal(s.fractal.max_distance, 100, 1e-6); /* Fast-Raytracer's MaxDistance */
+        scene_free(&s);
+        shot_free(&d);
+        sb_free(&shot);
+    }
+    char path[2 * PATH_MAX_LEN];
+    snprintf(path, sizeof path, "%s/start0.frag", dir);
+    assert_int_equal(frag_preset_index(path, "Close"), 2);
+    assert_int_equal(frag_preset_index(path, "Nope"), -1);
+    /* the collection's own DE-Raytracer says whether a shadow takes the camera light too (Syntopia's) or
+     * not (FragM's: the line commented out) */
+    for (int syntopia = 0; syntopia < 2; syntopia++) {
+        char coll[PATH_MAX_LEN], inc[PATH_MAX_LEN + 16], group[PATH_MAX_LEN + 16];
+        snprintf(coll, sizeof coll, "%s/coll%d", dir, syntopia);
+        snprintf(inc, sizeof inc, "%s/Include", coll);
+        snprintf(group, sizeof group, "%s/Group", coll);
+        assert_int_equal(mkdir(coll, 0755) | mkdir(inc, 0755) | mkdir(group, 0755), 0);
+        put(inc, "DE-Raytracer.frag", syntopia ? "\t\tambient = mix(ambient,0.0,HardShadow*shadowStrength);\n"
+                                               : "\t\t//ambient = mix(ambient,0.0,HardShadow*shadowStrength);\n");
+        put(group, "f.frag", head);
+        snprintf(path, sizeof path, "%s/f.frag", group);
+        formula f;
+        err_t e;
+        if (!formula_load(path, NULL, &f, &e))
+            fail_msg("%s", e.msg);
+        assert_int_equal(f.frag_shadow_camera, syntopia);
+    }
 }
 
 int main(void)
@@ -311,6 +392,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(refusals, make_dir, remove_dir),
         cmocka_unit_test_setup_teardown(many_fragments, make_dir, remove_dir),
         cmocka_unit_test(presets),
+        cmocka_unit_test_setup_teardown(where_presets_start, make_dir, remove_dir),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -150,6 +150,10 @@ void bench_base_value(const scene *s, const char *knob, char *out, size_t n)
         snprintf(out, n, "%s", s->terrain.maxmip ? "maxmip" : "linear");
     else if (!strcmp(knob, "iterations") && program_is_fractal(s->program))
         snprintf(out, n, "%d", s->fractal.iterations);
+    else if (!strcmp(knob, "hit_rule") && program_is_fractal(s->program))
+        snprintf(out, n, "%s", s->fractal.hit_rule == HIT_RULE_FRAGMENT ? "fragment" : "footprint");
+    else if (!strcmp(knob, "detail") && program_is_fractal(s->program))
+        snprintf(out, n, "%g", (double)s->fractal.detail);
     else if (a && !strncmp(knob, "fx_", 3))
         snprintf(out, n, "%s", a->on); /* swept only where the scene uses it */
     else if (knob_from_name(knob, &k))

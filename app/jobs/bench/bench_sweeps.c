@@ -63,8 +63,15 @@ int bench_list_sweeps(const scene *s, bench_sweep *out, bool *applies)
         applies[n++] = true;
         p += len + (p[len] == ';');
     }
-    if (program_is_fractal(s->program) && n < BENCH_MAX_SWEEPS - 1)
+    if (program_is_fractal(s->program) && n < BENCH_MAX_SWEEPS - 3) {
         fractal_iterations_sweep(&s->fractal.formula, &out[n]), applies[n++] = true;
+        /* the hit rules side by side (a fragment's by default; any fractal's with --knob), and the
+         * Fragmentarium rule's Detail where it is the rule */
+        out[n] = (bench_sweep){.name = "hit_rule", .key = "fractal.hit_rule", .values = "footprint,fragment"};
+        applies[n++] = s->fractal.formula.fragment;
+        out[n] = (bench_sweep){.name = "detail", .key = "fractal.detail", .values = "-4,-3.5,-3,-2.5,-2"};
+        applies[n++] = s->fractal.hit_rule == HIT_RULE_FRAGMENT;
+    }
     /* the model's approximations of light transport that are effects (fx_NAME), off and on (each
      * priced against the path tracer by bench --truth path): only those the scene uses */
     static const bench_approximation MODEL[] = {

@@ -17,7 +17,7 @@ typedef struct bench_sweep {
     char name[32], key[64], values[256];
     bool own; /* resolution_scale: rendered smaller and upscaled, no --set */
 } bench_sweep;
-enum { BENCH_MAX_SWEEPS = KNOB_COUNT + 8 };
+enum { BENCH_MAX_SWEEPS = KNOB_COUNT + 10 };
 
 /* Every sweep the bench knows for scene s (at most BENCH_MAX_SWEEPS); `applies` says which run by default. */
 int bench_list_sweeps(const scene *s, bench_sweep *out, bool *applies);

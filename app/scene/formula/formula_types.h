@@ -9,12 +9,12 @@
 
 #define UTF8_BOM "\xef\xbb\xbf"
 
-enum { FORMULA_MAX_PARAMS = 128, FORMULA_NAME_MAX = 64, FORMULA_KEY_MAX = 48, FORMULA_TEXT_MAX = 200,
+enum { FORMULA_MAX_PARAMS = 160, FORMULA_NAME_MAX = 64, FORMULA_KEY_MAX = 48, FORMULA_TEXT_MAX = 200,
        FORMULA_MAX_REQUIRES = 4, FORMULA_EXPR_MAX = 160, FORMULA_LOOPS_MAX = 1 << 20 };
 
 /* The keys of the fractal block that are not a formula's parameters. */
 #define FORMULA_COMMON_KEYS "formula", "iterations", "bound_radius", "palette", "glow", "glow_color", "julia", \
-    "julia_c", "hybrid", "steps", "precision", "hit_distance"
+    "julia_c", "hybrid", "steps", "precision", "hit_distance", "hit_rule", "detail", "max_distance", "look"
 
 /* FORMULA_VEC2 and FORMULA_VEC4 and FORMULA_COLOR4 (an RGB colour and an intensity in w, Fragmentarium's
  * color[LO,DEFAULT,HIGH,R,G,B]) come from fragments (frag.h). */
@@ -44,6 +44,15 @@ typedef struct formula_require {
     bool less; /* lhs < rhs, else lhs > rhs */
 } formula_require;
 
+/* A Fragmentarium fragment's texture (uniform sampler2D NAME; file[PATH], or samplerCube) and the host's
+ * #TexParameter lines (frag.h). */
+enum { FRAG_TEXTURES_MAX = 4, FRAG_TEXPARAMS_MAX = 16, FRAG_TEXPARAM_MAX = 40 };
+typedef struct frag_texture {
+    char name[FORMULA_KEY_MAX]; /* the sampler uniform's */
+    char path[PATH_MAX_LEN];    /* the file's real path, inside the fragment's folder or its collection's Include */
+    bool cube;                  /* samplerCube: six square faces stacked top to bottom, +X -X +Y -Y +Z -Z */
+} frag_texture;
+
 typedef struct formula {
     char name[FORMULA_NAME_MAX]; /* the file's name without .glsl */
     char file[PATH_MAX_LEN];     /* for #include: "fractal/NAME.glsl" under shaders/, or an absolute path */
@@ -55,6 +64,12 @@ typedef struct formula {
     char loops[FORMULA_EXPR_MAX]; /* @loops: loop iterations one estimate runs (an expression) */
     bool step_formula;            /* formulaStep and the loop (@de), not its own formulaDE */
     bool fragment;                /* a Fragmentarium fragment (frag.h): file is its absolute path */
+    float frag_detail, frag_max_distance; /* its DE renderer's Detail and MaxDistance defaults (frag.h) */
+    bool frag_look;               /* its renderer lights as DE-Raytracer does: its own look is the default */
+    bool frag_shadow_camera;      /* its collection's DE-Raytracer shadows the camera light too (Syntopia's) */
+    int frag_texture_count, frag_texparam_count;
+    frag_texture frag_textures[FRAG_TEXTURES_MAX];
+    char frag_texparams[FRAG_TEXPARAMS_MAX][3][FRAG_TEXPARAM_MAX]; /* sampler, GL_TEXTURE_..., value */
     bool de_log;                  /* @de log: ½ ln r · r / dr; else r / dr */
     char escape[FORMULA_EXPR_MAX]; /* @escape: an expression of the parameters */
     bool deep;                    /* @deep: compiles in double */

@@ -21,30 +21,36 @@
 enum { FRAG_FILE_MAX = 512 * 1024, FRAG_STATEMENTS_MAX = 2000, FRAG_DEPTH_MAX = 8, FRAG_TABLE_MAX = 48 };
 
 /* Fathom's compatible include set: the name a fragment includes -> fathom's file under shaders/frag/.
- * Every DE renderer of the public collections maps to the one DE renderer contract. */
-static const struct { const char *name, *file; } COMPAT[] = {
-    {"MathUtils.frag", "math_utils.frag"},
-    {"Complex.frag", "complex.frag"},
-    {"DE-Raytracer.frag", "raytracer.frag"},
-    {"DE-Raytracer-v0.9.1.frag", "raytracer_v091.frag"},
-    {"DE-Raytracer-Slicer.frag", "raytracer_slicer.frag"},
-    {"De-Raytracer-Slicer.frag", "raytracer_slicer.frag"},
-    {"DE-Raytracer-v0.9.10.frag", "raytracer.frag"},
-    {"DE-RaytracerX.frag", "raytracer.frag"},
-    {"Fast-Raytracer.frag", "raytracer.frag"},
-    {"Fast-Raytracerexp.frag", "raytracer.frag"},
-    {"Fast-Raytracer-with-Palette.frag", "raytracer.frag"},
-    {"Soft-Raytracer.frag", "raytracer.frag"},
-    {"Sky-Pathtracer.frag", "raytracer.frag"},
-    {"DE-Kn2.frag", "raytracer.frag"},
-    {"DE-Kn2cr11.frag", "raytracer.frag"},
-    {"DE-Kn2exp.frag", "raytracer.frag"},
-    {"DE-Kn9.frag", "raytracer.frag"},
-    {"DE-PK-1.1.9.frag", "raytracer.frag"},
-    {"DE-Kn2ColorandHeightmap.frag", "raytracer.frag"},
-    {"IBL-Raytracer.frag", "raytracer.frag"},
-    {"QuilezLib.frag", "quilez.frag"},
-    {"Classic-Noise.frag", "classic_noise.frag"},
+ * Every DE renderer of the public collections maps to the one DE renderer contract; `far` is the
+ * renderer's MaxDistance (rays past it are background: DE-Raytracer.frag's trace(); Syntopia's
+ * DE-Raytracer and DE-RaytracerX 100000, FragM's DE-Kn2 family a slider at 20, the others 100). Every one
+ * of them has Detail -2.3, FudgeFactor 1 and MaxRaySteps 56 by default (frag_presets.c). `look`: the
+ * renderer lights as DE-Raytracer does (its lighting(): shaders/frag/look.glsl), so a fragment's own look
+ * is its default; the DE-Kn renderers (point lights, ambient light, clouds) and the Sky path tracer light
+ * otherwise, and their fragments start in fathom's look. */
+static const struct { const char *name, *file; float far; bool look; } COMPAT[] = {
+    {"MathUtils.frag", "math_utils.frag", 0, false},
+    {"Complex.frag", "complex.frag", 0, false},
+    {"DE-Raytracer.frag", "raytracer.frag", 100000, true},
+    {"DE-Raytracer-v0.9.1.frag", "raytracer_v091.frag", 100, true},
+    {"DE-Raytracer-Slicer.frag", "raytracer_slicer.frag", 100, true},
+    {"De-Raytracer-Slicer.frag", "raytracer_slicer.frag", 100, true},
+    {"DE-Raytracer-v0.9.10.frag", "raytracer.frag", 100, true},
+    {"DE-RaytracerX.frag", "raytracer.frag", 100000, true},
+    {"Fast-Raytracer.frag", "raytracer.frag", 100, true},
+    {"Fast-Raytracerexp.frag", "raytracer.frag", 100, true},
+    {"Fast-Raytracer-with-Palette.frag", "raytracer.frag", 100, true},
+    {"Soft-Raytracer.frag", "raytracer.frag", 100, true},
+    {"Sky-Pathtracer.frag", "raytracer.frag", 100, false},
+    {"DE-Kn2.frag", "raytracer.frag", 20, false},
+    {"DE-Kn2cr11.frag", "raytracer.frag", 20, false},
+    {"DE-Kn2exp.frag", "raytracer.frag", 20, false},
+    {"DE-Kn9.frag", "raytracer.frag", 20, false},
+    {"DE-PK-1.1.9.frag", "raytracer.frag", 20, false},
+    {"DE-Kn2ColorandHeightmap.frag", "raytracer.frag", 20, false},
+    {"IBL-Raytracer.frag", "raytracer.frag", 100, true},
+    {"QuilezLib.frag", "quilez.frag", 0, false},
+    {"Classic-Noise.frag", "classic_noise.frag", 0, false},
 };
 
 /* The macros Fragmentarium's includes give every fragment (3D.frag's PI, MathUtils' FLT_MAX): defined
@@ -224,6 +230,8 @@ static bool resolve(frag_ctx *x, const char *inc, const char *home, char *path, 
     for (size_t i = 0; i < sizeof COMPAT / sizeof *COMPAT; i++)
         if (!strcasecmp(inc, COMPAT[i].name)) { /* Fragmentarium on Windows reads "De-Raytracer.frag" too */
             *ours = true;
+            if (COMPAT[i].far > 0)
+                x->f->frag_max_distance = COMPAT[i].far, x->f->frag_look = COMPAT[i].look;
             if (snprintf(path, n, "%s/shaders/frag/%s", util_data_dir(), COMPAT[i].file) >= (int)n)
                 return *why = "the path is too long", false;
             char real[PATH_MAX];
@@ -232,21 +240,32 @@ static bool resolve(frag_ctx *x, const char *inc, const char *home, char *path, 
             memcpy(path, real, strlen(real) + 1);
             return true;
         }
-    if (inc[0] == '/' || !inc[0])
-        return *why = "an absolute path", false;
     size_t len = strlen(inc);
-    if (len < 6 || strcmp(inc + len - 5, ".frag")) /* only fragments: never a token file's lines in an error */
+    if (inc[0] != '/' && (len < 6 || strcmp(inc + len - 5, ".frag"))) /* never a token file's lines in an error */
         return *why = "not a .frag file", false;
-    for (const char *c = inc; *c; c++)
+    if (frag_find_file(x, inc, home, path, n, why))
+        return true;
+    if (strcmp(*why, "no such file"))
+        return false;
+    return *why = "no such file in the fragment's folder or its collection's Include folder, and not one of "
+                  "fathom's include set (MathUtils.frag, Complex.frag, QuilezLib.frag, Classic-Noise.frag, "
+                  "DE-Raytracer.frag and the other DE renderers)", false;
+}
+
+bool frag_find_file(const frag_ctx *x, const char *rel, const char *home, char *path, size_t n, const char **why)
+{
+    if (rel[0] == '/' || !rel[0])
+        return *why = "an absolute path", false;
+    for (const char *c = rel; *c; c++)
         if (!isalnum((unsigned char)*c) && !strchr("_-. /", *c))
             return *why = "a character other than letters, digits, '_', '-', '.', ' ' and '/'", false;
-    for (const char *c = inc; c; c = strchr(c, '/'), c = c ? c + 1 : NULL)
+    for (const char *c = rel; c; c = strchr(c, '/'), c = c ? c + 1 : NULL)
         if (!strncmp(c, "..", 2) && (c[2] == '/' || c[2] == '\0'))
             return *why = "a '..' part", false;
     const char *dirs[2] = {home, x->include_dir[0] ? x->include_dir : NULL}, *roots[2] = {x->root, x->include_dir};
     for (int i = 0; i < 2; i++) {
         char joined[PATH_MAX_LEN], real[PATH_MAX];
-        if (!dirs[i] || !util_join(dirs[i], inc, joined, sizeof joined) || !realpath(joined, real))
+        if (!dirs[i] || !util_join(dirs[i], rel, joined, sizeof joined) || !realpath(joined, real))
             continue;
         size_t r = strlen(roots[i]);
         if (strncmp(real, roots[i], r) || real[r] != '/' || strlen(real) >= n)
@@ -254,9 +273,7 @@ static bool resolve(frag_ctx *x, const char *inc, const char *home, char *path, 
         memcpy(path, real, strlen(real) + 1);
         return true;
     }
-    return *why = "no such file in the fragment's folder or its collection's Include folder, and not one of "
-                  "fathom's include set (MathUtils.frag, Complex.frag, QuilezLib.frag, Classic-Noise.frag, "
-                  "DE-Raytracer.frag and the other DE renderers)", false;
+    return *why = "no such file", false;
 }
 
 static bool is_dir(const char *path)
@@ -289,6 +306,29 @@ static void include_dir(frag_ctx *x)
             return;
         memcpy(dir, parent, sizeof dir);
     }
+}
+
+/* Whether the collection's own DE-Raytracer takes the camera light away in shadow, as Syntopia's Fragmentarium
+ * does (its lighting(): "ambient = mix(ambient,0.0,HardShadow*shadowStrength);"); FragM's keeps it (the line
+ * commented out), and so does fathom where no collection says (shaders/frag/look.glsl). */
+static bool shadows_camera_light(const frag_ctx *x)
+{
+    static const char LINE[] = "ambient = mix(ambient,0.0,HardShadow*shadowStrength)";
+    char path[PATH_MAX_LEN], real[PATH_MAX], *text;
+    err_t e;
+    size_t r = strlen(x->include_dir);
+    if (!r || !util_join(x->include_dir, "DE-Raytracer.frag", path, sizeof path) || !realpath(path, real) ||
+        strncmp(real, x->include_dir, r) || real[r] != '/' || !frag_read(real, real, &text, &e))
+        return false;
+    bool yes = false;
+    for (const char *c = strstr(text, LINE); c && !yes; c = strstr(c + 1, LINE)) {
+        const char *start = c;
+        while (start > text && start[-1] != '\n')
+            start--;
+        yes = strspn(start, " \t") == (size_t)(c - start); /* not commented out */
+    }
+    free(text);
+    return yes;
 }
 
 /* "#include "X"" in file `shown` (folder home): translates X (once) and writes its include line. */
@@ -344,6 +384,8 @@ static bool directive(frag_ctx *x, const char *code, const char *home, const cha
         frag_add_name(&x->macros, name, strspn(name, "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_"));
         return false;
     }
+    if (!strncmp(p, "TexParameter", 12)) /* a texture's filter or wrap: kept for the GPU (blanked here) */
+        frag_texparameter(x, p + 12);
     size_t k = 0;
     while (k < sizeof HOST / sizeof *HOST && strncmp(p, HOST[k], strlen(HOST[k])))
         k++;
@@ -496,7 +538,8 @@ bool frag_load(const char *path, formula *f, err_t *err)
     frag_ctx *x = calloc(1, sizeof *x);
     if (!x)
         return err_set(err, "out of memory");
-    *f = (formula){.iterations = 1, .iterations_lo = 1, .iterations_hi = 1, .fragment = true};
+    *f = (formula){.iterations = 1, .iterations_lo = 1, .iterations_hi = 1, .fragment = true, .frag_detail = -2.3f,
+                   .frag_max_distance = 100000};
     x->f = f, x->err = err;
     const char *base = strrchr(path, '/');
     base = base ? base + 1 : path;
@@ -510,7 +553,7 @@ bool frag_load(const char *path, formula *f, err_t *err)
     util_dirname(path, dir, sizeof dir);
     bool ok = realpath(dir, x->root) != NULL || err_set(err, "%s: its folder cannot be read", path);
     if (ok)
-        include_dir(x);
+        include_dir(x), f->frag_shadow_camera = shadows_camera_light(x);
     ok = ok && frag_translate(x, path, base, false, 0);
     if (ok && !x->has_de)
         ok = err_set(err, "%s: no float DE(vec3 p): fathom opens distance-estimated fragments", base);

@@ -22,7 +22,10 @@
  * without DE() or a DE renderer, textures (file[...]), a missing include (with the include chain).
  * The renderer contract (shaders/frag/raytracer.frag, shaders/frag/glue.glsl): DE() is the estimate, init()
  * (providesInit) runs once per pixel, orbitTrap colours the surface with X, Y, Z, R, BaseColor and
- * OrbitStrength, baseColor() (providesColor) is the albedo hook. Pure C. */
+ * OrbitStrength, baseColor() (providesColor) is the albedo hook. The renderers' hit rule (fractal.hit_rule
+ * = fragment: Detail relative to the distance travelled, out of steps as background: common/march.glsl)
+ * and look (fractal.look = fragment: camera and spot light, AO, fog, glow, background, post:
+ * shaders/frag/look.glsl, display.frag) are a fragment's defaults, each one setting from fathom's. Pure C. */
 #ifndef FATHOM_FRAG_H
 #define FATHOM_FRAG_H
 
@@ -55,10 +58,17 @@ void frag_literal(const formula_param *q, const float *v, char *out, size_t n);
 int frag_presets(const char *path, char names[][FRAG_PRESET_NAME_MAX], int max, err_t *err);
 
 /* The preset's view as a shot text (view/shot.h) of the fractal scene with this fragment: the camera
- * (Eye, Target, Up, FOV = tan(vertical fov / 2), Aperture, FocalPlane, EquiRectangular), Detail as
- * fractal.hit_distance = 10^Detail, FudgeFactor, MaxRaySteps, Iterations and every parameter it sets.
- * `name` NULL: the preset named Default, else the first (false with err when it has none). Lines for the
- * host's own controls (lights, tone mapping...) are listed in *ignored (malloc'd, may be NULL). */
+ * (Eye, Target, Up, FOV = tan(vertical fov / 2), Aperture, FocalPlane, EquiRectangular), Detail and
+ * MaxDistance (fractal.detail, fractal.max_distance: Fragmentarium's hit rule, a fragment's default),
+ * FudgeFactor and MaxRaySteps (quality.step_factor, quality.max_steps: the renderers' 1 and 56 where the
+ * preset is silent), Iterations and every parameter it sets. `name` NULL: where FragM starts, the first
+ * preset whose name holds "default" in any case, else the sliders' defaults (3D.frag's camera: Eye
+ * (0, 0, -10), FOV 0.4); false with err when `name` is no preset. Lines for the host's own controls
+ * (lights, tone mapping...) are listed in *ignored (malloc'd, may be NULL). */
 bool frag_preset_shot(const char *path, const char *name, strbuf *shot, char **ignored, err_t *err);
+
+/* The index among frag_presets' names of the preset frag_preset_shot(path, name) opens; -1 for the
+ * sliders' defaults (or an unreadable file). */
+int frag_preset_index(const char *path, const char *name);
 
 #endif

@@ -35,6 +35,13 @@ typedef struct frag_ctx {
 bool frag_read(const char *path, const char *shown, char **text, err_t *err);
 /* Translates the file at path (absolute; `ours`: one of fathom's include set) and its includes. */
 bool frag_translate(frag_ctx *x, const char *path, const char *shown, bool ours, int depth);
+/* A file a fragment names (an include, a texture): a plain relative name (no '/' first, no '..' part,
+ * letters, digits and "_-. /"), in home or the collection's Include folder, whose real path stays inside
+ * the fragment's folder or that Include folder; into path (absolute), or false with *why ("no such file"
+ * when it is nowhere). */
+bool frag_find_file(const frag_ctx *x, const char *rel, const char *home, char *path, size_t n, const char **why);
+/* "#TexParameter NAME GL_TEXTURE_... VALUE" (after the word): kept in the formula for the GPU. */
+void frag_texparameter(frag_ctx *x, const char *args);
 /* A "uniform ..." line (code: its code, comments blanked): a parameter and its translated line. */
 bool frag_uniform(frag_ctx *x, const char *line, const char *code, const char *shown, int n, strbuf *out);
 #endif

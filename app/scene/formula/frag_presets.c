@@ -3,6 +3,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 #include "scene/formula/frag.h"
 #include "scene/formula/frag_internal.h"
@@ -20,15 +21,30 @@ typedef struct preset {
 /* KeyFrame.001 ...: a flight's keys, not a view (left to a flight: not read yet). */
 static bool keyframe(const char *name) { return !strncmp(name, "KeyFrame", 8) || !strncmp(name, "Keyframe", 8); }
 
-/* The preset `name` (NULL: Default, else the first) of the fragment's text; false when there is none.
- * names/count: every preset's name (count may be NULL). */
+/* Whether a preset named `name` is where FragM starts: its name holds "default", in any case. */
+static bool is_default(const char *name)
+{
+    for (const char *c = name; *c; c++)
+        if (!strncasecmp(c, "default", 7))
+            return true;
+    return false;
+}
+
+/* The preset `name` of the fragment's text into out (NULL: the first whose name holds "default" in any
+ * case, as FragM starts; else none, the sliders' defaults: an empty preset named ""); false when there is
+ * no such preset. names/count: every preset's name (count may be NULL); *index (may be NULL): the one
+ * taken among them, -1 for the sliders' defaults. */
 static bool find(const char *text, const char *name, preset *out, char names[][FRAG_PRESET_NAME_MAX], int max,
-                 int *count)
+                 int *count, int *index)
 {
     char line[PRESET_LINE_MAX];
     const char *p = text;
     bool in = false, found = false, take = false;
     int n = 0;
+    if (out)
+        *out = (preset){0};
+    if (index)
+        *index = -1;
     while (frag_next_line(&p, line, sizeof line)) {
         const char *c = frag_skip(line);
         if (!in && !strncmp(c, "#preset", 7)) {
@@ -41,14 +57,16 @@ static bool find(const char *text, const char *name, preset *out, char names[][F
                 continue;
             if (names && n < max)
                 snprintf(names[n], FRAG_PRESET_NAME_MAX, "%s", this);
+            take = !found && (name ? !strcmp(this, name) : is_default(this));
+            if (take && out)
+                snprintf(out->name, sizeof out->name, "%s", this);
+            if (take && index)
+                *index = n;
+            found |= take;
             n++;
-            take = !found && out && (name ? !strcmp(this, name) : !strcmp(this, "Default") || !out->name[0]);
-            if (take)
-                *out = (preset){0}, snprintf(out->name, sizeof out->name, "%s", this);
-            found |= take && (name || !strcmp(this, "Default"));
         } else if (in && !strncmp(c, "#endpreset", 10)) {
             in = take = false;
-        } else if (in && take && out->count < PRESET_LINES_MAX) {
+        } else if (in && take && out && out->count < PRESET_LINES_MAX) {
             const char *eq = strchr(c, '=');
             if (!eq)
                 continue;
@@ -62,7 +80,7 @@ static bool find(const char *text, const char *name, preset *out, char names[][F
     }
     if (count)
         *count = n;
-    return out && out->name[0] && (found || !name);
+    return found || !name;
 }
 
 int frag_presets(const char *path, char names[][FRAG_PRESET_NAME_MAX], int max, err_t *err)
@@ -71,9 +89,21 @@ int frag_presets(const char *path, char names[][FRAG_PRESET_NAME_MAX], int max, 
     if (!frag_read(path, path, &text, err))
         return -1;
     int n = 0;
-    find(text, NULL, NULL, names, max, &n);
+    find(text, NULL, NULL, names, max, &n, NULL);
     free(text);
     return n < max ? n : max;
+}
+
+int frag_preset_index(const char *path, const char *name)
+{
+    char *text;
+    err_t e;
+    int index = -1;
+    if (frag_read(path, path, &text, &e)) {
+        find(text, name, NULL, NULL, 0, NULL, &index);
+        free(text);
+    }
+    return index;
 }
 
 /* The value's numbers (a "Locked"/"NotLocked" word after them is the host's lock state). */
@@ -144,15 +174,17 @@ static bool param_set(const formula_param *q, const char *value, char *out, size
     return true;
 }
 
-/* The renderer's accuracy keys, onto fathom's: Detail (an absolute hit distance 10^Detail), FudgeFactor
- * (the step factor), MaxRaySteps, Iterations. */
+/* The renderer's accuracy keys, onto fathom's: Detail and MaxDistance (Fragmentarium's hit rule, relative
+ * to the distance travelled: fractal.detail), FudgeFactor (the step factor), MaxRaySteps, Iterations. */
 static bool quality_key(const formula *f, const char *key, const char *value, char *out, size_t n)
 {
     double v;
     if (numbers_of(value, &v, 1) != 1)
         return false;
     if (!strcmp(key, "Detail"))
-        snprintf(out, n, "fractal.hit_distance=%.9g", fmin(pow(10, fmin(v, 0)), 1));
+        snprintf(out, n, "fractal.detail=%.9g", fmin(fmax(v, -7), 0));
+    else if (!strcmp(key, "MaxDistance"))
+        snprintf(out, n, "fractal.max_distance=%.9g", fmin(fmax(v, 1e-3), 1e6));
     else if (!strcmp(key, "FudgeFactor"))
         snprintf(out, n, "quality.step_factor=%.9g", fmin(fmax(v, 0.01), 1));
     else if (!strcmp(key, "MaxRaySteps"))
@@ -191,6 +223,16 @@ static void preset_sets(const preset *pr, const formula *f, camera *cam, char (*
     *cam = camera_degenerate(eye, target) ? camera_look_at(eye, (double[3]){0, 0, 0}, (float)fov)
                                           : camera_look_at_up(eye, target, up, (float)fov);
     cam->lens = lens;
+    /* where the preset is silent, the DE renderers' own defaults (every one of fathom's set: frag.c) */
+    static const char *const DEFAULTS[][2] = {{"MaxRaySteps", "quality.max_steps=56"},
+                                              {"FudgeFactor", "quality.step_factor=1"}};
+    for (size_t d = 0; d < sizeof DEFAULTS / sizeof *DEFAULTS && *count < SHOT_SET_MAX; d++) {
+        bool said = false;
+        for (int i = 0; i < pr->count; i++)
+            said |= !strcmp(pr->key[i], DEFAULTS[d][0]);
+        if (!said)
+            snprintf(sets[(*count)++], 256, "%s", DEFAULTS[d][1]);
+    }
     if (clamped)
         sb_printf(ignored, "%s(values outside a slider's range were clamped into it)", ignored->len ? "; " : "");
 }
@@ -206,12 +248,11 @@ bool frag_preset_shot(const char *path, const char *name, strbuf *shot, char **i
     char names[FRAG_PRESET_MAX][FRAG_PRESET_NAME_MAX];
     int count = 0;
     bool ok = pr && sets;
-    if (ok && !find(text, name, pr, names, FRAG_PRESET_MAX, &count)) {
+    if (ok && !find(text, name, pr, names, FRAG_PRESET_MAX, &count, NULL)) {
         strbuf known = {0};
         for (int i = 0; i < count && i < FRAG_PRESET_MAX; i++)
             sb_printf(&known, "%s\"%s\"", i ? ", " : "", names[i]);
-        ok = name ? err_set(err, "%s has no preset \"%s\" (its presets: %s)", f.name, name, known.data ? known.data : "none")
-                  : err_set(err, "%s has no presets", f.name);
+        ok = err_set(err, "%s has no preset \"%s\" (its presets: %s)", f.name, name, known.data ? known.data : "none");
         sb_free(&known);
     }
     free(text);

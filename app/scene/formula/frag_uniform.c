@@ -3,6 +3,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 #include "scene/formula/frag_internal.h"
 
@@ -69,7 +70,7 @@ static bool annotation(const char *a, formula_param *q, const char **why)
         ok = color(&args, q);
         *why = "expected color[R,G,B] on a vec3 or color[LO,DEFAULT,HI,R,G,B] on a vec4";
     } else if (w == 4 && !strncmp(p, "file", 4)) {
-        return *why = "a texture (file[...]): fathom does not read fragments' textures yet", false;
+        return *why = "file[...] names a texture: it goes on a sampler2D or a samplerCube", false;
     } else {
         return *why = "unknown annotation (known: slider, checkbox, color)", false;
     }
@@ -102,6 +103,7 @@ static bool add_param(frag_ctx *x, formula_param *q, const char *name, bool *ite
         f->iterations = (int)fminf(fmaxf(q->def[0], (float)f->iterations_lo), (float)f->iterations_hi);
         return true;
     }
+    _Static_assert(FORMULA_MAX_PARAMS == 160, "the message below names the limit");
     static const char *const reserved[] = {FORMULA_COMMON_KEYS};
     for (size_t i = 0; i < sizeof reserved / sizeof *reserved; i++)
         if (!strcmp(reserved[i], name))
@@ -110,7 +112,7 @@ static bool add_param(frag_ctx *x, formula_param *q, const char *name, bool *ite
         if (!strcmp(f->params[i].key, name))
             return *why = "declared twice", false;
     if (f->param_count == FORMULA_MAX_PARAMS)
-        return *why = "more parameters than fathom's limit of 128", false;
+        return *why = "more parameters than fathom's limit of 160", false;
     snprintf(q->key, sizeof q->key, "%s", name);
     snprintf(q->uniform, sizeof q->uniform, "%s", name);
     snprintf(q->group, sizeof q->group, "%s", x->group);
@@ -118,6 +120,55 @@ static bool add_param(frag_ctx *x, formula_param *q, const char *name, bool *ite
         snprintf(q->description, sizeof q->description, "%s", x->comment[0] ? x->comment : name);
     f->params[f->param_count++] = *q;
     return true;
+}
+
+/* The image formats a fragment's texture may be (read through OpenImageIO: data/media/image_io.h). */
+static bool image_file(const char *path)
+{
+    static const char *const EXT[] = {".png", ".jpg", ".jpeg", ".hdr", ".exr", ".tga", ".bmp", ".tif", ".tiff"};
+    const char *dot = strrchr(path, '.');
+    for (size_t i = 0; dot && i < sizeof EXT / sizeof *EXT; i++)
+        if (!strcasecmp(dot, EXT[i]))
+            return true;
+    return false;
+}
+
+/* "uniform sampler2D NAME; file[PATH]" (or samplerCube): the texture, found as an include is found. */
+static bool texture_uniform(frag_ctx *x, const char *type, const char *name, const char *a, strbuf *out,
+                            const char **why)
+{
+    formula *f = x->f;
+    char rel[PATH_MAX_LEN];
+    const char *open = strncmp(a, "file", 4) ? NULL : frag_skip(a + 4);
+    const char *close = open && *open == '[' ? strchr(open, ']') : NULL;
+    if (!close)
+        return *why = "expected file[IMAGE] after the sampler", false;
+    snprintf(rel, sizeof rel, "%.*s", (int)(close - open - 1), frag_skip(open + 1));
+    for (char *e = rel + strlen(rel); e > rel && (e[-1] == ' ' || e[-1] == '\t'); e--)
+        e[-1] = '\0';
+    if (f->frag_texture_count == FRAG_TEXTURES_MAX)
+        return *why = "more textures than fathom's limit of 4", false;
+    if (!image_file(rel))
+        return *why = "not an image file (.png, .jpg, .hdr, .exr, .tga, .bmp, .tif)", false;
+    frag_texture *t = &f->frag_textures[f->frag_texture_count];
+    if (!frag_find_file(x, rel, x->root, t->path, sizeof t->path, why)) {
+        if (!strcmp(*why, "no such file"))
+            *why = "no such file in the fragment's folder or its collection's Include folder";
+        return false;
+    }
+    snprintf(t->name, sizeof t->name, "%s", name);
+    t->cube = !strcmp(type, "samplerCube");
+    f->frag_texture_count++;
+    sb_printf(out, "uniform %s %s;\n", type, name);
+    return true;
+}
+
+void frag_texparameter(frag_ctx *x, const char *args)
+{
+    formula *f = x->f;
+    char w[3][FRAG_TEXPARAM_MAX];
+    if (f->frag_texparam_count < FRAG_TEXPARAMS_MAX && sscanf(args, " %39s %39s %39s", w[0], w[1], w[2]) == 3)
+        memcpy(f->frag_texparams[f->frag_texparam_count++], w, sizeof w);
 }
 
 bool frag_uniform(frag_ctx *x, const char *line, const char *code, const char *shown, int n, strbuf *out)
@@ -149,10 +200,12 @@ bool frag_uniform(frag_ctx *x, const char *line, const char *code, const char *s
             sb_printf(out, "%s\n", line);
             return true;
         }
+    } else if (!typed && (!strcmp(type, "sampler2D") || !strcmp(type, "samplerCube"))) {
+        return texture_uniform(x, type, name, a, out, &why) ||
+               err_set(x->err, "%s:%d: texture '%s': %s%s", shown, n, name, why, x->chain);
     } else if (!typed) {
-        return err_set(x->err, "%s:%d: '%s %s': %s%s", shown, n, type, name,
-                       !strcmp(type, "sampler2D") ? "a texture (file[...]): fathom does not read fragments' textures yet"
-                                                  : "a parameter is a float, int, bool, vec2, vec3 or vec4", x->chain);
+        return err_set(x->err, "%s:%d: '%s %s': a parameter is a float, int, bool, vec2, vec3 or vec4%s", shown, n,
+                       type, name, x->chain);
     } else if (!annotation(a, &q, &why)) {
         return err_set(x->err, "%s:%d: '%s': %s%s", shown, n, name, why, x->chain);
     }
