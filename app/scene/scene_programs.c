@@ -391,7 +391,7 @@ void scene_fractal_defines(const scene *s, strbuf *out)
     else if (s->fractal.hit_rule == HIT_RULE_FRAGMENT) /* Fragmentarium's rule (uHitRelative): common/march.glsl */
         sb_append(out, "#define HIT_RELATIVE 1\n");
     if (s->fractal.look == LOOK_FRAGMENT) /* the fragment's own renderer: frag/look.glsl */
-        sb_printf(out, "#define FRAG_LOOK 1\n%s", f->frag_shadow_camera ? "#define FRAG_SHADOW_CAMERA_LIGHT 1\n" : "");
+        sb_printf(out, "#define FRAG_LOOK 1\n%s", f->frag_syntopia ? "#define FRAG_SHADOW_CAMERA_LIGHT 1\n" : "");
     if (s->fractal.deep_now) /* a deep zoom: common/uniforms.glsl, fractal/common.glsl */
         sb_append(out, "#extension GL_ARB_gpu_shader_fp64 : require\n#define PRECISION_DOUBLE 1\n");
 }

@@ -364,8 +364,8 @@ static void where_presets_start(void **st)
     snprintf(path, sizeof path, "%s/start0.frag", dir);
     assert_int_equal(frag_preset_index(path, "Close"), 2);
     assert_int_equal(frag_preset_index(path, "Nope"), -1);
-    /* the collection's own DE-Raytracer says whether a shadow takes the camera light too (Syntopia's) or
-     * not (FragM's: the line commented out) */
+    /* the collection's own DE-Raytracer says whether it is Syntopia's (a shadow takes the camera light too; a
+     * preset's value past a slider is taken as it is) or FragM's (the line commented out; the value clamped) */
     for (int syntopia = 0; syntopia < 2; syntopia++) {
         char coll[PATH_MAX_LEN], inc[PATH_MAX_LEN + 16], group[PATH_MAX_LEN + 16];
         snprintf(coll, sizeof coll, "%s/coll%d", dir, syntopia);
@@ -374,13 +374,31 @@ static void where_presets_start(void **st)
         assert_int_equal(mkdir(coll, 0755) | mkdir(inc, 0755) | mkdir(group, 0755), 0);
         put(inc, "DE-Raytracer.frag", syntopia ? "\t\tambient = mix(ambient,0.0,HardShadow*shadowStrength);\n"
                                                : "\t\t//ambient = mix(ambient,0.0,HardShadow*shadowStrength);\n");
-        put(group, "f.frag", head);
+        put(group, "f.frag", "#include \"DE-Raytracer.frag\"\nuniform float Zmul; slider[0,1,310]\n"
+                             "float DE(vec3 p) { return length(p) - Zmul; }\n#preset Default\nZmul = -26\n#endpreset\n");
         snprintf(path, sizeof path, "%s/f.frag", group);
         formula f;
         err_t e;
         if (!formula_load(path, NULL, &f, &e))
             fail_msg("%s", e.msg);
-        assert_int_equal(f.frag_shadow_camera, syntopia);
+        assert_int_equal(f.frag_syntopia, syntopia);
+        strbuf shot = {0};
+        shot_desc d;
+        char *ignored = NULL;
+        if (!frag_preset_shot(path, NULL, &shot, &ignored, &e) || !shot_parse(shot.data, path, &d, &e))
+            fail_msg("%s", e.msg);
+        assert_true(has_set(&d, syntopia ? "fractal.Zmul=-26" : "fractal.Zmul=0"));
+        assert_true((ignored && strstr(ignored, "clamped")) == !syntopia);
+        const char *sets[SHOT_SET_MAX];
+        for (int k = 0; k < d.set_count; k++)
+            sets[k] = d.sets[k];
+        scene s;
+        if (!scene_load("fractal", sets, d.set_count, &s, &e)) /* the value the preset gave loads */
+            fail_msg("%s", e.msg);
+        scene_free(&s);
+        free(ignored);
+        shot_free(&d);
+        sb_free(&shot);
     }
 }
 

@@ -66,7 +66,8 @@ typedef struct formula {
     bool fragment;                /* a Fragmentarium fragment (frag.h): file is its absolute path */
     float frag_detail, frag_max_distance; /* its DE renderer's Detail and MaxDistance defaults (frag.h) */
     bool frag_look;               /* its renderer lights as DE-Raytracer does: its own look is the default */
-    bool frag_shadow_camera;      /* its collection's DE-Raytracer shadows the camera light too (Syntopia's) */
+    bool frag_syntopia; /* its collection is Syntopia's Fragmentarium's (its DE-Raytracer shadows the camera light
+                           too, and its host takes a preset's value past a slider as it is: frag.c) */
     int frag_texture_count, frag_texparam_count;
     frag_texture frag_textures[FRAG_TEXTURES_MAX];
     char frag_texparams[FRAG_TEXPARAMS_MAX][3][FRAG_TEXPARAM_MAX]; /* sampler, GL_TEXTURE_..., value */

@@ -252,30 +252,6 @@ static bool resolve(frag_ctx *x, const char *inc, const char *home, char *path, 
                   "DE-Raytracer.frag and the other DE renderers)", false;
 }
 
-bool frag_find_file(const frag_ctx *x, const char *rel, const char *home, char *path, size_t n, const char **why)
-{
-    if (rel[0] == '/' || !rel[0])
-        return *why = "an absolute path", false;
-    for (const char *c = rel; *c; c++)
-        if (!isalnum((unsigned char)*c) && !strchr("_-. /", *c))
-            return *why = "a character other than letters, digits, '_', '-', '.', ' ' and '/'", false;
-    for (const char *c = rel; c; c = strchr(c, '/'), c = c ? c + 1 : NULL)
-        if (!strncmp(c, "..", 2) && (c[2] == '/' || c[2] == '\0'))
-            return *why = "a '..' part", false;
-    const char *dirs[2] = {home, x->include_dir[0] ? x->include_dir : NULL}, *roots[2] = {x->root, x->include_dir};
-    for (int i = 0; i < 2; i++) {
-        char joined[PATH_MAX_LEN], real[PATH_MAX];
-        if (!dirs[i] || !util_join(dirs[i], rel, joined, sizeof joined) || !realpath(joined, real))
-            continue;
-        size_t r = strlen(roots[i]);
-        if (strncmp(real, roots[i], r) || real[r] != '/' || strlen(real) >= n)
-            return *why = "it leads out of the fragment's folder", false;
-        memcpy(path, real, strlen(real) + 1);
-        return true;
-    }
-    return *why = "no such file", false;
-}
-
 static bool is_dir(const char *path)
 {
     struct stat st;
@@ -308,10 +284,12 @@ static void include_dir(frag_ctx *x)
     }
 }
 
-/* Whether the collection's own DE-Raytracer takes the camera light away in shadow, as Syntopia's Fragmentarium
- * does (its lighting(): "ambient = mix(ambient,0.0,HardShadow*shadowStrength);"); FragM's keeps it (the line
- * commented out), and so does fathom where no collection says (shaders/frag/look.glsl). */
-static bool shadows_camera_light(const frag_ctx *x)
+/* Whether the collection is Syntopia's Fragmentarium's, not FragM's: its own DE-Raytracer takes the camera light
+ * away in shadow (its lighting(): "ambient = mix(ambient,0.0,HardShadow*shadowStrength);"; FragM's has the
+ * line commented out: shaders/frag/look.glsl). Syntopia's host also takes a preset's value past a slider's range
+ * as it is (its ComboSlider keeps the value it was given; FragM's spin box clamps it): frag_widen_to_presets.
+ * Where no collection says, FragM's ways. */
+static bool syntopia_collection(const frag_ctx *x)
 {
     static const char LINE[] = "ambient = mix(ambient,0.0,HardShadow*shadowStrength)";
     char path[PATH_MAX_LEN], real[PATH_MAX], *text;
@@ -553,7 +531,7 @@ bool frag_load(const char *path, formula *f, err_t *err)
     util_dirname(path, dir, sizeof dir);
     bool ok = realpath(dir, x->root) != NULL || err_set(err, "%s: its folder cannot be read", path);
     if (ok)
-        include_dir(x), f->frag_shadow_camera = shadows_camera_light(x);
+        include_dir(x), f->frag_syntopia = syntopia_collection(x);
     ok = ok && frag_translate(x, path, base, false, 0);
     if (ok && !x->has_de)
         ok = err_set(err, "%s: no float DE(vec3 p): fathom opens distance-estimated fragments", base);
@@ -564,6 +542,9 @@ bool frag_load(const char *path, formula *f, err_t *err)
         snprintf(f->summary, sizeof f->summary, "Fragmentarium fragment %s", base);
     if (ok)
         keep_wrappers(x, path), digest(x, path);
+    char *text;
+    if (ok && f->frag_syntopia && frag_read(path, base, &text, err))
+        frag_widen_to_presets(text, f), free(text);
     sb_free(&x->functions);
     sb_free(&x->macros);
     free(x);

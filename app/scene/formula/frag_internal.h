@@ -42,6 +42,9 @@ bool frag_translate(frag_ctx *x, const char *path, const char *shown, bool ours,
 bool frag_find_file(const frag_ctx *x, const char *rel, const char *home, char *path, size_t n, const char **why);
 /* "#TexParameter NAME GL_TEXTURE_... VALUE" (after the word): kept in the formula for the GPU. */
 void frag_texparameter(frag_ctx *x, const char *args);
+/* Widens each number parameter's range to hold every value a preset of the fragment's text gives it (Syntopia's
+ * host takes them as they are). */
+void frag_widen_to_presets(const char *text, formula *f);
 /* A "uniform ..." line (code: its code, comments blanked): a parameter and its translated line. */
 bool frag_uniform(frag_ctx *x, const char *line, const char *code, const char *shown, int n, strbuf *out);
 #endif

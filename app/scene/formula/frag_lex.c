@@ -63,3 +63,21 @@ bool frag_numbers(const char **p, float *v, int count)
     *p = frag_skip(c);
     return true;
 }
+
+/* The value's numbers (a "Locked"/"NotLocked" word after them is the host's lock state). */
+int frag_values(const char *v, double *out, int max)
+{
+    int n = 0;
+    for (const char *c = v; n < max;) {
+        char *end;
+        double d = strtod(c, &end);
+        if (end == c || !isfinite(d))
+            break;
+        out[n++] = d;
+        c = frag_skip(end);
+        if (*c != ',')
+            break;
+        c++;
+    }
+    return n;
+}

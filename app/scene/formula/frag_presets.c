@@ -94,6 +94,7 @@ int frag_presets(const char *path, char names[][FRAG_PRESET_NAME_MAX], int max, 
     return n < max ? n : max;
 }
 
+
 int frag_preset_index(const char *path, const char *name)
 {
     char *text;
@@ -106,30 +107,13 @@ int frag_preset_index(const char *path, const char *name)
     return index;
 }
 
-/* The value's numbers (a "Locked"/"NotLocked" word after them is the host's lock state). */
-static int numbers_of(const char *v, double *out, int max)
-{
-    int n = 0;
-    for (const char *c = v; n < max;) {
-        char *end;
-        double d = strtod(c, &end);
-        if (end == c || !isfinite(d))
-            break;
-        out[n++] = d;
-        c = frag_skip(end);
-        if (*c != ',')
-            break;
-        c++;
-    }
-    return n;
-}
 
 /* The camera keys of 3D.frag: true when key was one (taken into cam, or a wrong value: *bad). */
 static bool camera_key(const char *key, const char *value, double eye[3], double target[3], double up[3], camera *cam,
                        bool *bad)
 {
     double v[3];
-    int n = numbers_of(value, v, 3);
+    int n = frag_values(value, v, 3);
     if (!strcmp(key, "Eye") || !strcmp(key, "Target") || !strcmp(key, "Up")) {
         double *to = key[0] == 'E' ? eye : key[0] == 'T' ? target : up;
         *bad |= n != 3;
@@ -160,7 +144,7 @@ static bool param_set(const formula_param *q, const char *value, char *out, size
         snprintf(out, n, "fractal.%s=%s", q->key, t ? "true" : "false");
         return t || f;
     }
-    if ((got = numbers_of(value, v, 4)) != comps)
+    if ((got = frag_values(value, v, 4)) != comps)
         return false;
     int at = snprintf(out, n, "fractal.%s=", q->key);
     for (int i = 0; i < comps && at > 0 && (size_t)at < n; i++) {
@@ -168,7 +152,7 @@ static bool param_set(const formula_param *q, const char *value, char *out, size
         if (q->type == FORMULA_COLOR4 && i < 3) /* the colour; the range is its intensity's */
             lo = 0, hi = 1;
         double c = fmin(fmax(v[i], lo), hi);
-        *clamped |= c != v[i];
+        *clamped |= (float)c != (float)v[i]; /* a range widened to a preset's value holds it as a float */
         at += snprintf(out + at, n - (size_t)at, q->type == FORMULA_INT ? "%s%.0f" : "%s%.9g", i ? "," : "", c);
     }
     return true;
@@ -179,7 +163,7 @@ static bool param_set(const formula_param *q, const char *value, char *out, size
 static bool quality_key(const formula *f, const char *key, const char *value, char *out, size_t n)
 {
     double v;
-    if (numbers_of(value, &v, 1) != 1)
+    if (frag_values(value, &v, 1) != 1)
         return false;
     if (!strcmp(key, "Detail"))
         snprintf(out, n, "fractal.detail=%.9g", fmin(fmax(v, -7), 0));

@@ -196,6 +196,10 @@ bool frag_uniform(frag_ctx *x, const char *line, const char *code, const char *s
             q.type = TYPES[i].type, typed = true;
     const char *a = frag_skip(code + end);
     if (!*a || *a == ';') { /* no annotation */
+        if (!strcmp(type, "vec2") && !strcmp(name, "pixelSize")) { /* 3D.frag's: the host's (frag/raytracer.frag) */
+            sb_printf(out, "\n");
+            return true;
+        }
         if (!typed || !host_uniform(x, type, name, &q)) {
             sb_printf(out, "%s\n", line);
             return true;
@@ -219,4 +223,29 @@ bool frag_uniform(frag_ctx *x, const char *line, const char *code, const char *s
     else
         sb_printf(out, "uniform %s %s;\n", type, name);
     return true;
+}
+
+void frag_widen_to_presets(const char *text, formula *f)
+{
+    char line[256]; /* a preset line (frag_presets.c reads them as long) */
+    bool in = false;
+    for (const char *p = text; frag_next_line(&p, line, sizeof line);) {
+        const char *c = frag_skip(line), *eq = strchr(c, '=');
+        in = in ? strncmp(c, "#endpreset", 10) != 0 : !strncmp(c, "#preset", 7);
+        if (!in || !eq)
+            continue;
+        int k = (int)(eq - c);
+        while (k > 0 && (c[k - 1] == ' ' || c[k - 1] == '\t'))
+            k--;
+        for (int i = 0; i < f->param_count; i++) {
+            formula_param *q = &f->params[i];
+            double v[4];
+            int n = (int)strlen(q->key) == k && !strncmp(q->key, c, (size_t)k) && q->type != FORMULA_BOOL &&
+                            q->type != FORMULA_COLOR
+                        ? frag_values(frag_skip(eq + 1), v, 4)
+                        : 0;
+            for (int j = q->type == FORMULA_COLOR4 ? 3 : 0; j < n && j < formula_components(q->type); j++)
+                q->lo = fminf(q->lo, (float)v[j]), q->hi = fmaxf(q->hi, (float)v[j]);
+        }
+    }
 }
