@@ -96,6 +96,7 @@ static const char USAGE_OPTIONS[] =
     "  --panel               window: start with the parameter panel open (F1 toggles it)\n"
     "  --path FILE           a camera path (keyframes) to render frame by frame (with --output PATTERN),\n"
     "                        or to a video (--output NAME.mp4, .webm or .mkv; frames in NAME.mp4.frames/)\n"
+    "                        (a .frag: its KeyFrame presets, over 10 s; --scene the same fragment)\n"
     "  --video LIST          the video's codec=h264|av1|vp9, crf=N (quality: lower is better) and\n"
     "                        pix_fmt=yuv420p|yuv444p [h264 (webm: vp9), crf 18 (vp9: 6, av1: 3), yuv420p]\n"
     "  --tile I/N            render only tile I of N of the --output image (for posters and farms)\n"

@@ -70,3 +70,27 @@ OrbitStrength = 0.8
 X = 1,0.6,0.2,0.8
 Y = 0.4,0.7,1,0.4
 #endpreset
+
+#preset KeyFrame.001
+FOV = 0.45
+Eye = 7.8,5.1,-9.2
+Target = 0,0,0
+Up = 0,1,0
+Scale = 2.5
+#endpreset
+
+#preset KeyFrame.002
+FOV = 0.4
+Eye = 9.6,2.4,-4.8
+Target = 0,0.5,0
+Up = 0,1,0
+Scale = 2.3
+#endpreset
+
+#preset KeyFrame.003
+FOV = 0.4
+Eye = 8.4,4.2,7.4
+Target = 0,0,0
+Up = 0.1,1,0
+Scale = 2.1
+#endpreset

@@ -16,6 +16,7 @@
 #include "view/path.h"
 #include "gpu/render.h"
 #include "gpu/render_probe.h"
+#include "scene/formula/frag.h"
 #include "scene/scene.h"
 #include "view/shot.h"
 
@@ -232,6 +233,18 @@ static void drop_empty_folder(const char *pattern)
         rmdir(folder); /* only when empty: nothing rendered yet */
 }
 
+/* The flight: the path file, or a fragment's KeyFrame presets over FragM's default length (frag.h). */
+static bool load_flight(const char *file, path *p, err_t *err)
+{
+    enum { FRAGM_SECONDS = 10 }; /* FragM's default animation length (its settings' timeMax) */
+    if (!frag_is_fragment(file))
+        return path_load(file, p, err);
+    strbuf text = {0};
+    bool ok = frag_keyframes_flight(file, FRAGM_SECONDS, &text, err) && path_parse(text.data, file, p, err);
+    sb_free(&text);
+    return ok;
+}
+
 bool flight_render(const flight_desc *opt, err_t *err)
 {
     path p;
@@ -239,7 +252,7 @@ bool flight_render(const flight_desc *opt, err_t *err)
     char pattern[PATH_MAX_LEN] = "";
     const char *video = opt->output;
     video_options vo;
-    if (!frames_of_video(&opt, &framed, pattern, sizeof pattern, &vo, err) || !path_load(opt->path, &p, err)) {
+    if (!frames_of_video(&opt, &framed, pattern, sizeof pattern, &vo, err) || !load_flight(opt->path, &p, err)) {
         drop_empty_folder(pattern);
         return false;
     }

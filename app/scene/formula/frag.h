@@ -67,6 +67,12 @@ int frag_presets(const char *path, char names[][FRAG_PRESET_NAME_MAX], int max, 
  * (lights, tone mapping...) are listed in *ignored (malloc'd, may be NULL). */
 bool frag_preset_shot(const char *path, const char *name, strbuf *shot, char **ignored, err_t *err);
 
+/* The fragment's KeyFrame presets (KeyFrame.001, ...) as a flight (view/path.h's file, into flight): a key
+ * each, `seconds` apart in all (FragM spreads its keyframes evenly over the animation's length, 10 s by
+ * default), at its Eye, toward its Target, with its Up and FOV, and a set track for every number parameter
+ * each key gives. false with err when it has fewer than two. */
+bool frag_keyframes_flight(const char *path, double seconds, strbuf *flight, err_t *err);
+
 /* The index among frag_presets' names of the preset frag_preset_shot(path, name) opens; -1 for the
  * sliders' defaults (or an unreadable file). */
 int frag_preset_index(const char *path, const char *name);

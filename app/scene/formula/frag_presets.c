@@ -33,14 +33,15 @@ static bool is_default(const char *name)
 /* The preset `name` of the fragment's text into out (NULL: the first whose name holds "default" in any
  * case, as FragM starts; else none, the sliders' defaults: an empty preset named ""); false when there is
  * no such preset. names/count: every preset's name (count may be NULL); *index (may be NULL): the one
- * taken among them, -1 for the sliders' defaults. */
+ * taken among them, -1 for the sliders' defaults. kf >= 0: the kf-th KeyFrame preset instead (a flight's key;
+ * the others leave them out). */
 static bool find(const char *text, const char *name, preset *out, char names[][FRAG_PRESET_NAME_MAX], int max,
-                 int *count, int *index)
+                 int *count, int *index, int kf)
 {
     char line[PRESET_LINE_MAX];
     const char *p = text;
     bool in = false, found = false, take = false;
-    int n = 0;
+    int n = 0, keys = 0;
     if (out)
         *out = (preset){0};
     if (index)
@@ -53,11 +54,16 @@ static bool find(const char *text, const char *name, preset *out, char names[][F
             snprintf(this, sizeof this, "%s", frag_skip(c + 7));
             for (char *e = this + strlen(this); e > this && (e[-1] == ' ' || e[-1] == '\t'); e--)
                 e[-1] = '\0';
-            if (keyframe(this))
+            if (keyframe(this)) {
+                take = !found && keys++ == kf;
+                if (take && out)
+                    snprintf(out->name, sizeof out->name, "%s", this);
+                found |= take;
                 continue;
+            }
             if (names && n < max)
                 snprintf(names[n], FRAG_PRESET_NAME_MAX, "%s", this);
-            take = !found && (name ? !strcmp(this, name) : is_default(this));
+            take = kf < 0 && !found && (name ? !strcmp(this, name) : is_default(this));
             if (take && out)
                 snprintf(out->name, sizeof out->name, "%s", this);
             if (take && index)
@@ -80,7 +86,7 @@ static bool find(const char *text, const char *name, preset *out, char names[][F
     }
     if (count)
         *count = n;
-    return found || !name;
+    return found || (!name && kf < 0);
 }
 
 int frag_presets(const char *path, char names[][FRAG_PRESET_NAME_MAX], int max, err_t *err)
@@ -89,7 +95,7 @@ int frag_presets(const char *path, char names[][FRAG_PRESET_NAME_MAX], int max, 
     if (!frag_read(path, path, &text, err))
         return -1;
     int n = 0;
-    find(text, NULL, NULL, names, max, &n, NULL);
+    find(text, NULL, NULL, names, max, &n, NULL, -1);
     free(text);
     return n < max ? n : max;
 }
@@ -101,7 +107,7 @@ int frag_preset_index(const char *path, const char *name)
     err_t e;
     int index = -1;
     if (frag_read(path, path, &text, &e)) {
-        find(text, name, NULL, NULL, 0, NULL, &index);
+        find(text, name, NULL, NULL, 0, NULL, &index, -1);
         free(text);
     }
     return index;
@@ -232,7 +238,7 @@ bool frag_preset_shot(const char *path, const char *name, strbuf *shot, char **i
     char names[FRAG_PRESET_MAX][FRAG_PRESET_NAME_MAX];
     int count = 0;
     bool ok = pr && sets;
-    if (ok && !find(text, name, pr, names, FRAG_PRESET_MAX, &count, NULL)) {
+    if (ok && !find(text, name, pr, names, FRAG_PRESET_MAX, &count, NULL, -1)) {
         strbuf known = {0};
         for (int i = 0; i < count && i < FRAG_PRESET_MAX; i++)
             sb_printf(&known, "%s\"%s\"", i ? ", " : "", names[i]);
@@ -268,5 +274,80 @@ bool frag_preset_shot(const char *path, const char *name, strbuf *shot, char **i
     }
     free(pr);
     free(sets);
+    return ok;
+}
+
+/* A flight key's parameter: "fractal.NAME=V", one number (a flight's set tracks are numbers). */
+static bool scalar_set(const char *set)
+{
+    const char *eq = strchr(set, '=');
+    char *end;
+    return !strncmp(set, "fractal.", 8) && eq && (strtod(eq + 1, &end), *end == '\0' && end > eq + 1);
+}
+
+/* The k-th KeyFrame preset's camera and overrides (preset_sets); their count. */
+static int key_sets(const char *text, const formula *f, int k, preset *pr, char (*sets)[256], camera *cam)
+{
+    strbuf ignored = {0};
+    int n;
+    *cam = (camera){.fov_y = (float)(2 * atan(0.4))}; /* 3D.frag's default FOV */
+    find(text, NULL, pr, NULL, 0, NULL, NULL, k);
+    preset_sets(pr, f, cam, sets, &n, &ignored);
+    sb_free(&ignored);
+    return n;
+}
+
+bool frag_keyframes_flight(const char *path, double seconds, strbuf *flight, err_t *err)
+{
+    formula f;
+    char *text;
+    if (!frag_load(path, &f, err) || !frag_read(path, path, &text, err))
+        return false;
+    preset *pr = calloc(1, sizeof *pr);
+    char(*sets)[256] = calloc(SHOT_SET_MAX, 256), (*first)[256] = calloc(SHOT_SET_MAX, 256);
+    int count = 0, nfirst = 0;
+    while (pr && find(text, NULL, pr, NULL, 0, NULL, NULL, count))
+        count++;
+    bool ok = pr && sets && first && (count >= 2 || err_set(err, "%s has %d KeyFrame presets: a flight needs two or more",
+                                                           f.name, count));
+    for (int k = 0; ok && k < count; k++) { /* the parameters every key sets: the first key's, each checked */
+        camera cam;
+        int n = key_sets(text, &f, k, pr, sets, &cam);
+        if (k == 0)
+            for (int i = 1; i < n; i++)
+                if (scalar_set(sets[i]))
+                    memcpy(first[nfirst++], sets[i], 256);
+        for (int j = 0; j < nfirst; j++) { /* a key that leaves one out: it is no track */
+            size_t key = strcspn(first[j], "=");
+            bool has = false;
+            for (int i = 1; i < n; i++)
+                has |= !strncmp(sets[i], first[j], key + 1);
+            if (!has)
+                memmove(first[j], first[j + 1], (size_t)(nfirst - j - 1) * 256), nfirst--, j--;
+        }
+    }
+    sb_append(flight, "{ \"keys\": [\n");
+    for (int k = 0; ok && k < count; k++) {
+        camera cam;
+        int n = key_sets(text, &f, k, pr, sets, &cam);
+        camera_basis b = camera_get_basis(&cam);
+        const double *e = cam.position;
+        sb_printf(flight, "  { \"time\": %.9g, \"position\": [%.9g, %.9g, %.9g], \"look_at\": [%.9g, %.9g, %.9g], "
+                          "\"up\": [%.9g, %.9g, %.9g], \"fov\": %.9g, \"set\": {",
+                  seconds * k / (count - 1), e[0], e[1], e[2], e[0] + b.forward[0], e[1] + b.forward[1],
+                  e[2] + b.forward[2], (double)b.up[0], (double)b.up[1], (double)b.up[2], (double)cam.fov_y * 180 / 3.14159265358979323846);
+        for (int j = 0; j < nfirst; j++) {
+            size_t key = strcspn(first[j], "=");
+            for (int i = 1; i < n; i++)
+                if (!strncmp(sets[i], first[j], key + 1))
+                    sb_printf(flight, "%s\"%.*s\": %s", j ? ", " : "", (int)key, sets[i], sets[i] + key + 1);
+        }
+        sb_printf(flight, "} }%s\n", k + 1 < count ? "," : "");
+    }
+    sb_append(flight, "] }\n");
+    free(text);
+    free(pr);
+    free(sets);
+    free(first);
     return ok;
 }
