@@ -69,7 +69,8 @@ static bool fractal_common(scene_ctx *c, const cJSON *use, scene_fractal *fr)
               scene_get_num(c, use, "fractal", "detail", f->fragment ? f->frag_detail : -2.3f, -7, 0, &fr->detail) &&
               scene_get_num(c, use, "fractal", "max_distance", f->fragment ? f->frag_max_distance : 100000, 1e-3f,
                             1e6f, &fr->max_distance) &&
-              scene_get_enum(c, use, "fractal", "look", "look", LOOKS, f->frag_look ? LOOK_FRAGMENT : LOOK_FATHOM, &look);
+              scene_get_enum(c, use, "fractal", "look", "look", LOOKS, f->frag_light != FRAG_LIGHT_NONE ? LOOK_FRAGMENT : LOOK_FATHOM,
+                             &look);
     fr->hit_rule = (fractal_hit_rule)rule;
     fr->look = (fractal_look)look;
     if (ok && fr->look == LOOK_FRAGMENT && !f->fragment)
@@ -391,7 +392,9 @@ void scene_fractal_defines(const scene *s, strbuf *out)
     else if (s->fractal.hit_rule == HIT_RULE_FRAGMENT) /* Fragmentarium's rule (uHitRelative): common/march.glsl */
         sb_append(out, "#define HIT_RELATIVE 1\n");
     if (s->fractal.look == LOOK_FRAGMENT) /* the fragment's own renderer: frag/look.glsl */
-        sb_printf(out, "#define FRAG_LOOK 1\n%s", f->frag_syntopia ? "#define FRAG_SHADOW_CAMERA_LIGHT 1\n" : "");
+        sb_printf(out, "#define FRAG_LOOK 1\n%s%s%s", f->frag_syntopia ? "#define FRAG_SHADOW_CAMERA_LIGHT 1\n" : "",
+                  f->frag_light >= FRAG_LIGHT_PHONG ? "#define FRAG_LIGHT_PHONG 1\n" : "",
+                  f->frag_light == FRAG_LIGHT_PHONG_SHADOWS ? "#define FRAG_LIGHT_PHONG_SHADOWS 1\n" : "");
     if (s->fractal.deep_now) /* a deep zoom: common/uniforms.glsl, fractal/common.glsl */
         sb_append(out, "#extension GL_ARB_gpu_shader_fp64 : require\n#define PRECISION_DOUBLE 1\n");
 }

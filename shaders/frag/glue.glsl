@@ -10,12 +10,15 @@
 bool fragInitDone = false;
 void fragInit()
 {
-#ifdef providesInit
     if (!fragInitDone) {
+#ifdef FRAG_VERTEX_INIT // what a #vertex section computed once a vertex (app/scene/formula/frag_vertex.c)
+        fragVertexInit();
+#endif
+#ifdef providesInit
         init();
+#endif
         fragInitDone = true;
     }
-#endif
 }
 
 real formulaDE(real3 p, out float trap)

@@ -63,6 +63,24 @@ float fragShadow(vec3 pos, vec3 sdir, float eps)
 vec3 fragLighting(vec3 n, vec3 color, vec3 pos, vec3 dir, float eps)
 {
     vec3 spotDir = fragSpotDir();
+#ifdef FRAG_LIGHT_PHONG // Fast-Raytracer and DE-Raytracer 0.9.1: lit toward -spotDir, Phong's highlight
+    vec3 r = spotDir - 2.0 * dot(n, spotDir) * n;
+    float diffuse = max(0.0, dot(-n, spotDir)) * SpotLight.w;
+    float ambient = max(CamLightMin, dot(-n, dir)) * CamLight.w;
+    float specular = SpecularExp <= 0.0 ? 0.0 : pow(max(0.0, dot(dir, -r)), SpecularExp) * Specular;
+#ifdef FRAG_LIGHT_PHONG_SHADOWS // 0.9.1: no highlight on a face turned away, shadows toward -spotDir
+    if (dot(n, dir) > 0.0)
+        specular = 0.0;
+    if (HardShadow > 0.0) {
+        float shadowed = fragShadow(pos + n * eps, -spotDir, eps);
+        ambient = mix(ambient, 0.0, HardShadow * shadowed);
+        diffuse = mix(diffuse, 0.0, HardShadow * shadowed);
+        if (shadowed > 0.0)
+            specular = 0.0;
+    }
+#endif
+    return (SpotLight.xyz * diffuse + CamLight.xyz * ambient + specular * SpotLight.xyz) * color;
+#else
     float nDotL = max(0.0, dot(n, spotDir));
     vec3 halfVector = normalize(-dir + spotDir);
     float diffuse = nDotL * SpotLight.w;
@@ -83,6 +101,7 @@ vec3 fragLighting(vec3 n, vec3 color, vec3 pos, vec3 dir, float eps)
             specular = 0.0;
     }
     return (SpotLight.xyz * diffuse + CamLight.xyz * ambient + specular * SpotLight.xyz) * color;
+#endif
 }
 
 // the background where a ray meets nothing: BackgroundColor (or the fragment's backgroundColor()), darker

@@ -38,8 +38,8 @@ uniform float NormalBackStep; slider[0,1,10]
 #group Light
 // the occlusion's colour, and its strength (w)
 uniform vec4 AO; color[0,0.7,1,0.0,0.0,0.0]
-// the spot light's highlight
-uniform float Specular; slider[0,0.4,1.0]
+// the spot light's highlight (Fast-Raytracer's Phong highlight takes up to 10, its default 4: frag_presets.c)
+uniform float Specular; slider[0,0.4,10.0]
 // the highlight's exponent (larger: smaller)
 uniform float SpecularExp; slider[0,16.0,100.0]
 // the highlight's largest value

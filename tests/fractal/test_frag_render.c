@@ -162,18 +162,25 @@ static void trap_colouring(void **st)
     scene_free(&s);
 }
 
+/* tests/frag/NAME with the sets into s, which must draw a sphere of `radius` about the origin (seen from
+ * 5 units with a vertical field of view of fov degrees). */
+static void sphere_of(const char *name, const char *const *sets, int n, double radius, double fov, scene *s)
+{
+    frag_scene(name, sets, n, s);
+    camera cam = cam_at(0, 0, -5, 0, 0, 0, fov);
+    double worst;
+    int wrong = against_sphere(s, &cam, 0, 0, 0, radius, 0, &worst);
+    if (wrong > 0)
+        fail_msg("%s: %d pixels off the sphere of radius %g", name, wrong, radius);
+}
+
 static void hooks(void **st)
 {
     (void)st;
     scene s;
     /* init(): radius = 2 Radius; baseColor() (0.2, 0.5, 0.8) mixed into BaseColor (1, 0, 0) by 0.5 */
     const char *sets[] = {"fractal.Radius=0.5", "fractal.OrbitStrength=0.5", "fractal.BaseColor=1,0,0"};
-    frag_scene("hooks.frag", sets, 3, &s);
-    camera cam = cam_at(0, 0, -5, 0, 0, 0, 40);
-    double worst;
-    int wrong = against_sphere(&s, &cam, 0, 0, 0, 1.0, 0, &worst);
-    if (wrong > 0)
-        fail_msg("init(): %d pixels off the sphere of radius 2 Radius", wrong);
+    sphere_of("hooks.frag", sets, 3, 1.0, 40, &s);
     float got[3];
     centre_albedo(&s, got);
     assert_float_equal(got[0], decode(0.6), 2e-3);
@@ -189,6 +196,18 @@ static void hooks(void **st)
     assert_float_equal(got[0], decode(0.6), 2e-3);
     assert_float_equal(got[2], decode(0.4), 2e-3);
     decode_power = 2.0;
+    scene_free(&s);
+}
+
+/* A #vertex section's code joins the fragment's: its init() (the vertex shader's, once a vertex in Fragmentarium)
+ * runs once a pixel, its varying a global the fragment reads, its slider a parameter; the fragment part's own
+ * "varying float K; uniform float S;" are the same names again. */
+static void vertex_section(void **st)
+{
+    (void)st;
+    scene s;
+    const char *sets[] = {"fractal.S=0.75", "fractal.look=fathom"};
+    sphere_of("vertex.frag", sets, 2, 1.5, 50, &s); /* radius 2 S */
     scene_free(&s);
 }
 
@@ -405,6 +424,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(sphere_depth),        cmocka_unit_test(absolute_hit_distance), cmocka_unit_test(trap_colouring),
         cmocka_unit_test(hooks),               cmocka_unit_test(rotation_convention),   cmocka_unit_test(locked),
+        cmocka_unit_test(vertex_section),
         cmocka_unit_test_setup_teardown(textures, make_tex_dir, remove_tex_dir), cmocka_unit_test(collections),
     };
     return cmocka_run_group_tests(tests, gl_setup, gl_teardown);

@@ -286,7 +286,7 @@ static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + 
  * Specular, and BaseColor 0.8, 0.5, 0.3): the sphere's hit lit by the spot light (0.4, toward SpotLightDir
  * (0.1, 0.1)), its highlight and the camera light (1); no occlusion on a sphere (the estimate grows as
  * the distance along the normal); a miss, BackgroundColor darkened toward the edge (0.3 · |coord|). */
-static void look_colour(const frag_case *c, int x, int row, double out[3])
+static void look_colour(const frag_case *c, bool phong, int x, int row, double out[3])
 {
     double dir[3];
     frag_ray(c, x, row, dir);
@@ -310,27 +310,32 @@ static void look_colour(const frag_case *c, int x, int row, double out[3])
     double n_l = fmax(0, dot3(n, l)), h_n = fmax(0, dot3(n, h)), e = 16;
     double diffuse = n_l * 0.4, ambient = fmax(0, -dot3(n, dir)) * 1;
     double spec = fmin(10, (e + 2) / 8 * pow(h_n, e) * (e + (1 - e) * pow(1 - h_n, 5)) * n_l * 0.4);
+    if (phong) { /* Fast-Raytracer: lit toward -L, Phong's highlight of the mirrored light, Specular 4 */
+        double r[3], nl = dot3(n, l);
+        for (int k = 0; k < 3; k++)
+            r[k] = l[k] - 2 * nl * n[k];
+        diffuse = fmax(0, -nl) * 0.4;
+        spec = pow(fmax(0, -dot3(dir, r)), e) * 4;
+    }
     const double base[3] = {0.8, 0.5, 0.3};
     for (int k = 0; k < 3; k++)
         out[k] = (diffuse + ambient + spec) * pow(base[k], 2); /* colours to the power Gamma (2) first */
 }
 
-static void fragment_look(void **st)
+/* One lit sphere's pixels against its renderer's formulas (phong: Fast-Raytracer's, else DE-Raytracer's). */
+static void look_against(const frag_case *sphere, bool phong)
 {
-    (void)st;
-    const frag_case sphere = {"tests/frag/sphere.frag", NULL, {0, 0, -5}, {0, 0, 0}, {0, 1, 0}, 0.4, -3, 0.8, 300, 1e5,
-                              sphere_de};
     float *rgba = malloc(sizeof(float) * RW * RH * 4);
     uint8_t *srgb = malloc((size_t)RW * RH * 4);
-    fathom_draw(&sphere, "fractal.BaseColor=0.8,0.5,0.3", NULL, rgba, srgb);
+    fathom_draw(sphere, "fractal.BaseColor=0.8,0.5,0.3", NULL, rgba, srgb);
     double worst = 0, worst_post = 0;
     int at = 0, hits = 0;
     for (int row = 0; row < RH; row++)
         for (int x = 0; x < RW; x++) {
             double want[3], dir[3];
-            look_colour(&sphere, x, row, want);
-            frag_ray(&sphere, x, row, dir);
-            double miss = sqrt(fmax(dot3(sphere.eye, sphere.eye) - pow(dot3(sphere.eye, dir), 2), 0));
+            look_colour(sphere, phong, x, row, want);
+            frag_ray(sphere, x, row, dir);
+            double miss = sqrt(fmax(dot3(sphere->eye, sphere->eye) - pow(dot3(sphere->eye, dir), 2), 0));
             if (fabs(miss - 1.5) < 0.05) /* the silhouette's pixels may go either way */
                 continue;
             hits += miss < 1.5;
@@ -343,13 +348,24 @@ static void fragment_look(void **st)
                 worst_post = fmax(worst_post, fabs(shown[k] - 255 * post)); /* the display's own */
             }
         }
-    printf("the look against DE-Raytracer's formulas: worst %.4f (pixel %d), after the post %.2f of 255, %d hits\n",
-           worst, at, worst_post, hits);
-    if (hits < RW * RH / 10 || worst > 0.01 || worst_post > 1.0)
+    printf("the look against %s's formulas: worst %.4f (pixel %d), after the post %.2f of 255, %d hits\n",
+           phong ? "Fast-Raytracer" : "DE-Raytracer", worst, at, worst_post, hits);
+    if (hits < RW * RH / 10 || worst > 0.025 || worst_post > 1.0) /* Phong's highlight: steep */
         fail_msg("fathom's fragment look is not DE-Raytracer's: colour off by %.4f at pixel %d, %.2f of 255 after "
                  "the post", worst, at, worst_post);
     free(rgba);
     free(srgb);
+}
+
+static void fragment_look(void **st)
+{
+    (void)st;
+    const frag_case de = {"tests/frag/sphere.frag", NULL, {0, 0, -5}, {0, 0, 0}, {0, 1, 0}, 0.4, -3, 0.8, 300, 1e5,
+                          sphere_de};
+    const frag_case fast = {"tests/frag/sphere_fast.frag", NULL, {0, 0, -5}, {0, 0, 0}, {0, 1, 0}, 0.4, -3, 0.8, 300,
+                            1e5, sphere_de};
+    look_against(&de, false);
+    look_against(&fast, true);
 }
 
 int main(void)

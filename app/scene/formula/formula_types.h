@@ -44,6 +44,9 @@ typedef struct formula_require {
     bool less; /* lhs < rhs, else lhs > rhs */
 } formula_require;
 
+/* How a fragment's DE renderer lights (app/scene/formula/frag.c COMPAT, shaders/frag/look.glsl). */
+typedef enum frag_light { FRAG_LIGHT_NONE, FRAG_LIGHT_DE, FRAG_LIGHT_PHONG, FRAG_LIGHT_PHONG_SHADOWS } frag_light;
+
 /* A Fragmentarium fragment's texture (uniform sampler2D NAME; file[PATH], or samplerCube) and the host's
  * #TexParameter lines (frag.h). */
 enum { FRAG_TEXTURES_MAX = 4, FRAG_TEXPARAMS_MAX = 16, FRAG_TEXPARAM_MAX = 40 };
@@ -65,7 +68,7 @@ typedef struct formula {
     bool step_formula;            /* formulaStep and the loop (@de), not its own formulaDE */
     bool fragment;                /* a Fragmentarium fragment (frag.h): file is its absolute path */
     float frag_detail, frag_max_distance; /* its DE renderer's Detail and MaxDistance defaults (frag.h) */
-    bool frag_look;               /* its renderer lights as DE-Raytracer does: its own look is the default */
+    frag_light frag_light;        /* how its renderer lights (its own look is the default unless NONE: frag.c) */
     bool frag_syntopia; /* its collection is Syntopia's Fragmentarium's (its DE-Raytracer shadows the camera light
                            too, and its host takes a preset's value past a slider as it is: frag.c) */
     int frag_texture_count, frag_texparam_count;

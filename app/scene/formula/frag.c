@@ -24,33 +24,35 @@ enum { FRAG_FILE_MAX = 512 * 1024, FRAG_STATEMENTS_MAX = 2000, FRAG_DEPTH_MAX = 
  * Every DE renderer of the public collections maps to the one DE renderer contract; `far` is the
  * renderer's MaxDistance (rays past it are background: DE-Raytracer.frag's trace(); Syntopia's
  * DE-Raytracer and DE-RaytracerX 100000, FragM's DE-Kn2 family a slider at 20, the others 100). Every one
- * of them has Detail -2.3, FudgeFactor 1 and MaxRaySteps 56 by default (frag_presets.c). `look`: the
- * renderer lights as DE-Raytracer does (its lighting(): shaders/frag/look.glsl), so a fragment's own look
- * is its default; the DE-Kn renderers (point lights, ambient light, clouds) and the Sky path tracer light
- * otherwise, and their fragments start in fathom's look. */
-static const struct { const char *name, *file; float far; bool look; } COMPAT[] = {
-    {"MathUtils.frag", "math_utils.frag", 0, false},
-    {"Complex.frag", "complex.frag", 0, false},
-    {"DE-Raytracer.frag", "raytracer.frag", 100000, true},
-    {"DE-Raytracer-v0.9.1.frag", "raytracer_v091.frag", 100, true},
-    {"DE-Raytracer-Slicer.frag", "raytracer_slicer.frag", 100, true},
-    {"De-Raytracer-Slicer.frag", "raytracer_slicer.frag", 100, true},
-    {"DE-Raytracer-v0.9.10.frag", "raytracer.frag", 100, true},
-    {"DE-RaytracerX.frag", "raytracer.frag", 100000, true},
-    {"Fast-Raytracer.frag", "raytracer.frag", 100, true},
-    {"Fast-Raytracerexp.frag", "raytracer.frag", 100, true},
-    {"Fast-Raytracer-with-Palette.frag", "raytracer.frag", 100, true},
-    {"Soft-Raytracer.frag", "raytracer.frag", 100, true},
-    {"Sky-Pathtracer.frag", "raytracer.frag", 100, false},
-    {"DE-Kn2.frag", "raytracer.frag", 20, false},
-    {"DE-Kn2cr11.frag", "raytracer.frag", 20, false},
-    {"DE-Kn2exp.frag", "raytracer.frag", 20, false},
-    {"DE-Kn9.frag", "raytracer.frag", 20, false},
-    {"DE-PK-1.1.9.frag", "raytracer.frag", 20, false},
-    {"DE-Kn2ColorandHeightmap.frag", "raytracer.frag", 20, false},
-    {"IBL-Raytracer.frag", "raytracer.frag", 100, true},
-    {"QuilezLib.frag", "quilez.frag", 0, false},
-    {"Classic-Noise.frag", "classic_noise.frag", 0, false},
+ * of them has Detail -2.3, FudgeFactor 1 and MaxRaySteps 56 by default (frag_presets.c). `light`: how the
+ * renderer lights (its lighting(), read from its source; shaders/frag/look.glsl), which makes its own look a
+ * fragment's default: DE-Raytracer's (FRAG_LIGHT_DE), or Fast-Raytracer's and DE-Raytracer 0.9.1's (Phong's
+ * highlight, the light toward -SpotLightDir; 0.9.1 with shadows). The others light otherwise (Soft-
+ * Raytracer's point light, IBL's image, 0.9.10's and the Slicer's own spot, the DE-Kn renderers' lights and
+ * clouds, the Sky path tracer) and their fragments start in fathom's look. */
+static const struct { const char *name, *file; float far; frag_light light; } COMPAT[] = {
+    {"MathUtils.frag", "math_utils.frag", 0, FRAG_LIGHT_NONE},
+    {"Complex.frag", "complex.frag", 0, FRAG_LIGHT_NONE},
+    {"DE-Raytracer.frag", "raytracer.frag", 100000, FRAG_LIGHT_DE},
+    {"DE-Raytracer-v0.9.1.frag", "raytracer_v091.frag", 100, FRAG_LIGHT_PHONG_SHADOWS},
+    {"DE-Raytracer-Slicer.frag", "raytracer_slicer.frag", 100, FRAG_LIGHT_NONE},
+    {"De-Raytracer-Slicer.frag", "raytracer_slicer.frag", 100, FRAG_LIGHT_NONE},
+    {"DE-Raytracer-v0.9.10.frag", "raytracer.frag", 100, FRAG_LIGHT_NONE},
+    {"DE-RaytracerX.frag", "raytracer.frag", 100000, FRAG_LIGHT_DE},
+    {"Fast-Raytracer.frag", "raytracer.frag", 100, FRAG_LIGHT_PHONG},
+    {"Fast-Raytracerexp.frag", "raytracer.frag", 100, FRAG_LIGHT_PHONG},
+    {"Fast-Raytracer-with-Palette.frag", "raytracer.frag", 100, FRAG_LIGHT_PHONG},
+    {"Soft-Raytracer.frag", "raytracer.frag", 100, FRAG_LIGHT_NONE},
+    {"Sky-Pathtracer.frag", "raytracer.frag", 100, FRAG_LIGHT_NONE},
+    {"DE-Kn2.frag", "raytracer.frag", 20, FRAG_LIGHT_NONE},
+    {"DE-Kn2cr11.frag", "raytracer.frag", 20, FRAG_LIGHT_NONE},
+    {"DE-Kn2exp.frag", "raytracer.frag", 20, FRAG_LIGHT_NONE},
+    {"DE-Kn9.frag", "raytracer.frag", 20, FRAG_LIGHT_NONE},
+    {"DE-PK-1.1.9.frag", "raytracer.frag", 20, FRAG_LIGHT_NONE},
+    {"DE-Kn2ColorandHeightmap.frag", "raytracer.frag", 20, FRAG_LIGHT_NONE},
+    {"IBL-Raytracer.frag", "raytracer.frag", 100, FRAG_LIGHT_NONE},
+    {"QuilezLib.frag", "quilez.frag", 0, FRAG_LIGHT_NONE},
+    {"Classic-Noise.frag", "classic_noise.frag", 0, FRAG_LIGHT_NONE},
 };
 
 /* The macros Fragmentarium's includes give every fragment (3D.frag's PI, MathUtils' FLT_MAX): defined
@@ -231,7 +233,7 @@ static bool resolve(frag_ctx *x, const char *inc, const char *home, char *path, 
         if (!strcasecmp(inc, COMPAT[i].name)) { /* Fragmentarium on Windows reads "De-Raytracer.frag" too */
             *ours = true;
             if (COMPAT[i].far > 0)
-                x->f->frag_max_distance = COMPAT[i].far, x->f->frag_look = COMPAT[i].look;
+                x->f->frag_max_distance = COMPAT[i].far, x->f->frag_light = COMPAT[i].light;
             if (snprintf(path, n, "%s/shaders/frag/%s", util_data_dir(), COMPAT[i].file) >= (int)n)
                 return *why = "the path is too long", false;
             char real[PATH_MAX];
@@ -477,9 +479,14 @@ bool frag_translate(frag_ctx *x, const char *path, const char *shown, bool ours,
         const char *c = frag_skip(code);
         if (!ours && !was_comment)
             x->statements += (size_t)(strchr(c, ';') != NULL);
-        if (x->in_vertex || x->in_preset) {
-            if (*c == '#' && (strstr(c, "endvertex") || strstr(c, "endpreset")))
+        bool end = *c == '#' && (strstr(c, "endvertex") || strstr(c, "endpreset"));
+        if (x->in_preset || (x->in_vertex && (ours || end))) {
+            bool vertex_init = end && x->in_vertex && x->vertex_init; /* glue.glsl runs it once a pixel */
+            sb_append(&out, vertex_init ? "#define FRAG_VERTEX_INIT 1\n" : "\n");
+            if (end)
                 x->in_vertex = x->in_preset = false;
+        } else if ((x->in_vertex && frag_vertex_line(x, line, sizeof line, code, sizeof code)) ||
+                   (!x->in_vertex && frag_repeated_declaration(x, c))) {
             sb_append(&out, "\n");
         } else if (directive(x, code, home, shown, n, depth, &out, &ok)) {
         } else if (!strncmp(c, "uniform", 7) && isspace((unsigned char)c[7])) {
@@ -547,6 +554,7 @@ bool frag_load(const char *path, formula *f, err_t *err)
         frag_widen_to_presets(text, f), free(text);
     sb_free(&x->functions);
     sb_free(&x->macros);
+    sb_free(&x->varyings);
     free(x);
     return ok;
 }

@@ -17,7 +17,9 @@
  *                                               fractal.iterations (a loop bound the compiler sees).
  *   #group NAME, #info TEXT                     the parameters' group; the formula's description
  *   #preset NAME ... #endpreset                 named views (frag_preset_shot)
- *   #vertex...#endvertex, #camera, #donotrun, #buffer, #TexParameter: the host's business: blanked.
+ *   #vertex...#endvertex                        the vertex shader's code, joined to the fragment's: its
+ *                                               varyings globals, its init() run once a pixel (frag_vertex.c)
+ *   #camera, #donotrun, #buffer, #TexParameter: the host's business: blanked (#TexParameter kept for textures).
  * Refused, in one line each: a fragment with its own main() (a whole renderer), a 2D fragment, one
  * without DE() or a DE renderer, textures (file[...]), a missing include (with the include chain).
  * The renderer contract (shaders/frag/raytracer.frag, shaders/frag/glue.glsl): DE() is the estimate, init()

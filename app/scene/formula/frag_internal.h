@@ -26,6 +26,8 @@ typedef struct frag_ctx {
     char group[FORMULA_KEY_MAX];   /* the #group the next parameter is in */
     char comment[FORMULA_TEXT_MAX]; /* the comment line just before: the next parameter's description */
     bool in_vertex, in_preset, has_de, has_renderer;
+    bool vertex_init;              /* a #vertex section defined init(): fragVertexInit (frag_vertex.c) */
+    strbuf varyings;               /* the names its #vertex sections declared varying */
     size_t statements;             /* in the stranger's files (not fathom's include set) */
     int depth;                     /* of braces, in the file being read */
     strbuf functions, macros;      /* the names the files define at the top level, each followed by '\n' */
@@ -45,6 +47,12 @@ void frag_texparameter(frag_ctx *x, const char *args);
 /* Widens each number parameter's range to hold every value a preset of the fragment's text gives it (Syntopia's
  * host takes them as they are). */
 void frag_widen_to_presets(const char *text, formula *f);
+/* A line of a #vertex section (frag_vertex.c), rewritten in place for the one shader (its varyings globals, its
+ * init() fragVertexInit()); true when it is the vertex shader's alone (blanked). */
+bool frag_vertex_line(frag_ctx *x, char *line, size_t line_n, char *code, size_t code_n);
+/* Whether code (past its blanks) declares again, outside the sections, only varyings a #vertex section made
+ * globals or bare uniforms ("uniform int P, Q;") naming its parameters. */
+bool frag_repeated_declaration(const frag_ctx *x, const char *code);
 /* A "uniform ..." line (code: its code, comments blanked): a parameter and its translated line. */
 bool frag_uniform(frag_ctx *x, const char *line, const char *code, const char *shown, int n, strbuf *out);
 #endif

@@ -215,8 +215,10 @@ static void preset_sets(const preset *pr, const formula *f, camera *cam, char (*
     cam->lens = lens;
     /* where the preset is silent, the DE renderers' own defaults (every one of fathom's set: frag.c) */
     static const char *const DEFAULTS[][2] = {{"MaxRaySteps", "quality.max_steps=56"},
-                                              {"FudgeFactor", "quality.step_factor=1"}};
-    for (size_t d = 0; d < sizeof DEFAULTS / sizeof *DEFAULTS && *count < SHOT_SET_MAX; d++) {
+                                              {"FudgeFactor", "quality.step_factor=1"},
+                                              {"Specular", "fractal.Specular=4"}}; /* Fast-Raytracer's */
+    size_t defaults = f->frag_light >= FRAG_LIGHT_PHONG ? 3 : 2;
+    for (size_t d = 0; d < defaults && *count < SHOT_SET_MAX; d++) {
         bool said = false;
         for (int i = 0; i < pr->count; i++)
             said |= !strcmp(pr->key[i], DEFAULTS[d][0]);
