@@ -324,8 +324,8 @@ static void where_presets_start(void **st)
 {
     (void)st;
     const char *head = "#include \"Fast-Raytracer.frag\"\nfloat DE(vec3 p) { return length(p) - 1.0; }\n";
-    const char *views[] = {"#preset Wide\nEye = 0,0,-20\n#endpreset\n#preset My DEFAULT look\nEye = 0,3,-4\n"
-                           "Detail = -4\n#endpreset\n#preset Close\nEye = 0,0,-2\n#endpreset\n",
+    const char *views[] = {("#preset Wide\nEye = 0,0,-20\n#endpreset\n#preset My DEFAULT look\nEye = 0,3,-4\n"
+                            "Detail = -4\n#endpreset\n#preset Close\nEye = 0,0,-2\n#endpreset\n"),
                            "#preset Wide\nEye = 0,0,-20\n#endpreset\n#preset Close\nEye = 0,0,-2\n#endpreset\n", ""};
     const int start[] = {1, -1, -1};
     const double eye_y[] = {3, 0, 0}, eye_z[] = {-4, -10, -10};
