@@ -13,6 +13,7 @@
 #include "gpu/render_programs.h"
 #include "gpu/render_scene.h"
 #include "gpu/render_state.h"
+#include "gpu/texture.h"
 #include "scene/program.h"
 
 static render_state *const state = &render_shared;
@@ -123,19 +124,6 @@ static void display_pass(GLuint fbo, int width, int height, float exposure, rend
     glDrawArrays(GL_TRIANGLES, 0, 3);
 }
 
-/* GL rows run bottom to top; files run top to bottom. */
-static void flip_rows(void *data, int height, size_t row_bytes)
-{
-    uint8_t *p = data, *tmp = util_alloc(row_bytes, "a row of the image");
-    for (int y = 0; y < height / 2; y++) {
-        uint8_t *a = p + (size_t)y * row_bytes, *b = p + (size_t)(height - 1 - y) * row_bytes;
-        memcpy(tmp, a, row_bytes);
-        memcpy(a, b, row_bytes);
-        memcpy(b, tmp, row_bytes);
-    }
-    free(tmp);
-}
-
 static void read_rect(GLuint fbo, GLenum attachment, GLenum type, int w, int h, void *out)
 {
     glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
@@ -155,7 +143,7 @@ void render_read_stretched_srgb8(uint8_t *rgba, int width, int height, float exp
     assert(width <= state->alloc_width && height <= state->alloc_height);
     render_display(state->out_fbo, width, height, exposure, VIEW_COLOR);
     read_rect(state->out_fbo, GL_COLOR_ATTACHMENT0, GL_UNSIGNED_BYTE, width, height, rgba);
-    flip_rows(rgba, height, (size_t)width * 4);
+    texture_flip_rows(rgba, height, (size_t)width * 4);
 }
 
 void render_read_srgb8(uint8_t *rgba, float exposure)
@@ -172,7 +160,7 @@ void render_read_linear(float *rgba)
         for (int c = 0; c < 4; c++)
             rgba[i * 4 + (size_t)c] *= inv;
     }
-    flip_rows(rgba, state->height, (size_t)state->width * 4 * sizeof(float));
+    texture_flip_rows(rgba, state->height, (size_t)state->width * 4 * sizeof(float));
 }
 
 /* The position AOV (GL rows, bottom up, before the flip): the pixel's ray (the lens's or eye's centre:
@@ -220,7 +208,7 @@ void render_read_aovs(float *aov8)
     for (int k = 0; k < NUM_TARGETS; k++)
         free(t[k]);
     aov_positions(aov8);
-    flip_rows(aov8, state->height, (size_t)state->width * AOV_FLOATS * sizeof(float));
+    texture_flip_rows(aov8, state->height, (size_t)state->width * AOV_FLOATS * sizeof(float));
 }
 
 long render_unresolved_pixels(long *loops)

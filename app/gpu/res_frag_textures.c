@@ -11,6 +11,7 @@
 
 #include "data/media/image_io.h"
 #include "gpu/render_resource.h"
+#include "gpu/texture.h"
 #include "scene/program.h"
 
 static struct {
@@ -41,18 +42,6 @@ static GLenum gl_name(const char *w)
     return 0;
 }
 
-/* Rows bottom first (GL's), in place. */
-static void flip(uint8_t *px, int h, size_t row)
-{
-    uint8_t *tmp = util_alloc(row, "a row of a texture");
-    for (int y = 0; y < h / 2; y++) {
-        memcpy(tmp, px + (size_t)y * row, row);
-        memcpy(px + (size_t)y * row, px + (size_t)(h - 1 - y) * row, row);
-        memcpy(px + (size_t)(h - 1 - y) * row, tmp, row);
-    }
-    free(tmp);
-}
-
 static GLuint load(const formula *f, const frag_texture *t, err_t *err)
 {
     GLint side = 0;
@@ -81,7 +70,7 @@ static GLuint load(const formula *f, const frag_texture *t, err_t *err)
                          type, (const uint8_t *)px + (size_t)k * (size_t)w * (size_t)w * texel);
         glTexParameteri(target, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
     } else {
-        flip(px, h, (size_t)w * texel);
+        texture_flip_rows(px, h, (size_t)w * texel); /* bottom row first */
         glTexImage2D(GL_TEXTURE_2D, 0, hdr ? GL_RGBA32F : GL_RGBA8, w, h, 0, GL_RGBA, type, px);
     }
     free(px);

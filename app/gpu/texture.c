@@ -1,7 +1,9 @@
 #include "gpu/texture.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "data/media/image_io.h"
 
@@ -117,4 +119,16 @@ bool texture_buffer(GLenum format, const void *data, size_t bytes, GLuint *buf, 
     glTexBuffer(GL_TEXTURE_BUFFER, format, *buf);
     glBindTexture(GL_TEXTURE_BUFFER, 0);
     return true;
+}
+
+void texture_flip_rows(void *data, int height, size_t row_bytes)
+{
+    uint8_t *p = data, *tmp = util_alloc(row_bytes, "a row of the image");
+    for (int y = 0; y < height / 2; y++) {
+        uint8_t *a = p + (size_t)y * row_bytes, *b = p + (size_t)(height - 1 - y) * row_bytes;
+        memcpy(tmp, a, row_bytes);
+        memcpy(a, b, row_bytes);
+        memcpy(b, tmp, row_bytes);
+    }
+    free(tmp);
 }

@@ -25,6 +25,10 @@ GLuint texture_load_height(const char *path, int *width, err_t *err);
 /* faces in GL order +X, -X, +Y, -Y, +Z, -Z; all square and the same size. *size gets the face size. */
 GLuint texture_load_cube(const char (*faces)[PATH_MAX_LEN], int *size, err_t *err);
 
+/* Reverses the order of `height` rows of row_bytes each, in place: GL's rows run bottom to top, files' top to
+ * bottom. */
+void texture_flip_rows(void *rows, int height, size_t row_bytes);
+
 /* A texture buffer over `bytes` of data in `format` (shaders read it with texelFetch); false when the
  * GPU is out of memory (then nothing is left allocated). */
 bool texture_buffer(GLenum format, const void *data, size_t bytes, GLuint *buf, GLuint *tex);

@@ -402,6 +402,33 @@ static void where_presets_start(void **st)
     }
 }
 
+/* The hit rule's and the look's keys at both ends of their ranges and just outside (fractal.detail -7..0,
+ * fractal.max_distance 1e-3..1e6, the two rules and looks by name). */
+static void rule_keys(void **st)
+{
+    (void)st;
+    char formula_set[PATH_MAX_LEN + 32], path[PATH_MAX_LEN];
+    fixture("sphere.frag", path, sizeof path);
+    snprintf(formula_set, sizeof formula_set, "fractal.formula=%s", path);
+    static const struct { const char *set; bool ok; } CASES[] = {
+        {"fractal.detail=-7", true},          {"fractal.detail=0", true},
+        {"fractal.detail=-7.01", false},      {"fractal.detail=0.01", false},
+        {"fractal.max_distance=0.001", true}, {"fractal.max_distance=1000000", true},
+        {"fractal.max_distance=0.0009", false}, {"fractal.max_distance=1000001", false},
+        {"fractal.hit_rule=footprint", true}, {"fractal.hit_rule=relative", false},
+        {"fractal.look=fathom", true},        {"fractal.look=fragmentarium", false},
+    };
+    for (size_t i = 0; i < sizeof CASES / sizeof *CASES; i++) {
+        scene s;
+        err_t e;
+        bool ok = scene_load("fractal", (const char *const[]){formula_set, CASES[i].set}, 2, &s, &e);
+        if (ok != CASES[i].ok)
+            fail_msg("%s: %s", CASES[i].set, ok ? "loaded" : e.msg);
+        if (ok)
+            scene_free(&s);
+    }
+}
+
 int main(void)
 {
     setenv("FATHOM_DATA_DIR", FATHOM_SOURCE_DIR, 1);
@@ -411,6 +438,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(many_fragments, make_dir, remove_dir),
         cmocka_unit_test(presets),
         cmocka_unit_test_setup_teardown(where_presets_start, make_dir, remove_dir),
+        cmocka_unit_test(rule_keys),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -505,6 +505,8 @@ bool frag_translate(frag_ctx *x, const char *path, const char *shown, bool ours,
         else if (*c)
             x->comment[0] = '\0';
     }
+    if (ok && depth == 0 && x->f->frag_syntopia) /* every parameter is declared by now (includes inline) */
+        frag_widen_to_presets(text, x->f);
     free(text);
     if (ok && x->statements > FRAG_STATEMENTS_MAX)
         ok = err_set(x->err, "%s: the fragment and its own includes have more than %d statements: the GL compiler "
@@ -549,9 +551,6 @@ bool frag_load(const char *path, formula *f, err_t *err)
         snprintf(f->summary, sizeof f->summary, "Fragmentarium fragment %s", base);
     if (ok)
         keep_wrappers(x, path), digest(x, path);
-    char *text;
-    if (ok && f->frag_syntopia && frag_read(path, base, &text, err))
-        frag_widen_to_presets(text, f), free(text);
     sb_free(&x->functions);
     sb_free(&x->macros);
     sb_free(&x->varyings);
