@@ -30,10 +30,10 @@ void main()
         imageStore(uAccum, px, color);
         imageStore(uNormalDepth, px, normalDepth);
         imageStore(uAux, px, aux);
-        imageStore(uSquares, px, vec4(color.rgb * color.rgb, 0.0));
+        imageStore(uSquares, px, vec4(color.rgb * color.rgb, sampleGrazed ? 1.0 : 0.0));
         imageStore(uAlbedo, px, albedo);
     } else {
         imageStore(uAccum, px, imageLoad(uAccum, px) + color);
-        imageStore(uSquares, px, imageLoad(uSquares, px) + vec4(color.rgb * color.rgb, 0.0));
+        imageStore(uSquares, px, imageLoad(uSquares, px) + vec4(color.rgb * color.rgb, sampleGrazed ? 1.0 : 0.0));
     }
 }

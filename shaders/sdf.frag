@@ -15,5 +15,5 @@ void main()
     if (uAdaptive != 0 && texelFetch(uEdgeMask, ivec2(gl_FragCoord.xy), 0).r < 0.5)
         discard; // adaptive sampling: the centre sample is this pixel's mean already
     renderPixel(gl_FragCoord.xy, oColor, oNormalDepth, oAux, oAlbedo);
-    oSquares = vec4(oColor.rgb * oColor.rgb, 0.0);
+    oSquares = vec4(oColor.rgb * oColor.rgb, sampleGrazed ? 1.0 : 0.0); // alpha: the samples that passed by
 }

@@ -348,6 +348,7 @@ static void build_mask_tex(bool edges, float tolerance)
     glUniform1i(glGetUniformLocation(prog, edges ? "uNormalDepth" : "uSquares"), 1);
     glUniform1f(glGetUniformLocation(prog, "uExposure"), 1.0f);
     glUniform1f(glGetUniformLocation(prog, "uTolerance"), tolerance);
+    glUniform1f(glGetUniformLocation(prog, "uEdgeStep"), RENDER_EDGE_STEP * tolerance);
     glUniform2i(glGetUniformLocation(prog, "uSize"), state->width, state->height);
     glBindVertexArray(render_programs_vao());
     glDrawArrays(GL_TRIANGLES, 0, 3);
@@ -359,8 +360,9 @@ static void build_mask_tex(bool edges, float tolerance)
  * starts. Shading is deterministic but for the sub-pixel position, a lens's point and the path
  * tracer's random numbers: in the window (render_set_adaptive) the samples after the first and before
  * RENDER_ADAPTIVE_MIN go only to edges while there is no lens or path tracer; from sample
- * RENDER_ADAPTIVE_MIN on, only pixels whose 3x3 block's standard error is above the tolerance take
- * more (every image; bands and tiles carry margin rows for the block: render_adaptive_margin). Once no
+ * RENDER_ADAPTIVE_MIN on, only pixels the error mask keeps take more (shaders/errormask.frag: a standard
+ * error above the tolerance in the 3x3 block, a pass-by, an edge not yet placed; every image; bands
+ * and tiles carry margin rows for the block: render_adaptive_margin). Once no
  * pixel is left, the image has converged and further samples cost nothing. */
 static bool masked_sample(void)
 {

@@ -97,13 +97,17 @@ int render_band_rows(void);
 /* Adaptive sampling, by the scene's quality.tolerance (0: off, every pixel takes every sample; so too
  * under the path tracer, the unbiased truth whose two samples may agree by chance). From
  * sample RENDER_ADAPTIVE_MIN on, everywhere, only pixels whose mean's standard error (as displayed) is above the
- * tolerance take more (shaders/errormask.frag); once none is left, further samples cost nothing. With
- * render_set_adaptive(true) (the window), samples before it go only where the edge mask is set
+ * tolerance, whose rays passed a surface by within the pixel's footprint, or whose block holds an edge
+ * their samples cannot yet place take more (shaders/errormask.frag); once none is left, further samples
+ * cost nothing. With render_set_adaptive(true) (the window), samples before it go only where the edge mask is set
  * (shaders/edgemask.frag: colour, depth, hit or normal differs in the 3x3 block), unless a lens or the
  * path tracer makes every pixel vary; off by default (its 3x3 block would make a band's or a tile's
  * border rows differ from the whole image's). */
 void render_set_adaptive(bool on);
 enum { RENDER_ADAPTIVE_MIN = 2 }; /* the samples every pixel takes before the tolerance can stop it */
+/* An edge of displayed contrast C in a pixel's 3x3 block keeps the pixel going until it has C / (this ·
+ * tolerance) samples (shaders/errormask.frag): n stratified samples place an edge within about C / n. */
+#define RENDER_EDGE_STEP 2.5f
 /* Rows beyond a band's edges that a band of an image must render with it to agree with the whole
  * image bit for bit: the error mask reads the 3x3 block, so each masked sample's decisions reach a row
  * further (0 when s does not sample adaptively at spp samples). Even, as bands' offsets are. */

@@ -89,7 +89,7 @@ typedef enum knob_scope {
     X(integrator,   INT,   "INTEGRATOR",   0,     1,      0,    0,       0,     0,    0,   0,    NULL,                    SCOPE_ANY,      \
       "0: the shading model (direct light, AO, one-level glass); 1: a path tracer through the same map() and materials, the Monte Carlo truth the model is priced against (common/pathtrace.glsl)") \
     X(tolerance,    FLOAT, NULL,          0,     1,      0.008, 0.008,  0.008, 0,    0,   0,    "0,0.004,0.008,0.016,0.032", SCOPE_ANY, \
-      "adaptive sampling: after 2 samples a pixel stops once the standard error of its mean, as displayed (tone-mapped and sRGB-encoded, 0-1), is below this in its whole 3x3 block (0, and under the path tracer: every pixel takes every sample)") \
+      "adaptive sampling: after 2 samples a pixel stops once the standard error of its mean, as displayed (tone-mapped and sRGB-encoded, 0-1), is below this in its whole 3x3 block, none of its rays passed a surface by within the pixel, and it has the samples an edge in its block needs (contrast / 2.5 tolerances) (0, and under the path tracer: every pixel takes every sample)") \
     X(spp,          INT,   NULL,         1,     65536,  1,    4,       16,    256,  2,   0,    "1,2,4,8,16",            SCOPE_ANY,      \
       "samples per pixel for offline shots and a still window (progressive, jittered)")
 /* clang-format on */

@@ -2,6 +2,7 @@
 // through a uniform grid walked in 3D-DDA order (Amanatides & Woo 1987). Sub-pixel droplets are not
 // traced: the ray goes straight through, dimmed by the droplet's mean transmittance (DROPLET_LOD).
 // Needs: fresnelDielectric (common/brdf.glsl), footprintAt (common/uniforms.glsl).
+#include "common/hit.glsl" // sampleGrazed, the pass-by flag
 
 uniform samplerBuffer uDroplets;      // droplet i: centre xyz, radius w
 uniform usamplerBuffer uDropletIndex; // droplet numbers, cell after cell (BVH: in leaf order)
@@ -41,6 +42,15 @@ bool sphereRoots(vec3 ro, vec3 rd, vec4 s, out float t0, out float t1)
     t0 = min(ta, q);
     t1 = max(ta, q);
     return true;
+}
+
+// Adaptive sampling's pass-by (common/hit.glsl): the ray passes droplet s, whose nearest point to the
+// ray lies within (tmin, tmax), closer than GRAZE_FOOTPRINTS pixel footprints without entering it.
+void dropletGraze(vec3 ro, vec3 rd, vec4 s, float tmin, float tmax, float pathT)
+{
+    vec3 f = ro - s.xyz;
+    float tc = -dot(f, rd), miss = length(f + tc * rd) - s.w;
+    sampleGrazed = sampleGrazed || (tc > tmin && tc < tmax && miss > 0.0 && miss < GRAZE_FOOTPRINTS * footprintAt(pathT + tc));
 }
 
 // The droplet's mean transmittance over its disc (no bending: the ray goes on as it came).
@@ -120,6 +130,8 @@ int dropletsWalk(vec3 ro, vec3 rd, float tmin, float tmax, float tSurface, int s
             int id = int(texelFetch(uDropletIndex, k).r);
             vec4 s = droplet(id);
             float t0, t1;
+            if (id != skip)
+                dropletGraze(ro, rd, s, tmin, tHit, pathT);
             if (id == skip || !sphereRoots(ro, rd, s, t0, t1) || t0 <= tmin || t0 >= tHit)
                 continue;
             if (DROPLET_LOD_ON && dropletIsSubPixel(s.w, pathT + t0)) {
@@ -219,6 +231,8 @@ int dropletsBvhPass(int pass, vec3 ro, vec3 rd, vec3 inv, float tmin, float tSur
                 int id = int(texelFetch(uDropletIndex, k).r);
                 vec4 s = droplet(id);
                 float t0, t1;
+                if (pass == 0 && id != skip)
+                    dropletGraze(ro, rd, s, tmin, tHit, pathT);
                 if (id == skip || !sphereRoots(ro, rd, s, t0, t1) || t0 <= tmin || t0 >= tHit ||
                     (pass == 1 && t0 >= tSurface))
                     continue;

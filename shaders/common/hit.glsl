@@ -14,4 +14,11 @@ struct Hit {
 // bounding sphere): marchers step by its distance but never stop on it.
 const float MATERIAL_BOUND = -1.0;
 bool isBound(vec2 d) { return d.y < -0.5; }
+
+// Adaptive sampling's pass-by flag (shaders/errormask.frag): set when a ray of this sample passed
+// within GRAZE_FOOTPRINTS pixel footprints of a surface (or a droplet) it did not hit. Whatever lies
+// inside a pixel's cone is that close to every ray of the pixel, so a pixel none of whose samples
+// passed anything by cannot be hiding a feature between them; one that did takes more samples.
+#define GRAZE_FOOTPRINTS 1.5
+bool sampleGrazed = false;
 #endif

@@ -152,12 +152,18 @@ Hit castRay(vec3 ro, vec3 rd, float tmax, float side, float pathT)
     Hit h = Hit(false, 0.0, -1.0, 0, false, 0);
     float t = 0.0;
     tmax = min(tmax, uFragMaxDistance);
+    bool boundPrev = true;
+    float stepPrev = 0.0;
     for (int i = 0; i < MAX_STEPS && loopSpend(1); i++) {
         h.steps = i + 1;
         vec2 d = map(ro + rd * t);
         float step = side * d.x * float(STEP_FACTOR);
         bool bound = isBound(d);
         h.boundSteps += bound ? 1 : 0;
+        if (!bound && !boundPrev && step > stepPrev && stepPrev > 0.0) // passed by (as castRay below)
+            sampleGrazed = sampleGrazed || stepPrev < GRAZE_FOOTPRINTS * footprintAt(pathT + t) + hitEps(pathT + t);
+        boundPrev = bound;
+        stepPrev = step;
         t += step;
         float eps = hitEps(pathT + t);
         if (!bound && step < eps) {
@@ -279,9 +285,7 @@ Hit castRay(vec3 ro, vec3 rd, float tmax, float side, float pathT)
     bool relaxedPrev = false; // the last step was ω times its bound (over-relaxation): check it
     float t = 0.0, tPrev = 0.0, rPrev = 0.0, fPrev = 0.0; // rPrev = |fPrev|: the last ball's radius
     float floorBase = positionFloor(pathT); // float resolution at t = 0
-#ifdef MARCH_COVERAGE
     bool boundPrev = true;
-#endif
     for (int i = 0; i < MAX_STEPS && loopSpend(1); i++) {
         h.steps = i + 1;
         vec2 d = marchMap(ro + rd * t, rd * side);
@@ -289,16 +293,17 @@ Hit castRay(vec3 ro, vec3 rd, float tmax, float side, float pathT)
         float eps = hitEps(pathT + t);
         bool bound = isBound(d);
         h.boundSteps += bound ? 1 : 0;
-#ifdef MARCH_COVERAGE
-        if (coverTrack && !bound && !boundPrev && dist > fPrev && fPrev > 0.0) { // passed by at tPrev
+        if (!bound && !boundPrev && dist > fPrev && fPrev > 0.0) { // passed by at tPrev
             float footprint = footprintAt(pathT + tPrev);
-            if (fPrev / footprint < coverRatio) {
+            sampleGrazed = sampleGrazed || fPrev < GRAZE_FOOTPRINTS * footprint + (MARCH_REFINES == 1 ? 0.0 : eps);
+#ifdef MARCH_COVERAGE
+            if (coverTrack && fPrev / footprint < coverRatio) {
                 coverRatio = fPrev / footprint;
                 coverT = tPrev;
             }
+#endif
         }
         boundPrev = bound;
-#endif
         if (relaxedPrev && (abs(dist) + rPrev < t - tPrev || (MARCH_REFINES == 1 && dist < 0.0))) {
             t = tPrev + rPrev * float(STEP_FACTOR);
             relaxedPrev = false;

@@ -1,7 +1,7 @@
 /* The renderer's contract on llvmpipe through headless EGL, at small odd sizes: every variant a shipped
  * scene can ask for compiles and links, no NaN or Inf in any output, the PNG the right way up, a banded
  * shot equal to the whole, a broken shader on reload keeping the last good program, the resource kinds'
- * promises, adaptive sampling and its standard error. (Shading: test_shading.c; the march against exact
+ * promises. (Adaptive sampling: test_adaptive.c; shading: test_shading.c; the march against exact
  * intersections: test_march.c; hard marches: test_march_hard.c.) */
 #include <math.h>
 #include <setjmp.h>
@@ -345,94 +345,6 @@ static void reload_keeps_last_good_program(void **st)
  * refinement step landing exactly on the plane left the bracket's outside end behind. Every ground
  * pixel within 20 m must be the plane's depth (analytic) within 1e-4, at the interactive and final
  * presets. (Without the fixes in common/march.glsl: 846 pixels off, worst 17 %.) */
-/* Adaptive sampling (the window's still images): after the centre sample, only pixels on the edge
- * mask take further samples. Every other pixel must keep exactly its centre value (each pixel's alpha
- * counts its own samples), and the image must come near the one where every pixel took all its
- * samples: the reference, independent of the mask. */
-static void adaptive_sampling(void **st)
-{
-    (void)st;
-    enum { AW = 320, AH = 180, SPP = RENDER_ADAPTIVE_MIN };
-    size_t n = (size_t)AW * AH;
-    float *full = malloc(sizeof(float) * 4 * n), *one = malloc(sizeof(float) * 4 * n), *ad = malloc(sizeof(float) * 4 * n);
-    scene s;
-    err_t e;
-    if (!scene_load("csg", NULL, 0, &s, &e))
-        fail_msg("%s", e.msg);
-    camera cam = camera_look_at_deg(s.cam_position, s.cam_look_at, s.cam_fov_deg);
-    s.quality.tolerance = 0; /* the reference: every pixel takes every sample */
-    draw(&s, &cam, AW, AH, SPP, NULL, NULL, full);
-    draw(&s, &cam, AW, AH, 1, NULL, NULL, one);
-    s.quality.tolerance = 0.008f; /* a pixel's standard error stops it after RENDER_ADAPTIVE_MIN */
-    render_set_adaptive(true);
-    draw(&s, &cam, AW, AH, SPP, NULL, NULL, ad);
-    render_set_adaptive(false);
-    int kept = render_adaptive_pixels();
-    size_t same = 0;
-    double e_one = 0, e_ad = 0;
-    for (size_t i = 0; i < n; i++) {
-        same += !memcmp(ad + 4 * i, one + 4 * i, sizeof(float) * 3);
-        for (int c = 0; c < 3; c++) {
-            double a = full[4 * i + (size_t)c];
-            e_one += (one[4 * i + (size_t)c] - a) * (one[4 * i + (size_t)c] - a);
-            e_ad += (ad[4 * i + (size_t)c] - a) * (ad[4 * i + (size_t)c] - a);
-        }
-    }
-    e_one = sqrt(e_one / (3.0 * (double)n)), e_ad = sqrt(e_ad / (3.0 * (double)n));
-    fprintf(stderr, "adaptive: %d of %zu pixels kept by the last mask; %zu keep their centre sample; RMSE to %d spp "
-            "everywhere: %.5f (1 spp: %.5f)\n", kept, n, same, SPP, e_ad, e_one);
-    assert_true((size_t)kept < 3 * n / 4); /* a small image: many of its pixels are on edges */
-    assert_true(same >= n - (size_t)kept);       /* off the mask: exactly the centre sample */
-    assert_true(same < n - (size_t)kept + n / 50); /* on it: the samples were taken */
-    assert_true(e_ad < 0.5 * e_one);
-    scene_free(&s);
-    free(full);
-    free(one);
-    free(ad);
-}
-
-/* Adaptive sampling by the standard error (quality.tolerance; every shot, not only the window's): at
- * tolerance 0 every pixel takes every sample; at the final preset's the Mandelbulb's pixels take far
- * fewer on average, and the image stays near every pixel's 16 samples: much nearer than the
- * RENDER_ADAPTIVE_MIN samples everywhere that every pixel takes before the tolerance may stop it. (Without the 3x3 block in
- * shaders/errormask.frag a pixel whose four samples agree stops before a thread thinner than the pixel
- * shows: RMSE 0.69 of the 2-sample image's; with it, 0.04.) */
-static void adaptive_standard_error(void **st)
-{
-    (void)st;
-    enum { AW = 240, AH = 135, SPP = 16 };
-    size_t n = (size_t)AW * AH;
-    float *full = malloc(sizeof(float) * 4 * n), *four = malloc(sizeof(float) * 4 * n), *ad = malloc(sizeof(float) * 4 * n);
-    scene s;
-    err_t e;
-    if (!scene_load("mandelbulb", (const char *[]){"quality.preset=final"}, 1, &s, &e))
-        fail_msg("%s", e.msg);
-    camera cam = camera_look_at_deg(s.cam_position, s.cam_look_at, s.cam_fov_deg);
-    float tolerance = s.quality.tolerance;
-    assert_true(tolerance > 0);
-    s.quality.tolerance = 0;
-    draw(&s, &cam, AW, AH, SPP, NULL, NULL, full);
-    assert_true(fabs(render_mean_samples() - SPP) < 1e-9);
-    draw(&s, &cam, AW, AH, RENDER_ADAPTIVE_MIN, NULL, NULL, four);
-    s.quality.tolerance = tolerance;
-    draw(&s, &cam, AW, AH, SPP, NULL, NULL, ad);
-    double mean = render_mean_samples(), e4 = 0, ead = 0;
-    for (size_t i = 0; i < 4 * n; i++)
-        if (i % 4 != 3) {
-            e4 += (four[i] - full[i]) * (four[i] - full[i]);
-            ead += (ad[i] - full[i]) * (ad[i] - full[i]);
-        }
-    e4 = sqrt(e4 / (3.0 * (double)n)), ead = sqrt(ead / (3.0 * (double)n));
-    fprintf(stderr, "adaptive by standard error (tolerance %g): %.2f samples a pixel of %d; RMSE to every pixel's "
-            "%d: %.5f (%d everywhere: %.5f)\n", (double)tolerance, mean, SPP, SPP, ead, RENDER_ADAPTIVE_MIN, e4);
-    assert_true(mean > RENDER_ADAPTIVE_MIN && mean < 0.75 * SPP);
-    assert_true(ead < 0.2 * e4);
-    scene_free(&s);
-    free(full);
-    free(four);
-    free(ad);
-}
-
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -442,8 +354,6 @@ int main(void)
         cmocka_unit_test(banded_shot_matches_whole),
         cmocka_unit_test(reload_keeps_last_good_program),
         cmocka_unit_test(resource_kinds_keep_their_promises),
-        cmocka_unit_test(adaptive_sampling),
-        cmocka_unit_test(adaptive_standard_error),
     };
     if (getenv("FATHOM_TEST_FILTER")) /* one test while working on it: FATHOM_TEST_FILTER='glass*' */
         cmocka_set_test_filter(getenv("FATHOM_TEST_FILTER"));
