@@ -189,6 +189,16 @@ static void patch_vertex(mesh_ctx *c, const mesh_cell_case *kc, int p, int i, in
                 sum[d] += x->n[d];
             n++;
         }
+    if (c->m->nv == c->mass_cap) {
+        c->mass_cap = c->mass_cap ? 2 * c->mass_cap : 4096;
+        c->mass = util_realloc(c->mass, c->mass_cap * 3 * sizeof(float), "mesh mass points");
+    }
+    for (int d = 0; d < 3; d++) {
+        double m = 0;
+        for (int q = 0; q < n; q++)
+            m += (double)pt[q][d] / n;
+        c->mass[3 * c->m->nv + (size_t)d] = (float)m;
+    }
     bool clamped;
     mesh_qef_solve((const float(*)[3])pt, (const float(*)[3])nm, n, lo, c->h, out, &clamped);
     c->st->clamped += clamped;
@@ -335,6 +345,7 @@ static void quads(mesh_ctx *c, int k)
 
 static void ctx_free(mesh_ctx *c)
 {
+    free(c->mass);
     for (int i = 0; i < 3; i++) {
         free(c->val[i]);
         free(c->xe[i]);
@@ -427,7 +438,8 @@ static size_t ctx_bytes(const mesh_ctx *c)
     size_t fixed = layer_bytes(c->n, c->nb);
     size_t xb = (c->plane[0].cap + c->plane[1].cap + c->plane[2].cap + c->slab[0].cap + c->slab[1].cap) *
                 (sizeof(crossing) + sizeof(float[9]));
-    return fixed + xb + c->pts_cap * 16 + c->mid_cap * sizeof(float[4]) + c->cell_cap * sizeof(int32_t[2]);
+    return fixed + xb + c->pts_cap * 16 + c->mid_cap * sizeof(float[4]) + c->cell_cap * sizeof(int32_t[2]) +
+           c->mass_cap * sizeof(float[3]);
 }
 
 bool mesh_extract(const mesh_grid *g, mesh *out, mesh_stats *st, err_t *err)
@@ -458,6 +470,8 @@ bool mesh_extract(const mesh_grid *g, mesh *out, mesh_stats *st, err_t *err)
         if (ok && g->progress)
             g->progress(g->user, (double)(k + 1) / (c.n[2] + 1));
     }
+    if (ok) /* faces the quadric's points made cross: back to their patches' mass points */
+        st->untangled = mesh_untangle(out, c.mass, &st->crossing, &st->crossing_left);
     ctx_free(&c);
     if (!ok)
         mesh_free(out);

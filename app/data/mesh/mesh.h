@@ -14,6 +14,9 @@
  *    cells agree), placed by the quadric of the patch's crossings and normals (Garland–Heckbert's
  *    quadric error, solved as in Ju et al. 2002, "Dual Contouring of Hermite Data", with small
  *    eigenvalues truncated, Lindstrom 2000) and kept in its cell: sharp edges and corners stay sharp.
+ *    Where faces so placed cross each other (a patch pulled to a sharp feature through a neighbour's,
+ *    two sheets of a solid thinner than a cell), their corners go back to their patches' mass points
+ *    (the centroid of the crossings, as marching cubes would place them): mesh_untangle.
  *  - Crossings: on each edge whose samples differ in sign, found by linear interpolation and one step
  *    of regula falsi; normals by central differences of the field there.
  *  - Thin features: an edge whose ends share a sign but lie within a voxel of the surface together has
@@ -68,6 +71,9 @@ typedef struct mesh_stats {
     long long thin;             /* edges whose ends agree in sign and whose midpoint does not: a feature
                                    thinner than a voxel the grid misses there */
     size_t peak_bytes;          /* the most the extraction's own arrays held (the mesh aside) */
+    long long crossing;         /* pairs of faces that crossed each other as first placed */
+    long long untangled;        /* vertices moved to their patch's mass point to part them */
+    long long crossing_left;    /* pairs still crossing after that (-1: not checked, out of memory) */
 } mesh_stats;
 
 /* Extracts g's surface into out (emptied first). False with err on a field error, or a grid over
@@ -115,6 +121,15 @@ long long mesh_split_pinches(mesh *m);
 long long mesh_fill_holes(mesh *m);
 /* Keeps only the largest component (by faces); the number of components dropped. */
 long long mesh_keep_largest(mesh *m);
+/* Pairs of m's faces that cross each other (mesh_intersect.c: an edge of one through the other's
+ * interior; neighbours only by their far edges), -1 out of memory; crossed (m->nt bytes, or NULL) marks
+ * the faces of those pairs. */
+long long mesh_crossing_faces(const mesh *m, uint8_t *crossed);
+/* Parts crossing faces: the corners of each crossing face moved to their patch's mass point (mass: 3
+ * floats a vertex, the centroid of the crossings its quadric was placed by; NULL: none), then, while
+ * faces still cross, halfway to their neighbours' mean, in up to 12 rounds; the number of vertices
+ * moved, *before the pairs that crossed, *left those still crossing (-1: out of memory). */
+long long mesh_untangle(mesh *m, const float *mass, long long *before, long long *left);
 
 /* Internal to mesh.c and mesh_qef.c: the patches of a cell's sign configuration, and the quadric. */
 typedef struct mesh_cell_case {

@@ -40,6 +40,8 @@ typedef struct mesh_ctx {
     size_t mid_n, mid_cap;
     float *pts, *dst;  /* field call buffers */
     size_t pts_cap;
+    float *mass;       /* each vertex's patch mass point (mesh_untangle's fallback) */
+    size_t mass_cap;
     mesh *m;
     mesh_stats *st;
 } mesh_ctx;

@@ -125,10 +125,15 @@ static void describe(const mesh *m, const char *what)
 {
     mesh_topology t;
     mesh_check(m, &t);
+    long long crossing = mesh_crossing_faces(m, NULL);
     printf("%s: %zu triangles, %zu vertices; %s (open edges %lld, non-manifold edges %lld, vertices %lld), "
-           "%lld shell%s, Euler characteristic %lld; area %.6g, volume %.6g\n", what, m->nt, m->nv,
+           "%lld shell%s, Euler characteristic %lld; area %.6g, volume %.6g; %s\n", what, m->nt, m->nv,
            t.closed_manifold ? "closed and manifold" : "NOT closed and manifold", t.open_edges, t.nonmanifold_edges,
-           t.nonmanifold_vertices, t.components, t.components == 1 ? "" : "s", t.euler, t.area, t.volume);
+           t.nonmanifold_vertices, t.components, t.components == 1 ? "" : "s", t.euler, t.area, t.volume,
+           crossing == 0 ? "no faces cross" : crossing < 0 ? "crossings not checked (out of memory)" : "FACES CROSS");
+    if (crossing > 0)
+        printf("crossing: %lld pairs of faces cross each other: the mesh intersects itself (not printable as it is)\n",
+               crossing);
 }
 
 /* Before a long extraction starts, what it will take: its grid's samples at the rate this machine evaluates
@@ -194,6 +199,9 @@ static bool mesh_field(job *j, mesh *m, double *voxel, float *iso, err_t *err)
     if (st.thin)
         printf("thin: %lld edges cross the surface twice within a voxel: features thinner than a voxel are lost there "
                "(raise --resolution)\n", st.thin);
+    if (st.crossing > 0)
+        printf("untangled: %lld pairs of faces crossed where the quadric placed their corners; %lld corners moved to "
+               "their crossings' centroid, %lld pairs left\n", st.crossing, st.untangled, st.crossing_left);
     if (st.unbounded)
         printf("note: %lld crossings met a sample the field's bound had skipped: its distance bound is wrong there "
                "(the mesh is closed; lower quality.step_factor for the exact surface)\n", st.unbounded);
@@ -329,6 +337,15 @@ static bool simplify(const mesh_desc *d, mesh *m, double unit, bool field_scene,
     return !failed;
 }
 
+/* Faces the weld, the repairs or a simplification made cross: their corners moved toward their neighbours. */
+static void untangle(mesh *m, const char *after)
+{
+    long long before, left, moved = mesh_untangle(m, NULL, &before, &left);
+    if (before > 0)
+        printf("untangled: %lld pairs of faces crossed after %s; %lld corners moved toward their neighbours, %lld "
+               "pairs left\n", before, after, moved, left);
+}
+
 static bool finish(job *j, mesh *m, double unit, float iso, bool field_scene, err_t *err)
 {
     const mesh_desc *d = j->d;
@@ -342,6 +359,7 @@ static bool finish(job *j, mesh *m, double unit, float iso, bool field_scene, er
         printf("welded: %lld vertices at a position another held merged; %lld faces collapsed or back to back "
                "dropped, %lld vertices where sheets touched parted, %lld holes closed\n", merged, r[0], r[1], r[2]);
     }
+    untangle(m, "the weld and repairs");
     describe(m, "mesh");
     if (field_scene && vertex_error(j, m, iso, unit, &worst, &mean, err))
         printf("error: vertices within %.3f voxels of the surface by the field (mean %.3f)\n", worst, mean);
@@ -352,6 +370,7 @@ static bool finish(job *j, mesh *m, double unit, float iso, bool field_scene, er
     if (d->triangles && d->triangles < m->nt) {
         if (!simplify(d, m, unit, field_scene, err))
             return false;
+        untangle(m, "the simplification");
         describe(m, "mesh");
         if (field_scene && vertex_error(j, m, iso, unit, &worst, &mean, err))
             printf("error: vertices within %.3f voxels of the surface by the field (mean %.3f)\n", worst, mean);
