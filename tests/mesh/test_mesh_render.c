@@ -320,7 +320,7 @@ static void simplified(void **state)
     (void)state;
     char path[PATH_MAX_LEN];
     snprintf(path, sizeof path, "%s/simple.ply", dir);
-    mesh_desc d = {.scene = "torus", .output = path, .resolution = 96, .has_box = true, .triangles = 3000,
+    mesh_desc d = {.scene = "torus", .output = path, .resolution = 96, .has_box = true, .triangles = 300,
                    .tolerance = 1.0, .quiet = true};
     memcpy(d.box, TORUS_BOX, sizeof d.box);
     err_t e;
@@ -329,16 +329,20 @@ static void simplified(void **state)
     mesh_topology t;
     read_back(path, &m, &t);
     double voxel = 3.0 / 96, worst = 0;
-    for (size_t f = 0; f < m.nt; f++) {
-        float c[3] = {0, 0, 0};
+    for (size_t f = 0; f < m.nt; f++) { /* the torus's own distance at each face's centre and edge midpoints */
+        const float *c[3];
         for (int i = 0; i < 3; i++)
+            c[i] = m.pos + 3 * (size_t)m.tri[3 * f + (size_t)i];
+        for (int q = 0; q < 4; q++) {
+            float p[3];
             for (int k = 0; k < 3; k++)
-                c[k] += m.pos[3 * (size_t)m.tri[3 * f + (size_t)i] + (size_t)k] / 3;
-        worst = fmax(worst, fabs(sd_torus(c)));
+                p[k] = q == 3 ? (c[0][k] + c[1][k] + c[2][k]) / 3 : 0.5f * (c[q][k] + c[(q + 1) % 3][k]);
+            worst = fmax(worst, fabs(sd_torus(p)));
+        }
     }
-    fprintf(stderr, "  simplified: %zu triangles, closed %d, worst centroid %.3f voxels\n", m.nt, t.closed_manifold,
-            worst / voxel);
-    assert_true(m.nt <= 3000 * 1.1);
+    fprintf(stderr, "  simplified toward 300: %zu triangles, closed %d, worst centre or edge midpoint %.3f voxels\n", m.nt,
+            t.closed_manifold, worst / voxel);
+    assert_true(m.nt >= 300 && m.nt < 1000); /* more than asked where fewer stray past the tolerance */
     assert_true(t.closed_manifold);
     assert_true(worst < 1.0 * voxel);
     mesh_free(&m);
