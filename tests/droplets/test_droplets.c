@@ -205,6 +205,46 @@ static void check_grid(droplets *d)
     free(listed);
 }
 
+/* droplets_distance (the mesher's droplets) against every droplet: the same sign, never more than the
+ * true distance (a bound to step by), and equal to it within a cell of the nearest surface from inside
+ * the grid's box. */
+static void check_distance(const droplets *d, unsigned seed)
+{
+    double cell = fmin(d->cell[0], fmin(d->cell[1], d->cell[2])), worst = 0;
+    int exact = 0;
+    for (int q = 0; q < 1000; q++) {
+        float p[3];
+        for (int k = 0; k < 3; k++) { /* the grid's box and a cell-wide margin around it */
+            double lo = d->lo[k] - cell, hi = d->lo[k] + (double)d->cell[k] * d->dims[k] + cell;
+            p[k] = (float)(lo + (hi - lo) * frand(&seed));
+        }
+        if (q % 2) { /* half of them near a droplet's surface */
+            const float *s = d->spheres + 4 * (size_t)(q % d->count);
+            for (int k = 0; k < 3; k++)
+                p[k] = s[k] + (float)((k == 0 ? 1 : 0.3) * s[3] * (0.5 + frand(&seed)));
+        }
+        double brute = INFINITY;
+        for (int i = 0; i < d->count; i++) {
+            const float *s = d->spheres + 4 * (size_t)i;
+            double dx = (double)p[0] - s[0], dy = (double)p[1] - s[1], dz = (double)p[2] - s[2];
+            brute = fmin(brute, sqrt(dx * dx + dy * dy + dz * dz) - s[3]);
+        }
+        double got = droplets_distance(d, p);
+        assert_true((got < 0) == (brute < 0));
+        assert_true(got <= brute + 1e-6);
+        bool inside = true; /* in the grid's box: its block reaches a cell beyond p's every way */
+        for (int k = 0; k < 3; k++)
+            inside = inside && p[k] >= d->lo[k] && p[k] <= d->lo[k] + (double)d->cell[k] * d->dims[k];
+        if (inside && brute < cell) {
+            worst = fmax(worst, fabs(got - brute));
+            exact++;
+        }
+    }
+    fprintf(stderr, "  distance: %d points within a cell of a surface, worst difference %.3g\n", exact, worst);
+    assert_true(exact > 300);
+    assert_true(worst < 1e-6);
+}
+
 static void grid_lists_every_meeting_cell(void **st)
 {
     (void)st;
@@ -231,6 +271,7 @@ static void grid_lists_every_meeting_cell(void **st)
             d.r_max = fmaxf(d.r_max, d.spheres[4 * (size_t)i + 3]);
         }
         check_grid(&d);
+        check_distance(&d, 91u + (unsigned)kind);
         if (kind == 0) /* about DROPLET_GRID_DENSITY cells a droplet */
             assert_true(droplets_cell_count(&d) >= N && (double)droplets_cell_count(&d) <= 3 * DROPLET_GRID_DENSITY * N);
         droplets_free(&d);

@@ -529,3 +529,31 @@ void droplets_lod_table(float ior, droplet_lod_table *t)
         t->reflect += (float)(weight * F);
     }
 }
+
+double droplets_distance(const droplets *d, const float p[3])
+{
+    double out = 0, wall = INFINITY;
+    int c[3];
+    for (int k = 0; k < 3; k++) {
+        double lo = d->lo[k], h = d->cell[k], x = p[k], o = fmax(lo - x, x - (lo + h * d->dims[k]));
+        out += o > 0 ? o * o : 0;
+        c[k] = clampi((int)floor((x - lo) / h), 0, d->dims[k] - 1);
+        wall = fmin(wall, fmin(x - (lo + h * (c[k] - 1)), lo + h * (c[k] + 2) - x));
+    }
+    /* a droplet listed in none of the 27 cells around p's lies beyond their block's walls, and every
+     * droplet inside the grid's box */
+    double best = fmax(sqrt(out), wall);
+    for (int z = c[2] - 1; z <= c[2] + 1; z++)
+        for (int y = c[1] - 1; y <= c[1] + 1; y++)
+            for (int x = c[0] - 1; x <= c[0] + 1; x++) {
+                if (x < 0 || y < 0 || z < 0 || x >= d->dims[0] || y >= d->dims[1] || z >= d->dims[2])
+                    continue;
+                size_t cell = (size_t)x + (size_t)d->dims[0] * ((size_t)y + (size_t)d->dims[1] * (size_t)z);
+                for (uint32_t i = d->cells[cell]; i < d->cells[cell + 1]; i++) {
+                    const float *s = d->spheres + 4 * (size_t)d->index[i];
+                    double dx = (double)p[0] - s[0], dy = (double)p[1] - s[1], dz = (double)p[2] - s[2];
+                    best = fmin(best, sqrt(dx * dx + dy * dy + dz * dz) - s[3]);
+                }
+            }
+    return best;
+}

@@ -69,6 +69,11 @@ bool droplets_read_text(const char *text, size_t len, const char *path, float sc
 bool droplets_build_grid(droplets *d, err_t *err);
 
 size_t droplets_cell_count(const droplets *d);
+/* The signed distance from p to the nearest droplet's surface (negative inside one), by the grid: exact
+ * wherever the nearest droplet meets one of the 27 cells around p's (within a cell of p, from inside the
+ * grid's box), else a lower bound (the distance to those cells' outer walls, or to the grid's box from
+ * outside it): a bound a mesher may step by. */
+double droplets_distance(const droplets *d, const float p[3]);
 
 /* Builds the BVH over d->spheres instead of the grid (lo/hi: the root's box). */
 void droplets_build_bvh(droplets *d);

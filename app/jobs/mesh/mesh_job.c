@@ -8,6 +8,7 @@
 #include <strings.h>
 #include <sys/resource.h>
 
+#include "data/droplets/droplets.h"
 #include "data/mesh/mesh.h"
 #include "data/mesh/mesh_dem.h"
 #include "data/mesh/mesh_io.h"
@@ -26,6 +27,7 @@ typedef struct job {
     double box[6]; /* the box meshed: the field is clipped by it */
     size_t out_cap;
     double t0, shown; /* start; when the progress bar was last drawn */
+    droplets drops;   /* the scene's droplets (count 0: none): a layer outside map(), added to its field */
 } job;
 
 /* map() at n points into j->out, in batches a texture holds (2^20 points each). */
@@ -38,6 +40,11 @@ static bool probe(job *j, const float *pts, size_t n, err_t *err)
     for (size_t at = 0; at < n; at += PROBE_BATCH)
         if (!render_probe(j->s, NULL, pts + 3 * at, (int)(n - at < PROBE_BATCH ? n - at : PROBE_BATCH), j->out + 2 * at, err))
             return false;
+    for (size_t i = 0; j->drops.count && i < n; i++) { /* the union with the droplets (material -1: grey) */
+        double dd = droplets_distance(&j->drops, pts + 3 * i);
+        if (dd < j->out[2 * i])
+            j->out[2 * i] = (float)dd, j->out[2 * i + 1] = -1;
+    }
     return true;
 }
 
@@ -441,6 +448,11 @@ bool mesh_job_scene(const mesh_desc *d, const scene *s, err_t *err)
         return err_set(err, "--base sets how far a DEM's solid reaches below its lowest point; '%s' is not a DEM scene "
                             "(its solid is the surface itself)", s->name);
     job j = {.d = d, .s = s, .t0 = util_now()};
+    if (!dem && s->has_droplets &&
+        !(droplets_read(s->droplets.file, s->droplets.scale, &j.drops, err) && droplets_build_grid(&j.drops, err))) {
+        droplets_free(&j.drops);
+        return false;
+    }
     mesh m = {0};
     double unit = 0;
     float iso = 0;
@@ -448,6 +460,7 @@ bool mesh_job_scene(const mesh_desc *d, const scene *s, err_t *err)
                                               : mesh_field(&j, &m, &unit, &iso, err) && finish(&j, &m, unit, iso, true, err);
     mesh_free(&m);
     free(j.out);
+    droplets_free(&j.drops);
     return ok;
 }
 
