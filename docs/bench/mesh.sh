@@ -38,7 +38,8 @@ measure() { # SCENE RES BOX [TRIANGLES]
         /^error:/ { err = $4; for (i = 1; i <= NF; i++) if ($i == "(mean") { m = $(i + 1); sub(/\)/, "", m); mean = m } }
         /^simplified:/ { n = split($0, a, ": "); split(a[3], b, ","); stri = b[1]; sub(/ .*/, "", stri)
                          if ($0 ~ /more than asked/) stri = stri "+"; if ($0 ~ /kept whole/) stri = "kept-whole"
-                         for (i = 1; i <= NF; i++) if ($i == "deviation") dev = $(i + 2); sub(/\(/, "", dev) }
+                         for (i = 1; i <= NF; i++) if ($i == "deviation") dev = $(i + 2); sub(/\(/, "", dev)
+                         for (i = 4; i <= NF; i++) if ($i == "field" && $(i - 2) == "by") dev = $(i - 4) }
         /^wrote/ { for (i = 1; i <= NF; i++) { if ($i == "in") t = $(i + 1); if ($i == "memory") peak = $(i + 1) } }
         function v(x) { return x == "" ? "-" : x }
         END { print v(t), v(peak), v(work), v(tri), v(closed), v(shells), v(err), v(mean), v(stri), v(dev) }
@@ -55,10 +56,11 @@ measure() { # SCENE RES BOX [TRIANGLES]
     echo "grows with the square of the resolution); the mesh itself is the rest. Error: the vertices' distance to"
     echo "the level by the field, in voxels, worst and mean (a DEM's vertices are its texels: none). Simplified:"
     echo "the same mesh toward a tenth of its triangles within one voxel (a DEM: one texel) by meshoptimizer;"
-    echo "its deviation as meshoptimizer measures it, in voxels; whether it is still closed and manifold"
-    echo "(meshoptimizer's collapses promise no manifold: faces folded back to back are dropped, sheets that"
-    echo "touch parted, holes closed; a result still not closed is tried again with a quarter more triangles:"
-    echo "a + marks a count above the tenth asked)."
+    echo "its deviation in voxels as the field measures it at corners, edge midpoints and face centres (a DEM:"
+    echo "meshoptimizer's estimate); whether it is still closed and manifold (meshoptimizer's collapses promise"
+    echo "no manifold: faces folded back to back are dropped, sheets that touch parted, holes closed, crossing"
+    echo "faces untangled; a result still not closed, or past the tolerance, is tried again with a quarter more"
+    echo "triangles: a + marks a count above the tenth asked)."
     echo
     echo "| scene | resolution | time s | peak MB | work MB | triangles | closed, manifold | shells | error worst | error mean | simplified | deviation | still closed |"
     echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|"

@@ -7,6 +7,7 @@
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -439,12 +440,82 @@ static void droplets_meshed(void **state)
     mesh_free(&m);
 }
 
+/* The shells a mesh is made of (union of faces over shared corners), each with its signed volume and the
+ * least distance of its corners from the origin; the number of shells. */
+static size_t find(size_t *up, size_t v)
+{
+    while (up[v] != v)
+        v = up[v] = up[up[v]];
+    return v;
+}
+
+static size_t shells(const mesh *m, double *volume, double *nearest, size_t max)
+{
+    size_t *up = malloc(m->nv * sizeof *up), *id = malloc(m->nv * sizeof *id), n = 0;
+    for (size_t v = 0; v < m->nv; v++)
+        up[v] = v, id[v] = SIZE_MAX;
+    for (size_t f = 0; f < 3 * m->nt; f += 3)
+        for (int i = 1; i < 3; i++)
+            up[find(up, m->tri[f + (size_t)i])] = find(up, m->tri[f]);
+    for (size_t f = 0; f < 3 * m->nt; f += 3) {
+        size_t r = find(up, m->tri[f]);
+        if (id[r] == SIZE_MAX && n < max)
+            id[r] = n, volume[n] = 0, nearest[n] = INFINITY, n++;
+        if (id[r] == SIZE_MAX)
+            continue;
+        const float *a = m->pos + 3 * (size_t)m->tri[f], *b = m->pos + 3 * (size_t)m->tri[f + 1],
+                    *c = m->pos + 3 * (size_t)m->tri[f + 2];
+        volume[id[r]] += (a[0] * ((double)b[1] * c[2] - (double)b[2] * c[1]) - a[1] * ((double)b[0] * c[2] - (double)b[2] * c[0]) +
+                          a[2] * ((double)b[0] * c[1] - (double)b[1] * c[0])) / 6;
+        for (int i = 0; i < 3; i++) {
+            const float *p = m->pos + 3 * (size_t)m->tri[f + (size_t)i];
+            nearest[id[r]] = fmin(nearest[id[r]], sqrt((double)p[0] * p[0] + (double)p[1] * p[1] + (double)p[2] * p[2]));
+        }
+    }
+    free(up);
+    free(id);
+    return n;
+}
+
+/* The Mandelbox at 64 cells (a level of half a voxel, above the bounding sphere's margin of 0.1): no
+ * shell lies wholly outside its bounding sphere (the sphere's own distance there once meshed 96
+ * inside-out shells around it). */
+static void mandelbox_inside_its_sphere(void **state)
+{
+    (void)state;
+    char path[PATH_MAX_LEN];
+    snprintf(path, sizeof path, "%s/mandelbox.ply", dir);
+    run("mandelbox", path, 64, NULL, 0, false, 0);
+    mesh m = {0};
+    mesh_topology t;
+    read_back(path, &m, &t);
+    scene s;
+    err_t e;
+    if (!scene_load("mandelbox", NULL, 0, &s, &e))
+        fail_msg("%s", e.msg);
+    enum { MAX = 1 << 16 };
+    double *volume = malloc(MAX * sizeof *volume), *nearest = malloc(MAX * sizeof *nearest);
+    size_t n = shells(&m, volume, nearest, MAX), outside = 0, inside_out = 0;
+    for (size_t k = 0; k < n; k++) {
+        outside += nearest[k] > s.fractal.bound_radius;
+        inside_out += nearest[k] > s.fractal.bound_radius && volume[k] < 0;
+    }
+    fprintf(stderr, "  mandelbox 64: %zu shells, %zu wholly outside its bounding sphere (r %.4g), %zu of them inside out\n",
+            n, outside, (double)s.fractal.bound_radius, inside_out);
+    assert_true(n > 0 && n < MAX);
+    assert_int_equal(outside, 0);
+    free(volume);
+    free(nearest);
+    scene_free(&s);
+    mesh_free(&m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {cmocka_unit_test(torus_closed_form), cmocka_unit_test(formats),
                                        cmocka_unit_test(mandelbulb_field), cmocka_unit_test(simplified),
                                        cmocka_unit_test(dem_solid), cmocka_unit_test(watertight_by_position),
                                        cmocka_unit_test(printed_at_the_origin), cmocka_unit_test(menger_exact_volume),
-                                       cmocka_unit_test(droplets_meshed)};
+                                       cmocka_unit_test(droplets_meshed), cmocka_unit_test(mandelbox_inside_its_sphere)};
     return cmocka_run_group_tests(tests, setup, teardown);
 }

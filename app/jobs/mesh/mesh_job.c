@@ -28,7 +28,11 @@ typedef struct job {
     size_t out_cap;
     double t0, shown; /* start; when the progress bar was last drawn */
     droplets drops;   /* the scene's droplets (count 0: none): a layer outside map(), added to its field */
+    float iso;        /* the level meshed */
 } job;
+
+/* map()'s material for a bound that is not a surface (shaders/common/hit.glsl), and the droplets' here. */
+enum { MATERIAL_BOUND_ID = -1, MATERIAL_DROPLET = -2 };
 
 /* map() at n points into j->out, in batches a texture holds (2^20 points each). */
 static bool probe(job *j, const float *pts, size_t n, err_t *err)
@@ -40,21 +44,27 @@ static bool probe(job *j, const float *pts, size_t n, err_t *err)
     for (size_t at = 0; at < n; at += PROBE_BATCH)
         if (!render_probe(j->s, NULL, pts + 3 * at, (int)(n - at < PROBE_BATCH ? n - at : PROBE_BATCH), j->out + 2 * at, err))
             return false;
-    for (size_t i = 0; j->drops.count && i < n; i++) { /* the union with the droplets (material -1: grey) */
+    for (size_t i = 0; j->drops.count && i < n; i++) { /* the union with the droplets (grey) */
         double dd = droplets_distance(&j->drops, pts + 3 * i);
         if (dd < j->out[2 * i])
-            j->out[2 * i] = (float)dd, j->out[2 * i + 1] = -1;
+            j->out[2 * i] = (float)dd, j->out[2 * i + 1] = MATERIAL_DROPLET;
     }
     return true;
 }
 
+/* The field meshed. Where map() answers with a bound (a fractal's bounding sphere, MATERIAL_BOUND) no
+ * surface is: a bound below the level (the sphere's distance within the level of it: the level is half a
+ * voxel, the sphere's margin 0.1) would mesh a thin shell around the sphere, inside out at its inner
+ * face (the Mandelbox at 64 cells: 96 such shells). The set grown by the level is cut there at the
+ * sphere's margin instead, at most the level minus the margin from where it would reach. */
 static bool field(void *user, const float *pts, size_t n, float *dist, err_t *err)
 {
     job *j = user;
     if (!probe(j, pts, n, err))
         return false;
     for (size_t i = 0; i < n; i++)
-        dist[i] = j->out[2 * i];
+        dist[i] = j->out[2 * i + 1] == MATERIAL_BOUND_ID ? fmaxf(j->out[2 * i], nextafterf(j->iso, INFINITY))
+                                                          : j->out[2 * i];
     return true;
 }
 
@@ -221,7 +231,7 @@ static bool mesh_field(job *j, mesh *m, double *voxel, float *iso, err_t *err)
     /* a fractal's estimate is trusted only near the surface: its level is the renderer's hit distance, unless
      * the formula declares an exact distance (@exact, the Menger sponge: half a voxel out gave +52 % volume) */
     bool exact = fractal && s->fractal.formula.exact && !s->fractal.has_hybrid;
-    g.iso = *iso = !fractal || exact ? 0.0f
+    g.iso = j->iso = *iso = !fractal || exact ? 0.0f
                    : s->fractal.hit_distance > 0 ? s->fractal.hit_distance
                                                  : (float)(0.5 * *voxel);
     mesh_stats st;
