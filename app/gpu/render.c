@@ -334,24 +334,29 @@ static int count_mask(void)
 
 /* A mask into mask_tex: the edge mask from the first sample (shaders/edgemask.frag), or the pixels
  * whose standard error is still above the tolerance (shaders/errormask.frag). */
-static void build_mask_tex(bool edges, float tolerance)
+void render_mask_draw(unsigned prog, unsigned accum, unsigned second, int w, int h, float tolerance, bool edges)
 {
-    GLuint prog = edges ? state->mask_prog : state->error_prog;
-    glBindFramebuffer(GL_FRAMEBUFFER, state->mask_fbo);
-    glViewport(0, 0, state->width, state->height);
+    glViewport(0, 0, w, h);
     glUseProgram(prog);
     glActiveTexture(GL_TEXTURE1);
-    glBindTexture(GL_TEXTURE_2D, state->targets[edges ? 1 : 3]);
+    glBindTexture(GL_TEXTURE_2D, second);
     glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_2D, state->targets[0]);
+    glBindTexture(GL_TEXTURE_2D, accum);
     glUniform1i(glGetUniformLocation(prog, "uAccum"), 0);
     glUniform1i(glGetUniformLocation(prog, edges ? "uNormalDepth" : "uSquares"), 1);
     glUniform1f(glGetUniformLocation(prog, "uExposure"), 1.0f);
     glUniform1f(glGetUniformLocation(prog, "uTolerance"), tolerance);
     glUniform1f(glGetUniformLocation(prog, "uEdgeStep"), RENDER_EDGE_STEP * tolerance);
-    glUniform2i(glGetUniformLocation(prog, "uSize"), state->width, state->height);
+    glUniform2i(glGetUniformLocation(prog, "uSize"), w, h);
     glBindVertexArray(render_programs_vao());
     glDrawArrays(GL_TRIANGLES, 0, 3);
+}
+
+static void build_mask_tex(bool edges, float tolerance)
+{
+    glBindFramebuffer(GL_FRAMEBUFFER, state->mask_fbo);
+    render_mask_draw(edges ? state->mask_prog : state->error_prog, state->targets[0], state->targets[edges ? 1 : 3],
+                     state->width, state->height, tolerance, edges);
     state->masked = count_mask();
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }

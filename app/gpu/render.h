@@ -108,6 +108,10 @@ enum { RENDER_ADAPTIVE_MIN = 2 }; /* the samples every pixel takes before the to
 /* An edge of displayed contrast C in a pixel's 3x3 block keeps the pixel going until it has C / (this ·
  * tolerance) samples (shaders/errormask.frag): n stratified samples place an edge within about C / n. */
 #define RENDER_EDGE_STEP 2.5f
+/* Draws a mask program (edgemask.frag with edges, errormask.frag without) over a w × h target bound as the
+ * draw framebuffer: accum is target 0's texture (sums, alpha the samples), second the normals and depth
+ * (edges) or the squares (target 3). The renderer's own masks and render_probe_error_mask use it. */
+void render_mask_draw(unsigned prog, unsigned accum, unsigned second, int w, int h, float tolerance, bool edges);
 /* Rows beyond a band's edges that a band of an image must render with it to agree with the whole
  * image bit for bit: the error mask reads the 3x3 block, so each masked sample's decisions reach a row
  * further (0 when s does not sample adaptively at spp samples). Even, as bands' offsets are. */

@@ -10,6 +10,7 @@
 #include "gpu/gpu.h"
 #include "gpu/render.h"
 #include "gpu/render_programs.h"
+#include "gpu/shader.h"
 #include "gpu/render_scene.h"
 #include "gpu/res_heightfield.h"
 
@@ -140,4 +141,40 @@ bool render_fit_precision(scene *s, const camera *c, int height, err_t *err)
                             "(GL_ARB_gpu_shader_fp64): the image stops resolving detail here", gpu_describe());
     s->fractal.deep_now = want;
     return render_set_scene(s, NULL, err);
+}
+
+static GLuint float_texture(const float *rgba, int w, int h)
+{
+    GLuint t;
+    glGenTextures(1, &t);
+    glBindTexture(GL_TEXTURE_2D, t);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, w, h, 0, GL_RGBA, GL_FLOAT, rgba);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    return t;
+}
+
+bool render_probe_error_mask(const float *sum, const float *squares, int w, int h, float tolerance, uint8_t *mask,
+                             err_t *err)
+{
+    GLuint prog = shader_build(render_programs_shader_root(), "fullscreen.vert", "errormask.frag", NULL, NULL, 0, err);
+    if (!prog)
+        return false;
+    GLuint tex[3] = {float_texture(sum, w, h), float_texture(squares, w, h), 0}, fbo;
+    glGenTextures(1, &tex[2]);
+    glBindTexture(GL_TEXTURE_2D, tex[2]);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_R8, w, h, 0, GL_RED, GL_UNSIGNED_BYTE, NULL);
+    glGenFramebuffers(1, &fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, tex[2], 0);
+    render_mask_draw(prog, tex[0], tex[1], w, h, tolerance, false);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, w, h, GL_RED, GL_UNSIGNED_BYTE, mask);
+    for (int i = 0; i < w * h; i++)
+        mask[i] = mask[i] > 127;
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glDeleteFramebuffers(1, &fbo);
+    glDeleteTextures(3, tex);
+    glDeleteProgram(prog);
+    return true;
 }

@@ -6,6 +6,7 @@
 #define FATHOM_RENDER_PROBE_H
 
 #include <stdbool.h>
+#include <stdint.h>
 
 #include "scene/scene.h"
 #include "util.h"
@@ -25,6 +26,11 @@ bool render_probe_loops(const scene *s, const float *points, int n, int *loops, 
  * each): dropletprobe.frag gives the droplets' grid walk for tests. */
 bool render_probe_rays(const scene *s, const char *frag, const char *extra_defines, const float *rays, int n,
                        float *out, err_t *err);
+/* Adaptive sampling's stopping rule (shaders/errormask.frag) on given sums: sum and squares are w × h
+ * RGBA floats each, bottom row first (target 0: Σ radiance and the sample count; target 3: Σ radiance²
+ * and the samples that passed a surface by); mask gets 1 where the pixel takes another sample. Tests. */
+bool render_probe_error_mask(const float *sum, const float *squares, int w, int h, float tolerance, uint8_t *mask,
+                             err_t *err);
 /* Terrain scenes: the ground height under world (x, z); false for other scenes. */
 bool render_ground_height(float x, float z, float *height);
 

@@ -224,6 +224,7 @@ static void sparse_blocks(void **state)
     fprintf(stderr, "  a bound 10× too large: %lld blocks skipped (true: %lld), %zu triangles (true %zu), closed %d\n",
             sl.skipped, ss.skipped, lied.nt, sparse.nt, t.closed_manifold);
     assert_true(sl.skipped > ss.skipped);
+    assert_true(sl.unbounded > 0); /* and the crossings that met a skipped sample say so */
     assert_true(t.closed_manifold);
     mesh_free(&dense);
     mesh_free(&sparse);
@@ -328,6 +329,34 @@ static void ambiguous_faces(void **state)
     assert_true(flipped_cases > 0);
 }
 
+/* Two balls centred on diagonal corners of one cell face, each holding only its own corner: that face is
+ * ambiguous (inside at two opposite corners). Faces are resolved with the insides apart (mesh_case), so
+ * the grid gives two shells, as the field has; resolved the other way it bridged them into one. */
+static const double BALL_H = 2.0 / 16; /* the grid's cell side: 16 cells across [-1, 1] */
+static double sd_two_balls(const double p[3])
+{
+    const double a[3] = {0, 0, 0}, b[3] = {BALL_H, BALL_H, 0}, r = 0.6 * BALL_H;
+    double da = 0, db = 0;
+    for (int k = 0; k < 3; k++)
+        da += (p[k] - a[k]) * (p[k] - a[k]), db += (p[k] - b[k]) * (p[k] - b[k]);
+    return fmin(sqrt(da), sqrt(db)) - r;
+}
+
+static void ambiguous_face_keeps_balls_apart(void **state)
+{
+    (void)state;
+    mesh m = {0};
+    mesh_stats st;
+    mesh_topology t;
+    extract(sd_two_balls, 1.0, 16, 0.0f, &m, &st, 1.0);
+    mesh_check(&m, &t);
+    fprintf(stderr, "  two balls on a face's diagonal: %lld shells, euler %lld\n", t.components, t.euler);
+    assert_true(t.closed_manifold);
+    assert_int_equal(t.components, 2);
+    assert_int_equal(t.euler, 4);
+    mesh_free(&m);
+}
+
 /* A plate thinner than a voxel, between two sample planes: the grid misses it, and says so. A sphere
  * at the same resolution has no such edge. */
 static double sd_plate(const double p[3])
@@ -358,6 +387,27 @@ static void tetrahedron(mesh *m, float dx, uint32_t base, bool add_vertices)
         mesh_add_vertex(m, (const float[3]){p[i][0] + dx, p[i][1], p[i][2]}, (const float[3]){0, 0, 0});
     for (int i = 0; i < 4; i++)
         mesh_add_triangle(m, base + f[i][0], base + f[i][1], base + f[i][2]);
+}
+
+/* An edge of three faces (a book's spine) is non-manifold: the check counts it, and an edge of two does
+ * not. */
+static void three_faces_on_an_edge(void **state)
+{
+    (void)state;
+    mesh m = {0};
+    const float n[3] = {0, 0, 1}, p[5][3] = {{0, 0, 0}, {1, 0, 0}, {0.5f, 1, 0}, {0.5f, -1, 0}, {0.5f, 0, 1}};
+    for (int i = 0; i < 5; i++)
+        mesh_add_vertex(&m, p[i], n);
+    mesh_add_triangle(&m, 0, 1, 2);
+    mesh_add_triangle(&m, 1, 0, 3);
+    mesh_topology t;
+    mesh_check(&m, &t);
+    assert_int_equal(t.nonmanifold_edges, 0);
+    mesh_add_triangle(&m, 0, 1, 4);
+    mesh_check(&m, &t);
+    assert_true(t.nonmanifold_edges >= 1);
+    assert_false(t.closed_manifold);
+    mesh_free(&m);
 }
 
 /* The repairs after a simplification: faces back to back dropped, sheets touching at a vertex parted,
@@ -403,7 +453,8 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {cmocka_unit_test(closed_forms), cmocka_unit_test(box_edges_sharp),
                                        cmocka_unit_test(sparse_blocks), cmocka_unit_test(block_seams),
-                                       cmocka_unit_test(largest_shell), cmocka_unit_test(ambiguous_faces),
-                                       cmocka_unit_test(thin_features), cmocka_unit_test(repairs)};
+                                       cmocka_unit_test(largest_shell), cmocka_unit_test(ambiguous_faces), cmocka_unit_test(ambiguous_face_keeps_balls_apart),
+                                       cmocka_unit_test(thin_features), cmocka_unit_test(repairs),
+                                       cmocka_unit_test(three_faces_on_an_edge)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -349,6 +349,25 @@ static void simplified(void **state)
     mesh_free(&m);
 }
 
+/* A simplification can fold faces through others (csg at 128 cells toward 20,000 triangles: 20 pairs):
+ * what is written has none crossing, by the detector that test_mesh_cross checks against every pair. */
+static void simplified_uncrossed(void **state)
+{
+    (void)state;
+    char path[PATH_MAX_LEN];
+    snprintf(path, sizeof path, "%s/csg-simple.ply", dir);
+    run("csg", path, 128, NULL, 20000, false, 0);
+    mesh m = {0};
+    mesh_topology t;
+    read_back(path, &m, &t);
+    long long crossing = mesh_crossing_faces(&m, NULL);
+    fprintf(stderr, "  csg 128 toward 20000: %zu triangles, closed %d, %lld pairs of faces crossing\n", m.nt,
+            t.closed_manifold, crossing);
+    assert_true(t.closed_manifold);
+    assert_int_equal(crossing, 0);
+    mesh_free(&m);
+}
+
 /* Jacksboro as a solid: closed, one shell, genus 0; the base at 100 m below the lowest point; each top
  * vertex on a texel centre at its height, which the renderer's ground agrees with. */
 static void dem_solid(void **state)
@@ -513,7 +532,7 @@ static void mandelbox_inside_its_sphere(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {cmocka_unit_test(torus_closed_form), cmocka_unit_test(formats),
-                                       cmocka_unit_test(mandelbulb_field), cmocka_unit_test(simplified),
+                                       cmocka_unit_test(mandelbulb_field), cmocka_unit_test(simplified), cmocka_unit_test(simplified_uncrossed),
                                        cmocka_unit_test(dem_solid), cmocka_unit_test(watertight_by_position),
                                        cmocka_unit_test(printed_at_the_origin), cmocka_unit_test(menger_exact_volume),
                                        cmocka_unit_test(droplets_meshed), cmocka_unit_test(mandelbox_inside_its_sphere)};

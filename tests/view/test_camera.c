@@ -457,6 +457,7 @@ static void projections_rays(void **st)
     assert_false(camera_ray_from(&c, 100, 100, 0, 0, o, d)); /* a corner: outside the circle */
     assert_true(camera_ray_from(&c, 100, 100, 99, 49.5f, o, d)); /* the right edge: 90° × 0.99 off the axis */
     assert_near(d[0], sin(0.99 * GLM_PI / 2), 1e-5);
+    assert_near(camera_pixel_angle(&c, 100), GLM_PI / 100, TOL); /* 180° across the circle's 100 pixels */
     c.lens = (camera_lens){.projection = PROJECTION_ORTHOGRAPHIC, .focus = 4};
     assert_true(camera_ray_from(&c, 100, 50, 99.5f, 24.5f, o, d)); /* the right edge's centre */
     assert_near(d[2], -1.0, TOL);

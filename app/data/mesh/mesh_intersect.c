@@ -256,14 +256,18 @@ long long mesh_untangle(mesh *m, const float *mass, long long *before, long long
             }
         if (fresh || !ring_means(m, ring))
             continue;
-        for (size_t f = 0; f < m->nt; f++)
+        for (size_t f = 0; f < m->nt; f++) /* each corner of a crossing face once this round (bit 1) */
             for (int i = 0; crossed[f] && i < 3; i++) {
                 uint32_t v = m->tri[3 * f + (size_t)i];
+                if (moved[v] & 2)
+                    continue;
                 for (int k = 0; k < 3; k++)
                     m->pos[3 * (size_t)v + (size_t)k] = 0.5f * (m->pos[3 * (size_t)v + (size_t)k] + ring[3 * (size_t)v + (size_t)k]);
                 count += !moved[v];
-                moved[v] = 1;
+                moved[v] |= 3;
             }
+        for (size_t v = 0; v < m->nv; v++)
+            moved[v] &= 1;
     }
     if (crossed && moved && ring && *left > 0)
         *left = mesh_crossing_faces(m, NULL);
