@@ -34,15 +34,15 @@ vec3 shown(vec3 linear) // display.frag's curve: the ACES fit, then sRGB's encod
     return mix(12.92 * t, 1.055 * pow(t, vec3(1.0 / 2.4)) - 0.055, step(0.0031308, t));
 }
 
-// The displayed standard error of pixel p's mean (0: fewer than two samples).
-float displayedError(ivec2 p)
+// The displayed standard error of the mean of a pixel with sums `sum` (Σx, n) and squares `sq` (Σx²)
+// (0: fewer than two samples).
+float displayedError(vec4 sum, vec3 sq)
 {
-    vec4 sum = texelFetch(uAccum, p, 0);
     float n = sum.a;
     if (n < 2.0)
         return 0.0;
     vec3 m = sum.rgb / n;
-    vec3 s2 = max(texelFetch(uSquares, p, 0).rgb - n * m * m, 0.0) / (n - 1.0);
+    vec3 s2 = max(sq - n * m * m, 0.0) / (n - 1.0);
     vec3 e = sqrt(s2 / n);
     vec3 spread = 0.5 * (shown(m + e) - shown(m - e));
     return max(spread.r, max(spread.g, spread.b));
@@ -61,7 +61,7 @@ void main()
             vec3 m = shown(sum.rgb / max(sum.a, 1.0));
             lo = min(lo, m);
             hi = max(hi, m);
-            more = more || displayedError(q) > uTolerance;
+            more = more || displayedError(sum, texelFetch(uSquares, q, 0).rgb) > uTolerance;
         }
     vec3 contrast = hi - lo;
     more = more || own.a < max(contrast.r, max(contrast.g, contrast.b)) / uEdgeStep;

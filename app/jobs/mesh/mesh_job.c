@@ -150,7 +150,8 @@ static bool vertex_error(job *j, const mesh *m, float iso, double voxel, double 
  * centre: a simplification's faces can stray between corners that lie on it. */
 static bool surface_error(job *j, const mesh *m, float iso, double voxel, double *worst, err_t *err)
 {
-    float *pts = util_alloc((m->nt * 4 + 1) * 3 * sizeof(float), "mesh error points");
+    size_t n = m->nt * 4 + m->nv; /* each face's centre and edge midpoints, then the corners: one probe */
+    float *pts = util_alloc((n + 1) * 3 * sizeof(float), "mesh error points");
     for (size_t f = 0; f < m->nt; f++) {
         const float *c[3];
         for (int i = 0; i < 3; i++)
@@ -161,10 +162,9 @@ static bool surface_error(job *j, const mesh *m, float iso, double voxel, double
                 pts[12 * f + 3 * (size_t)(i + 1) + (size_t)k] = 0.5f * (c[i][k] + c[(i + 1) % 3][k]);
         }
     }
-    double mean = 0, at_corners = 0, mean_corners = 0;
-    bool ok = points_error(j, pts, m->nt * 4, iso, voxel, worst, &mean, err) &&
-              vertex_error(j, m, iso, voxel, &at_corners, &mean_corners, err);
-    *worst = fmax(*worst, at_corners);
+    memcpy(pts + 12 * m->nt, m->pos, m->nv * 3 * sizeof(float));
+    double mean;
+    bool ok = points_error(j, pts, n, iso, voxel, worst, &mean, err);
     free(pts);
     return ok;
 }
