@@ -1,8 +1,12 @@
 #!/bin/sh
-# A flight rendered by a real Slurm on this one machine: a private slurmctld + slurmd (Debian's
-# slurmctld, slurmd, slurm-client, munge), a job array of docs/slurm/flight.sbatch, and the check that
-# every frame was rendered exactly once. Then the same frames on one process, for the speed-up.
+# The farm's scripts on a real Slurm on this one machine: a private slurmctld + slurmd (Debian's
+# slurmctld, slurmd, slurm-client, munge), then
+#  - a flight: a job array of docs/slurm/flight.sbatch, every frame rendered exactly once, and the same
+#    frames rendered by one process (for the speed-up), identical;
+#  - a poster: a job array of docs/slurm/poster.sbatch (a tile a task) and a stitching job that waits for
+#    them (--dependency=afterok), equal to the image rendered at once by one process.
 # Usage: docs/slurm/run.sh FATHOM PATH_FILE FRAMES_PER_TASK [fathom render options...]
+#   (the poster: the csg scene, 97x55 in 5 tiles)
 #   exit 77: Slurm or munge is not installed here (apt-get install slurmctld slurmd slurm-client munge)
 # Needs root (munged and slurmd run as root here, in a private spool under a temporary folder).
 set -eu
@@ -74,6 +78,17 @@ until sinfo -h -o %t 2>/dev/null | grep -q idle; do
     sleep 1
 done
 
+# waits for a job (and its array's tasks) to leave the queue; a deadline well inside ctest's timeout, so a
+# stuck job fails here and the daemons are stopped (a killed script could not stop them)
+wait_job() {
+    w=0
+    while squeue -h -j "$1" 2>/dev/null | grep -q .; do
+        w=$((w + 1))
+        [ $w -lt 180 ] || { echo "FAIL: job $1 still queued after 180 s"; squeue; tail -5 "$tmp/slurmctld.log"; exit 1; }
+        sleep 1
+    done
+}
+
 # how many frames the path has: fathom names the last one when asked for a frame past it
 frames=$("$fathom" render --path "$pathfile" --frames 100000000 --output "$tmp/probe_%d.png" --quiet "$@" 2>&1 |
     sed -n 's/.*ends at frame \([0-9]*\).*/\1/p')
@@ -83,7 +98,7 @@ echo "slurm: $((frames + 1)) frames in $tasks tasks of $per on $host ($cpus core
 t0=$(date +%s.%N)
 job=$(FATHOM="$fathom" sbatch --parsable --array=0-$((tasks - 1))%$cpus --chdir="$tmp" \
     --output="$tmp/logs/task_%a.log" "$src/docs/slurm/flight.sbatch" "$pathfile" "$tmp/out" "$per" --quiet "$@")
-while squeue -h -j "$job" 2>/dev/null | grep -q .; do sleep 1; done
+wait_job "$job"
 t1=$(date +%s.%N)
 n=$(ls "$tmp/out" | grep -c '^frame_' || true)
 failed=$(grep -l -i "error\|fathom:" "$tmp"/logs/*.log 2>/dev/null | wc -l)
@@ -103,3 +118,18 @@ for f in "$tmp"/one/*.png; do
     cmp -s "$f" "$tmp/out/$(basename "$f")" || { echo "FAIL: $(basename "$f") differs between Slurm and one process"; exit 1; }
 done
 echo "one process: $(awk "BEGIN {print $t3 - $t2}") s; Slurm: $(awk "BEGIN {print $t1 - $t0}") s; frames identical"
+
+# a poster: a tile a task, stitched by a job that waits for them all; equal to the image rendered at once
+shot="--scene csg --size 97x55 --spp 1 --quiet"
+job=$(FATHOM="$fathom" sbatch --parsable --array=1-5 --chdir="$tmp" --output="$tmp/logs/tile_%a.log" \
+    "$src/docs/slurm/poster.sbatch" "$tmp/poster/poster.png" 5 $shot)
+stitch=$(sbatch --parsable --dependency=afterok:"$job" --chdir="$tmp" --output="$tmp/logs/stitch.log" \
+    --wrap "'$fathom' stitch --quiet --output '$tmp/poster.png' '$tmp'/poster/poster.tile-*-of-5.png")
+wait_job "$job"
+wait_job "$stitch"
+tiles=$(ls "$tmp/poster" | grep -c '^poster\.tile-[1-5]-of-5\.png$' || true)
+[ "$tiles" -eq 5 ] || { echo "FAIL: $tiles of 5 tiles on disk"; head -3 "$tmp"/logs/tile_*.log; exit 1; }
+[ -f "$tmp/poster.png" ] || { echo "FAIL: the stitching job wrote nothing"; cat "$tmp/logs/stitch.log"; exit 1; }
+"$fathom" $shot --output "$tmp/whole.png"
+cmp -s "$tmp/whole.png" "$tmp/poster.png" || { echo "FAIL: the poster stitched on Slurm differs from the image rendered at once"; exit 1; }
+echo "slurm: a poster in 5 tiles (an array) stitched by a dependent job, identical to one process"

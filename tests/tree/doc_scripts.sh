@@ -2,7 +2,7 @@
 # Every script under docs/ runs from the README's install line alone (no python3, no GNU time), on tiny
 # sizes and one run each, into a temporary folder; each exits 0 and makes what its header says; a
 # failing run leaves the file it would write as it was; and nothing under docs/ changes (the shipped
-# CSVs and pages are never written by a test). docs/slurm/run.sh has its own test (slurm_flight).
+# CSVs and pages are never written by a test). docs/slurm/run.sh has its own test (slurm_farm).
 # Usage: doc_scripts.sh FATHOM SOURCE_DIR
 fathom=$(readlink -f "$1")
 src=$(cd "$2" && pwd) || exit 1
@@ -59,7 +59,7 @@ for s in $scripts; do
     case "$s" in
     docs/bench/final.sh | docs/bench/viewshed.sh | docs/bench/formulas.sh | docs/bench/index.sh | docs/bench/mesh.sh | docs/bench/out_of_steps.sh | docs/csg-scale/run.sh | \
         docs/droplets/run.sh | docs/droplets/culling.sh | docs/droplets/scene.sh | docs/interactive/run.sh | docs/peak_kb.sh | \
-        docs/interactive/panel.sh | docs/slurm/run.sh | docs/slurm/flight.sbatch) ;;
+        docs/interactive/panel.sh | docs/slurm/run.sh | docs/slurm/flight.sbatch | docs/slurm/poster.sbatch) ;;
     *) bad "$s: no case below runs it (add one)" ;;
     esac
 done
@@ -196,6 +196,12 @@ run env SLURM_ARRAY_TASK_ID=1 FATHOM="$fathom" sh "$src/docs/slurm/flight.sbatch
 check "slurm/flight.sbatch: task 1 of 2 frames exits 0 ($secs s)" '[ $code -eq 0 ]'
 check "slurm/flight.sbatch: it rendered frames 2 and 3, no other" \
     '[ "$(ls "$out/flight" | tr "\n" " ")" = "frame_0002.png frame_0003.png " ]'
+
+# ---- docs/slurm/poster.sbatch: one tile without Slurm --------------------------------------------------
+run env SLURM_ARRAY_TASK_ID=2 FATHOM="$fathom" sh "$src/docs/slurm/poster.sbatch" "$out/poster/p.png" 3 \
+    --scene csg --size 16x9 --spp 1 --quiet
+check "slurm/poster.sbatch: tile 2 of 3 exits 0 ($secs s)" '[ $code -eq 0 ]'
+check "slurm/poster.sbatch: it wrote tile 2, no other" '[ "$(ls "$out/poster" | tr "\n" " ")" = "p.tile-2-of-3.png " ]'
 
 # ---- nothing under docs/ changed -----------------------------------------------------------------
 snapshot >"$tmp/docs.after"
