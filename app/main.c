@@ -223,7 +223,9 @@ int main(int argc, char **argv)
         return EXIT_USAGE;
     }
     if (gis.command != GIS_NONE)
-        return finish(gis.command == GIS_VIEWSHED ? gis_viewshed_run(&gis, &err) : gis_track_run(&gis, &err), &err);
+        return finish(gis.command == GIS_VIEWSHED ? gis_viewshed_run(&gis, &err)
+                      : gis.command == GIS_WATER  ? gis_water_run(&gis, &err)
+                                                  : gis_track_run(&gis, &err), &err);
     if (!cli_parse(argc, argv, &opt, &err)) {
         fprintf(stderr, "fathom: %s\n", err.msg);
         return EXIT_USAGE;

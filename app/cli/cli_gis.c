@@ -1,4 +1,4 @@
-/* cli_gis — `fathom viewshed` and `fathom track`'s options (cli_gis.h). */
+/* cli_gis — `fathom viewshed`, `fathom track` and `fathom water`'s options (cli_gis.h). */
 #include "cli/cli_gis.h"
 
 #include "cli/cli.h"
@@ -23,6 +23,11 @@ static const char USAGE_GIS[] =
     "  [100] (its times, or --speed [30 m/s]); a flight becomes a GPX track or a KML tour.\n";
 
 const char *cli_gis_usage(void) { return USAGE_GIS; }
+
+static const char *command_name(gis_command c)
+{
+    return c == GIS_VIEWSHED ? "viewshed" : c == GIS_WATER ? "water" : "track";
+}
 
 static bool number(const char *name, const char *val, double lo, double hi, double *out, err_t *err)
 {
@@ -64,12 +69,13 @@ static bool option(const char *name, const char *val, gis_options *o, err_t *err
         {"--radius", offsetof(gis_options, radius), 1, 2e7},
         {"--height", offsetof(gis_options, height), 0, 1e5},
         {"--speed", offsetof(gis_options, speed), 0.01, 1e5},
-        {"--fps", offsetof(gis_options, fps), 0.01, 1000}};
+        {"--fps", offsetof(gis_options, fps), 0.01, 1000},
+        {"--min-depth", offsetof(gis_options, min_depth), 0, 1e5},
+        {"--min-area", offsetof(gis_options, min_area), 0, 1e15}};
     for (size_t k = 0; k < sizeof NUMBERS / sizeof NUMBERS[0]; k++)
         if (!strcmp(name, NUMBERS[k].name))
             return number(name, val, NUMBERS[k].lo, NUMBERS[k].hi, (double *)((char *)o + NUMBERS[k].at), err);
-    return err_set(err, "unknown option '%s' for fathom %s (see fathom --help)", name,
-                   o->command == GIS_VIEWSHED ? "viewshed" : "track");
+    return err_set(err, "unknown option '%s' for fathom %s (see fathom --help)", name, command_name(o->command));
 }
 
 static bool ends_with(const char *s, const char *ext)
@@ -80,9 +86,18 @@ static bool ends_with(const char *s, const char *ext)
 
 static bool check(const gis_options *o, err_t *err)
 {
-    const char *cmd = o->command == GIS_VIEWSHED ? "viewshed" : "track";
+    const char *cmd = command_name(o->command);
     if (!o->dem || !o->output)
         return err_set(err, "fathom %s needs --dem DEM and --output FILE (see fathom --help)", cmd);
+    if ((o->min_depth > 0 || o->min_area > 0) && o->command != GIS_WATER)
+        return err_set(err, "--min-depth and --min-area belong to fathom water");
+    if (o->command == GIS_WATER) {
+        if (!isnan(o->lon) || o->input || o->path || o->scene || o->set_count)
+            return err_set(err, "fathom water takes --dem, --output, --min-depth and --min-area (see fathom --help)");
+        if (!ends_with(o->output, ".tif") && !ends_with(o->output, ".tiff"))
+            return err_set(err, "bad --output '%s': the lakes are a GeoTIFF: end the name in .tif", o->output);
+        return true;
+    }
     if (o->command == GIS_VIEWSHED) {
         if (isnan(o->lon))
             return err_set(err, "fathom viewshed needs --observer LON,LAT: where the observer stands");
@@ -108,9 +123,9 @@ bool cli_gis_parse(int argc, char **argv, gis_options *o, err_t *err)
 {
     *o = (gis_options){.lon = NAN, .lat = NAN, .observer_height = 1.7, .refraction = 0.13, .height = 100,
                        .speed = 30, .fps = 2};
-    if (argc < 2 || (strcmp(argv[1], "viewshed") && strcmp(argv[1], "track")))
+    if (argc < 2 || (strcmp(argv[1], "viewshed") && strcmp(argv[1], "track") && strcmp(argv[1], "water")))
         return true;
-    o->command = !strcmp(argv[1], "viewshed") ? GIS_VIEWSHED : GIS_TRACK;
+    o->command = !strcmp(argv[1], "viewshed") ? GIS_VIEWSHED : !strcmp(argv[1], "water") ? GIS_WATER : GIS_TRACK;
     for (int i = 2; i < argc; i++) {
         const char *a = argv[i];
         if (!strcmp(a, "--quiet")) {

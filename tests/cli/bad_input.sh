@@ -325,6 +325,13 @@ expect vs-refraction 2 "bad --refraction '3': expected a number from -1 to 1" 1 
     "$fathom" viewshed --dem "$dem" --observer 86.9,28 --refraction 3 --output "$tmp/out.tif"
 expect vs-no-georef 1 "has no georeferencing" 1 -- \
     "$fathom" viewshed --dem "$src/terrains/jacksboro.png" --observer 86.9,28 --output "$tmp/out.tif"
+expect water-png 2 "the lakes are a GeoTIFF: end the name in .tif" 1 -- "$fathom" water --dem "$dem" --output "$tmp/out.png"
+expect water-no-georef 1 "has no georeferencing: fathom water" 1 -- \
+    "$fathom" water --dem "$src/terrains/jacksboro.png" --output "$tmp/out.tif"
+expect water-depth 2 "bad --min-depth '-1': expected a number from 0 to 100000" 1 -- \
+    "$fathom" water --dem "$dem" --min-depth -1 --output "$tmp/out.tif"
+expect water-options-elsewhere 2 "--min-depth and --min-area belong to fathom water" 1 -- \
+    "$fathom" viewshed --dem "$dem" --observer 86.9,28 --min-area 5 --output "$tmp/out.tif"
 expect video-odd-size 1 "yuv420p needs an even width and height (this is 33x18)" 1 -- \
     "$fathom" render --path "$src/docs/flight/csg.json" --fps 2 --size 33x18 --spp 1 --output "$tmp/out.mp4"
 expect track-both 2 "fathom track takes either --input TRACK" 1 -- "$fathom" track --dem "$dem" --output "$tmp/out.json"

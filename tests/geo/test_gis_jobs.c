@@ -399,6 +399,76 @@ static void tracks_as_the_guide_says(void **st)
     free(pts);
 }
 
+/* fathom water: a DEM of two bowls (one with a notch to the edge, one closed, a nodata texel in a corner) gives
+ * the lakes water_fill gives on its heights, depth and surface, on the DEM's grid and CRS; --min-depth leaves the
+ * shallower one dry; a DEM without georeferencing is refused with no file. */
+static void water_geotiff(void **st)
+{
+    (void)st;
+    enum { WW = 40, WH = 30 };
+    static float g[WW * WH];
+    for (int j = 0; j < WH; j++)
+        for (int i = 0; i < WW; i++) {
+            int c = i < 20 ? 10 : 30, r2 = (i - c) * (i - c) + (j - 15) * (j - 15);
+            g[j * WW + i] = r2 < 64 ? (float)r2 * (i < 20 ? 1.0f : 0.25f) : 100.0f; /* deep west, shallow east */
+        }
+    g[15 * WW + 3] = 40; /* the west bowl's notch to the edge: it stands at 40; the east one at its rim, 100 */
+    g[15 * WW + 2] = 40;
+    g[15 * WW + 1] = 40;
+    g[15 * WW + 0] = 40;
+    g[0] = NAN;
+    GDALDatasetH ds = GDALCreate(GDALGetDriverByName("GTiff"), fixture_path("bowls.tif"), WW, WH, 1, GDT_Float32, NULL);
+    OGRSpatialReferenceH utm = fixture_srs(32633);
+    GDALSetGeoTransform(ds, (double *)DEM_GT);
+    GDALSetSpatialRef(ds, utm);
+    GDALSetRasterNoDataValue(GDALGetRasterBand(ds, 1), NAN);
+    assert_true(GDALRasterIO(GDALGetRasterBand(ds, 1), GF_Write, 0, 0, WW, WH, g, WW, WH, GDT_Float32, 0, 0) == CE_None);
+    GDALClose(ds);
+    for (int pass = 0; pass < 2; pass++) {
+        gis_options o = {.command = GIS_WATER, .dem = fixture_path("bowls.tif"), .output = fixture_path("lakes.tif"),
+                         .min_depth = pass ? 50 : 0};
+        err_t e;
+        if (!gis_water_run(&o, &e))
+            fail_msg("%s", e.msg);
+        static float want[WW * WH], depth[WW * WH], surface[WW * WH];
+        water_fill_desc d = {.ground = g, .w = WW, .h = WH, .dx = 1000, .dz = 1000, .min_depth = o.min_depth};
+        water_fill_stats ws;
+        assert_true(water_fill(&d, want, &ws, &e));
+        assert_int_equal(ws.lakes, pass ? 1 : 2);
+        ds = GDALOpen(fixture_path("lakes.tif"), GA_ReadOnly);
+        assert_non_null(ds);
+        double gt[6];
+        assert_true(GDALGetGeoTransform(ds, gt) == CE_None);
+        for (int k = 0; k < 6; k++)
+            assert_true(gt[k] == DEM_GT[k]);
+        assert_true(OSRIsSame(GDALGetSpatialRef(ds), utm));
+        assert_int_equal(GDALGetRasterCount(ds), 2);
+        assert_true(GDALRasterIO(GDALGetRasterBand(ds, 1), GF_Read, 0, 0, WW, WH, depth, WW, WH, GDT_Float32, 0, 0) == CE_None);
+        assert_true(GDALRasterIO(GDALGetRasterBand(ds, 2), GF_Read, 0, 0, WW, WH, surface, WW, WH, GDT_Float32, 0, 0) == CE_None);
+        GDALClose(ds);
+        size_t wet = 0;
+        for (int c = 0; c < WW * WH; c++) {
+            assert_true(isnan(want[c]) ? isnan(surface[c]) : surface[c] == want[c]);
+            assert_true(isnan(g[c]) ? isnan(depth[c]) : depth[c] == (isnan(want[c]) ? 0.0f : want[c] - g[c]));
+            wet += isnan(surface[c]) ? 0u : 1u;
+        }
+        assert_true(pass ? isnan(surface[15 * WW + 10]) : surface[15 * WW + 10] == 40.0f); /* the west: 40 deep */
+        assert_true(surface[15 * WW + 30] == 100.0f && depth[15 * WW + 30] == 100.0f);    /* the east: 100 */
+        assert_true(wet > 20);
+    }
+    /* no georeferencing: refused, nothing written */
+    ds = GDALCreate(GDALGetDriverByName("GTiff"), fixture_path("plain.tif"), WW, WH, 1, GDT_Float32, NULL);
+    assert_true(GDALRasterIO(GDALGetRasterBand(ds, 1), GF_Write, 0, 0, WW, WH, g, WW, WH, GDT_Float32, 0, 0) == CE_None);
+    GDALClose(ds);
+    OSRDestroySpatialReference(utm);
+    gis_options o = {.command = GIS_WATER, .dem = fixture_path("plain.tif"), .output = fixture_path("plain-lakes.tif")};
+    err_t e;
+    assert_false(gis_water_run(&o, &e));
+    print_message("%s\n", e.msg);
+    assert_non_null(strstr(e.msg, "no georeferencing"));
+    assert_int_equal(access(fixture_path("plain-lakes.tif"), F_OK), -1);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -409,6 +479,7 @@ int main(void)
         cmocka_unit_test(tracks_as_the_guide_says),
         cmocka_unit_test(viewshed_radius_crops),
         cmocka_unit_test(viewshed_drapes_see_through),
+        cmocka_unit_test(water_geotiff),
     };
     return cmocka_run_group_tests(tests, fixture_setup, fixture_teardown);
 }

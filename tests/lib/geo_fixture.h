@@ -23,6 +23,7 @@
 #include "data/geo/geo.h"
 #include "data/sky/sun.h"
 #include "data/geo/viewshed.h"
+#include "data/geo/water.h"
 #include "jobs/gis/gis_job.h"
 #include "scene/scene.h"
 #include "view/path.h"

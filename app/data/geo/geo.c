@@ -160,6 +160,27 @@ static bool read_back_equal(const char *path, int w, int h, const unsigned char 
     return ok;
 }
 
+/* A tiled, deflated GeoTIFF at path on grid g (its CRS taken: g->srs is freed), errors reset; NULL with a
+ * message when GDAL refuses. */
+static GDALDatasetH create_on_grid(geo_grid *g, const char *path, int w, int h, int bands, GDALDataType type, err_t *err)
+{
+    CPLErrorReset();
+    char **opts = CSLSetNameValue(NULL, "COMPRESS", "DEFLATE");
+    opts = CSLSetNameValue(opts, "TILED", "YES");
+    if (type == GDT_Float32)
+        opts = CSLSetNameValue(opts, "PREDICTOR", "3"); /* floating point: smaller */
+    GDALDatasetH ds = GDALCreate(GDALGetDriverByName("GTiff"), path, w, h, bands, type, opts);
+    CSLDestroy(opts);
+    if (ds) {
+        GDALSetGeoTransform(ds, g->gt);
+        GDALSetSpatialRef(ds, g->srs);
+    }
+    OSRDestroySpatialReference(g->srs);
+    if (!ds)
+        err_set(err, "cannot write '%s': %s", path, geo_gdal_msg("GDAL refused to create it"));
+    return ds;
+}
+
 bool geo_write_mask_file(const char *dem_path, const char *out_path, int x0, int y0, int w, int h,
                          const unsigned char *v, const char *description, err_t *err)
 {
@@ -172,18 +193,9 @@ bool geo_write_mask_file(const char *dem_path, const char *out_path, int x0, int
     }
     g.gt[0] += x0 * g.gt[1]; /* the window's corner (north-up: geo_grid_of) */
     g.gt[3] += y0 * g.gt[5];
-    CPLErrorReset();
-    char **opts = CSLSetNameValue(NULL, "COMPRESS", "DEFLATE");
-    opts = CSLSetNameValue(opts, "TILED", "YES");
-    GDALDatasetH ds = GDALCreate(GDALGetDriverByName("GTiff"), out_path, w, h, 1, GDT_Byte, opts);
-    CSLDestroy(opts);
-    if (!ds) {
-        OSRDestroySpatialReference(g.srs);
-        return err_set(err, "cannot write '%s': %s", out_path, geo_gdal_msg("GDAL refused to create it"));
-    }
-    GDALSetGeoTransform(ds, g.gt);
-    GDALSetSpatialRef(ds, g.srs);
-    OSRDestroySpatialReference(g.srs);
+    GDALDatasetH ds = create_on_grid(&g, out_path, w, h, 1, GDT_Byte, err);
+    if (!ds)
+        return false;
     GDALRasterBandH b = GDALGetRasterBand(ds, 1);
     GDALSetRasterNoDataValue(b, 255);
     GDALSetDescription(b, description);
@@ -199,6 +211,51 @@ bool geo_write_mask_file(const char *dem_path, const char *out_path, int x0, int
     bool ok = GDALRasterIO(b, GF_Write, 0, 0, w, h, (void *)v, w, h, GDT_Byte, 0, 0) == CE_None;
     GDALClose(ds); /* GDAL 3.6's close returns nothing: its errors are the last error, the read-back the rest */
     ok = ok && CPLGetLastErrorType() < CE_Failure && read_back_equal(out_path, w, h, v);
+    return ok || err_set(err, "cannot write '%s': %s", out_path, geo_gdal_msg("it does not read back whole (is the "
+                                                                              "disk full?)"));
+}
+
+/* Band b of a Float32 file equals v (NaN where v is NaN). */
+static bool read_back_floats(GDALDatasetH ds, int b, int w, int h, const float *v)
+{
+    float *got = malloc((size_t)w * (size_t)h * sizeof *got);
+    bool ok = got && GDALRasterIO(GDALGetRasterBand(ds, b), GF_Read, 0, 0, w, h, got, w, h, GDT_Float32, 0, 0) == CE_None;
+    for (size_t i = 0; ok && i < (size_t)w * (size_t)h; i++)
+        ok = isnan(v[i]) ? isnan(got[i]) : got[i] == v[i];
+    free(got);
+    return ok;
+}
+
+bool geo_write_floats_file(const char *dem_path, const char *out_path, int w, int h, int bands, const float *const *v,
+                           const char *const *descriptions, err_t *err)
+{
+    geo_grid g;
+    if (!geo_grid_of(dem_path, &g, err))
+        return false;
+    if (w != g.w || h != g.h) {
+        OSRDestroySpatialReference(g.srs);
+        return err_set(err, "a %d × %d raster does not fit the DEM's %d × %d grid", w, h, g.w, g.h);
+    }
+    GDALDatasetH ds = create_on_grid(&g, out_path, w, h, bands, GDT_Float32, err);
+    if (!ds)
+        return false;
+    bool ok = true;
+    for (int b = 0; ok && b < bands; b++) {
+        GDALRasterBandH band = GDALGetRasterBand(ds, b + 1);
+        GDALSetRasterNoDataValue(band, NAN);
+        GDALSetDescription(band, descriptions[b]);
+        GDALSetRasterUnitType(band, "m");
+        ok = GDALRasterIO(band, GF_Write, 0, 0, w, h, (void *)v[b], w, h, GDT_Float32, 0, 0) == CE_None;
+    }
+    GDALClose(ds);
+    ok = ok && CPLGetLastErrorType() < CE_Failure;
+    err_t ignored;
+    GDALDatasetH back = ok ? geo_open(out_path, GDAL_OF_RASTER, "read back", &ignored) : NULL;
+    ok = back && GDALGetRasterXSize(back) == w && GDALGetRasterYSize(back) == h && GDALGetRasterCount(back) == bands;
+    for (int b = 0; ok && b < bands; b++)
+        ok = read_back_floats(back, b + 1, w, h, v[b]);
+    if (back)
+        GDALClose(back);
     return ok || err_set(err, "cannot write '%s': %s", out_path, geo_gdal_msg("it does not read back whole (is the "
                                                                               "disk full?)"));
 }

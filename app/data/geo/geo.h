@@ -25,6 +25,11 @@ bool geo_convert(const char *dem_path, bool to_texel, int n, const double *x, co
 bool geo_write_mask(const char *dem_path, const char *out_path, int x0, int y0, int w, int h, const unsigned char *v,
                     const char *description, err_t *err);
 
+/* Writes `bands` Float32 rasters (w × h each, row 0 north, the DEM's whole grid) as one GeoTIFF in the DEM's CRS and
+ * geotransform, nodata NaN, unit metres, each band described; whole or not at all. */
+bool geo_write_floats(const char *dem_path, const char *out_path, int w, int h, int bands, const float *const *v,
+                      const char *const *descriptions, err_t *err);
+
 /* True north on the DEM's grid at a place (WGS 84 degrees): *gamma, degrees clockwise from the grid's north (the
  * −Z of a terrain's world) to the meridian's; 0 on a geographic DEM. A true azimuth A is A + *gamma on the grid
  * (on EPSG:3413 at 0° E: −45°; in UTM, −atan(tan(λ − λ0) sin φ)). */
@@ -77,6 +82,8 @@ bool geo_gdal_viewshed(const char *dem_path, int col, int row, double observer_h
 /* The module's writers behind the two above (geo_lazy.c makes them atomic): into `path` as given. */
 bool geo_write_mask_file(const char *dem_path, const char *path, int x0, int y0, int w, int h,
                          const unsigned char *v, const char *description, err_t *err);
+bool geo_write_floats_file(const char *dem_path, const char *path, int w, int h, int bands, const float *const *v,
+                           const char *const *descriptions, err_t *err);
 bool geo_track_write_file(const char *path, bool kml, const char *name, const geo_point *pts,
                           const double (*cameras)[3], int n, err_t *err);
 

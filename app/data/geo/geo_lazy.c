@@ -1,5 +1,5 @@
 /* geo's functions in the binary: each loads fathom_dem.so (geo.c and GDAL) on first use (data/lazy/lazy.h);
- * the two writers write into a temporary file beside the output and rename it over (util_atomic), so
+ * the writers write into a temporary file beside the output and rename it over (util_atomic), so
  * an output is whole or absent. */
 #include "data/geo/geo.h"
 
@@ -70,6 +70,21 @@ bool geo_write_mask(const char *dem_path, const char *out_path, int x0, int y0, 
     if (!f || !util_atomic_open(&a, out_path, err))
         return false;
     if (!f(dem_path, a.tmp, x0, y0, w, h, v, description, err)) {
+        util_atomic_abort(&a);
+        return false;
+    }
+    return util_atomic_commit(&a, err);
+}
+
+bool geo_write_floats(const char *dem_path, const char *out_path, int w, int h, int bands, const float *const *v,
+                      const char *const *descriptions, err_t *err)
+{
+    LAZY_FN(bool (*f)(const char *, const char *, int, int, int, const float *const *, const char *const *, err_t *),
+            lazy_symbol(LAZY_DEM, "geo_write_floats_file", err));
+    util_atomic a;
+    if (!f || !util_atomic_open(&a, out_path, err))
+        return false;
+    if (!f(dem_path, a.tmp, w, h, bands, v, descriptions, err)) {
         util_atomic_abort(&a);
         return false;
     }

@@ -14,6 +14,7 @@
 #include "data/sky/sun.h"
 #include "data/geo/terrain.h"
 #include "data/geo/viewshed.h"
+#include "data/geo/water.h"
 #include "scene/scene.h"
 #include "view/camera.h"
 #include "view/path.h"
@@ -76,6 +77,46 @@ bool gis_viewshed_run(const gis_options *o, err_t *err)
     }
     free(out);
     free(heights);
+    return ok;
+}
+
+/* ---- lakes ------------------------------------------------------------------------------------- */
+
+bool gis_water_run(const gis_options *o, err_t *err)
+{
+    int w, h;
+    float *ground = NULL;
+    dem_info info = {0};
+    if (!dem_read(o->dem, TERRAIN_MAX_SIDE, &w, &h, &ground, &info, err))
+        return false;
+    bool ok = info.georeferenced ||
+              err_set(err, "the DEM '%s' has no georeferencing: fathom water writes its lakes on the DEM's grid and "
+                           "needs its CRS and spacing; give a GeoTIFF, .hgt or other georeferenced DEM", o->dem);
+    size_t n = (size_t)w * (size_t)h;
+    float *surface = ok ? util_alloc(n * sizeof *surface, "the lakes") : NULL;
+    float *depth = ok ? util_alloc(n * sizeof *depth, "the lakes") : NULL;
+    water_fill_desc d = {.ground = ground, .w = w, .h = h, .dx = info.spacing[0], .dz = info.spacing[1],
+                         .min_depth = o->min_depth, .min_area = o->min_area};
+    water_fill_stats st;
+    double t0 = util_now();
+    ok = ok && water_fill(&d, surface, &st, err);
+    double secs = util_now() - t0;
+    for (size_t c = 0; ok && c < n; c++)
+        depth[c] = isnan(ground[c]) ? NAN : isnan(surface[c]) ? 0.0f : surface[c] - ground[c];
+    char about[2][256];
+    snprintf(about[0], sizeof about[0], "water depth, metres (0 dry), lakes filled to their spill heights%s (fathom %s)",
+             o->min_depth > 0 || o->min_area > 0 ? ", shallow or small ones left dry" : "", FATHOM_VERSION);
+    snprintf(about[1], sizeof about[1], "water surface height, metres (nodata where dry) (fathom %s)", FATHOM_VERSION);
+    const float *bands[2] = {depth, surface};
+    const char *descriptions[2] = {about[0], about[1]};
+    ok = ok && geo_write_floats(o->dem, o->output, w, h, 2, bands, descriptions, err);
+    if (ok)
+        printf("%s: %zu lake%s (%zu left dry by --min-depth or --min-area), %zu texels under water (%.4g km²), %.4g m³, "
+               "deepest %.2f m; %.2f s for %d x %d texels\n", o->output, st.lakes, st.lakes == 1 ? "" : "s", st.dropped,
+               st.wet, (double)st.wet * d.dx * d.dz / 1e6, st.volume, st.deepest, secs, w, h);
+    free(depth);
+    free(surface);
+    free(ground);
     return ok;
 }
 

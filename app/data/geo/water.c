@@ -1,0 +1,159 @@
+/* water — depressions filled by priority-flood (data/geo/water.h). */
+#include "data/geo/water.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+
+typedef struct cell {
+    float z;
+    uint32_t i;
+} cell;
+
+typedef struct heap { /* a binary min-heap of cells by height */
+    cell *a;
+    size_t n, cap;
+} heap;
+
+static void heap_push(heap *q, float z, uint32_t i)
+{
+    if (q->n == q->cap) {
+        q->cap = q->cap ? 2 * q->cap : 4096;
+        q->a = util_realloc(q->a, q->cap * sizeof *q->a, "water's queue");
+    }
+    size_t k = q->n++;
+    while (k > 0 && q->a[(k - 1) / 2].z > z) {
+        q->a[k] = q->a[(k - 1) / 2];
+        k = (k - 1) / 2;
+    }
+    q->a[k] = (cell){z, i};
+}
+
+static cell heap_pop(heap *q)
+{
+    cell top = q->a[0], last = q->a[--q->n];
+    size_t k = 0;
+    for (;;) {
+        size_t c = 2 * k + 1;
+        if (c >= q->n)
+            break;
+        if (c + 1 < q->n && q->a[c + 1].z < q->a[c].z)
+            c++;
+        if (!(q->a[c].z < last.z))
+            break;
+        q->a[k] = q->a[c];
+        k = c;
+    }
+    if (q->n)
+        q->a[k] = last;
+    return top;
+}
+
+static const int DI[8] = {-1, 0, 1, -1, 1, -1, 0, 1}, DJ[8] = {-1, -1, -1, 0, 0, 1, 1, 1};
+
+/* A cell on the grid's edge or next to nodata: water leaves the grid through it. */
+static bool drains(const float *g, int w, int h, int i, int j)
+{
+    if (i == 0 || j == 0 || i == w - 1 || j == h - 1)
+        return true;
+    for (int k = 0; k < 8; k++)
+        if (isnan(g[(size_t)(j + DJ[k]) * (size_t)w + (size_t)(i + DI[k])]))
+            return true;
+    return false;
+}
+
+/* Lakes (8-connected raised cells, one level each) shallower or smaller than asked left dry. */
+static void keep_lakes(const water_fill_desc *d, float *s, water_fill_stats *st)
+{
+    size_t n = (size_t)d->w * (size_t)d->h;
+    uint32_t *stack = util_alloc(n * sizeof *stack, "water's lakes");
+    uint8_t *seen = util_calloc(n, 1, "water's lakes");
+    for (size_t c0 = 0; c0 < n; c0++) {
+        if (isnan(s[c0]) || seen[c0])
+            continue;
+        size_t top = 0, first = 0, cells = 0;
+        double deepest = 0, volume = 0;
+        stack[top++] = (uint32_t)c0;
+        seen[c0] = 1;
+        while (first < top) { /* breadth first: the stack holds the whole lake afterwards */
+            uint32_t c = stack[first++];
+            int i = (int)(c % (uint32_t)d->w), j = (int)(c / (uint32_t)d->w);
+            double depth = (double)s[c] - d->ground[c];
+            deepest = fmax(deepest, depth);
+            volume += depth * d->dx * d->dz;
+            cells++;
+            for (int k = 0; k < 8; k++) {
+                int a = i + DI[k], b = j + DJ[k];
+                size_t q = (size_t)b * (size_t)d->w + (size_t)a;
+                if (a >= 0 && b >= 0 && a < d->w && b < d->h && !seen[q] && !isnan(s[q])) {
+                    seen[q] = 1;
+                    stack[top++] = (uint32_t)q;
+                }
+            }
+        }
+        if (deepest < d->min_depth || (double)cells * d->dx * d->dz < d->min_area) {
+            for (size_t k = 0; k < top; k++)
+                s[stack[k]] = NAN;
+            st->dropped++;
+            continue;
+        }
+        st->lakes++;
+        st->wet += cells;
+        st->volume += volume;
+        st->deepest = fmax(st->deepest, deepest);
+    }
+    free(stack);
+    free(seen);
+}
+
+bool water_fill(const water_fill_desc *d, float *surface, water_fill_stats *st, err_t *err)
+{
+    (void)err;
+    *st = (water_fill_stats){0};
+    int w = d->w, h = d->h;
+    size_t n = (size_t)w * (size_t)h;
+    const float *g = d->ground;
+    uint8_t *closed = util_calloc(n, 1, "water's cells");
+    float *f = surface; /* the filled heights first, then the water's level where raised */
+    heap open = {0};
+    uint32_t *pit = util_alloc(n * sizeof *pit, "water's pit"); /* each cell enters it at most once */
+    size_t pit_head = 0, pit_tail = 0;
+    for (int j = 0; j < h; j++)
+        for (int i = 0; i < w; i++) {
+            size_t c = (size_t)j * (size_t)w + (size_t)i;
+            f[c] = g[c];
+            if (isnan(g[c]))
+                closed[c] = 1;
+            else if (drains(g, w, h, i, j)) {
+                closed[c] = 1;
+                heap_push(&open, g[c], (uint32_t)c);
+            }
+        }
+    while (open.n || pit_head < pit_tail) {
+        uint32_t c = pit_head < pit_tail ? pit[pit_head++] : heap_pop(&open).i;
+        int i = (int)(c % (uint32_t)w), j = (int)(c / (uint32_t)w);
+        for (int k = 0; k < 8; k++) {
+            int a = i + DI[k], b = j + DJ[k];
+            if (a < 0 || b < 0 || a >= w || b >= h)
+                continue;
+            size_t q = (size_t)b * (size_t)w + (size_t)a;
+            if (closed[q])
+                continue;
+            closed[q] = 1;
+            if (f[q] <= f[c]) { /* lower (or level): flooded to c's height, and on from there at once */
+                f[q] = f[c];
+                pit[pit_tail++] = (uint32_t)q;
+            } else {
+                heap_push(&open, f[q], (uint32_t)q);
+            }
+        }
+    }
+    free(open.a);
+    free(pit);
+    free(closed);
+    for (size_t c = 0; c < n; c++) /* raised cells are water; the rest (and nodata) dry */
+        if (!(f[c] > g[c]))
+            f[c] = NAN;
+    keep_lakes(d, f, st);
+    return true;
+}

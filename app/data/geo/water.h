@@ -1,0 +1,39 @@
+/* water — the lakes a DEM implies: its depressions filled to their spill heights (docs/guide/gis.md).
+ *
+ * Priority-flood (Barnes, Lehman & Mulla 2014, "Priority-Flood: An optimal depression-filling and
+ * watershed-labeling algorithm", Computers & Geosciences 62, Algorithm 2): water leaves the grid at its
+ * edge and at nodata; from there the lowest cell not yet reached is taken next (a priority queue), and a
+ * neighbour lower than it is raised to its height and flooded at once (a plain queue: the pit). Every
+ * cell ends at its spill height: the lowest, over all paths to the edge or nodata, of the highest cell on
+ * the path (8 neighbours). O(n log n), exact for any grid: no tolerance, no iteration.
+ *
+ * Lakes are the 8-connected pieces of raised cells (their water level is one: two raised neighbours
+ * always share it); a lake shallower than min_depth or smaller than min_area is left dry. */
+#ifndef FATHOM_WATER_H
+#define FATHOM_WATER_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "util.h"
+
+typedef struct water_fill_desc {
+    const float *ground; /* w × h heights, row 0 north; NaN = nodata (water drains into it) */
+    int w, h;
+    double dx, dz;       /* metres per texel (area thresholds) */
+    double min_depth;    /* metres: a lake whose deepest cell is shallower stays dry (0: keep every lake) */
+    double min_area;     /* square metres: a lake covering less stays dry (0: keep every lake) */
+} water_fill_desc;
+
+typedef struct water_fill_stats {
+    size_t lakes, dropped;  /* lakes kept, and left dry by the thresholds */
+    size_t wet;             /* cells under water */
+    double volume;          /* cubic metres of water (depth × texel area, summed) */
+    double deepest;         /* metres */
+} water_fill_stats;
+
+/* surface (w × h): the water's level where a kept lake covers the cell, NaN elsewhere (dry, and nodata).
+ * False with a message only when memory runs out. */
+bool water_fill(const water_fill_desc *d, float *surface, water_fill_stats *st, err_t *err);
+
+#endif
