@@ -27,7 +27,8 @@
     X(GLOW, "glow", "fractals: light that grows with the march steps near the surface")               \
     X(RELIEF, "relief", "parallax occlusion mapping of a heightmap on a material (the lab's search)")          \
     X(DROPLETS, "droplets", "liquid droplets from a file: analytic spheres in a grid, Fresnel, Snell, TIR, Beer") \
-    X(SKY, "sky", "physical sky: the sun scattered by air, aerosol and ozone (Hillaire 2020), aerial perspective")
+    X(SKY, "sky", "physical sky: the sun scattered by air, aerosol and ozone (Hillaire 2020), aerial perspective") \
+    X(WATER, "water", "water on a DEM at a level: exact shorelines, Fresnel, Snell, TIR, Beer, the terrain mirrored")
 
 typedef enum effect {
 #define X(id, name, what) EFFECT_##id,

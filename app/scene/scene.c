@@ -50,7 +50,7 @@ static unsigned derive_effects(const scene *s)
         [EFFECT_SOFT_SHADOWS] = soft,
         [EFFECT_AO] = s->env_intensity > 0 && s->quality.ao_samples > 0,
         [EFFECT_REFLECTIONS] = mirror && s->quality.bounces > 0,
-        [EFFECT_REFRACTION] = glass && s->quality.bounces > 0,
+        [EFFECT_REFRACTION] = (glass && s->quality.bounces > 0) || s->terrain.has_water, /* water spends no bounce */
         [EFFECT_FOG] = s->has_fog,
         [EFFECT_ENVMAP] = s->has_cubemap,
         [EFFECT_TEXTURES] = s->texture_count > 0 && !(s->texture_count == 1 && s->texture_linear[0]),
@@ -59,6 +59,7 @@ static unsigned derive_effects(const scene *s)
         [EFFECT_RELIEF] = relief,
         [EFFECT_DROPLETS] = s->has_droplets,
         [EFFECT_SKY] = s->has_sky,
+        [EFFECT_WATER] = s->terrain.has_water,
     };
     unsigned fx = 0;
     for (int e = 0; e < EFFECT_COUNT; e++) {
@@ -71,6 +72,9 @@ static unsigned derive_effects(const scene *s)
     /* droplets come from a file: a scene without one has none to draw */
     if (!s->has_droplets)
         fx &= ~(1u << EFFECT_DROPLETS);
+    /* water lies on a DEM: a scene without one (or without a level) has none to draw */
+    if (!s->terrain.has_water)
+        fx &= ~(1u << EFFECT_WATER);
     /* terrain programs run the lab's search themselves, over their own surface: no relief there */
     if (program_get(s->program)->family == FAMILY_TERRAIN)
         fx &= ~(1u << EFFECT_RELIEF);

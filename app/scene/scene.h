@@ -179,6 +179,11 @@ typedef struct scene {
         float vector_color[SCENE_MAX_IMAGERY][4]; /* RGB and opacity */
         float vector_width[SCENE_MAX_IMAGERY];    /* metres (0: a DEM texel) */
         int vector_count;
+        /* "water": a level in metres (the DEM's heights): water wherever the ground lies below it, drawn with the
+         * material named "water" (added, clear water, when the scene has none): common/sdf_main.glsl's glass */
+        bool has_water;
+        float water_level;
+        int water_material;
         /* program noise: f(p) = y − base − amplitude · fbm(p · frequency), `octaves` octaves */
         float base, amplitude, frequency;
         int octaves;

@@ -101,13 +101,41 @@ static bool parse_vectors(scene_ctx *c, const cJSON *tb)
     return true;
 }
 
+/* "water": a level; its look is the material "water", clear water unless the scene defines it (pure water's
+ * absorption at 650, 550 and 450 nm, Pope & Fry 1997, "Absorption spectrum (380–700 nm) of pure water";
+ * the refractive index 1.333). */
+static bool parse_water(scene_ctx *c, const cJSON *tb)
+{
+    struct scene_terrain *t = &c->s->terrain;
+    t->has_water = cJSON_HasObjectItem(tb, "water");
+    if (!t->has_water)
+        return true;
+    if (!scene_get_num(c, tb, "terrain", "water", 0, -1e5f, 1e5f, &t->water_level))
+        return false;
+    t->water_material = scene_find_material(c->s, "water");
+    if (t->water_material >= 0)
+        return true;
+    if (c->s->material_count + (c->s->material_count == 0 ? 2 : 1) > SCENE_MAX_MATERIALS)
+        return scene_fail(c, "terrain.water", "no room for the water's material (at most %d materials): define one "
+                                              "named \"water\" in place of another", SCENE_MAX_MATERIALS);
+    if (c->s->material_count == 0) /* the ground is material 0 (its layers' colours): water is another */
+        c->s->materials[c->s->material_count++] = (scene_material){
+            .name = "ground", .base_color = {0.6f, 0.6f, 0.6f}, .roughness = 0.9f, .ior = 1.5f, .texture = -1,
+            .uv_scale = 1, .relief = -1, .relief_depth = 0.05f};
+    t->water_material = c->s->material_count++;
+    c->s->materials[t->water_material] = (scene_material){
+        .name = "water", .base_color = {0.02f, 0.05f, 0.06f}, .roughness = 0, .transmission = 1, .ior = 1.333f,
+        .absorption = {0.340f, 0.0565f, 0.0092f}, .texture = -1, .uv_scale = 1, .relief = -1, .relief_depth = 0.05f};
+    return true;
+}
+
 bool scene_heightmap_parse(scene_ctx *c, const cJSON *root)
 {
     struct scene_terrain *t = &c->s->terrain;
     const cJSON *tb = cJSON_GetObjectItemCaseSensitive(root, "terrain");
     static const char *const keys[] = {"heightmap", "spacing", "height_min", "height_max", "exaggeration", "method",
                                        "sand_line", "snow_line", "grass_slope", "nodata", "normals", "colors", "imagery",
-                                       "vectors", "cache_mb", NULL};
+                                       "vectors", "cache_mb", "water", NULL};
     if (!tb)
         return scene_fail(c, "terrain", "a terrain scene needs a \"terrain\" block with a \"heightmap\"");
     if (!scene_check_keys(c, tb, "terrain", keys))
@@ -162,7 +190,7 @@ bool scene_heightmap_parse(scene_ctx *c, const cJSON *root)
     if (!scene_get_enum(c, tb, "terrain", "colors", "terrain colouring", COLORS, 0, &m))
         return false;
     t->elevation_ramp = m == 1;
-    return parse_imagery(c, tb) && parse_vectors(c, tb);
+    return parse_imagery(c, tb) && parse_vectors(c, tb) && parse_water(c, tb);
 }
 
 
@@ -225,6 +253,10 @@ void scene_layer_uniforms(const scene *s, const uniform_sink *u)
     uniform_f(u, "uSandLine", s->terrain.sand_line);
     uniform_f(u, "uSnowLine", s->terrain.snow_line);
     uniform_f(u, "uGrassSlope", s->terrain.grass_slope);
+    if (s->effects & (1u << EFFECT_WATER)) { /* terrain/terrain.glsl: the water's surface, in world heights */
+        uniform_f(u, "uWaterLevel", s->terrain.water_level * (s->terrain.exaggeration > 0 ? s->terrain.exaggeration : 1.0f));
+        uniform_i(u, "uWaterMaterial", s->terrain.water_material);
+    }
     static const char *const layers[4] = {"sand", "grass", "rock", "snow"};
     static const char *const names[4] = {"uLayerSand", "uLayerGrass", "uLayerRock", "uLayerSnow"};
     enum { ROCK = 2 };

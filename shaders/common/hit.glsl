@@ -15,6 +15,14 @@ struct Hit {
 const float MATERIAL_BOUND = -1.0;
 bool isBound(vec2 d) { return d.y < -0.5; }
 
+// A terrain's water (terrain.water, terrain/terrain.glsl) is a surface of its own material: hits on it say so.
+#if FX_WATER
+uniform int uWaterMaterial;
+bool isWater(float mat) { return int(mat + 0.5) == uWaterMaterial; }
+#else
+bool isWater(float mat) { return false; }
+#endif
+
 // Adaptive sampling's pass-by flag (shaders/errormask.frag): set when a ray of this sample passed
 // within GRAZE_FOOTPRINTS pixel footprints of a surface (or a droplet) it did not hit. Whatever lies
 // inside a pixel's cone is that close to every ray of the pixel, so a pixel none of whose samples

@@ -386,3 +386,11 @@ vec3 calcNormal(vec3 p, float eps, vec3 fallback)
     return len > 1e-20 ? g / len : fallback;
 }
 #endif
+
+// The outward normal where a ray hit a surface of material mat: a terrain's water is level (its material
+// says so: a normal from the geometry near a shore, where the ground lies within eps of the level, tilted
+// there); everything else the program's.
+vec3 hitNormal(float mat, vec3 p, float eps, vec3 fallback)
+{
+    return isWater(mat) ? vec3(0.0, 1.0, 0.0) : calcNormal(p, eps, fallback);
+}

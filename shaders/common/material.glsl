@@ -91,9 +91,11 @@ Material getMaterial(float id, vec3 p, vec3 n, vec3 dpdx, vec3 dpdy)
     m.ior = uMatIor[i];
     m.absorption = uMatAbsorption[i];
     m.emission = uMatEmission[i];
-#ifdef PROGRAM_ALBEDO // the program colours its surface (fractals: orbit traps; terrain: layers)
-    m.albedo = programAlbedo(p, n, dpdx, dpdy, m.albedo);
-    return m;
+#ifdef PROGRAM_ALBEDO // the program colours its surface (fractals: orbit traps; terrain: layers), not its water
+    if (!isWater(id)) {
+        m.albedo = programAlbedo(p, n, dpdx, dpdy, m.albedo);
+        return m;
+    }
 #endif
 #if FX_TEXTURES
     int tex = uMatTexture[i];

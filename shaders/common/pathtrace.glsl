@@ -69,6 +69,7 @@ struct Walk {
     vec3 from;        // where the segment left a surface (ro is pushed off it): Beer's length runs from here
     vec3 throughput, radiance;
     float side;       // +1 outside solids, −1 inside glass
+    vec3 medium;      // inside (side −1): the absorption of the glass (or water) entered last
     float pathT;      // path length so far: thresholds grow with it
     DirPdf dir;       // how the segment's direction was drawn (pt_sampling.glsl)
     Rng rng;
@@ -87,6 +88,14 @@ Walk startWalk(Ray ray, Rng rng)
     W.throughput = vec3(1.0);
     W.radiance = vec3(0.0);
     W.side = 1.0;
+    W.medium = vec3(0.0);
+#ifdef PROGRAM_START_INSIDE // a camera in a program's body (a terrain's water): inside it
+    int inside = programStartInside(ray.o);
+    if (inside >= 0) {
+        W.side = -1.0;
+        W.medium = uMatAbsorption[inside];
+    }
+#endif
     W.pathT = 0.0;
     W.dir = DirPdf(DIR_UNSCATTERED, 0.0);
     W.rng = rng;
@@ -152,6 +161,8 @@ void crossGlass(inout Walk W, vec3 p, vec3 n, Material m, float eps)
     } else {
         turn(W, p, refract(W.rd, nf, eta), -nf * (SURFACE_OFFSET_K * eps));
         W.side = -W.side;
+        if (entering)
+            W.medium = m.absorption;
     }
 }
 
@@ -202,7 +213,7 @@ PathSample tracePathSample(Ray ray, vec2 pixel)
             S.exhausted = h.exhausted;
             if (firstHit) { // the AOVs are the primary ray's, whether or not fog scatters it first
                 S.firstT = h.t;
-                S.firstN = calcNormal(W.ro + W.rd * h.t, normalEps(hitEps(h.t), h.t), -W.rd);
+                S.firstN = hitNormal(h.mat, W.ro + W.rd * h.t, normalEps(hitEps(h.t), h.t), -W.rd);
             }
         }
         S.exitDir = W.rd;
@@ -237,12 +248,12 @@ PathSample tracePathSample(Ray ray, vec2 pixel)
         vec3 p = W.ro + W.rd * h.t;
         W.pathT += h.t;
         float eps = hitEps(W.pathT);
-        vec3 n = firstHit ? S.firstN : calcNormal(p, normalEps(eps, W.pathT), -W.rd); // outward
+        vec3 n = firstHit ? S.firstN : hitNormal(h.mat, p, normalEps(eps, W.pathT), -W.rd); // outward
         Material m = getMaterial(h.mat, p, n, vec3(0.0), vec3(0.0));
         if (firstHit)
             S.firstAlbedo = m.albedo;
-        if (W.side < 0.0) // the segment ran inside glass, from surface to surface: the offsets off each
-            W.throughput *= exp(-m.absorption * distance(W.from, p)); // would cut a thin slab's length
+        if (W.side < 0.0) // the segment ran inside glass (or water), from surface to surface: the offsets off
+            W.throughput *= exp(-W.medium * distance(W.from, p)); // each would cut a thin slab's length
         W.radiance += W.throughput * m.emission;
         if (m.transmission > 0.0 && rand01(W.rng) < m.transmission)
             crossGlass(W, p, n, m, eps);

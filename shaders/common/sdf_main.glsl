@@ -74,6 +74,10 @@ struct Path {
     vec3 radiance, throughput;
     float pathT;            // path length so far: sets thresholds and texture footprints
     float side;             // +1 outside solids, −1 inside glass
+    vec3 medium;            // inside (side −1): the absorption of the glass (or water) entered last
+#if FX_WATER
+    int waterEvents;        // water surfaces met: they spend no bounce but these, up to WATER_EVENTS
+#endif
     float firstT, primaryT; // the first hit's depth (−1: none) and the primary ray's (fog)
     vec3 firstN;
     vec3 firstAlbedo; // the first hit's material colour (the albedo AOV); 0 on a miss
@@ -107,6 +111,10 @@ Path startPath(Ray ray)
     P.throughput = vec3(1.0);
     P.pathT = 0.0;
     P.side = 1.0;
+    P.medium = vec3(0.0);
+#if FX_WATER
+    P.waterEvents = 0;
+#endif
     P.firstT = -1.0;
     P.primaryT = float(MAX_DIST);
     P.firstN = vec3(0.0);
@@ -126,8 +134,15 @@ Path startPath(Ray ray)
 #if FX_REFRACTION
     // A camera inside glass starts on the inside: march to where the path leaves.
     vec2 start = map(P.ro);
-    if (start.x < 0.0 && uMatTransmission[clamp(int(start.y + 0.5), 0, NUM_MATERIALS - 1)] > 0.0 && fxOn(FX_REFRACTION_BIT))
+    int inside = clamp(int(start.y + 0.5), 0, NUM_MATERIALS - 1);
+#ifdef PROGRAM_START_INSIDE // a body the program finds by its own rule (a terrain's water)
+    if (programStartInside(P.ro) >= 0)
+        start.x = -1.0, inside = programStartInside(P.ro);
+#endif
+    if (start.x < 0.0 && uMatTransmission[inside] > 0.0 && fxOn(FX_REFRACTION_BIT)) {
         P.side = -1.0;
+        P.medium = uMatAbsorption[inside];
+    }
 #endif
     return P;
 }
@@ -242,9 +257,39 @@ void reliefSurface(inout Path P, Hit h, bool firstHit, vec3 pSurface, inout vec3
 #endif
 
 #if FX_REFRACTION
+// What glass mirrors: the environment; with water on a terrain (its only glass) also the terrain itself, one
+// traced level shaded without further bounces (mountains in a lake).
+vec3 reflectedLight(vec3 ro, vec3 rd, float T)
+{
+#if FX_WATER
+    if (fxOn(FX_WATER_BIT)) {
+        Hit h = castRay(ro, rd, float(MAX_DIST) - T, 1.0, T);
+        if (h.hit) {
+            vec3 q = ro + rd * h.t;
+            float e = hitEps(T + h.t);
+            vec3 n = hitNormal(h.mat, q, normalEps(e, T + h.t), -rd);
+            Material m = getMaterial(h.mat, q, n, vec3(0.0), vec3(0.0));
+            vec3 F0 = mix(vec3(0.04), m.albedo, m.metallic), v = -rd;
+            if (dot(n, v) < 0.02) // a heightfield's normal is bent toward the viewer, never flipped (opaqueSurface)
+                n = normalize(n + (0.02 - dot(n, v)) * v);
+            vec3 c = shadeSurface(q, n, v, m, F0, T + h.t, false);
+#if FX_FOG
+            if (fxOn(FX_FOG_BIT)) // the air between the water and what it mirrors
+                c = applyFog(c, worldApprox(ro), rd, h.t);
+#endif
+            return c;
+        }
+    }
+#endif
+    return environment(rd);
+}
+
 // Glass splits the path: the reflected part (Fresnel F) takes the environment, the transmitted part
 // (1 − F) goes on, refracted; total internal reflection turns it back inside.
-void refractThrough(inout Path P, Material m, vec3 p, vec3 nOut, float T, float eps)
+// off: how far the next segment starts off the surface (the footprint's offset; a hair off a terrain's level
+// water, whose plane is exact: the footprint's offset at a shore can start a ray inside the ground the water
+// laps, and shortens the path in the water by offset · (1/cos − cos) at an angle).
+void refractThrough(inout Path P, Material m, vec3 p, vec3 nOut, float T, float off)
 {
     bool entering = dot(P.rd, nOut) < 0.0;
     vec3 n = entering ? nOut : -nOut;        // faces the incoming ray
@@ -255,20 +300,22 @@ void refractThrough(inout Path P, Material m, vec3 p, vec3 nOut, float T, float 
     P.pathT = T;
     if (F >= 1.0) { // total internal reflection: stay on this side
         P.rd = refl;
-        P.ro = p + n * (SURFACE_OFFSET_K * eps);
+        P.ro = p + n * off;
         P.from = p;
         return;
     }
     if (entering) // reflected part: the environment (one level; the path follows the light inside)
-        P.radiance += P.throughput * F * m.transmission * environment(refl);
+        P.radiance += P.throughput * F * m.transmission * reflectedLight(p + n * off, refl, T);
     vec3 F0 = vec3(pow((m.ior - 1.0) / (m.ior + 1.0), 2.0));
     if (entering && m.transmission < 1.0)
         P.radiance += P.throughput * (1.0 - m.transmission) * shadeSurface(p, n, -P.rd, m, F0, T, false);
     P.throughput *= (1.0 - F) * m.transmission;
     P.rd = refract(P.rd, n, eta);
-    P.ro = p - n * (SURFACE_OFFSET_K * eps);
+    P.ro = p - n * off;
     P.from = p;
     P.side = -P.side;
+    if (entering)
+        P.medium = m.absorption;
 }
 #endif
 
@@ -312,7 +359,7 @@ int shadeHit(inout Path P, Ray ray, Hit h, int bounce)
     vec3 p = P.ro + P.rd * h.t;
     float T = P.pathT + h.t;
     float eps = hitEps(T);
-    vec3 nOut = calcNormal(p, normalEps(eps, T), -P.rd); // outward normal of the solid
+    vec3 nOut = hitNormal(h.mat, p, normalEps(eps, T), -P.rd); // outward normal of the solid
     bool firstHit = P.primary;
     recordFirst(P, h.t, nOut);
     // Where the neighbouring pixels' rays meet the tangent plane (texture filtering).
@@ -328,11 +375,16 @@ int shadeHit(inout Path P, Ray ray, Hit h, int bounce)
     Material m = getMaterial(h.mat, p, nOut, dpdx, dpdy);
     if (firstHit)
         P.firstAlbedo = m.albedo;
-    if (P.side < 0.0) // the segment just travelled was inside glass: surface to surface (the offsets
-        P.throughput *= exp(-m.absorption * distance(P.from, p)); // off each face cut a thin slab's length by 20 %)
+    if (P.side < 0.0) // the segment just travelled was inside glass (or water): surface to surface (the offsets
+        P.throughput *= exp(-P.medium * distance(P.from, p)); // off each face cut a thin slab's length by 20 %)
 #if FX_REFRACTION
     if (m.transmission > 0.0 && fxOn(FX_REFRACTION_BIT)) {
-        refractThrough(P, m, p, nOut, T, eps);
+        bool water = isWater(h.mat);
+        refractThrough(P, m, p, nOut, T, water ? 1e-5 * (abs(p.y) + 1.0) : SURFACE_OFFSET_K * eps);
+#if FX_WATER // a terrain's water spends no bounce (a lake shows its bed at any quality.bounces), but its own budget
+        if (water && P.waterEvents++ < WATER_EVENTS)
+            return SEGMENT_FREE;
+#endif
         return SEGMENT_BOUNCE;
     }
 #endif
@@ -401,18 +453,19 @@ vec3 pathRadiance(Path P, Ray ray)
     return radiance;
 }
 
-// The path's segments from bounce `from` on (none when `from` is past BOUNCES or the path has ended),
-// then its way out of glass it could not leave.
-void followPath(inout Path P, Ray ray, int from)
+// The path's segments from bounce `from` on (none when `from` is past BOUNCES or the path has `ended`: at an
+// opaque surface or in the sky), then its way out of glass it could not leave.
+void followPath(inout Path P, Ray ray, int from, bool ended)
 {
-    for (int bounce = from; bounce <= BOUNCES; bounce++) {
+    for (int bounce = from; bounce <= BOUNCES && !ended; bounce++) {
         int next = traceSegment(P, ray, bounce);
         if (next == SEGMENT_FREE)
             bounce--; // a droplet event spends no bounce
-        else if (next == SEGMENT_END)
-            break;
+        ended = next == SEGMENT_END;
     }
-    if (!P.escaped && P.side < 0.0) // the path ran out of bounces inside glass: let it leave unbent
+    // the path ran out of bounces inside glass: let it leave unbent (not one that ended on an opaque surface
+    // inside it: a lake's bed added the sky's light under the water)
+    if (!ended && !P.escaped && P.side < 0.0)
         P.radiance += P.throughput * environment(P.rd);
 }
 
@@ -434,7 +487,7 @@ vec3 coveredRadiance(Path P, Ray ray, vec3 radiance)
     Q.passBy = true;
     int next = shadeHit(Q, ray, h, 0);
     Q.passBy = false;
-    followPath(Q, ray, next == SEGMENT_END ? BOUNCES + 1 : 1);
+    followPath(Q, ray, 1, next == SEGMENT_END);
     return mix(radiance, pathRadiance(Q, ray), share);
 }
 #endif
@@ -473,7 +526,7 @@ void renderPixel(vec2 fragCoord, out vec4 color, out vec4 normalDepth, out vec4 
     return;
 #endif
     Path P = startPath(ray);
-    followPath(P, ray, 0);
+    followPath(P, ray, 0, false);
     vec3 radiance = pathRadiance(P, ray);
 #if MARCH_COVERAGE
     if (coverOn())

@@ -56,6 +56,7 @@ int terrainSlot(ivec2 tile)
 float terrainTileMax(ivec2 tile) { return texelFetch(uHeightMaxTop, tile, 0).r; }
 
 #include "common/hit.glsl"
+#include "common/uniforms.glsl" // fxOn (each file is included once a program)
 
 #define PROGRAM_CAST_RAY 1
 #define PROGRAM_NORMAL 1
@@ -238,15 +239,53 @@ Hit terrainTrace(vec3 ro, vec3 rd, vec2 slab)
 }
 #endif
 
+#if FX_WATER
+// Water (terrain.water): a level over the DEM, wherever the ground lies below it. Its surface is the plane
+// y = uWaterLevel over the cells that have a surface; the ray meets the nearer of it and the ground, both
+// exact, so the shoreline is where the plane cuts each bilinear patch, at every zoom. Its look is a
+// material's (uWaterMaterial: glass, common/sdf_main.glsl and common/pathtrace.glsl).
+uniform float uWaterLevel; // world height (the level times the exaggeration); its material: uWaterMaterial
+#define WATER_EVENTS 4     // water surfaces a path crosses or reflects at without spending a bounce: in, out, TIR
+
+// Water at p: over the grid, above ground that has a surface (so not over a nodata hole).
+bool waterAt(vec3 p)
+{
+    vec2 c = toCell(p.xz);
+    if (p.y >= uWaterLevel || any(lessThan(c, vec2(0.0))) || any(greaterThan(c, vec2(uTerrainSize - 1))))
+        return false;
+    float g = heightAtCell(c);
+    return !isHole(g) && g < uWaterLevel;
+}
+
+// Where the ray crosses the water's surface in (0, tEnd), −1 if it does not: from above or from below.
+float waterCross(vec3 ro, vec3 rd, float tEnd)
+{
+    float t = (uWaterLevel - ro.y) / rd.y; // ±inf or NaN for a level ray: no crossing
+    if (!(t > 0.0 && t < tEnd))
+        return -1.0;
+    vec2 xz = ro.xz + rd.xz * t;
+    return waterAt(vec3(xz.x, uWaterLevel - 1e-6 * max(abs(uWaterLevel), 1.0), xz.y)) ? t : -1.0;
+}
+
+// A camera under the water's surface starts in it: its material, −1 elsewhere (common/sdf_main.glsl).
+#define PROGRAM_START_INSIDE 1
+int programStartInside(vec3 p) { return fxOn(FX_WATER_BIT) && waterAt(p) ? uWaterMaterial : -1; }
+#endif
+
 Hit castRay(vec3 ro, vec3 rd, float tmax, float side, float pathT)
 {
     vec2 slab = terrainSlab(ro, rd);
     slab.y = min(slab.y, tmax);
-    if (slab.x > slab.y)
-        return Hit(false, tmax, 0.0, 1, false, 0);
-    Hit h = terrainTrace(ro, rd, slab);
+    Hit h = Hit(false, tmax, 0.0, 1, false, 0);
+    if (slab.x <= slab.y)
+        h = terrainTrace(ro, rd, slab);
     if (!h.hit)
         h.t = tmax;
+#if FX_WATER
+    float tw = fxOn(FX_WATER_BIT) ? waterCross(ro, rd, h.t) : -1.0;
+    if (tw >= 0.0)
+        h = Hit(true, tw, float(uWaterMaterial), h.steps + 1, false, 0);
+#endif
     return h;
 }
 

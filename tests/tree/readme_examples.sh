@@ -39,7 +39,7 @@ while IFS="$tab" read -r from line; do
     case "$cmd" in
     build/fathom\ check-formula*) # a report: it takes no size, frames or output; the defaults only
         echo "$cmd" | grep -q -- --quick || cmd="$cmd --quick" ;;
-    build/fathom\ viewshed* | build/fathom\ track*) ;; # GIS files: no size, spp or frames
+    build/fathom\ viewshed* | build/fathom\ track* | build/fathom\ water*) ;; # GIS files: no size, spp or frames
     build/fathom\ mesh*) cmd=$(echo "$cmd" | sed -E 's/--resolution [0-9]+/--resolution 24/') # a mesh: no size or spp
         echo "$cmd" | grep -q -- --resolution || cmd="$cmd --resolution 24"
         cmd="$cmd --quiet" ;;
