@@ -20,7 +20,12 @@ static const char USAGE_GIS[] =
     "  the DEM, exactly (every line of sight against the bilinear surface), with Earth curvature and\n"
     "  refraction K [0.13]; a GeoTIFF on the DEM's grid: 1 visible, 0 hidden, 255 nodata or beyond\n"
     "  --radius (docs/guide/gis.md). track: a GPS track becomes a flight M metres above the ground\n"
-    "  [100] (its times, or --speed [30 m/s]); a flight becomes a GPX track or a KML tour.\n";
+    "  [100] (its times, or --speed [30 m/s]); a flight becomes a GPX track or a KML tour.\n"
+    "       fathom water --dem DEM --output LAKES.tif [--min-depth M] [--min-area M2]\n"
+    "  water: the lakes the DEM implies, its depressions filled to their spill heights (priority-flood);\n"
+    "  lakes shallower than M metres or smaller than M2 square metres stay dry; a GeoTIFF on the DEM's\n"
+    "  grid: band 1 the water surface's height (nodata where dry; terrain.water=LAKES.tif draws it),\n"
+    "  band 2 the depth (0 dry).\n";
 
 const char *cli_gis_usage(void) { return USAGE_GIS; }
 

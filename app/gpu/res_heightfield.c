@@ -23,6 +23,7 @@
 #include "data/geo/dem.h"
 #include "data/geo/terrain_loader.h"
 #include "data/geo/terrain_stream.h"
+#include "data/geo/water.h"
 
 enum {
     TILE_IN_CORE = 4096,  /* cells a tile when a DEM in core is larger than one texture */
@@ -41,6 +42,7 @@ static void release(void)
     glDeleteTextures(1, &S->max_tex);
     glDeleteTextures(1, &S->top_tex);
     glDeleteTextures(1, &S->pages_tex);
+    glDeleteTextures(1, &S->water_tex);
     glDeleteBuffers(1, &S->feedback_buf);
     heightfield_free(&S->hf);
     dem_stream_close(S->stream);
@@ -55,7 +57,7 @@ static void release(void)
 static int held(void)
 {
     return (S->height_tex != 0) + (S->max_tex != 0) + (S->top_tex != 0) + (S->pages_tex != 0) +
-           (S->feedback_buf != 0);
+           (S->feedback_buf != 0) + (S->water_tex != 0);
 }
 
 bool res_heightfield_can_stream(void)
@@ -241,8 +243,36 @@ static const float *window_of(const heightfield *hf, int t, int *w, int *h)
     return S->tile_buf;
 }
 
+/* The water of s drawn a texel at a time (lakes, a raster): each texel's level into a texture, and *pyramid the
+ * grid the max pyramid is built from, max(ground, water) (conservative for both surfaces); NULL without. */
+static bool water_texture(const scene *s, heightfield *hf, float **pyramid, err_t *err)
+{
+    *pyramid = NULL;
+    if (s->terrain.water_mode != WATER_FILL && s->terrain.water_mode != WATER_RASTER)
+        return true;
+    if (S->grid.tiles_x * S->grid.tiles_y > 1)
+        return err_set(err, "terrain.water: lakes and rasters of water are drawn on a DEM that fits one texture (this "
+                            "one is %d x %d); give a level instead", hf->width, hf->height);
+    size_t n = (size_t)hf->width * (size_t)hf->height;
+    float *w = util_alloc(n * sizeof *w, "the terrain's water"), top;
+    float ex = s->terrain.exaggeration > 0 ? s->terrain.exaggeration : 1.0f;
+    if (!water_grid(hf->h, hf->width, hf->height, s->terrain.water_mode == WATER_RASTER ? s->terrain.water_raster : NULL,
+                    ex, w, &top, err)) {
+        free(w);
+        return false;
+    }
+    hf->hmax = top > hf->hmax ? top : hf->hmax; /* the slab holds the water too */
+    S->water_tex = plain_texture();
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_R32F, hf->width, hf->height, 0, GL_RED, GL_FLOAT, w);
+    for (size_t c = 0; c < n; c++)
+        w[c] = w[c] > hf->h[c] ? w[c] : hf->h[c];
+    *pyramid = w;
+    return true;
+}
+
 /* A DEM in core: read whole (heightfield_load) and every tile uploaded. */
-static bool load_in_core(const heightfield_desc *d, int tile_cells, err_t *err)
+static bool load_in_core(const scene *s, const heightfield_desc *d, int tile_cells, err_t *err)
 {
     if (!heightfield_load(d, &S->hf, err))
         return false;
@@ -259,6 +289,9 @@ static bool load_in_core(const heightfield_desc *d, int tile_cells, err_t *err)
     if (tiles > max_layers)
         return err_set(err, "heightmap '%s' (%dx%d) needs %d tiles; this GPU holds %d: cut the DEM", d->path,
                        hf->width, hf->height, tiles, max_layers);
+    float *pyramid;
+    if (!water_texture(s, hf, &pyramid, err))
+        return false;
     S->tile_buf = tiles > 1 ? util_alloc(sizeof(float) * (size_t)g->slot_w * (size_t)g->slot_h, "a terrain tile") : NULL;
     allocate(tiles);
     float *tile_max = util_alloc(sizeof(float) * (size_t)tiles, "the terrain's tiles");
@@ -266,12 +299,13 @@ static bool load_in_core(const heightfield_desc *d, int tile_cells, err_t *err)
         int w, h;
         const float *win = window_of(hf, t, &w, &h);
         terrain_tile_stats st;
-        terrain_tile_build(g, t % g->tiles_x, t / g->tiles_x, win, hf->dx, hf->dz, S->level_buf, &st);
+        terrain_tile_build(g, t % g->tiles_x, t / g->tiles_x, pyramid ? pyramid : win, hf->dx, hf->dz, S->level_buf, &st);
         res_heightfield_upload(t, win, S->level_buf, w, h, t);
         tile_max[t] = st.max;
     }
     upload_top(tile_max);
     free(tile_max);
+    free(pyramid);
     free(hf->h); /* the heights live on the GPU from here: a DEM is not held twice */
     hf->h = NULL;
     free(S->tile_buf);
@@ -367,10 +401,12 @@ static bool set(const scene *s, err_t *err)
     double budget = budget_bytes(s);
     bool streamed = streams(s, &w, &h);
     char key[sizeof S->key];
-    snprintf(key, sizeof key, "%.9g %.9g|%.9g %.9g|%.9g|%d|%d|%d %.0f;", (double)d.spacing[0], (double)d.spacing[1],
+    snprintf(key, sizeof key, "%.9g %.9g|%.9g %.9g|%.9g|%d|%d|%d %.0f|%d;", (double)d.spacing[0], (double)d.spacing[1],
              (double)d.height_min, (double)d.height_max, (double)d.exaggeration, d.fill_nodata, tile_cells, streamed,
-             streamed ? budget : 0.0);
+             streamed ? budget : 0.0, s->terrain.water_mode);
     render_file_key(d.path, key, sizeof key);
+    if (s->terrain.water_mode == WATER_RASTER)
+        render_file_key(s->terrain.water_raster, key, sizeof key);
     char side[PATH_MAX_LEN]; /* the sidecar (spacing, height range) counts too */
     terrain_sidecar_path(d.path, side, sizeof side);
     render_file_key(side, key, sizeof key);
@@ -379,7 +415,10 @@ static bool set(const scene *s, err_t *err)
     release();
     while (glGetError() != GL_NO_ERROR)
         ;
-    if (!(streamed ? open_streamed(&d, tile_cells, budget, err) : load_in_core(&d, tile_cells, err))) {
+    if (streamed && (s->terrain.water_mode == WATER_FILL || s->terrain.water_mode == WATER_RASTER))
+        return err_set(err, "terrain.water: lakes and rasters of water are drawn on a DEM read whole, and '%s' streams "
+                            "(larger than terrain.cache_mb): raise terrain.cache_mb, or give a level", d.path);
+    if (!(streamed ? open_streamed(&d, tile_cells, budget, err) : load_in_core(s, &d, tile_cells, err))) {
         release();
         return false;
     }
@@ -407,6 +446,7 @@ static void uniforms(const scene *s, const uniform_sink *u, int unit)
     uniform_i(u, "uHeightMax", unit + 1);
     uniform_i(u, "uHeightMaxTop", unit + 2); /* the pyramid's upper levels, from whole tiles up */
     uniform_i(u, "uTerrainPages", unit + 3);
+    uniform_i(u, "uWaterGrid", unit + 4);
     if (!S->height_tex)
         return;
     const heightfield *hf = &S->hf;
@@ -438,11 +478,13 @@ static void bind(int unit)
     glBindTexture(GL_TEXTURE_2D, S->top_tex);
     glActiveTexture(GL_TEXTURE0 + (GLenum)unit + 3);
     glBindTexture(GL_TEXTURE_2D, S->pages_tex);
+    glActiveTexture(GL_TEXTURE0 + (GLenum)unit + 4);
+    glBindTexture(GL_TEXTURE_2D, S->water_tex);
     if (S->feedback_buf) /* the terrain's block is the only shader storage block: binding 0 */
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, S->feedback_buf);
 }
 
-const render_resource res_heightfield = {"heightfield", set, 4, uniforms, bind, release, held};
+const render_resource res_heightfield = {"heightfield", set, 5, uniforms, bind, release, held};
 
 const heightfield *res_heightfield_loaded(int *tiles_x, int *tiles_y)
 {

@@ -12,6 +12,7 @@
 
 typedef struct res_heightfield_state {
     GLuint height_tex, max_tex, top_tex, pages_tex, feedback_buf;
+    GLuint water_tex; /* terrain.water as lakes or a raster: each texel's water level (data/geo/water.h) */
     terrain_grid grid;
     int slots, tiles, words; /* texture layers; tiles; feedback words a bit set */
     int *slot_tile, *tile_slot;
@@ -24,7 +25,7 @@ typedef struct res_heightfield_state {
     float ex;
     float *tile_buf, *level_buf;
     res_heightfield_stats stats;
-    char key[PATH_MAX_LEN + 192];
+    char key[3 * PATH_MAX_LEN + 192]; /* the DEM, its sidecar and a water raster */
     heightfield hf; /* the grid's description; its heights and pyramid live on the GPU */
 } res_heightfield_state;
 

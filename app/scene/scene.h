@@ -67,6 +67,7 @@ typedef struct scene_light {
 } scene_light;
 
 typedef enum effect_mode { EFFECT_AUTO, EFFECT_ON, EFFECT_OFF } effect_mode;
+typedef enum scene_water { WATER_NONE, WATER_LEVEL, WATER_FILL, WATER_RASTER } scene_water;
 
 /* How a fractal's formula is computed: "auto" switches to double where a float cannot resolve the
  * view (the renderer decides, app/gpu/render.c), when the formula allows it (@deep). */
@@ -179,10 +180,14 @@ typedef struct scene {
         float vector_color[SCENE_MAX_IMAGERY][4]; /* RGB and opacity */
         float vector_width[SCENE_MAX_IMAGERY];    /* metres (0: a DEM texel) */
         int vector_count;
-        /* "water": a level in metres (the DEM's heights): water wherever the ground lies below it, drawn with the
-         * material named "water" (added, clear water, when the scene has none): common/sdf_main.glsl's glass */
+        /* "water": a level in metres (the DEM's heights): water wherever the ground lies below it; "fill": the
+         * lakes the DEM implies (data/geo/water.h); or a raster of water-surface heights on the DEM's grid (a
+         * flood model's, or fathom water's). Drawn with the material named "water" (added, clear water, when
+         * the scene has none): common/sdf_main.glsl's glass */
         bool has_water;
+        scene_water water_mode;
         float water_level;
+        char water_raster[PATH_MAX_LEN];
         int water_material;
         /* program noise: f(p) = y − base − amplitude · fbm(p · frequency), `octaves` octaves */
         float base, amplitude, frequency;

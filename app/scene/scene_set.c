@@ -56,7 +56,8 @@ static void from_cwd(cJSON *v)
 static cJSON *override_value(const char *key, const char *v)
 {
     cJSON *j = parse_value(v);
-    if (file_key(key))
+    /* terrain.water: a file unless it is a level or "fill" */
+    if (file_key(key) || (!strcmp(key, "terrain.water") && cJSON_IsString(j) && strcmp(j->valuestring, "fill")))
         from_cwd(j);
     return j;
 }

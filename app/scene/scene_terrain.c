@@ -107,11 +107,28 @@ static bool parse_vectors(scene_ctx *c, const cJSON *tb)
 static bool parse_water(scene_ctx *c, const cJSON *tb)
 {
     struct scene_terrain *t = &c->s->terrain;
-    t->has_water = cJSON_HasObjectItem(tb, "water");
-    if (!t->has_water)
+    const cJSON *w = cJSON_GetObjectItemCaseSensitive(tb, "water");
+    t->has_water = w != NULL;
+    t->water_mode = WATER_NONE;
+    if (!w)
         return true;
-    if (!scene_get_num(c, tb, "terrain", "water", 0, -1e5f, 1e5f, &t->water_level))
-        return false;
+    if (cJSON_IsString(w) && !strcmp(w->valuestring, "fill")) {
+        t->water_mode = WATER_FILL;
+    } else if (cJSON_IsString(w)) {
+        if (!scene_resolve_file(c, "terrain.water", w->valuestring, t->water_raster))
+            return false;
+        t->water_mode = WATER_RASTER;
+    } else if (cJSON_IsNumber(w)) {
+        if (!scene_get_num(c, tb, "terrain", "water", 0, -1e5f, 1e5f, &t->water_level))
+            return false;
+        t->water_mode = WATER_LEVEL;
+    } else {
+        return scene_fail(c, "terrain.water", "expected a level in metres, \"fill\" (the lakes the DEM implies) or a "
+                                              "raster of water-surface heights on the DEM's grid");
+    }
+    if (t->water_mode != WATER_LEVEL && !t->maxmip)
+        return scene_fail(c, "terrain.water", "lakes and rasters of water are drawn by terrain.method \"maxmip\" (the "
+                                              "exact walk); this scene's is \"linear\"");
     t->water_material = scene_find_material(c->s, "water");
     if (t->water_material >= 0)
         return true;
@@ -243,6 +260,8 @@ void scene_heightmap_defines(const scene *s, strbuf *out)
         sb_printf(out, "#define TERRAIN_PATCH_NORMALS 1\n");
     if (s->terrain.imagery_count || s->terrain.vector_count) /* only a scene with a drape samples it */
         sb_printf(out, "#define TERRAIN_IMAGERY 1\n");
+    if (s->terrain.water_mode == WATER_FILL || s->terrain.water_mode == WATER_RASTER) /* a water level a texel */
+        sb_printf(out, "#define TERRAIN_WATER_GRID 1\n");
 }
 
 /* The layered albedo (shaders/terrain/layers.glsl): which material each layer uses, and where. */
@@ -254,8 +273,9 @@ void scene_layer_uniforms(const scene *s, const uniform_sink *u)
     uniform_f(u, "uSnowLine", s->terrain.snow_line);
     uniform_f(u, "uGrassSlope", s->terrain.grass_slope);
     if (s->effects & (1u << EFFECT_WATER)) { /* terrain/terrain.glsl: the water's surface, in world heights */
-        uniform_f(u, "uWaterLevel", s->terrain.water_level * (s->terrain.exaggeration > 0 ? s->terrain.exaggeration : 1.0f));
         uniform_i(u, "uWaterMaterial", s->terrain.water_material);
+        if (s->terrain.water_mode == WATER_LEVEL)
+            uniform_f(u, "uWaterLevel", s->terrain.water_level * (s->terrain.exaggeration > 0 ? s->terrain.exaggeration : 1.0f));
     }
     static const char *const layers[4] = {"sand", "grass", "rock", "snow"};
     static const char *const names[4] = {"uLayerSand", "uLayerGrass", "uLayerRock", "uLayerSnow"};

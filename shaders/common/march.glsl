@@ -387,10 +387,14 @@ vec3 calcNormal(vec3 p, float eps, vec3 fallback)
 }
 #endif
 
-// The outward normal where a ray hit a surface of material mat: a terrain's water is level (its material
-// says so: a normal from the geometry near a shore, where the ground lies within eps of the level, tilted
-// there); everything else the program's.
+// The outward normal where a ray hit a surface of material mat: a terrain's water's (terrain/terrain.glsl:
+// its material says so; a normal from the geometry near a shore, where the ground lies within eps of the
+// level, would tilt there); everything else the program's.
 vec3 hitNormal(float mat, vec3 p, float eps, vec3 fallback)
 {
-    return isWater(mat) ? vec3(0.0, 1.0, 0.0) : calcNormal(p, eps, fallback);
+#if FX_WATER
+    if (isWater(mat))
+        return waterNormal(p);
+#endif
+    return calcNormal(p, eps, fallback);
 }

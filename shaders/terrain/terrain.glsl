@@ -148,22 +148,22 @@ vec2 terrainSlab(vec3 ro, vec3 rd)
     return vec2(enter, min(min(tmax.x, tmax.y), tmax.z));
 }
 
-// First s in [0, sEnd] where the ray meets cell `cell`'s bilinear patch; −1 if none. c0: the ray's
-// cell-space position at s = 0, cd its cell-space velocity, y0 and dy its height and climb.
-float intersectCell(ivec2 cell, vec2 c0, vec2 cd, float y0, float dy, float sEnd)
+// First s in [0, sEnd] where the ray meets the bilinear patch with corner heights k (h00, h10, h01, h11)
+// coming from above (0 when it is at or below the patch already); from below (the ray under the patch,
+// a terrain's water seen from inside it) where it rises through it. −1 if none. uv: the ray's position in
+// the cell at s = 0, cd its cell-space velocity, y0 and dy its height and climb.
+float patchRoot(vec4 k, vec2 uv, vec2 cd, float y0, float dy, float sEnd, bool fromBelow)
 {
-    vec4 k = cellCorners(cell);
     float h00 = k.x, h10 = k.y, h01 = k.z, h11 = k.w;
-    if (isHole(min(min(h00, h10), min(h01, h11))))
-        return -1.0; // a nodata hole: rays pass (the max pyramid skips it; the linear search comes here)
     float a = h10 - h00, b = h01 - h00, c = h00 - h10 - h01 + h11;
-    vec2 uv = c0 - vec2(cell);
-    // y(s) − h(s) = A s² + B s + C
+    // y(s) − h(s) = A s² + B s + C (its negative from below: the same roots, C > 0 on the ray's side)
     float A = -c * cd.x * cd.y;
     float B = dy - (a * cd.x + b * cd.y + c * (uv.x * cd.y + uv.y * cd.x));
     float C = y0 - (h00 + a * uv.x + b * uv.y + c * uv.x * uv.y);
+    if (fromBelow)
+        A = -A, B = -B, C = -C;
     if (C <= 0.0)
-        return 0.0; // already at or below the surface where the ray enters the cell
+        return 0.0; // already at or past the surface where the ray enters the cell
     float s = -1.0;
     if (abs(A) < 1e-12 * max(abs(B), 1e-30)) {
         s = B < 0.0 ? -C / B : -1.0;
@@ -179,8 +179,66 @@ float intersectCell(ivec2 cell, vec2 c0, vec2 cd, float y0, float dy, float sEnd
     return (s >= 0.0 && s <= sEnd) ? s : -1.0;
 }
 
+// First s in [0, sEnd] where the ray meets cell `cell`'s bilinear patch; −1 if none. c0: the ray's
+// cell-space position at s = 0, cd its cell-space velocity, y0 and dy its height and climb.
+float intersectCell(ivec2 cell, vec2 c0, vec2 cd, float y0, float dy, float sEnd)
+{
+    vec4 k = cellCorners(cell);
+    if (isHole(min(min(k.x, k.y), min(k.z, k.w))))
+        return -1.0; // a nodata hole: rays pass (the max pyramid skips it; the linear search comes here)
+    return patchRoot(k, c0 - vec2(cell), cd, y0, dy, sEnd, false);
+}
+
+#if FX_WATER && TERRAIN_WATER_GRID
+// Water a texel at a time (terrain.water "fill" or a raster: app/gpu/res_heightfield.c): each texel's water
+// level, −1e30 where dry; the max pyramid holds max(ground, water), so no ray skips a lake. A cell with a wet
+// corner holds the bilinear patch of its corners' levels, a dry corner taking the wet ones' mean (a lake's
+// cell: flat at its level), and there is water where that patch lies above the ground: the shoreline is
+// where the two patches cross, found exactly as the nearer root of the two.
+uniform sampler2D uWaterGrid;
+
+bool cellWater(ivec2 cell, out vec4 k)
+{
+    k = vec4(-1e30);
+    if (any(lessThan(cell, ivec2(0))) || any(greaterThan(cell, uTerrainSize - 2)))
+        return false;
+    k = vec4(texelFetch(uWaterGrid, cell, 0).r, texelFetch(uWaterGrid, cell + ivec2(1, 0), 0).r,
+             texelFetch(uWaterGrid, cell + ivec2(0, 1), 0).r, texelFetch(uWaterGrid, cell + ivec2(1, 1), 0).r);
+    vec4 wet = vec4(greaterThan(k, vec4(-1e20)));
+    float n = dot(wet, vec4(1.0));
+    if (n == 0.0)
+        return false;
+    float mean = dot(k * wet, vec4(1.0)) / n;
+    k = mix(vec4(mean), k, wet);
+    return true;
+}
+
+// The water's level at cell coordinates c; −1e30 where there is none.
+float waterAtCell(vec2 c)
+{
+    vec4 k;
+    ivec2 i = clamp(ivec2(floor(c)), ivec2(0), uTerrainSize - 2);
+    if (!cellWater(i, k))
+        return -1e30;
+    vec2 f = clamp(c - vec2(i), 0.0, 1.0);
+    return mix(mix(k.x, k.y, f.x), mix(k.z, k.w, f.x), f.y);
+}
+
+// Where the ray meets cell `cell`'s water in [0, sEnd], from above or from below; −1 if it does not.
+float waterCell(ivec2 cell, vec2 c0, vec2 cd, float y0, float dy, float sEnd)
+{
+    vec4 k;
+    if (!cellWater(cell, k))
+        return -1.0;
+    vec2 uv = c0 - vec2(cell);
+    float level = mix(mix(k.x, k.y, uv.x), mix(k.z, k.w, uv.x), uv.y);
+    return patchRoot(k, uv, cd, y0, dy, sEnd, y0 < level);
+}
+#endif
+
 #if TERRAIN_MAXMIP
-Hit terrainTrace(vec3 ro, vec3 rd, vec2 slab)
+// water: meet a terrain's water drawn a texel at a time too (the primary and bounce rays; not shadow rays)
+Hit terrainTrace(vec3 ro, vec3 rd, vec2 slab, bool water)
 {
     Hit h = Hit(false, slab.y, 0.0, 0, false, 0);
     vec2 c0 = toCell(ro.xz), cd = rd.xz / uTerrainSpacing;
@@ -200,6 +258,15 @@ Hit terrainTrace(vec3 ro, vec3 rd, vec2 slab)
         h.steps++;
         if (level == 0) {
             float s = intersectCell(node, c0 + cd * t, cd, ro.y + rd.y * t, rd.y, tExit - t);
+#if FX_WATER && TERRAIN_WATER_GRID
+            float sw = water ? waterCell(node, c0 + cd * t, cd, ro.y + rd.y * t, rd.y, tExit - t) : -1.0;
+            if (sw >= 0.0 && (s < 0.0 || sw < s)) {
+                h.hit = true;
+                h.t = t + sw;
+                h.mat = float(uWaterMaterial);
+                return h;
+            }
+#endif
             if (s >= 0.0) {
                 h.hit = true;
                 h.t = t + s;
@@ -224,7 +291,7 @@ Hit terrainTrace(vec3 ro, vec3 rd, vec2 slab)
 float hsSurfaceY(vec2 xz) { return terrainHeight(xz); }
 #include "common/heightsearch.glsl"
 
-Hit terrainTrace(vec3 ro, vec3 rd, vec2 slab)
+Hit terrainTrace(vec3 ro, vec3 rd, vec2 slab, bool water) // (water a texel at a time needs maxmip: scene_terrain.c)
 {
     Hit h = Hit(false, slab.y, 0.0, 0, false, 0);
     float texel = min(uTerrainSpacing.x, uTerrainSpacing.y);
@@ -240,31 +307,56 @@ Hit terrainTrace(vec3 ro, vec3 rd, vec2 slab)
 #endif
 
 #if FX_WATER
-// Water (terrain.water): a level over the DEM, wherever the ground lies below it. Its surface is the plane
+// Water (terrain.water) as a level over the DEM, wherever the ground lies below it: its surface is the plane
 // y = uWaterLevel over the cells that have a surface; the ray meets the nearer of it and the ground, both
-// exact, so the shoreline is where the plane cuts each bilinear patch, at every zoom. Its look is a
-// material's (uWaterMaterial: glass, common/sdf_main.glsl and common/pathtrace.glsl).
-uniform float uWaterLevel; // world height (the level times the exaggeration); its material: uWaterMaterial
-#define WATER_EVENTS 4     // water surfaces a path crosses or reflects at without spending a bounce: in, out, TIR
+// exact, so the shoreline is where the plane cuts each bilinear patch, at every zoom. (As lakes or a raster,
+// TERRAIN_WATER_GRID: the walk meets it, above.) Its look is a material's (uWaterMaterial: glass,
+// common/sdf_main.glsl and common/pathtrace.glsl).
+#define WATER_EVENTS 4 // water surfaces a path crosses or reflects at without spending a bounce: in, out, TIR
 
-// Water at p: over the grid, above ground that has a surface (so not over a nodata hole).
+#if TERRAIN_WATER_GRID
+float waterLevelAt(vec2 c) { return waterAtCell(c); }
+#else
+uniform float uWaterLevel; // world height (the level times the exaggeration)
+float waterLevelAt(vec2 c) { return uWaterLevel; }
+#endif
+
+// Water at p: over the grid, below the water's surface, above ground that has a surface (so not over a hole).
 bool waterAt(vec3 p)
 {
     vec2 c = toCell(p.xz);
-    if (p.y >= uWaterLevel || any(lessThan(c, vec2(0.0))) || any(greaterThan(c, vec2(uTerrainSize - 1))))
+    if (any(lessThan(c, vec2(0.0))) || any(greaterThan(c, vec2(uTerrainSize - 1))) || p.y >= waterLevelAt(c))
         return false;
     float g = heightAtCell(c);
-    return !isHole(g) && g < uWaterLevel;
+    return !isHole(g) && g < p.y;
 }
 
-// Where the ray crosses the water's surface in (0, tEnd), −1 if it does not: from above or from below.
+// The water's surface normal at p (outward: up).
+vec3 waterNormal(vec3 p)
+{
+#if TERRAIN_WATER_GRID
+    vec2 c = toCell(p.xz), e = vec2(0.25, 0.0); // the patch's slope: a flood's surface tilts, a lake's is level
+    float gx = (waterLevelAt(c + e.xy) - waterLevelAt(c - e.xy)) / (2.0 * e.x * uTerrainSpacing.x);
+    float gz = (waterLevelAt(c + e.yx) - waterLevelAt(c - e.yx)) / (2.0 * e.x * uTerrainSpacing.y);
+    return isHole(min(min(waterLevelAt(c + e.xy), waterLevelAt(c - e.xy)), min(waterLevelAt(c + e.yx), waterLevelAt(c - e.yx))))
+               ? vec3(0.0, 1.0, 0.0) : normalize(vec3(-gx, 1.0, -gz));
+#else
+    return vec3(0.0, 1.0, 0.0);
+#endif
+}
+
+// Where the ray crosses the level's plane in (0, tEnd), −1 if it does not: from above or from below.
 float waterCross(vec3 ro, vec3 rd, float tEnd)
 {
+#if TERRAIN_WATER_GRID
+    return -1.0; // the walk meets it
+#else
     float t = (uWaterLevel - ro.y) / rd.y; // ±inf or NaN for a level ray: no crossing
     if (!(t > 0.0 && t < tEnd))
         return -1.0;
     vec2 xz = ro.xz + rd.xz * t;
     return waterAt(vec3(xz.x, uWaterLevel - 1e-6 * max(abs(uWaterLevel), 1.0), xz.y)) ? t : -1.0;
+#endif
 }
 
 // A camera under the water's surface starts in it: its material, −1 elsewhere (common/sdf_main.glsl).
@@ -278,7 +370,7 @@ Hit castRay(vec3 ro, vec3 rd, float tmax, float side, float pathT)
     slab.y = min(slab.y, tmax);
     Hit h = Hit(false, tmax, 0.0, 1, false, 0);
     if (slab.x <= slab.y)
-        h = terrainTrace(ro, rd, slab);
+        h = terrainTrace(ro, rd, slab, fxOn(FX_WATER_BIT));
     if (!h.hit)
         h.t = tmax;
 #if FX_WATER
@@ -297,7 +389,7 @@ float hardShadow(vec3 ro, vec3 rd, float tmax, float pathT)
 {
     vec2 slab = terrainSlab(ro, rd);
     slab.y = min(slab.y, tmax);
-    return slab.x <= slab.y && terrainTrace(ro, rd, slab).hit ? 0.0 : 1.0;
+    return slab.x <= slab.y && terrainTrace(ro, rd, slab, false).hit ? 0.0 : 1.0;
 }
 
 float softShadow(vec3 ro, vec3 rd, float tmax, float k, float pathT)

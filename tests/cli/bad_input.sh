@@ -332,6 +332,13 @@ expect water-depth 2 "bad --min-depth '-1': expected a number from 0 to 100000" 
     "$fathom" water --dem "$dem" --min-depth -1 --output "$tmp/out.tif"
 expect water-options-elsewhere 2 "--min-depth and --min-area belong to fathom water" 1 -- \
     "$fathom" viewshed --dem "$dem" --observer 86.9,28 --min-area 5 --output "$tmp/out.tif"
+expect water-kind 1 "expected a level in metres, \"fill\" (the lakes the DEM implies) or a raster" 1 -- \
+    "$fathom" --scene himalaya --set 'terrain.water=[1,2]' $out
+expect water-linear 1 "lakes and rasters of water are drawn by terrain.method \"maxmip\"" 1 -- \
+    "$fathom" --scene himalaya --set terrain.water=fill --set terrain.method=linear $out
+expect water-raster-missing 1 "$tmp/none.tif" 1 -- "$fathom" --scene himalaya --set terrain.water="$tmp/none.tif" $out
+expect water-raster-size 1 "is 403 x 344 texels and the DEM 241 x 145: water is read on the DEM's own grid" 1 -- \
+    "$fathom" --scene himalaya --set terrain.water="$src/terrains/jacksboro.png" $out
 expect video-odd-size 1 "yuv420p needs an even width and height (this is 33x18)" 1 -- \
     "$fathom" render --path "$src/docs/flight/csg.json" --fps 2 --size 33x18 --spp 1 --output "$tmp/out.mp4"
 expect track-both 2 "fathom track takes either --input TRACK" 1 -- "$fathom" track --dem "$dem" --output "$tmp/out.json"

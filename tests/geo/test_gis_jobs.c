@@ -443,8 +443,8 @@ static void water_geotiff(void **st)
             assert_true(gt[k] == DEM_GT[k]);
         assert_true(OSRIsSame(GDALGetSpatialRef(ds), utm));
         assert_int_equal(GDALGetRasterCount(ds), 2);
-        assert_true(GDALRasterIO(GDALGetRasterBand(ds, 1), GF_Read, 0, 0, WW, WH, depth, WW, WH, GDT_Float32, 0, 0) == CE_None);
-        assert_true(GDALRasterIO(GDALGetRasterBand(ds, 2), GF_Read, 0, 0, WW, WH, surface, WW, WH, GDT_Float32, 0, 0) == CE_None);
+        assert_true(GDALRasterIO(GDALGetRasterBand(ds, 1), GF_Read, 0, 0, WW, WH, surface, WW, WH, GDT_Float32, 0, 0) == CE_None);
+        assert_true(GDALRasterIO(GDALGetRasterBand(ds, 2), GF_Read, 0, 0, WW, WH, depth, WW, WH, GDT_Float32, 0, 0) == CE_None);
         GDALClose(ds);
         size_t wet = 0;
         for (int c = 0; c < WW * WH; c++) {

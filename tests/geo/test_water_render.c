@@ -19,11 +19,13 @@
 
 #include <cmocka.h>
 #include <epoxy/gl.h>
+#include <gdal.h>
 
 #include "check.h"
 #include "gltest.h"
 #include "gpu/render.h"
 #include "data/geo/terrain.h"
+#include "data/geo/water.h"
 #include "scene/effect.h"
 #include "terrain_ref.h"
 
@@ -257,6 +259,150 @@ static void under_the_water(void **st)
     heightfield_free(&hf);
 }
 
+/* terrain.water=fill: the lakes water_grid gives (each flat at its level: a wet corner's level, a dry corner the
+ * wet ones' mean) against every pixel's nearer of the exact ground and the plane of the level of the cell the
+ * ray crosses it in, in double; the lakes' normals level. */
+static void lakes_from_the_dem(void **st)
+{
+    (void)st;
+    scene s;
+    load_text_file(scene_path, (const char *const[]){"terrain.water=fill"}, 1, &s);
+    heightfield hf = load_hf(&s);
+    float *lv = malloc(sizeof(float) * (size_t)hf.width * (size_t)hf.height), top;
+    err_t e;
+    assert_true(water_grid(hf.h, hf.width, hf.height, NULL, 1, lv, &top, &e));
+    int wet = 0;
+    for (int k = 0; k < hf.width * hf.height; k++)
+        wet += lv[k] > -1e20f;
+    fprintf(stderr, "lakes: %d wet texels, the highest level %.2f\n", wet, (double)top);
+    assert_true(wet > 100);
+    static float aov[W * H * AOV];
+    const view views[] = {{"over the lakes", {0, 900, 4000}, {0, 100, -3000}, 60},
+                          {"low over the lakes", {-4000, 420, 3500}, {4000, 100, -3500}, 60}};
+    for (size_t v = 0; v < sizeof views / sizeof views[0]; v++) {
+        camera cam = cam_at(views[v].eye[0], views[v].eye[1], views[v].eye[2], views[v].at[0], views[v].at[1],
+                            views[v].at[2], views[v].fov);
+        draw(&s, &cam, W, H, 1, NULL, aov, NULL);
+        int water = 0, bad = 0, ties = 0;
+        for (int row = 0; row < H; row++)
+            for (int x = 0; x < W; x++) {
+                dray r = pixel_ray(&cam, x, row, W, H);
+                double tg = INFINITY, tw = INFINITY;
+                if (!ref_terrain(&hf, &r, &tg))
+                    tg = INFINITY;
+                bool tie = false;
+                for (int k = 0; k < hf.width * hf.height; k++) { /* each lake's plane, where its cells are */
+                    if (!(lv[k] > -1e20f) || (k > 0 && lv[k - 1] == lv[k]))
+                        continue;
+                    double t = (lv[k] - r.o[1]) / r.d[1];
+                    if (!(t > 0) || t >= tw)
+                        continue;
+                    double cx = (r.o[0] + r.d[0] * t - hf.x0) / hf.dx - 0.5, cz = (r.o[2] + r.d[2] * t - hf.z0) / hf.dz - 0.5;
+                    int i = (int)floor(cx), j = (int)floor(cz);
+                    if (i < 0 || j < 0 || i > hf.width - 2 || j > hf.height - 2)
+                        continue;
+                    bool here = false;
+                    for (int q = 0; q < 4; q++)
+                        here |= lv[(j + q / 2) * hf.width + i + q % 2] == lv[k];
+                    if (here) {
+                        tw = t;
+                        tie = fmin(fmin(cx - i, i + 1 - cx), fmin(cz - j, j + 1 - cz)) < 1e-4; /* on a cell's side */
+                    }
+                }
+                bool want_water = tw < tg;
+                double want = want_water ? tw : tg, tol = 2e-5 * (fabs(want) + hf.hmax) + 0.02 * hf.dx;
+                if (tie || (isfinite(tw) && isfinite(tg) && fabs(tw - tg) < tol)) {
+                    ties++;
+                    continue;
+                }
+                const float *a = aov + (row * W + x) * AOV;
+                bool level = fabsf(a[1] - 1) < 1e-6f;
+                bool ok = isinf(want) ? isinf(a[3]) : fabs(a[3] - want) <= tol && (!want_water || level);
+                if (!ok && bad++ < 3)
+                    fprintf(stderr, "  %s pixel (%d,%d): depth %.4f normal y %.4f; exact: %s at %.4f (ground %.4f)\n",
+                            views[v].what, x, row, (double)a[3], (double)a[1], want_water ? "lake" : "ground", want, tg);
+                water += want_water;
+            }
+        fprintf(stderr, "%-22s %4d on lakes, %3d ties, %d disagree\n", views[v].what, water, ties, bad);
+        assert_int_equal(bad, 0);
+        assert_true(water > 100);
+    }
+    free(lv);
+    heightfield_free(&hf);
+    scene_free(&s);
+}
+
+/* terrain.water=RASTER: a flood surface sloping 1 m a texel eastward (100 m at the west edge, 399 m at the east,
+ * above the highest hill), a GeoTIFF on the DEM's grid: its bilinear patches are that plane, so every pixel is
+ * the nearer of the exact ground and the plane, its normal the plane's; a raster of another size is refused. */
+static void flood_raster(void **st)
+{
+    (void)st;
+    scene s;
+    load_text_file(scene_path, NULL, 0, &s);
+    heightfield hf = load_hf(&s);
+    scene_free(&s);
+    char tif[300], set[340];
+    snprintf(tif, sizeof tif, "%s/flood.tif", dir);
+    GDALAllRegister();
+    for (int pass = 0; pass < 2; pass++) {
+        int fw = pass ? hf.width - 1 : hf.width;
+        GDALDatasetH ds = GDALCreate(GDALGetDriverByName("GTiff"), tif, fw, hf.height, 1, GDT_Float32, NULL);
+        float *w = malloc(sizeof(float) * (size_t)fw * (size_t)hf.height);
+        for (int k = 0; k < fw * hf.height; k++)
+            w[k] = 100.0f + (float)(k % fw);
+        assert_true(GDALRasterIO(GDALGetRasterBand(ds, 1), GF_Write, 0, 0, fw, hf.height, w, fw, hf.height, GDT_Float32, 0,
+                                 0) == CE_None);
+        GDALClose(ds);
+        free(w);
+        snprintf(set, sizeof set, "terrain.water=%s", tif);
+        load_text_file(scene_path, (const char *const[]){set}, 1, &s);
+        if (pass) { /* one texel narrower than the DEM */
+            err_t e;
+            assert_false(render_set_scene(&s, NULL, &e));
+            print_message("%s\n", e.msg);
+            assert_non_null(strstr(e.msg, "is 299 x 260 texels and the DEM 300 x 260"));
+            scene_free(&s);
+            break;
+        }
+        static float aov[W * H * AOV];
+        camera cam = cam_at(-3000, 900, 4500, 2000, 150, -2000, 60);
+        draw(&s, &cam, W, H, 1, NULL, aov, NULL);
+        int water = 0, ground = 0, bad = 0;
+        double nlen = sqrt(1 + 1 / (hf.dx * hf.dx));
+        for (int row = 0; row < H; row++)
+            for (int x = 0; x < W; x++) {
+                dray r = pixel_ray(&cam, x, row, W, H);
+                double tg = INFINITY;
+                if (!ref_terrain(&hf, &r, &tg))
+                    tg = INFINITY;
+                /* y = 100 + cx, cx = (x - x0) / dx - 0.5 along the ray */
+                double tw = (100 + (r.o[0] - hf.x0) / hf.dx - 0.5 - r.o[1]) / (r.d[1] - r.d[0] / hf.dx);
+                double cx = (r.o[0] + r.d[0] * tw - hf.x0) / hf.dx - 0.5, cz = (r.o[2] + r.d[2] * tw - hf.z0) / hf.dz - 0.5;
+                if (!(tw > 0) || cx < 0 || cz < 0 || cx > hf.width - 1 || cz > hf.height - 1)
+                    tw = INFINITY;
+                bool want_water = tw < tg;
+                double want = want_water ? tw : tg, tol = 2e-5 * (fabs(want) + hf.hmax) + 0.02 * hf.dx;
+                if (isfinite(tw) && isfinite(tg) && fabs(tw - tg) < tol)
+                    continue;
+                const float *a = aov + (row * W + x) * AOV;
+                bool slope = fabs(a[0] + 1 / hf.dx / nlen) < 1e-4 && fabs(a[1] - 1 / nlen) < 1e-4 && fabs(a[2]) < 1e-4;
+                bool ok = isinf(want) ? isinf(a[3]) : fabs(a[3] - want) <= tol && (!want_water || slope);
+                if (!ok && bad++ < 3)
+                    fprintf(stderr, "  flood pixel (%d,%d): depth %.4f normal %.4f %.4f %.4f; exact: %s at %.4f\n", x, row,
+                            (double)a[3], (double)a[0], (double)a[1], (double)a[2], want_water ? "flood" : "ground", want);
+                water += want_water;
+                ground += !want_water && isfinite(want);
+            }
+        fprintf(stderr, "flood raster: %d on the flood, %d on the ground, %d disagree\n", water, ground, bad);
+        assert_int_equal(bad, 0);
+        assert_true(water > 500 && ground > 100);
+        scene_free(&s);
+    }
+    unlink(tif);
+    heightfield_free(&hf);
+}
+
 static void only_where_asked(void **st)
 {
     (void)st;
@@ -284,6 +430,8 @@ int main(void)
         cmocka_unit_test(shoreline_is_exact),
         cmocka_unit_test(beer_lambert_through_the_water),
         cmocka_unit_test(under_the_water),
+        cmocka_unit_test(lakes_from_the_dem),
+        cmocka_unit_test(flood_raster),
         cmocka_unit_test(only_where_asked),
     };
     return cmocka_run_group_tests(tests, setup, teardown);

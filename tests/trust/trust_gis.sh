@@ -2,7 +2,7 @@
 # A stranger's DEM, imagery, vectors or track is data: it never makes fathom connect anywhere, nor read a
 # file the user did not name (outside the folders of the files named, a device, a FIFO, standard input).
 # Every entry point that opens a GIS file (a shot's --dem, terrain.imagery, terrain.vectors, fathom
-# viewshed, fathom track, fathom mesh --dem) meets each driver family's attack; a loopback listener
+# viewshed, fathom track, fathom mesh --dem, fathom water, terrain.water) meets each driver family's attack; a loopback listener
 # counts the connections each case makes (issue 50, items 1-2: 1-18 connections a file before).
 # Usage: trust_gis.sh FATHOM SRC LISTEN_COUNT
 fathom=$1
@@ -89,7 +89,7 @@ attack() {
     name=$1 f=$2 may=$3
     before=$(count)
     o=$tmp/out
-    for how in dem imagery vectors viewshed track mesh; do
+    for how in dem imagery vectors viewshed track mesh water flood; do
         rm -rf "$o"/* "$o"/.[!.]*
         case $how in
             dem) set -- --dem "$f" --output "$o/x.png" --size 16x9 --spp 1 --quiet ;;
@@ -98,6 +98,8 @@ attack() {
             viewshed) set -- viewshed --dem "$f" --observer 86.9,28 --output "$o/x.tif" ;;
             track) set -- track --dem "$e/dem.tif" --input "$f" --output "$o/x.json" ;;
             mesh) set -- mesh --dem "$f" --resolution 16 --output "$o/x.obj" --quiet ;;
+            water) set -- water --dem "$f" --output "$o/x.tif" ;;
+            flood) set -- --dem "$e/dem.tif" --set "terrain.water=$f" --output "$o/x.png" --size 16x9 --spp 1 --quiet ;;
         esac
         timeout 60 "$fathom" "$@" >"$tmp/stdout" 2>"$tmp/stderr"
         code=$?

@@ -5,6 +5,8 @@
 #include <stdint.h>
 #include <stdlib.h>
 
+#include "data/geo/dem.h"
+
 typedef struct cell {
     float z;
     uint32_t i;
@@ -104,6 +106,43 @@ static void keep_lakes(const water_fill_desc *d, float *s, water_fill_stats *st)
     }
     free(stack);
     free(seen);
+}
+
+bool water_grid(const float *ground, int w, int h, const char *raster, float ex, float *out, float *top, err_t *err)
+{
+    size_t n = (size_t)w * (size_t)h;
+    *top = WATER_DRY;
+    if (raster) {
+        int rw, rh;
+        float *v = NULL;
+        dem_info info;
+        if (!dem_read(raster, 1 << 16, &rw, &rh, &v, &info, err))
+            return false;
+        if (rw != w || rh != h) {
+            free(v);
+            return err_set(err, "terrain.water: the raster '%s' is %d x %d texels and the DEM %d x %d: water is read on the "
+                                "DEM's own grid (gdalwarp -ts %d %d -te with the DEM's extent puts it there)",
+                           raster, rw, rh, w, h, w, h);
+        }
+        for (size_t c = 0; c < n; c++) /* over nodata ground (a hole) no water either */
+            out[c] = isnan(v[c]) || ground[c] < -1e20f ? WATER_DRY : v[c] * ex;
+        free(v);
+    } else {
+        float *g = util_alloc(n * sizeof *g, "the lakes' ground");
+        for (size_t c = 0; c < n; c++)
+            g[c] = ground[c] < -1e20f ? NAN : ground[c];
+        water_fill_desc d = {.ground = g, .w = w, .h = h, .dx = 1, .dz = 1};
+        water_fill_stats st;
+        bool ok = water_fill(&d, out, &st, err);
+        free(g);
+        if (!ok)
+            return false;
+        for (size_t c = 0; c < n; c++)
+            out[c] = isnan(out[c]) ? WATER_DRY : out[c];
+    }
+    for (size_t c = 0; c < n; c++)
+        *top = out[c] > *top ? out[c] : *top;
+    return true;
 }
 
 bool water_fill(const water_fill_desc *d, float *surface, water_fill_stats *st, err_t *err)

@@ -36,4 +36,12 @@ typedef struct water_fill_stats {
  * False with a message only when memory runs out. */
 bool water_fill(const water_fill_desc *d, float *surface, water_fill_stats *st, err_t *err);
 
+/* A terrain's water to draw (shaders/terrain/terrain.glsl TERRAIN_WATER_GRID): each texel's water level in
+ * out (w × h), or WATER_DRY; ground is the grid as drawn (heights times the exaggeration ex, nodata as
+ * TERRAIN_HOLE, −1e30). raster NULL: the lakes the ground implies (water_fill, every lake); else band 1 of
+ * that file, water-surface heights in metres on the DEM's own grid (the same size: a flood model's output,
+ * or fathom water's), times ex, nodata dry. *top: the highest level (−1e30 when all is dry). */
+#define WATER_DRY (-1e30f)
+bool water_grid(const float *ground, int w, int h, const char *raster, float ex, float *out, float *top, err_t *err);
+
 #endif

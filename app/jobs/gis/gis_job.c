@@ -103,11 +103,12 @@ bool gis_water_run(const gis_options *o, err_t *err)
     double secs = util_now() - t0;
     for (size_t c = 0; ok && c < n; c++)
         depth[c] = isnan(ground[c]) ? NAN : isnan(surface[c]) ? 0.0f : surface[c] - ground[c];
-    char about[2][256];
-    snprintf(about[0], sizeof about[0], "water depth, metres (0 dry), lakes filled to their spill heights%s (fathom %s)",
-             o->min_depth > 0 || o->min_area > 0 ? ", shallow or small ones left dry" : "", FATHOM_VERSION);
-    snprintf(about[1], sizeof about[1], "water surface height, metres (nodata where dry) (fathom %s)", FATHOM_VERSION);
-    const float *bands[2] = {depth, surface};
+    char about[2][256]; /* the surface first: terrain.water draws band 1 */
+    snprintf(about[0], sizeof about[0], "water surface height, metres (nodata where dry), lakes filled to their spill "
+             "heights%s (fathom %s)", o->min_depth > 0 || o->min_area > 0 ? ", shallow or small ones left dry" : "",
+             FATHOM_VERSION);
+    snprintf(about[1], sizeof about[1], "water depth, metres (0 dry) (fathom %s)", FATHOM_VERSION);
+    const float *bands[2] = {surface, depth};
     const char *descriptions[2] = {about[0], about[1]};
     ok = ok && geo_write_floats(o->dem, o->output, w, h, 2, bands, descriptions, err);
     if (ok)

@@ -20,8 +20,8 @@
 
 bool gis_viewshed_run(const gis_options *o, err_t *err);
 bool gis_track_run(const gis_options *o, err_t *err);
-/* `fathom water`: the DEM read whole, its lakes filled (data/geo/water.h), depth and surface written as a
- * GeoTIFF on its grid, and a line: lakes, area, volume, deepest. */
+/* `fathom water`: the DEM read whole, its lakes filled (data/geo/water.h), surface and depth written as a
+ * GeoTIFF on its grid (the surface band 1: terrain.water draws it), and a line: lakes, area, volume, deepest. */
 bool gis_water_run(const gis_options *o, err_t *err);
 
 #endif
