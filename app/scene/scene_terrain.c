@@ -6,6 +6,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
+#include <strings.h>
 
 #include "scene/scene_parse.h"
 #include "data/geo/terrain.h"
@@ -115,6 +116,10 @@ static bool parse_water(scene_ctx *c, const cJSON *tb)
     if (cJSON_IsString(w) && !strcmp(w->valuestring, "fill")) {
         t->water_mode = WATER_FILL;
     } else if (cJSON_IsString(w)) {
+        const char *base = strrchr(w->valuestring, '/') ? strrchr(w->valuestring, '/') + 1 : w->valuestring;
+        if (!strcasecmp(base, "nan") || !strcasecmp(base, "inf") || !strcasecmp(base, "-inf") || !strcasecmp(base, "infinity"))
+            return scene_fail(c, "terrain.water", "'%s' is no level: give a height in metres from -100000 to 100000, "
+                                                  "\"fill\" or a raster file", base);
         if (!scene_resolve_file(c, "terrain.water", w->valuestring, t->water_raster))
             return false;
         t->water_mode = WATER_RASTER;

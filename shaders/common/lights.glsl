@@ -22,20 +22,42 @@ float shadowOffset(vec3 p, vec3 n, float pathT)
     return off;
 }
 
+#ifdef PROGRAM_LIGHT_MEDIUM
+// Light from direction l reaching a point `depth` under a level surface of a medium (index ior, absorption
+// sigma): Fresnel's transmitted share at the light's angle, then Beer–Lambert over the refracted path,
+// depth / cos θt. None from below the surface's horizon. (Its shadow rays go straight, unrefracted.)
+vec3 throughSurface(vec3 l, float depth, float ior, vec3 sigma)
+{
+    if (l.y <= 0.0)
+        return vec3(0.0);
+    float cosT = sqrt(1.0 - (1.0 - l.y * l.y) / (ior * ior));
+    return (1.0 - fresnelDielectric(l.y, 1.0 / ior)) * exp(-sigma * depth / cosT);
+}
+#endif
+
 // The radiance light i sends to p, its unit direction l from p and its distance (MAX_DIST for a
 // directional light): the model and the path tracer (common/pathtrace.glsl) both light by it.
 vec3 lightArriving(int i, vec3 p, out vec3 l, out float dist)
 {
+    vec3 radiance;
     if (uLightDirectional[i]) {
         l = uLightVec[i];
         dist = float(MAX_DIST);
-        return uLightColor[i];
+        radiance = uLightColor[i];
+    } else {
+        vec3 toLight = uLightVec[i] - worldApprox(p);
+        float d2 = max(dot(toLight, toLight), 1e-8);
+        dist = sqrt(d2);
+        l = toLight / dist;
+        radiance = uLightColor[i] / d2;
     }
-    vec3 toLight = uLightVec[i] - worldApprox(p);
-    float d2 = max(dot(toLight, toLight), 1e-8);
-    dist = sqrt(d2);
-    l = toLight / dist;
-    return uLightColor[i] / d2;
+#ifdef PROGRAM_LIGHT_MEDIUM // p under a program's medium (a terrain's water): the light crosses its surface
+    float depth, ior;
+    vec3 sigma;
+    if (programLightMedium(p, depth, ior, sigma))
+        radiance *= throughSurface(l, depth, ior, sigma);
+#endif
+    return radiance;
 }
 
 vec3 directLight(vec3 p, vec3 n, vec3 v, Material m, vec3 F0, float pathT)

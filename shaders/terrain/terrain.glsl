@@ -459,3 +459,21 @@ vec3 programAlbedo(vec3 p, vec3 n, vec3 dpdx, vec3 dpdy, vec3 base);
 #include "common/uniforms.glsl"
 #include "common/material.glsl"
 #include "terrain/layers.glsl"
+
+#if FX_WATER
+// Light reaching p under the water (common/lights.glsl: through the surface above p, then down to p): the
+// water's depth over p, its index and absorption; false where p is not under the water.
+#define PROGRAM_LIGHT_MEDIUM 1
+bool programLightMedium(vec3 p, out float depth, out float ior, out vec3 sigma)
+{
+    depth = 0.0, ior = 1.0, sigma = vec3(0.0);
+    vec2 c = toCell(p.xz);
+    if (!fxOn(FX_WATER_BIT) || any(lessThan(c, vec2(0.0))) || any(greaterThan(c, vec2(uTerrainSize - 1))))
+        return false;
+    float level = waterLevelAt(c);
+    depth = level - p.y;
+    ior = max(uMatIor[uWaterMaterial], 1.0);
+    sigma = uMatAbsorption[uWaterMaterial];
+    return depth > 0.0 && !isHole(level);
+}
+#endif

@@ -334,6 +334,8 @@ expect water-options-elsewhere 2 "--min-depth and --min-area belong to fathom wa
     "$fathom" viewshed --dem "$dem" --observer 86.9,28 --min-area 5 --output "$tmp/out.tif"
 expect water-kind 1 "expected a level in metres, \"fill\" (the lakes the DEM implies) or a raster" 1 -- \
     "$fathom" --scene himalaya --set 'terrain.water=[1,2]' $out
+expect water-nan 1 "terrain.water: 'nan' is no level: give a height in metres" 1 -- \
+    "$fathom" --scene himalaya --set terrain.water=nan $out
 expect water-linear 1 "lakes and rasters of water are drawn by terrain.method \"maxmip\"" 1 -- \
     "$fathom" --scene himalaya --set terrain.water=fill --set terrain.method=linear $out
 expect water-raster-missing 1 "$tmp/none.tif" 1 -- "$fathom" --scene himalaya --set terrain.water="$tmp/none.tif" $out

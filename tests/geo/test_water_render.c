@@ -24,6 +24,7 @@
 #include "check.h"
 #include "gltest.h"
 #include "gpu/render.h"
+#include "gpu/render_probe.h"
 #include "data/geo/terrain.h"
 #include "data/geo/water.h"
 #include "scene/effect.h"
@@ -109,6 +110,12 @@ static void shoreline_is_exact(void **st)
     heightfield hf = load_hf(&s);
     double sx, sz;
     sea_texel(&hf, 6, &sx, &sz);
+    /* the window's probes compile with the water (its flying speed: map() over the sea, 500 m below) */
+    float pt[3] = {(float)sx, 500, (float)sz}, d[2];
+    err_t e;
+    if (!render_set_scene(&s, NULL, &e) || !render_probe(&s, NULL, pt, 1, d, &e))
+        fail_msg("%s", e.msg);
+    assert_true(d[0] > 0 && d[0] <= 500); /* a bound: the clearance shrunk by the steepest slope */
     const view views[] = {
         {"across the shore, from above", {0, 900, 4000}, {0, 100, -3000}, 60},
         {"grazing the water", {-4000, LEVEL + 15, 3500}, {4000, LEVEL, -3500}, 60},
@@ -255,6 +262,52 @@ static void under_the_water(void **st)
     fprintf(stderr, "under the water: clear water differs from none by %.2g, absorbing water from e^(-sigma t) by %.2g\n",
             worst_clear, worst_beer);
     assert_true(worst_clear < 1e-5);
+    assert_true(worst_beer < 1e-5);
+    heightfield_free(&hf);
+}
+
+/* The sun on the bed under the water: through the surface (Fresnel's transmitted share at its angle) and down
+ * the refracted path (Beer–Lambert over depth / cos θt); the sky off, so the sun is all the light. Against the
+ * dry bed: 1 − F exactly for clear water; absorbing water dims it by e^(−σ (t + depth / cos θt)) more. */
+static void sunlight_through_the_water(void **st)
+{
+    (void)st;
+    double sx, sz;
+    heightfield hf = lake_sea(&sx, &sz);
+    static const char sun[] = "lights=[{\"type\": \"directional\", \"direction\": [0.5, 0.6, 0.3], \"intensity\": 3, "
+                              "\"shadow\": \"none\"}]";
+    char lake[300];
+    snprintf(lake, sizeof lake, "%s/lake.json", dir);
+    camera cam = cam_at(sx, 100, sz, sx + 20, 0, sz - 15, 30);
+    static float c[3][W * H * 4];
+    const char *abs[3] = {"terrain.water=-10", "materials.water.absorption=[0, 0, 0]",
+                          "materials.water.absorption=[0.002, 0.004, 0.008]"};
+    scene s;
+    double l[3] = {0, 0, 0};
+    for (int k = 0; k < 3; k++) {
+        load_text_file(lake, (const char *const[]){abs[k], "effects.aa=off", sun, "environment.intensity=0"}, 4, &s);
+        for (int i = 0; i < 3; i++)
+            l[i] = s.lights[0].vec[i];
+        draw(&s, &cam, W, H, 1, NULL, NULL, c[k]);
+        scene_free(&s);
+    }
+    double n = 1.333, cos_i = l[1], cos_t = sqrt(1 - (1 - cos_i * cos_i) / (n * n));
+    double eta = 1 / n, rs = (eta * cos_i - cos_t) / (eta * cos_i + cos_t), rp = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
+    double T = 1 - 0.5 * (rs * rs + rp * rp), sigma[3] = {0.002, 0.004, 0.008}, worst_t = 0, worst_beer = 0;
+    for (int row = 0; row < H; row++)
+        for (int x = 0; x < W; x++) {
+            dray r = pixel_ray(&cam, x, row, W, H);
+            double t = -r.o[1] / r.d[1]; /* to the flat bed at 0, 150 m under the surface */
+            for (int ch = 0; ch < 3; ch++) {
+                size_t p = (size_t)(row * W + x) * 4 + (size_t)ch;
+                assert_true(c[0][p] > 1e-3);
+                worst_t = fmax(worst_t, fabs((double)c[1][p] / c[0][p] - T));
+                worst_beer = fmax(worst_beer, fabs((double)c[2][p] / c[1][p] - exp(-sigma[ch] * (t + LEVEL / cos_t))));
+            }
+        }
+    fprintf(stderr, "sunlight under the water: 1 - F = %.5f to %.2g, Beer-Lambert down and back to %.2g\n", T, worst_t,
+            worst_beer);
+    assert_true(worst_t < 1e-5);
     assert_true(worst_beer < 1e-5);
     heightfield_free(&hf);
 }
@@ -430,6 +483,7 @@ int main(void)
         cmocka_unit_test(shoreline_is_exact),
         cmocka_unit_test(beer_lambert_through_the_water),
         cmocka_unit_test(under_the_water),
+        cmocka_unit_test(sunlight_through_the_water),
         cmocka_unit_test(lakes_from_the_dem),
         cmocka_unit_test(flood_raster),
         cmocka_unit_test(only_where_asked),
