@@ -469,6 +469,70 @@ static void water_geotiff(void **st)
     assert_int_equal(access(fixture_path("plain-lakes.tif"), F_OK), -1);
 }
 
+/* Lakes as polygons with a level (terrain.water=FILE.geojson): a texel whose centre a polygon holds takes its level,
+ * decided here by OGR's point-in-polygon on each centre in WGS 84 (the polygons' own CRS; GDAL's rasteriser does
+ * fathom's in the DEM's UTM); a line, a polygon without a level: one error each. */
+static void water_polygons(void **st)
+{
+    (void)st;
+    double lon[4], lat[4];
+    const double corner[4][2] = {{10.2, 12.3}, {30.7, 12.3}, {30.7, 25.6}, {10.2, 25.6}}; /* texels: a quadrilateral */
+    for (int k = 0; k < 4; k++)
+        fixture_utm_to_lonlat(DEM_GT[0] + (corner[k][0] + 0.5) * 1000 + (k == 2 ? 3000 : 0),
+                              DEM_GT[3] - (corner[k][1] + 0.5) * 1000, &lon[k], &lat[k]);
+    char file[512]; /* (fixture_path's buffers are reused) */
+    snprintf(file, sizeof file, "%s", fixture_path("lakes.geojson"));
+    FILE *f = fopen(file, "w");
+    fprintf(f, "{\"type\": \"FeatureCollection\", \"features\": [{\"type\": \"Feature\", \"properties\": {\"level\": 120.5}, "
+               "\"geometry\": {\"type\": \"Polygon\", \"coordinates\": [[[%.9f, %.9f], [%.9f, %.9f], [%.9f, %.9f], [%.9f, %.9f], "
+               "[%.9f, %.9f]]]}}]}\n", lon[0], lat[0], lon[1], lat[1], lon[2], lat[2], lon[3], lat[3], lon[0], lat[0]);
+    fclose(f);
+    static float lv[W * H];
+    err_t e;
+    if (!geo_water_polygons(fixture_path("dem.tif"), file, W, H, lv, &e))
+        fail_msg("%s", e.msg);
+    OGRGeometryH ring = OGR_G_CreateGeometry(wkbLinearRing), poly = OGR_G_CreateGeometry(wkbPolygon);
+    for (int k = 0; k <= 4; k++)
+        OGR_G_AddPoint_2D(ring, lon[k % 4], lat[k % 4]);
+    OGR_G_AddGeometryDirectly(poly, ring);
+    int inside = 0, near_edge = 0;
+    static double col[W * H], row[W * H], cl[W * H], ct[W * H]; /* every texel centre in WGS 84, in one call */
+    for (int k = 0; k < W * H; k++)
+        col[k] = k % W, row[k] = k / W;
+    assert_true(geo_convert(fixture_path("dem.tif"), false, W * H, col, row, cl, ct, &e));
+    for (int j = 0; j < H; j++)
+        for (int i = 0; i < W; i++) {
+            OGRGeometryH pt = OGR_G_CreateGeometry(wkbPoint);
+            OGR_G_AddPoint_2D(pt, cl[j * W + i], ct[j * W + i]);
+            bool in = OGR_G_Contains(poly, pt);
+            OGR_G_DestroyGeometry(pt);
+            /* a centre within 1e-6 texels of an edge may fall either way (the reprojection's rounding) */
+            if (in != !isnan(lv[j * W + i]) && near_edge++ < 4)
+                continue;
+            assert_true(in ? lv[j * W + i] == 120.5f : isnan(lv[j * W + i]));
+            inside += in;
+        }
+    OGR_G_DestroyGeometry(poly);
+    print_message("water polygons: %d texels inside, %d on an edge\n", inside, near_edge);
+    assert_true(inside > 150 && near_edge <= 4);
+    /* a line (a river) and a polygon without its level: refused */
+    f = fopen(file, "w");
+    fprintf(f, "{\"type\": \"FeatureCollection\", \"features\": [{\"type\": \"Feature\", \"properties\": {\"level\": 3}, "
+               "\"geometry\": {\"type\": \"LineString\", \"coordinates\": [[%.9f, %.9f], [%.9f, %.9f]]}}]}\n", lon[0], lat[0],
+            lon[2], lat[2]);
+    fclose(f);
+    assert_false(geo_water_polygons(fixture_path("dem.tif"), file, W, H, lv, &e));
+    assert_non_null(strstr(e.msg, "is no polygon (Line String)"));
+    f = fopen(file, "w");
+    fprintf(f, "{\"type\": \"FeatureCollection\", \"features\": [{\"type\": \"Feature\", \"properties\": {\"name\": \"x\"}, "
+               "\"geometry\": {\"type\": \"Polygon\", \"coordinates\": [[[%.9f, %.9f], [%.9f, %.9f], [%.9f, %.9f], [%.9f, %.9f]]]}}]}\n",
+            lon[0], lat[0], lon[1], lat[1], lon[2], lat[2], lon[0], lat[0]);
+    fclose(f);
+    assert_false(geo_water_polygons(fixture_path("dem.tif"), file, W, H, lv, &e));
+    assert_non_null(strstr(e.msg, "has no numeric \"level\" field"));
+    unlink(file);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -480,6 +544,7 @@ int main(void)
         cmocka_unit_test(viewshed_radius_crops),
         cmocka_unit_test(viewshed_drapes_see_through),
         cmocka_unit_test(water_geotiff),
+        cmocka_unit_test(water_polygons),
     };
     return cmocka_run_group_tests(tests, fixture_setup, fixture_teardown);
 }

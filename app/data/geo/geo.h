@@ -49,6 +49,12 @@ bool geo_drape(const char *dem_path, const char *imagery, int max_side, unsigned
  * takes the width in degrees of latitude). */
 bool geo_vectors(const char *dem_path, const char *vectors, double width, const float rgba[4], int w, int h,
                  unsigned char *out, err_t *err);
+/* Lakes and reservoirs as polygons (GeoJSON, GeoPackage, Shapefile, KML: every layer), each with its water level
+ * in metres in a field named "level": each texel of the DEM's grid (w × h, row 0 north) whose centre a polygon
+ * holds gets its level in out, NaN elsewhere (the last polygon wins where they overlap). Reprojected to the
+ * DEM's CRS. A file with lines or points (rivers are not drawn yet), a polygon without a numeric level, or
+ * none at all: one clear error. */
+bool geo_water_polygons(const char *dem_path, const char *vectors, int w, int h, float *out, err_t *err);
 /* The size every draped layer is composited at: the first imagery's own resolution over the DEM (NULL: none),
  * or finer where a vector layer of one of the widths needs two texels across its lines; the longest side at
  * most max_side. A vector layer never coarsens the imagery under it. */

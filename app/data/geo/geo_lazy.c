@@ -32,6 +32,13 @@ bool geo_vectors(const char *dem_path, const char *vectors, double width, const 
     return f && f(dem_path, vectors, width, rgba, w, h, out, err);
 }
 
+bool geo_water_polygons(const char *dem_path, const char *vectors, int w, int h, float *out, err_t *err)
+{
+    LAZY_FN(bool (*f)(const char *, const char *, int, int, float *, err_t *),
+            lazy_symbol(LAZY_DEM, "geo_water_polygons", err));
+    return f && f(dem_path, vectors, w, h, out, err);
+}
+
 bool geo_layers_size(const char *dem_path, const char *imagery, const float *widths, int n_widths, int max_side,
                      int *w, int *h, err_t *err)
 {

@@ -419,6 +419,96 @@ bool geo_vectors(const char *dem_path, const char *vectors, double width, const 
     return ok || err_set(err, "cannot draw the vectors '%s' on the DEM: %s", vectors, geo_gdal_msg("rasterising failed"));
 }
 
+/* ---- water: polygons with a level burnt onto the DEM's grid -------------------------------------- */
+
+/* Feature f's level (its "level" field) into *level; false with err naming the feature. */
+static bool feature_level(OGRFeatureH f, const char *vectors, long index, double *level, err_t *err)
+{
+    int field = OGR_F_GetFieldIndex(f, "level");
+    OGRFieldType type = field >= 0 ? OGR_Fld_GetType(OGR_F_GetFieldDefnRef(f, field)) : OFTString;
+    if (field < 0 || !OGR_F_IsFieldSetAndNotNull(f, field) || (type != OFTReal && type != OFTInteger && type != OFTInteger64))
+        return err_set(err, "terrain.water: polygon %ld of '%s' has no numeric \"level\" field: each lake or reservoir "
+                            "needs its water level in metres there", index, vectors);
+    *level = OGR_F_GetFieldAsDouble(f, field);
+    return (isfinite(*level) && fabs(*level) <= 1e5) ||
+           err_set(err, "terrain.water: polygon %ld of '%s' has level %g: expected metres from -100000 to 100000", index,
+                   vectors, *level);
+}
+
+bool geo_water_polygons(const char *dem_path, const char *vectors, int w, int h, float *out, err_t *err)
+{
+    geo_grid g;
+    if (!geo_grid_of(dem_path, &g, err))
+        return false;
+    GDALDatasetH ds = geo_open(vectors, GDAL_OF_VECTOR, "open the water's polygons", err);
+    if (!ds) {
+        OSRDestroySpatialReference(g.srs);
+        return false;
+    }
+    OGRGeometryH *shapes = NULL;
+    double *levels = NULL;
+    long n = 0, cap = 0, index = 0;
+    bool ok = (g.w == w && g.h == h) ||
+              err_set(err, "terrain.water: the DEM '%s' is %d x %d and its heights %d x %d", dem_path, g.w, g.h, w, h);
+    for (int l = 0; ok && l < GDALDatasetGetLayerCount(ds); l++) {
+        OGRLayerH layer = GDALDatasetGetLayer(ds, l);
+        OGRSpatialReferenceH from = OGR_L_GetSpatialRef(layer);
+        OGRSpatialReferenceH src = from ? OSRClone(from) : geo_wgs84();
+        OSRSetAxisMappingStrategy(src, OAMS_TRADITIONAL_GIS_ORDER);
+        OGRCoordinateTransformationH t = OCTNewCoordinateTransformation(src, g.srs);
+        OGRFeatureH f;
+        while (ok && (f = OGR_L_GetNextFeature(layer)) != NULL && n < GEO_TRACK_MAX) {
+            OGRGeometryH geo = OGR_F_GetGeometryRef(f);
+            OGRwkbGeometryType type = geo ? wkbFlatten(OGR_G_GetGeometryType(geo)) : wkbUnknown;
+            double level = 0;
+            if (type != wkbPolygon && type != wkbMultiPolygon)
+                ok = err_set(err, "terrain.water: feature %ld of '%s' is no polygon (%s): water is drawn in polygons with a "
+                                  "level (rivers as lines are not drawn yet)", index, vectors,
+                             geo ? OGRGeometryTypeToName(type) : "no geometry");
+            else if ((ok = feature_level(f, vectors, index, &level, err))) {
+                OGRGeometryH c = OGR_G_Clone(geo);
+                if (t && OGR_G_Transform(c, t) != OGRERR_NONE) {
+                    OGR_G_DestroyGeometry(c);
+                } else {
+                    if (n == cap) {
+                        cap = cap ? 2 * cap : 64;
+                        shapes = util_realloc(shapes, sizeof *shapes * (size_t)cap, "the water's polygons");
+                        levels = util_realloc(levels, sizeof *levels * (size_t)cap, "the water's polygons");
+                    }
+                    shapes[n] = c;
+                    levels[n++] = level;
+                }
+            }
+            index++;
+            OGR_F_Destroy(f);
+        }
+        if (t)
+            OCTDestroyCoordinateTransformation(t);
+        OSRDestroySpatialReference(src);
+    }
+    GDALClose(ds);
+    if (ok && n == 0)
+        ok = err_set(err, "terrain.water: '%s' holds no polygon GDAL could place on the DEM", vectors);
+    if (ok) { /* texel centres inside a polygon take its level (GDAL's rasteriser, pixel centres) */
+        GDALDatasetH mem = GDALCreate(GDALGetDriverByName("MEM"), "", w, h, 1, GDT_Float32, NULL);
+        GDALRasterBandH b = mem ? GDALGetRasterBand(mem, 1) : NULL;
+        ok = mem && GDALSetGeoTransform(mem, g.gt) == CE_None && GDALSetSpatialRef(mem, g.srs) == CE_None &&
+             GDALFillRaster(b, NAN, 0) == CE_None &&
+             GDALRasterizeGeometries(mem, 1, (int[]){1}, (int)n, shapes, NULL, NULL, levels, NULL, NULL, NULL) == CE_None &&
+             GDALRasterIO(b, GF_Read, 0, 0, w, h, out, w, h, GDT_Float32, 0, 0) == CE_None;
+        if (mem)
+            GDALClose(mem);
+        if (!ok)
+            err_set(err, "terrain.water: cannot place '%s' on the DEM: %s", vectors, geo_gdal_msg("rasterising failed"));
+    }
+    for (long i = 0; i < n; i++)
+        OGR_G_DestroyGeometry(shapes[i]);
+    free(shapes);
+    free(levels);
+    OSRDestroySpatialReference(g.srs);
+    return ok;
+}
+
 /* The drape's size for `width`-wide lines: two texels across a line, at least the DEM's own texels,
  * the longest side at most max_side. */
 void geo_vector_size(const char *dem_path, double width, int max_side, int *w, int *h)

@@ -4,8 +4,11 @@
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
+#include <string.h>
+#include <strings.h>
 
 #include "data/geo/dem.h"
+#include "data/geo/geo.h"
 
 typedef struct cell {
     float z;
@@ -108,11 +111,27 @@ static void keep_lakes(const water_fill_desc *d, float *s, water_fill_stats *st)
     free(seen);
 }
 
-bool water_grid(const float *ground, int w, int h, const char *raster, float ex, float *out, float *top, err_t *err)
+bool water_is_vector(const char *file)
+{
+    static const char *const EXT[] = {".geojson", ".json", ".gpkg", ".shp", ".kml", ".gml", ".fgb"};
+    const char *dot = strrchr(file, '.');
+    for (size_t i = 0; dot && i < sizeof EXT / sizeof EXT[0]; i++)
+        if (!strcasecmp(dot, EXT[i]))
+            return true;
+    return false;
+}
+
+bool water_grid(const float *ground, int w, int h, const char *dem, const char *raster, float ex, float *out, float *top,
+                err_t *err)
 {
     size_t n = (size_t)w * (size_t)h;
     *top = WATER_DRY;
-    if (raster) {
+    if (raster && water_is_vector(raster)) {
+        if (!geo_water_polygons(dem, raster, w, h, out, err))
+            return false;
+        for (size_t c = 0; c < n; c++)
+            out[c] = isnan(out[c]) || ground[c] < -1e20f ? WATER_DRY : out[c] * ex;
+    } else if (raster) {
         int rw, rh;
         float *v = NULL;
         dem_info info;

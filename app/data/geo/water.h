@@ -38,10 +38,14 @@ bool water_fill(const water_fill_desc *d, float *surface, water_fill_stats *st, 
 
 /* A terrain's water to draw (shaders/terrain/terrain.glsl TERRAIN_WATER_GRID): each texel's water level in
  * out (w × h), or WATER_DRY; ground is the grid as drawn (heights times the exaggeration ex, nodata as
- * TERRAIN_HOLE, −1e30). raster NULL: the lakes the ground implies (water_fill, every lake); else band 1 of
- * that file, water-surface heights in metres on the DEM's own grid (the same size: a flood model's output,
- * or fathom water's), times ex, nodata dry. *top: the highest level (−1e30 when all is dry). */
+ * TERRAIN_HOLE, −1e30). file NULL: the lakes the ground implies (water_fill, every lake); a vector file
+ * (water_is_vector): its polygons with their levels on dem's grid (geo_water_polygons); else band 1 of that
+ * raster, water-surface heights in metres on the DEM's own grid (the same size: a flood model's output, or
+ * fathom water's). Levels times ex, nodata dry. *top: the highest level (−1e30 when all is dry). */
 #define WATER_DRY (-1e30f)
-bool water_grid(const float *ground, int w, int h, const char *raster, float ex, float *out, float *top, err_t *err);
+bool water_grid(const float *ground, int w, int h, const char *dem, const char *file, float ex, float *out, float *top,
+                err_t *err);
+/* Whether terrain.water's file is vector data (by its name: .geojson, .json, .gpkg, .shp, .kml, .gml, .fgb). */
+bool water_is_vector(const char *file);
 
 #endif
