@@ -471,7 +471,8 @@ static void water_geotiff(void **st)
 
 /* Lakes as polygons with a level (terrain.water=FILE.geojson): a texel whose centre a polygon holds takes its level,
  * decided here by OGR's point-in-polygon on each centre in WGS 84 (the polygons' own CRS; GDAL's rasteriser does
- * fathom's in the DEM's UTM); a line, a polygon without a level: one error each. */
+ * fathom's in the DEM's UTM); a line is a river in texel coordinates; a point, a polygon without a level: one
+ * error each. */
 static void water_polygons(void **st)
 {
     (void)st;
@@ -489,8 +490,11 @@ static void water_polygons(void **st)
     fclose(f);
     static float lv[W * H];
     err_t e;
-    if (!geo_water_polygons(fixture_path("dem.tif"), file, W, H, lv, &e))
+    geo_river *rivers;
+    int n_rivers;
+    if (!geo_water_vectors(fixture_path("dem.tif"), file, W, H, lv, &rivers, &n_rivers, &e))
         fail_msg("%s", e.msg);
+    assert_int_equal(n_rivers, 0);
     OGRGeometryH ring = OGR_G_CreateGeometry(wkbLinearRing), poly = OGR_G_CreateGeometry(wkbPolygon);
     for (int k = 0; k <= 4; k++)
         OGR_G_AddPoint_2D(ring, lon[k % 4], lat[k % 4]);
@@ -515,20 +519,33 @@ static void water_polygons(void **st)
     OGR_G_DestroyGeometry(poly);
     print_message("water polygons: %d texels inside, %d on an edge\n", inside, near_edge);
     assert_true(inside > 150 && near_edge <= 4);
-    /* a line (a river) and a polygon without its level: refused */
+    /* a line is a river: its course in texel coordinates, its width and depth (3 texels and 1 m unless given) */
     f = fopen(file, "w");
-    fprintf(f, "{\"type\": \"FeatureCollection\", \"features\": [{\"type\": \"Feature\", \"properties\": {\"level\": 3}, "
+    fprintf(f, "{\"type\": \"FeatureCollection\", \"features\": [{\"type\": \"Feature\", \"properties\": {\"depth\": 3}, "
                "\"geometry\": {\"type\": \"LineString\", \"coordinates\": [[%.9f, %.9f], [%.9f, %.9f]]}}]}\n", lon[0], lat[0],
             lon[2], lat[2]);
     fclose(f);
-    assert_false(geo_water_polygons(fixture_path("dem.tif"), file, W, H, lv, &e));
-    assert_non_null(strstr(e.msg, "is no polygon (Line String)"));
+    if (!geo_water_vectors(fixture_path("dem.tif"), file, W, H, lv, &rivers, &n_rivers, &e))
+        fail_msg("%s", e.msg);
+    assert_int_equal(n_rivers, 1);
+    assert_int_equal(rivers[0].n, 2);
+    assert_true(fabs(rivers[0].pt[0][0] - 10.2) < 1e-6 && fabs(rivers[0].pt[0][1] - 12.3) < 1e-6);
+    assert_true(fabs(rivers[0].pt[1][0] - 33.7) < 1e-6 && fabs(rivers[0].pt[1][1] - 25.6) < 1e-6);
+    assert_true(fabs(rivers[0].width - 3000) < 1e-6 && rivers[0].depth == 3);
+    geo_rivers_free(rivers, n_rivers);
+    /* a point and a polygon without its level: refused */
+    f = fopen(file, "w");
+    fprintf(f, "{\"type\": \"FeatureCollection\", \"features\": [{\"type\": \"Feature\", \"properties\": {\"level\": 3}, "
+               "\"geometry\": {\"type\": \"Point\", \"coordinates\": [%.9f, %.9f]}}]}\n", lon[0], lat[0]);
+    fclose(f);
+    assert_false(geo_water_vectors(fixture_path("dem.tif"), file, W, H, lv, &rivers, &n_rivers, &e));
+    assert_non_null(strstr(e.msg, "is no polygon or line (Point)"));
     f = fopen(file, "w");
     fprintf(f, "{\"type\": \"FeatureCollection\", \"features\": [{\"type\": \"Feature\", \"properties\": {\"name\": \"x\"}, "
                "\"geometry\": {\"type\": \"Polygon\", \"coordinates\": [[[%.9f, %.9f], [%.9f, %.9f], [%.9f, %.9f], [%.9f, %.9f]]]}}]}\n",
             lon[0], lat[0], lon[1], lat[1], lon[2], lat[2], lon[0], lat[0]);
     fclose(f);
-    assert_false(geo_water_polygons(fixture_path("dem.tif"), file, W, H, lv, &e));
+    assert_false(geo_water_vectors(fixture_path("dem.tif"), file, W, H, lv, &rivers, &n_rivers, &e));
     assert_non_null(strstr(e.msg, "has no numeric \"level\" field"));
     unlink(file);
 }

@@ -14,6 +14,7 @@
 
 #include <cmocka.h>
 
+#include "data/geo/geo.h"
 #include "data/geo/water.h"
 
 static bool is_drain(const float *g, int w, int h, int i, int j)
@@ -183,6 +184,43 @@ static void test_thresholds(void **state)
     assert_int_equal(st.wet, 0);
 }
 
+/* A river down a plane sloping 0.5 m a texel east (10 m texels), given from its lower end: it runs from the higher
+ * one, each texel within half its width (15 m) of the course at the level of the ground under its nearest step
+ * plus the depth (2 m), none farther; over a bump it never climbs. */
+static void test_river_runs_downhill(void **state)
+{
+    (void)state;
+    enum { RW = 40, RH = 20 };
+    float g[RW * RH], out[RW * RH];
+    for (int j = 0; j < RH; j++)
+        for (int i = 0; i < RW; i++)
+            g[j * RW + i] = 100.0f - 0.5f * (float)i;
+    double course[2][2] = {{35, 10}, {5, 10}};
+    geo_river r = {.pt = course, .n = 2, .width = 30, .depth = 2};
+    for (int c = 0; c < RW * RH; c++)
+        out[c] = WATER_DRY;
+    water_rivers(g, RW, RH, 10, 10, 1, &r, 1, out);
+    int wet = 0;
+    for (int j = 0; j < RH; j++)
+        for (int i = 0; i < RW; i++) {
+            double pi = fmin(fmax(i, 5), 35), d = hypot((i - pi) * 10, (j - 10) * 10); /* to the course, in metres */
+            float want = d <= 15 ? 102.0f - 0.5f * (float)pi : WATER_DRY;
+            if (out[j * RW + i] != want)
+                fail_msg("texel %d, %d: level %g, want %g (%.2f m from the course)", i, j, (double)out[j * RW + i],
+                         (double)want, d);
+            wet += d <= 15;
+        }
+    assert_true(wet > 90);
+    for (int j = 0; j < RH; j++) /* a bump across its course: the water goes on at the level it had */
+        g[j * RW + 20] += 10;
+    for (int c = 0; c < RW * RH; c++)
+        out[c] = WATER_DRY;
+    water_rivers(g, RW, RH, 10, 10, 1, &r, 1, out);
+    for (int i = 6; i <= 35; i++)
+        assert_true(out[10 * RW + i] <= out[10 * RW + i - 1]);
+    assert_true(out[10 * RW + 20] == out[10 * RW + 19] && out[10 * RW + 20] < g[10 * RW + 20]);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -190,6 +228,7 @@ int main(void)
         cmocka_unit_test(test_bowl_stands_at_its_notch),
         cmocka_unit_test(test_basins_merge_and_drain),
         cmocka_unit_test(test_thresholds),
+        cmocka_unit_test(test_river_runs_downhill),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -49,12 +49,23 @@ bool geo_drape(const char *dem_path, const char *imagery, int max_side, unsigned
  * takes the width in degrees of latitude). */
 bool geo_vectors(const char *dem_path, const char *vectors, double width, const float rgba[4], int w, int h,
                  unsigned char *out, err_t *err);
-/* Lakes and reservoirs as polygons (GeoJSON, GeoPackage, Shapefile, KML: every layer), each with its water level
- * in metres in a field named "level": each texel of the DEM's grid (w × h, row 0 north) whose centre a polygon
- * holds gets its level in out, NaN elsewhere (the last polygon wins where they overlap). Reprojected to the
- * DEM's CRS. A file with lines or points (rivers are not drawn yet), a polygon without a numeric level, or
- * none at all: one clear error. */
-bool geo_water_polygons(const char *dem_path, const char *vectors, int w, int h, float *out, err_t *err);
+/* A river: its course in texel coordinates of the DEM (column, row; texel centres at whole numbers), its width
+ * and depth in metres. */
+typedef struct geo_river {
+    double (*pt)[2];
+    int n;
+    double width, depth;
+} geo_river;
+/* Water as vectors (GeoJSON, GeoPackage, Shapefile, KML: every layer), reprojected to the DEM's CRS:
+ *  - lakes and reservoirs as polygons, each with its water level in metres in a field named "level": each
+ *    texel of the DEM's grid (w × h, row 0 north) whose centre a polygon holds gets its level in out, NaN
+ *    elsewhere (the last polygon wins where they overlap);
+ *  - rivers as lines, their width and depth in metres in fields "width" and "depth" (or 3 texels and 1 m):
+ *    into *rivers (n_rivers; free with geo_rivers_free), for water_rivers to follow the ground.
+ * A point, a polygon without a numeric level, or nothing at all: one clear error. */
+bool geo_water_vectors(const char *dem_path, const char *vectors, int w, int h, float *out, geo_river **rivers,
+                       int *n_rivers, err_t *err);
+void geo_rivers_free(geo_river *r, int n);
 /* The size every draped layer is composited at: the first imagery's own resolution over the DEM (NULL: none),
  * or finer where a vector layer of one of the widths needs two texels across its lines; the longest side at
  * most max_side. A vector layer never coarsens the imagery under it. */

@@ -3,6 +3,7 @@
  * an output is whole or absent. */
 #include "data/geo/geo.h"
 
+#include <stdlib.h>
 #include <string.h>
 #include <strings.h>
 
@@ -32,11 +33,20 @@ bool geo_vectors(const char *dem_path, const char *vectors, double width, const 
     return f && f(dem_path, vectors, width, rgba, w, h, out, err);
 }
 
-bool geo_water_polygons(const char *dem_path, const char *vectors, int w, int h, float *out, err_t *err)
+bool geo_water_vectors(const char *dem_path, const char *vectors, int w, int h, float *out, geo_river **rivers,
+                       int *n_rivers, err_t *err)
 {
-    LAZY_FN(bool (*f)(const char *, const char *, int, int, float *, err_t *),
-            lazy_symbol(LAZY_DEM, "geo_water_polygons", err));
-    return f && f(dem_path, vectors, w, h, out, err);
+    LAZY_FN(bool (*f)(const char *, const char *, int, int, float *, geo_river **, int *, err_t *),
+            lazy_symbol(LAZY_DEM, "geo_water_vectors", err));
+    *rivers = NULL, *n_rivers = 0;
+    return f && f(dem_path, vectors, w, h, out, rivers, n_rivers, err);
+}
+
+void geo_rivers_free(geo_river *r, int n)
+{
+    for (int i = 0; i < n; i++)
+        free(r[i].pt);
+    free(r);
 }
 
 bool geo_layers_size(const char *dem_path, const char *imagery, const float *widths, int n_widths, int max_side,

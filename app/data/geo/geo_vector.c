@@ -419,7 +419,7 @@ bool geo_vectors(const char *dem_path, const char *vectors, double width, const 
     return ok || err_set(err, "cannot draw the vectors '%s' on the DEM: %s", vectors, geo_gdal_msg("rasterising failed"));
 }
 
-/* ---- water: polygons with a level burnt onto the DEM's grid -------------------------------------- */
+/* ---- water: polygons with a level burnt onto the DEM's grid, rivers as lines -------------------- */
 
 /* Feature f's level (its "level" field) into *level; false with err naming the feature. */
 static bool feature_level(OGRFeatureH f, const char *vectors, long index, double *level, err_t *err)
@@ -435,8 +435,38 @@ static bool feature_level(OGRFeatureH f, const char *vectors, long index, double
                    vectors, *level);
 }
 
-bool geo_water_polygons(const char *dem_path, const char *vectors, int w, int h, float *out, err_t *err)
+/* Field `name` of f as a number in (0, 1e5], or def when it has none. */
+static double feature_number(OGRFeatureH f, const char *name, double def)
 {
+    int field = OGR_F_GetFieldIndex(f, name);
+    double v = field >= 0 && OGR_F_IsFieldSetAndNotNull(f, field) ? OGR_F_GetFieldAsDouble(f, field) : def;
+    return isfinite(v) && v > 0 && v <= 1e5 ? v : def;
+}
+
+/* A line (or each line of a multi-line) in the DEM's CRS as a river in texel coordinates, appended to *r. */
+static void add_river(const geo_grid *g, OGRGeometryH line, double width, double depth, geo_river **r, int *n)
+{
+    if (wkbFlatten(OGR_G_GetGeometryType(line)) == wkbMultiLineString) {
+        for (int k = 0; k < OGR_G_GetGeometryCount(line); k++)
+            add_river(g, OGR_G_GetGeometryRef(line, k), width, depth, r, n);
+        return;
+    }
+    int np = OGR_G_GetPointCount(line);
+    if (np < 2 || *n >= GEO_TRACK_MAX)
+        return;
+    *r = util_realloc(*r, sizeof **r * (size_t)(*n + 1), "the rivers");
+    geo_river *v = &(*r)[(*n)++];
+    *v = (geo_river){.pt = util_alloc(sizeof *v->pt * (size_t)np, "a river"), .n = np, .width = width, .depth = depth};
+    for (int k = 0; k < np; k++) { /* texel centres at whole numbers (geo_convert's convention) */
+        v->pt[k][0] = (OGR_G_GetX(line, k) - g->gt[0]) / g->gt[1] - 0.5;
+        v->pt[k][1] = (OGR_G_GetY(line, k) - g->gt[3]) / g->gt[5] - 0.5;
+    }
+}
+
+bool geo_water_vectors(const char *dem_path, const char *vectors, int w, int h, float *out, geo_river **rivers,
+                       int *n_rivers, err_t *err)
+{
+    *rivers = NULL, *n_rivers = 0;
     geo_grid g;
     if (!geo_grid_of(dem_path, &g, err))
         return false;
@@ -461,10 +491,18 @@ bool geo_water_polygons(const char *dem_path, const char *vectors, int w, int h,
             OGRGeometryH geo = OGR_F_GetGeometryRef(f);
             OGRwkbGeometryType type = geo ? wkbFlatten(OGR_G_GetGeometryType(geo)) : wkbUnknown;
             double level = 0;
-            if (type != wkbPolygon && type != wkbMultiPolygon)
-                ok = err_set(err, "terrain.water: feature %ld of '%s' is no polygon (%s): water is drawn in polygons with a "
-                                  "level (rivers as lines are not drawn yet)", index, vectors,
-                             geo ? OGRGeometryTypeToName(type) : "no geometry");
+            bool line = type == wkbLineString || type == wkbMultiLineString;
+            if (line) { /* a river: its width (3 texels unless given) and depth (1 m) */
+                OGRGeometryH c = OGR_G_Clone(geo);
+                double texel_m = OSRIsGeographic(g.srs) ? fabs(g.gt[5]) * 111320.0
+                                                        : fabs(g.gt[1]) * OSRGetLinearUnits(g.srs, NULL);
+                if (!t || OGR_G_Transform(c, t) == OGRERR_NONE)
+                    add_river(&g, c, feature_number(f, "width", 3 * texel_m), feature_number(f, "depth", 1), rivers,
+                              n_rivers);
+                OGR_G_DestroyGeometry(c);
+            } else if (type != wkbPolygon && type != wkbMultiPolygon)
+                ok = err_set(err, "terrain.water: feature %ld of '%s' is no polygon or line (%s): lakes are polygons with a "
+                                  "level, rivers lines", index, vectors, geo ? OGRGeometryTypeToName(type) : "no geometry");
             else if ((ok = feature_level(f, vectors, index, &level, err))) {
                 OGRGeometryH c = OGR_G_Clone(geo);
                 if (t && OGR_G_Transform(c, t) != OGRERR_NONE) {
@@ -487,14 +525,15 @@ bool geo_water_polygons(const char *dem_path, const char *vectors, int w, int h,
         OSRDestroySpatialReference(src);
     }
     GDALClose(ds);
-    if (ok && n == 0)
-        ok = err_set(err, "terrain.water: '%s' holds no polygon GDAL could place on the DEM", vectors);
+    if (ok && n == 0 && *n_rivers == 0)
+        ok = err_set(err, "terrain.water: '%s' holds no polygon or line GDAL could place on the DEM", vectors);
     if (ok) { /* texel centres inside a polygon take its level (GDAL's rasteriser, pixel centres) */
         GDALDatasetH mem = GDALCreate(GDALGetDriverByName("MEM"), "", w, h, 1, GDT_Float32, NULL);
         GDALRasterBandH b = mem ? GDALGetRasterBand(mem, 1) : NULL;
         ok = mem && GDALSetGeoTransform(mem, g.gt) == CE_None && GDALSetSpatialRef(mem, g.srs) == CE_None &&
              GDALFillRaster(b, NAN, 0) == CE_None &&
-             GDALRasterizeGeometries(mem, 1, (int[]){1}, (int)n, shapes, NULL, NULL, levels, NULL, NULL, NULL) == CE_None &&
+             (n == 0 || GDALRasterizeGeometries(mem, 1, (int[]){1}, (int)n, shapes, NULL, NULL, levels, NULL, NULL, NULL) ==
+                            CE_None) &&
              GDALRasterIO(b, GF_Read, 0, 0, w, h, out, w, h, GDT_Float32, 0, 0) == CE_None;
         if (mem)
             GDALClose(mem);
@@ -506,6 +545,12 @@ bool geo_water_polygons(const char *dem_path, const char *vectors, int w, int h,
     free(shapes);
     free(levels);
     OSRDestroySpatialReference(g.srs);
+    if (!ok) {
+        for (int i = 0; i < *n_rivers; i++)
+            free((*rivers)[i].pt);
+        free(*rivers);
+        *rivers = NULL, *n_rivers = 0;
+    }
     return ok;
 }
 

@@ -111,6 +111,60 @@ static void keep_lakes(const water_fill_desc *d, float *s, water_fill_stats *st)
     free(seen);
 }
 
+/* The ground at texel coordinates (x, y), bilinear; NaN off the grid or over a hole. */
+static double ground_at(const float *g, int w, int h, double x, double y)
+{
+    if (!(x >= 0 && y >= 0 && x <= w - 1 && y <= h - 1))
+        return NAN;
+    int i = (int)fmin(floor(x), w > 1 ? w - 2 : 0), j = (int)fmin(floor(y), h > 1 ? h - 2 : 0);
+    int i1 = i + (w > 1), j1 = j + (h > 1);
+    double a = x - i, b = y - j;
+    double v = (1 - b) * ((1 - a) * g[(size_t)j * (size_t)w + (size_t)i] + a * g[(size_t)j * (size_t)w + (size_t)i1]) +
+               b * ((1 - a) * g[(size_t)j1 * (size_t)w + (size_t)i] + a * g[(size_t)j1 * (size_t)w + (size_t)i1]);
+    return v < -1e20 ? NAN : v;
+}
+
+void water_rivers(const float *ground, int w, int h, double dx, double dz, float ex, const geo_river *r, int n,
+                  float *out)
+{
+    float *best = util_alloc((size_t)w * (size_t)h * sizeof *best, "the rivers"); /* each texel's nearest step */
+    float *river = util_alloc((size_t)w * (size_t)h * sizeof *river, "the rivers");
+    for (int k = 0; k < n; k++) {
+        const geo_river *v = &r[k];
+        for (size_t c = 0; c < (size_t)w * (size_t)h; c++)
+            river[c] = WATER_DRY, best[c] = INFINITY;
+        bool down = !(ground_at(ground, w, h, v->pt[0][0], v->pt[0][1]) <
+                      ground_at(ground, w, h, v->pt[v->n - 1][0], v->pt[v->n - 1][1])); /* from the higher end */
+        double level = INFINITY, rx = 0.5 * v->width / dx, rz = 0.5 * v->width / dz;
+        for (int s = 0; s + 1 < v->n; s++) {
+            const double *a = v->pt[down ? s : v->n - 1 - s], *b = v->pt[down ? s + 1 : v->n - 2 - s];
+            int steps = (int)fmax(1, ceil(2 * fmax(fabs(b[0] - a[0]), fabs(b[1] - a[1]))));
+            for (int q = s == 0 ? 0 : 1; q <= steps; q++) {
+                double x = a[0] + (b[0] - a[0]) * q / steps, y = a[1] + (b[1] - a[1]) * q / steps;
+                double g = ground_at(ground, w, h, x, y);
+                if (isnan(g))
+                    continue;
+                level = fmin(level, g + v->depth * ex);
+                for (int j = (int)ceil(y - rz); j <= (int)floor(y + rz); j++)
+                    for (int i = (int)ceil(x - rx); i <= (int)floor(x + rx); i++) {
+                        if (i < 0 || j < 0 || i >= w || j >= h)
+                            continue;
+                        double ex2 = ((i - x) * dx) * ((i - x) * dx) + ((j - y) * dz) * ((j - y) * dz);
+                        size_t c = (size_t)j * (size_t)w + (size_t)i;
+                        if (ex2 <= 0.25 * v->width * v->width && ex2 < best[c] && ground[c] > -1e20f) {
+                            best[c] = (float)ex2;
+                            river[c] = (float)level;
+                        }
+                    }
+            }
+        }
+        for (size_t c = 0; c < (size_t)w * (size_t)h; c++)
+            out[c] = river[c] > out[c] ? river[c] : out[c];
+    }
+    free(river);
+    free(best);
+}
+
 bool water_is_vector(const char *file)
 {
     static const char *const EXT[] = {".geojson", ".json", ".gpkg", ".shp", ".kml", ".gml", ".fgb"};
@@ -127,10 +181,20 @@ bool water_grid(const float *ground, int w, int h, const char *dem, const char *
     size_t n = (size_t)w * (size_t)h;
     *top = WATER_DRY;
     if (raster && water_is_vector(raster)) {
-        if (!geo_water_polygons(dem, raster, w, h, out, err))
+        geo_river *rivers;
+        int n_rivers;
+        if (!geo_water_vectors(dem, raster, w, h, out, &rivers, &n_rivers, err))
             return false;
         for (size_t c = 0; c < n; c++)
             out[c] = isnan(out[c]) || ground[c] < -1e20f ? WATER_DRY : out[c] * ex;
+        double dx = 1, dz = 1, range[2]; /* metres a texel: the DEM's own spacing */
+        dem_info info;
+        int dw, dh;
+        err_t ignore;
+        if (n_rivers && dem_probe(dem, &dw, &dh, range, &info, &ignore) && info.georeferenced)
+            dx = info.spacing[0], dz = info.spacing[1];
+        water_rivers(ground, w, h, dx, dz, ex, rivers, n_rivers, out);
+        geo_rivers_free(rivers, n_rivers);
     } else if (raster) {
         int rw, rh;
         float *v = NULL;

@@ -45,6 +45,14 @@ bool water_fill(const water_fill_desc *d, float *surface, water_fill_stats *st, 
 #define WATER_DRY (-1e30f)
 bool water_grid(const float *ground, int w, int h, const char *dem, const char *file, float ex, float *out, float *top,
                 err_t *err);
+/* Rivers (data/geo/geo.h geo_river: courses in texel coordinates, width and depth in metres) into out (w × h,
+ * water levels or WATER_DRY; a texel already wet keeps the higher level): each course followed downhill,
+ * from its higher end, in steps of at most half a texel, its surface `depth` above the ground there (times
+ * ex) but never above its level upstream, so it only ever runs down; each texel within half the width of the
+ * course (dx, dz: metres a texel) takes the level of the nearest step. ground as water_grid's. */
+struct geo_river;
+void water_rivers(const float *ground, int w, int h, double dx, double dz, float ex, const struct geo_river *r, int n,
+                  float *out);
 /* Whether terrain.water's file is vector data (by its name: .geojson, .json, .gpkg, .shp, .kml, .gml, .fgb). */
 bool water_is_vector(const char *file);
 
