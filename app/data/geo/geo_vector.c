@@ -463,6 +463,67 @@ static void add_river(const geo_grid *g, OGRGeometryH line, double width, double
     }
 }
 
+/* What geo_water_vectors gathers: the polygons (in the DEM's CRS) with their levels, and the rivers. */
+typedef struct water_shapes {
+    OGRGeometryH *shapes;
+    double *levels;
+    long n, cap;
+    geo_river *rivers;
+    int n_rivers;
+} water_shapes;
+
+/* Feature f (the index-th), its geometry carried to the DEM's CRS by t: a polygon with its level, or a river;
+ * false with err for anything else. */
+static bool water_feature(const geo_grid *g, OGRFeatureH f, OGRCoordinateTransformationH t, const char *vectors,
+                          long index, water_shapes *ws, err_t *err)
+{
+    OGRGeometryH geo = OGR_F_GetGeometryRef(f);
+    OGRwkbGeometryType type = geo ? wkbFlatten(OGR_G_GetGeometryType(geo)) : wkbUnknown;
+    double level = 0;
+    if (type == wkbLineString || type == wkbMultiLineString) { /* a river: 3 texels wide, 1 m deep, unless given */
+        OGRGeometryH c = OGR_G_Clone(geo);
+        double texel_m = OSRIsGeographic(g->srs) ? fabs(g->gt[5]) * 111320.0 : fabs(g->gt[1]) * OSRGetLinearUnits(g->srs, NULL);
+        if (!t || OGR_G_Transform(c, t) == OGRERR_NONE)
+            add_river(g, c, feature_number(f, "width", 3 * texel_m), feature_number(f, "depth", 1), &ws->rivers,
+                      &ws->n_rivers);
+        OGR_G_DestroyGeometry(c);
+        return true;
+    }
+    if (type != wkbPolygon && type != wkbMultiPolygon)
+        return err_set(err, "terrain.water: feature %ld of '%s' is no polygon or line (%s): lakes are polygons with a "
+                            "level, rivers lines", index, vectors, geo ? OGRGeometryTypeToName(type) : "no geometry");
+    if (!feature_level(f, vectors, index, &level, err))
+        return false;
+    OGRGeometryH c = OGR_G_Clone(geo);
+    if (t && OGR_G_Transform(c, t) != OGRERR_NONE) {
+        OGR_G_DestroyGeometry(c);
+        return true;
+    }
+    if (ws->n == ws->cap) {
+        ws->cap = ws->cap ? 2 * ws->cap : 64;
+        ws->shapes = util_realloc(ws->shapes, sizeof *ws->shapes * (size_t)ws->cap, "the water's polygons");
+        ws->levels = util_realloc(ws->levels, sizeof *ws->levels * (size_t)ws->cap, "the water's polygons");
+    }
+    ws->shapes[ws->n] = c;
+    ws->levels[ws->n++] = level;
+    return true;
+}
+
+/* The polygons' levels at the texel centres they hold (GDAL's rasteriser), NaN elsewhere, into out. */
+static bool burn_levels(const geo_grid *g, const water_shapes *ws, int w, int h, float *out)
+{
+    GDALDatasetH mem = GDALCreate(GDALGetDriverByName("MEM"), "", w, h, 1, GDT_Float32, NULL);
+    GDALRasterBandH b = mem ? GDALGetRasterBand(mem, 1) : NULL;
+    bool ok = mem && GDALSetGeoTransform(mem, (double *)g->gt) == CE_None && GDALSetSpatialRef(mem, g->srs) == CE_None &&
+              GDALFillRaster(b, NAN, 0) == CE_None &&
+              (ws->n == 0 || GDALRasterizeGeometries(mem, 1, (int[]){1}, (int)ws->n, ws->shapes, NULL, NULL, ws->levels,
+                                                     NULL, NULL, NULL) == CE_None) &&
+              GDALRasterIO(b, GF_Read, 0, 0, w, h, out, w, h, GDT_Float32, 0, 0) == CE_None;
+    if (mem)
+        GDALClose(mem);
+    return ok;
+}
+
 bool geo_water_vectors(const char *dem_path, const char *vectors, int w, int h, float *out, geo_river **rivers,
                        int *n_rivers, err_t *err)
 {
@@ -475,9 +536,8 @@ bool geo_water_vectors(const char *dem_path, const char *vectors, int w, int h, 
         OSRDestroySpatialReference(g.srs);
         return false;
     }
-    OGRGeometryH *shapes = NULL;
-    double *levels = NULL;
-    long n = 0, cap = 0, index = 0;
+    water_shapes ws = {0};
+    long index = 0;
     bool ok = (g.w == w && g.h == h) ||
               err_set(err, "terrain.water: the DEM '%s' is %d x %d and its heights %d x %d", dem_path, g.w, g.h, w, h);
     for (int l = 0; ok && l < GDALDatasetGetLayerCount(ds); l++) {
@@ -487,37 +547,8 @@ bool geo_water_vectors(const char *dem_path, const char *vectors, int w, int h, 
         OSRSetAxisMappingStrategy(src, OAMS_TRADITIONAL_GIS_ORDER);
         OGRCoordinateTransformationH t = OCTNewCoordinateTransformation(src, g.srs);
         OGRFeatureH f;
-        while (ok && (f = OGR_L_GetNextFeature(layer)) != NULL && n < GEO_TRACK_MAX) {
-            OGRGeometryH geo = OGR_F_GetGeometryRef(f);
-            OGRwkbGeometryType type = geo ? wkbFlatten(OGR_G_GetGeometryType(geo)) : wkbUnknown;
-            double level = 0;
-            bool line = type == wkbLineString || type == wkbMultiLineString;
-            if (line) { /* a river: its width (3 texels unless given) and depth (1 m) */
-                OGRGeometryH c = OGR_G_Clone(geo);
-                double texel_m = OSRIsGeographic(g.srs) ? fabs(g.gt[5]) * 111320.0
-                                                        : fabs(g.gt[1]) * OSRGetLinearUnits(g.srs, NULL);
-                if (!t || OGR_G_Transform(c, t) == OGRERR_NONE)
-                    add_river(&g, c, feature_number(f, "width", 3 * texel_m), feature_number(f, "depth", 1), rivers,
-                              n_rivers);
-                OGR_G_DestroyGeometry(c);
-            } else if (type != wkbPolygon && type != wkbMultiPolygon)
-                ok = err_set(err, "terrain.water: feature %ld of '%s' is no polygon or line (%s): lakes are polygons with a "
-                                  "level, rivers lines", index, vectors, geo ? OGRGeometryTypeToName(type) : "no geometry");
-            else if ((ok = feature_level(f, vectors, index, &level, err))) {
-                OGRGeometryH c = OGR_G_Clone(geo);
-                if (t && OGR_G_Transform(c, t) != OGRERR_NONE) {
-                    OGR_G_DestroyGeometry(c);
-                } else {
-                    if (n == cap) {
-                        cap = cap ? 2 * cap : 64;
-                        shapes = util_realloc(shapes, sizeof *shapes * (size_t)cap, "the water's polygons");
-                        levels = util_realloc(levels, sizeof *levels * (size_t)cap, "the water's polygons");
-                    }
-                    shapes[n] = c;
-                    levels[n++] = level;
-                }
-            }
-            index++;
+        while (ok && (f = OGR_L_GetNextFeature(layer)) != NULL && ws.n < GEO_TRACK_MAX) {
+            ok = water_feature(&g, f, t, vectors, index++, &ws, err);
             OGR_F_Destroy(f);
         }
         if (t)
@@ -525,31 +556,21 @@ bool geo_water_vectors(const char *dem_path, const char *vectors, int w, int h, 
         OSRDestroySpatialReference(src);
     }
     GDALClose(ds);
-    if (ok && n == 0 && *n_rivers == 0)
+    if (ok && ws.n == 0 && ws.n_rivers == 0)
         ok = err_set(err, "terrain.water: '%s' holds no polygon or line GDAL could place on the DEM", vectors);
-    if (ok) { /* texel centres inside a polygon take its level (GDAL's rasteriser, pixel centres) */
-        GDALDatasetH mem = GDALCreate(GDALGetDriverByName("MEM"), "", w, h, 1, GDT_Float32, NULL);
-        GDALRasterBandH b = mem ? GDALGetRasterBand(mem, 1) : NULL;
-        ok = mem && GDALSetGeoTransform(mem, g.gt) == CE_None && GDALSetSpatialRef(mem, g.srs) == CE_None &&
-             GDALFillRaster(b, NAN, 0) == CE_None &&
-             (n == 0 || GDALRasterizeGeometries(mem, 1, (int[]){1}, (int)n, shapes, NULL, NULL, levels, NULL, NULL, NULL) ==
-                            CE_None) &&
-             GDALRasterIO(b, GF_Read, 0, 0, w, h, out, w, h, GDT_Float32, 0, 0) == CE_None;
-        if (mem)
-            GDALClose(mem);
-        if (!ok)
-            err_set(err, "terrain.water: cannot place '%s' on the DEM: %s", vectors, geo_gdal_msg("rasterising failed"));
-    }
-    for (long i = 0; i < n; i++)
-        OGR_G_DestroyGeometry(shapes[i]);
-    free(shapes);
-    free(levels);
+    if (ok && !burn_levels(&g, &ws, w, h, out))
+        ok = err_set(err, "terrain.water: cannot place '%s' on the DEM: %s", vectors, geo_gdal_msg("rasterising failed"));
+    for (long i = 0; i < ws.n; i++)
+        OGR_G_DestroyGeometry(ws.shapes[i]);
+    free(ws.shapes);
+    free(ws.levels);
     OSRDestroySpatialReference(g.srs);
-    if (!ok) {
-        for (int i = 0; i < *n_rivers; i++)
-            free((*rivers)[i].pt);
-        free(*rivers);
-        *rivers = NULL, *n_rivers = 0;
+    if (ok) {
+        *rivers = ws.rivers, *n_rivers = ws.n_rivers;
+    } else {
+        for (int i = 0; i < ws.n_rivers; i++)
+            free(ws.rivers[i].pt);
+        free(ws.rivers);
     }
     return ok;
 }
