@@ -184,6 +184,7 @@ typedef struct scene {
          * lakes the DEM implies (data/geo/water.h); or a raster of water-surface heights on the DEM's grid (a
          * flood model's, or fathom water's). Drawn with the material named "water" (added, clear water, when
          * the scene has none): common/sdf_main.glsl's glass */
+        bool curvature;   /* "curvature": true: drawn on the Earth's curvature (terrain/terrain.glsl) */
         bool has_water;
         scene_water water_mode;
         float water_level;

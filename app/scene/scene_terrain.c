@@ -10,6 +10,7 @@
 
 #include "scene/scene_parse.h"
 #include "data/geo/terrain.h"
+#include "data/geo/viewshed.h"
 
 /* ---- terrains: the "terrain" block ------------------------------------------------------------ */
 
@@ -157,7 +158,7 @@ bool scene_heightmap_parse(scene_ctx *c, const cJSON *root)
     const cJSON *tb = cJSON_GetObjectItemCaseSensitive(root, "terrain");
     static const char *const keys[] = {"heightmap", "spacing", "height_min", "height_max", "exaggeration", "method",
                                        "sand_line", "snow_line", "grass_slope", "nodata", "normals", "colors", "imagery",
-                                       "vectors", "cache_mb", "water", NULL};
+                                       "vectors", "cache_mb", "water", "curvature", NULL};
     if (!tb)
         return scene_fail(c, "terrain", "a terrain scene needs a \"terrain\" block with a \"heightmap\"");
     if (!scene_check_keys(c, tb, "terrain", keys))
@@ -212,6 +213,10 @@ bool scene_heightmap_parse(scene_ctx *c, const cJSON *root)
     if (!scene_get_enum(c, tb, "terrain", "colors", "terrain colouring", COLORS, 0, &m))
         return false;
     t->elevation_ramp = m == 1;
+    const cJSON *curve = cJSON_GetObjectItemCaseSensitive(tb, "curvature");
+    if (curve && !cJSON_IsBool(curve))
+        return scene_fail(c, "terrain.curvature", "expected true (the DEM drawn on the Earth's curvature) or false");
+    t->curvature = cJSON_IsTrue(curve);
     return parse_imagery(c, tb) && parse_vectors(c, tb) && parse_water(c, tb);
 }
 
@@ -267,6 +272,8 @@ void scene_heightmap_defines(const scene *s, strbuf *out)
         sb_printf(out, "#define TERRAIN_IMAGERY 1\n");
     if (s->terrain.water_mode == WATER_FILL || s->terrain.water_mode == WATER_RASTER) /* a water level a texel */
         sb_printf(out, "#define TERRAIN_WATER_GRID 1\n");
+    if (s->terrain.curvature)
+        sb_printf(out, "#define TERRAIN_CURVATURE 1\n");
 }
 
 /* The layered albedo (shaders/terrain/layers.glsl): which material each layer uses, and where. */
@@ -277,6 +284,9 @@ void scene_layer_uniforms(const scene *s, const uniform_sink *u)
     uniform_f(u, "uSandLine", s->terrain.sand_line);
     uniform_f(u, "uSnowLine", s->terrain.snow_line);
     uniform_f(u, "uGrassSlope", s->terrain.grass_slope);
+    if (s->terrain.curvature) /* the drop (1 − k) d² / 2R, exaggerated with the heights (the viewshed's k, R) */
+        uniform_f(u, "uCurvature", (float)((s->terrain.exaggeration > 0 ? s->terrain.exaggeration : 1.0) *
+                                           (1.0 - VIEWSHED_REFRACTION) / (2.0 * VIEWSHED_EARTH_RADIUS)));
     if (s->effects & (1u << EFFECT_WATER)) { /* terrain/terrain.glsl: the water's surface, in world heights */
         uniform_i(u, "uWaterMaterial", s->terrain.water_material);
         if (s->terrain.water_mode == WATER_LEVEL)

@@ -40,14 +40,17 @@ vec3 layerColor(int m, vec3 p, vec3 n, vec3 dpdx, vec3 dpdy)
     return c;
 }
 
+#ifndef TERRAIN_ALTITUDE // a point's altitude (terrain.glsl's with the Earth's curvature)
+#define TERRAIN_ALTITUDE(p) (p).y
+#endif
 vec3 programAlbedo(vec3 p, vec3 n, vec3 dpdx, vec3 dpdy, vec3 base)
 {
     const float BLEND = 0.08; // width of the transitions (slope units / fraction of the height range)
     float range = max(uTerrainHeightMax - uTerrainHeightMin, 1e-3);
     float grass = smoothstep(uGrassSlope - BLEND, uGrassSlope + BLEND, n.y);
-    float snow = smoothstep(uSnowLine - BLEND * range, uSnowLine + BLEND * range, p.y) *
+    float snow = smoothstep(uSnowLine - BLEND * range, uSnowLine + BLEND * range, TERRAIN_ALTITUDE(p)) *
                  smoothstep(0.5, 0.7, n.y);
-    float sand = 1.0 - smoothstep(uSandLine - 0.02 * range, uSandLine + 0.02 * range, p.y);
+    float sand = 1.0 - smoothstep(uSandLine - 0.02 * range, uSandLine + 0.02 * range, TERRAIN_ALTITUDE(p));
     // a layer is sampled only where it shows (three triplanar textures of up to 16 taps each were 18 % of
     // the noise terrain's final frame): mix(c, x, 1) is x and mix(c, x, 0) is c, bit for bit
     vec3 c = grass < 1.0 ? layerColor(uLayerRock, p, n, dpdx, dpdy) : vec3(0.0);
@@ -60,7 +63,7 @@ vec3 programAlbedo(vec3 p, vec3 n, vec3 dpdx, vec3 dpdy, vec3 base)
     // the ramp keeps the layers' light and shade (their luminance about its mean), not their colour
     float shade = dot(c, vec3(0.299, 0.587, 0.114));
     if (uElevationRamp != 0)
-        c = elevationRamp(p.y / uExaggeration) * (0.65 + 0.5 * shade);
+        c = elevationRamp(TERRAIN_ALTITUDE(p) / uExaggeration) * (0.65 + 0.5 * shade);
 #ifdef TERRAIN_IMAGERY
     vec2 extent = vec2(uTerrainSize) * uTerrainSpacing; // the DEM's texels edge to edge, as the imagery
     vec4 img = textureGrad(uImagery, (p.xz - uTerrainOrigin) / extent, dpdx.xz / extent, dpdy.xz / extent);

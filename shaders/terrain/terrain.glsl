@@ -66,6 +66,44 @@ float terrainTileMax(ivec2 tile) { return texelFetch(uHeightMaxTop, tile, 0).r; 
 // Cell space: c = (xz − x0z0) / dxdz − ½ puts texel centres on integers; cell (i, j) is [i, i+1]×[j, j+1].
 vec2 toCell(vec2 xz) { return (xz - uTerrainOrigin) / uTerrainSpacing - 0.5; }
 
+// The Earth's curvature (terrain.curvature, TERRAIN_CURVATURE): the ground d metres from the camera lies lower
+// by (1 − k) d² / 2R (R 6,371 km, k 0.13: refraction bends the sight lines, the surveyors' coefficient and
+// the viewshed's rule, data/geo/viewshed.h), times the exaggeration. Worked as the ray rising instead: its
+// effective height y + c |xz − camera|² is a quadratic in t, and so is its clearance over a bilinear cell, so
+// the walk and each cell's intersection stay exact. curvedY: a point's height above the curved ground's
+// datum (its altitude, what the layers, water and shadows compare with the DEM's heights).
+#if TERRAIN_CURVATURE
+uniform float uCurvature; // c = exaggeration (1 − k) / 2R, per world unit
+float curveDrop(vec2 xz) { vec2 d = xz - uCamPos.xz; return uCurvature * dot(d, d); }
+#else
+float curveDrop(vec2 xz) { return 0.0; }
+#endif
+float curvedY(vec3 p) { return p.y + curveDrop(p.xz); }
+// The ray's effective height at t: e.x + e.y t + e.z t².
+vec3 rayCurve(vec3 ro, vec3 rd)
+{
+#if TERRAIN_CURVATURE
+    vec2 u = ro.xz - uCamPos.xz;
+    return vec3(ro.y + uCurvature * dot(u, u), rd.y + 2.0 * uCurvature * dot(u, rd.xz), uCurvature * dot(rd.xz, rd.xz));
+#else
+    return vec3(ro.y, rd.y, 0.0);
+#endif
+}
+float curveAt(vec3 e, float t) { return e.x + (e.y + e.z * t) * t; }
+// The smallest root in (0, ∞) of A t² + B t + C (C > 0: the ray starts above), −1 if none.
+float firstRoot(float A, float B, float C)
+{
+    if (abs(A) < 1e-30)
+        return B < 0.0 ? -C / B : -1.0;
+    float disc = B * B - 4.0 * A * C;
+    if (disc < 0.0)
+        return -1.0;
+    float q = -0.5 * (B + (B >= 0.0 ? 1.0 : -1.0) * sqrt(disc)); // no cancellation
+    float r1 = q / A, r2 = q != 0.0 ? C / q : -1.0;
+    float lo = min(r1, r2), hi = max(r1, r2);
+    return lo > 0.0 ? lo : hi > 0.0 ? hi : -1.0;
+}
+
 // The heights at cell `cell`'s corners (h00, h10, h01, h11), from the tile holding the cell; a tile not
 // resident stands as a plateau at its maximum (conservative: never below the ground it holds). A cell
 // beyond the grid has no surface (holes).
@@ -120,7 +158,7 @@ float heightAtCell(vec2 c)
 float terrainHeight(vec2 xz) { return heightAtCell(toCell(xz)); }
 
 // A distance bound for shadows and AO: vertical clearance shrunk by the steepest slope.
-vec2 map(vec3 p) { return vec2((p.y - terrainHeight(p.xz)) * uTerrainStepScale, 0.0); }
+vec2 map(vec3 p) { return vec2((curvedY(p) - terrainHeight(p.xz)) * uTerrainStepScale, 0.0); }
 
 // Where the ray is over the footprint and inside the slab [hmin, hmax]: (t enter, t exit).
 vec2 terrainSlab(vec3 ro, vec3 rd)
@@ -139,12 +177,22 @@ vec2 terrainSlab(vec3 ro, vec3 rd)
     // a zero direction component gives NaN when ro sits exactly on that plane: treat as inside
     tmin = mix(tmin, vec3(-1e30), isnan(tmin));
     tmax = mix(tmax, vec3(1e30), isnan(tmax));
+#if TERRAIN_CURVATURE // the ray's effective height rises: it is under hmax between the roots of e(t) = hmax
+    vec3 e = rayCurve(ro, rd);
+    float disc = e.y * e.y - 4.0 * e.z * (e.x - uTerrainHeightMax);
+    if (disc < 0.0)
+        return vec2(1.0, 0.0);
+    float q = -0.5 * (e.y + (e.y >= 0.0 ? 1.0 : -1.0) * sqrt(disc)), r1 = q / e.z, r2 = q != 0.0 ? (e.x - uTerrainHeightMax) / q : r1;
+    tmin.y = min(r1, r2), tmax.y = max(r1, r2); // (no floor: a curved ground has none to meet from below)
+#endif
     float enter = max(max(max(tmin.x, tmin.y), tmin.z), 0.0);
     // The terrain is solid from hmin up to the ground: a ray that comes in through a side wall in the
     // sliver below hmin is under the floor and stays there (it goes down): it misses. Before, it hit
     // the wall 1–2 mm below the floor, a strip along a DEM's bottom edge.
+#if !TERRAIN_CURVATURE
     if (rd.y < 0.0 && enter > 0.0 && ro.y + rd.y * enter < uTerrainHeightMin)
         return vec2(1.0, 0.0);
+#endif
     return vec2(enter, min(min(tmax.x, tmax.y), tmax.z));
 }
 
@@ -152,12 +200,12 @@ vec2 terrainSlab(vec3 ro, vec3 rd)
 // coming from above (0 when it is at or below the patch already); from below (the ray under the patch,
 // a terrain's water seen from inside it) where it rises through it. −1 if none. uv: the ray's position in
 // the cell at s = 0, cd its cell-space velocity, y0 and dy its height and climb.
-float patchRoot(vec4 k, vec2 uv, vec2 cd, float y0, float dy, float sEnd, bool fromBelow)
+float patchRoot(vec4 k, vec2 uv, vec2 cd, float y0, float dy, float ddy, float sEnd, bool fromBelow)
 {
     float h00 = k.x, h10 = k.y, h01 = k.z, h11 = k.w;
     float a = h10 - h00, b = h01 - h00, c = h00 - h10 - h01 + h11;
     // y(s) − h(s) = A s² + B s + C (its negative from below: the same roots, C > 0 on the ray's side)
-    float A = -c * cd.x * cd.y;
+    float A = ddy - c * cd.x * cd.y; // ddy: the ray's own curve (the Earth's: rayCurve)
     float B = dy - (a * cd.x + b * cd.y + c * (uv.x * cd.y + uv.y * cd.x));
     float C = y0 - (h00 + a * uv.x + b * uv.y + c * uv.x * uv.y);
     if (fromBelow)
@@ -181,12 +229,12 @@ float patchRoot(vec4 k, vec2 uv, vec2 cd, float y0, float dy, float sEnd, bool f
 
 // First s in [0, sEnd] where the ray meets cell `cell`'s bilinear patch; −1 if none. c0: the ray's
 // cell-space position at s = 0, cd its cell-space velocity, y0 and dy its height and climb.
-float intersectCell(ivec2 cell, vec2 c0, vec2 cd, float y0, float dy, float sEnd)
+float intersectCell(ivec2 cell, vec2 c0, vec2 cd, float y0, float dy, float ddy, float sEnd)
 {
     vec4 k = cellCorners(cell);
     if (isHole(min(min(k.x, k.y), min(k.z, k.w))))
         return -1.0; // a nodata hole: rays pass (the max pyramid skips it; the linear search comes here)
-    return patchRoot(k, c0 - vec2(cell), cd, y0, dy, sEnd, false);
+    return patchRoot(k, c0 - vec2(cell), cd, y0, dy, ddy, sEnd, false);
 }
 
 #if FX_WATER && TERRAIN_WATER_GRID
@@ -225,14 +273,14 @@ float waterAtCell(vec2 c)
 }
 
 // Where the ray meets cell `cell`'s water in [0, sEnd], from above or from below; −1 if it does not.
-float waterCell(ivec2 cell, vec2 c0, vec2 cd, float y0, float dy, float sEnd)
+float waterCell(ivec2 cell, vec2 c0, vec2 cd, float y0, float dy, float ddy, float sEnd)
 {
     vec4 k;
     if (!cellWater(cell, k))
         return -1.0;
     vec2 uv = c0 - vec2(cell);
     float level = mix(mix(k.x, k.y, uv.x), mix(k.z, k.w, uv.x), uv.y);
-    return patchRoot(k, uv, cd, y0, dy, sEnd, y0 < level);
+    return patchRoot(k, uv, cd, y0, dy, ddy, sEnd, y0 < level);
 }
 #endif
 
@@ -246,6 +294,7 @@ Hit terrainTrace(vec3 ro, vec3 rd, vec2 slab, bool water)
     const float NUDGE = 1e-4; // cells: moves a point on a node boundary into the node ahead
     int top = uTerrainTopLevel, level = top;
     float t = slab.x;
+    vec3 e = rayCurve(ro, rd); // the ray's effective height (the Earth's curvature: a quadratic)
     for (int i = 0; i < uTerrainMaxNodes; i++) { // exact: its budget follows the grid, not a quality knob
         vec2 c = c0 + cd * t;
         float size = float(1 << level);
@@ -257,9 +306,10 @@ Hit terrainTrace(vec3 ro, vec3 rd, vec2 slab, bool water)
         float tExit = min(min(tAxis.x, tAxis.y), slab.y);
         h.steps++;
         if (level == 0) {
-            float s = intersectCell(node, c0 + cd * t, cd, ro.y + rd.y * t, rd.y, tExit - t);
+            float y = curveAt(e, t), dy = e.y + 2.0 * e.z * t;
+            float s = intersectCell(node, c0 + cd * t, cd, y, dy, e.z, tExit - t);
 #if FX_WATER && TERRAIN_WATER_GRID
-            float sw = water ? waterCell(node, c0 + cd * t, cd, ro.y + rd.y * t, rd.y, tExit - t) : -1.0;
+            float sw = water ? waterCell(node, c0 + cd * t, cd, y, dy, e.z, tExit - t) : -1.0;
             if (sw >= 0.0 && (s < 0.0 || sw < s)) {
                 h.hit = true;
                 h.t = t + sw;
@@ -273,7 +323,9 @@ Hit terrainTrace(vec3 ro, vec3 rd, vec2 slab, bool water)
                 return h;
             }
         } else {
-            float ymin = min(ro.y + rd.y * t, ro.y + rd.y * tExit);
+            float ymin = min(curveAt(e, t), curveAt(e, tExit)), tv = e.z > 0.0 ? -e.y / (2.0 * e.z) : -1.0;
+            if (tv > t && tv < tExit) // the curve's lowest point inside the node
+                ymin = min(ymin, curveAt(e, tv));
             if (ymin <= nodeMax(node, level)) {
                 level--; // the ray may meet something in here: look closer
                 continue;
@@ -288,7 +340,7 @@ Hit terrainTrace(vec3 ro, vec3 rd, vec2 slab, bool water)
     return h;
 }
 #else
-float hsSurfaceY(vec2 xz) { return terrainHeight(xz); }
+float hsSurfaceY(vec2 xz) { return terrainHeight(xz) - curveDrop(xz); } // the ground as the flat frame sees it
 #include "common/heightsearch.glsl"
 
 Hit terrainTrace(vec3 ro, vec3 rd, vec2 slab, bool water) // (water a texel at a time needs maxmip: scene_terrain.c)
@@ -325,24 +377,27 @@ float waterLevelAt(vec2 c) { return uWaterLevel; }
 bool waterAt(vec3 p)
 {
     vec2 c = toCell(p.xz);
-    if (any(lessThan(c, vec2(0.0))) || any(greaterThan(c, vec2(uTerrainSize - 1))) || p.y >= waterLevelAt(c))
+    float y = curvedY(p);
+    if (any(lessThan(c, vec2(0.0))) || any(greaterThan(c, vec2(uTerrainSize - 1))) || y >= waterLevelAt(c))
         return false;
     float g = heightAtCell(c);
-    return !isHole(g) && g < p.y;
+    return !isHole(g) && g < y;
 }
 
 // The water's surface normal at p (outward: up).
 vec3 waterNormal(vec3 p)
 {
+    vec2 g = vec2(0.0);
 #if TERRAIN_WATER_GRID
     vec2 c = toCell(p.xz), e = vec2(0.25, 0.0); // the patch's slope: a flood's surface tilts, a lake's is level
-    float gx = (waterLevelAt(c + e.xy) - waterLevelAt(c - e.xy)) / (2.0 * e.x * uTerrainSpacing.x);
-    float gz = (waterLevelAt(c + e.yx) - waterLevelAt(c - e.yx)) / (2.0 * e.x * uTerrainSpacing.y);
-    return isHole(min(min(waterLevelAt(c + e.xy), waterLevelAt(c - e.xy)), min(waterLevelAt(c + e.yx), waterLevelAt(c - e.yx))))
-               ? vec3(0.0, 1.0, 0.0) : normalize(vec3(-gx, 1.0, -gz));
-#else
-    return vec3(0.0, 1.0, 0.0);
+    if (!isHole(min(min(waterLevelAt(c + e.xy), waterLevelAt(c - e.xy)), min(waterLevelAt(c + e.yx), waterLevelAt(c - e.yx)))))
+        g = vec2(waterLevelAt(c + e.xy) - waterLevelAt(c - e.xy), waterLevelAt(c + e.yx) - waterLevelAt(c - e.yx)) /
+            (2.0 * e.x * uTerrainSpacing);
 #endif
+#if TERRAIN_CURVATURE // a level on a curved Earth curves with it
+    g -= 2.0 * uCurvature * (p.xz - uCamPos.xz);
+#endif
+    return normalize(vec3(-g.x, 1.0, -g.y));
 }
 
 // Where the ray crosses the level's plane in (0, tEnd), −1 if it does not: from above or from below.
@@ -351,11 +406,19 @@ float waterCross(vec3 ro, vec3 rd, float tEnd)
 #if TERRAIN_WATER_GRID
     return -1.0; // the walk meets it
 #else
+    vec3 e = rayCurve(ro, rd); // the level is the curved ground's: e(t) = level
     float t = (uWaterLevel - ro.y) / rd.y; // ±inf or NaN for a level ray: no crossing
+    if (e.z > 0.0) // from above, or from below where the rising curve meets the level
+        t = e.x >= uWaterLevel ? firstRoot(e.z, e.y, e.x - uWaterLevel) : firstRoot(-e.z, -e.y, uWaterLevel - e.x);
     if (!(t > 0.0 && t < tEnd))
         return -1.0;
-    vec2 xz = ro.xz + rd.xz * t;
-    return waterAt(vec3(xz.x, uWaterLevel - 1e-6 * max(abs(uWaterLevel), 1.0), xz.y)) ? t : -1.0;
+    // the crossing is on the surface by construction: only whether water lies there (over the grid, above
+    // ground that has a surface) is asked; its height recomputed from t and the drop rounds either way
+    vec2 c = toCell(ro.xz + rd.xz * t);
+    if (any(lessThan(c, vec2(0.0))) || any(greaterThan(c, vec2(uTerrainSize - 1))))
+        return -1.0;
+    float g = heightAtCell(c);
+    return !isHole(g) && g < uWaterLevel ? t : -1.0;
 #endif
 }
 
@@ -400,7 +463,7 @@ float softShadow(vec3 ro, vec3 rd, float tmax, float k, float pathT)
     float dt = float(LINEAR_STEP) * min(uTerrainSpacing.x, uTerrainSpacing.y) / max(length(rd.xz), 1e-3);
     for (int i = 0; i < SHADOW_STEPS && t < slab.y; i++) {
         vec3 p = ro + rd * t;
-        float clearance = p.y - terrainHeight(p.xz);
+        float clearance = curvedY(p) - terrainHeight(p.xz);
         if (clearance <= 0.0)
             return 0.0;
         res = min(res, k * clearance / max(t, 1e-6));
@@ -426,6 +489,9 @@ vec3 patchNormal(vec2 c)
     float h00 = q.x, h10 = q.y, h01 = q.z, h11 = q.w;
     float a = h10 - h00, b = h01 - h00, k = h00 - h10 - h01 + h11;
     vec2 g = vec2(a + k * f.y, b + k * f.x) / uTerrainSpacing; // dh/dx, dh/dz in metres per metre
+#if TERRAIN_CURVATURE // the curved ground's own slope: the drop's gradient, 2c (xz − camera)
+    g -= 2.0 * uCurvature * ((c + 0.5) * uTerrainSpacing + uTerrainOrigin - uCamPos.xz);
+#endif
     return normalize(vec3(-g.x, 1.0, -g.y));
 }
 
@@ -433,8 +499,9 @@ vec3 calcNormal(vec3 p, float eps, vec3 fallback)
 {
     float dx = uTerrainSpacing.x, dz = uTerrainSpacing.y;
     vec2 c = toCell(p.xz);
-    if (p.y < terrainHeight(p.xz) - eps || !cellSolid(clamp(ivec2(floor(c)), ivec2(0), uTerrainSize - 2))) {
-        if (p.y < uTerrainHeightMin + eps) // the column's floor, met from below
+    float y = curvedY(p);
+    if (y < terrainHeight(p.xz) - eps || !cellSolid(clamp(ivec2(floor(c)), ivec2(0), uTerrainSize - 2))) {
+        if (y < uTerrainHeightMin + eps) // the column's floor, met from below
             return vec3(0, -1, 0);
         vec2 r = round(c), d = abs(c - r) * uTerrainSpacing;
         if (d.x < d.y) // an x face: the normal points to the cell on its side without a surface
@@ -448,7 +515,11 @@ vec3 calcNormal(vec3 p, float eps, vec3 fallback)
     float zp = terrainHeight(p.xz + vec2(0.0, dz)), zm = terrainHeight(p.xz - vec2(0.0, dz));
     if (isHole(min(min(xp, xm), min(zp, zm))))
         return patchNormal(c);
-    return normalize(vec3(-(xp - xm) / (2.0 * dx), 1.0, -(zp - zm) / (2.0 * dz)));
+    vec2 g = vec2((xp - xm) / (2.0 * dx), (zp - zm) / (2.0 * dz));
+#if TERRAIN_CURVATURE // the curved ground's own slope (central differences of a quadratic: exact)
+    g -= 2.0 * uCurvature * (p.xz - uCamPos.xz);
+#endif
+    return normalize(vec3(-g.x, 1.0, -g.y));
 #endif
 }
 
@@ -458,6 +529,7 @@ vec3 calcNormal(vec3 p, float eps, vec3 fallback)
 vec3 programAlbedo(vec3 p, vec3 n, vec3 dpdx, vec3 dpdy, vec3 base);
 #include "common/uniforms.glsl"
 #include "common/material.glsl"
+#define TERRAIN_ALTITUDE(p) curvedY(p) // the layers' heights: above the curved ground's datum
 #include "terrain/layers.glsl"
 
 #if FX_WATER
@@ -471,7 +543,7 @@ bool programLightMedium(vec3 p, out float depth, out float ior, out vec3 sigma)
     if (!fxOn(FX_WATER_BIT) || any(lessThan(c, vec2(0.0))) || any(greaterThan(c, vec2(uTerrainSize - 1))))
         return false;
     float level = waterLevelAt(c);
-    depth = level - p.y;
+    depth = level - curvedY(p);
     ior = max(uMatIor[uWaterMaterial], 1.0);
     sigma = uMatAbsorption[uWaterMaterial];
     return depth > 0.0 && !isHole(level);

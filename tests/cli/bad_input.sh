@@ -336,6 +336,8 @@ expect water-kind 1 "expected a level in metres, \"fill\" (the lakes the DEM imp
     "$fathom" --scene himalaya --set 'terrain.water=[1,2]' $out
 expect water-nan 1 "terrain.water: 'nan' is no level: give a height in metres" 1 -- \
     "$fathom" --scene himalaya --set terrain.water=nan $out
+expect curvature-kind 1 "terrain.curvature: expected true (the DEM drawn on the Earth's curvature) or false" 1 -- \
+    "$fathom" --scene himalaya --set terrain.curvature=1 $out
 expect water-linear 1 "lakes and rasters of water are drawn by terrain.method \"maxmip\"" 1 -- \
     "$fathom" --scene himalaya --set terrain.water=fill --set terrain.method=linear $out
 expect water-raster-missing 1 "$tmp/none.tif" 1 -- "$fathom" --scene himalaya --set terrain.water="$tmp/none.tif" $out

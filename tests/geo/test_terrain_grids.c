@@ -1,7 +1,7 @@
 /* Terrain on DEMs the tests were not written on, generated here, every pixel against the exact
  * ray–bilinear-heightfield intersection in double (tests/lib/terrain_ref.c): a 4096² DEM far and grazing,
- * a 1000×150 strip, nodata holes, the same in tiles (seams in the heights and the pyramid), and
- * patch normals that are each patch's own gradient. */
+ * a 1000×150 strip, nodata holes, the same in tiles (seams in the heights and the pyramid), patch normals
+ * that are each patch's own gradient, and a plain on the Earth's curvature against its closed form. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -24,6 +24,7 @@
 #include "gpu/render_probe.h"
 #include "data/geo/terrain.h"
 #include "terrain_ref.h"
+
 
 /* The exact traversal on DEMs it was not written on. Each fails without one fix:
  *  - 4096², far rays: the nudge past a node's face must exceed the rounding of a position recomputed
@@ -203,6 +204,74 @@ static void patch_normals_are_exact(void **st)
     assert_true(worst[1] > 1.0);  /* the smooth normal is not the patch's */
 }
 
+/* The Earth's curvature (terrain.curvature): over a sea-level plain 200 km across, from 100 m up, every pixel
+ * against the closed form in double: the ground d from the camera lies (1 − k) d² / 2R lower (times the
+ * exaggeration), so a ray of direction r meets it where 100 + r_y t + c |r_xz|² t² = 0, and misses above the
+ * horizon (the dip 2√(100 c)); water 2 cm over the plain curves with it. Rays within 1e-4 of grazing the
+ * curve are skipped (a float's direction moves their root by metres). */
+static void earth_curvature(void **st)
+{
+    (void)st;
+    char dir[] = "/tmp/fathom-curve-XXXXXX", exr[300], json[300];
+    assert_non_null(mkdtemp(dir));
+    enum { N = 2001 };
+    float *zero = calloc((size_t)N * N, sizeof *zero);
+    zero[0] = 50; /* one texel in a far corner: the slab's top above the plain, so the walk (not the slab) finds it */
+    snprintf(exr, sizeof exr, "%s/plain.exr", dir);
+    err_t e;
+    if (!image_write_f32(exr, N, N, 1, (const char *const[]){"Y"}, zero, &e))
+        fail_msg("%s", e.msg);
+    free(zero);
+    snprintf(json, sizeof json, "%s/plain.json", dir);
+    static float aov[W * H * AOV];
+    /* 100 m texels at true scale; then 1 km texels exaggerated 100 times, where the drop within one cell (7 m)
+     * is more than the tolerance: each cell's intersection must carry the curve too, not only the walk */
+    const struct { double spacing, ex; } passes[2] = {{100, 1}, {1000, 100}};
+    for (int pass = 0; pass < 4; pass++) {
+        int water = pass & 1;
+        double spacing = passes[pass / 2].spacing, ex = passes[pass / 2].ex;
+        FILE *f = fopen(json, "w");
+        fprintf(f, "{\"program\": \"terrain\", \"materials\": {\"rock\": {}}, \"quality\": {\"max_dist\": 1e7}, "
+                   "\"terrain\": {\"heightmap\": \"plain.exr\", \"spacing\": [%g, %g], \"curvature\": true, "
+                   "\"exaggeration\": %g}}", spacing, spacing, ex);
+        fclose(f);
+        const double c = ex * (1 - 0.13) / (2 * 6371000.0), EYE = 100, dip = 2 * sqrt(EYE * c);
+        scene s;
+        load_text_file(json, (const char *const[]){water ? "terrain.water=0.02" : "terrain.curvature=true"}, 1, &s);
+        camera cam = cam_at(0, EYE, 0, 0, EYE - 3000 * tan(dip), -3000, 4 * dip / DEG2RAD); /* the horizon mid-image */
+        draw(&s, &cam, W, H, 1, NULL, aov, NULL);
+        int hits = 0, misses = 0, grazing = 0, bad = 0;
+        double worst = 0;
+        for (int row = 0; row < H; row++)
+            for (int x = 0; x < W; x++) {
+                dray r = pixel_ray(&cam, x, row, W, H);
+                double A = c * (r.d[0] * r.d[0] + r.d[2] * r.d[2]), B = r.d[1], C = EYE - (water ? 0.02 * ex : 0);
+                double disc = B * B - 4 * A * C, t = disc >= 0 && B < 0 ? (-B - sqrt(disc)) / (2 * A) : INFINITY;
+                if (fabs(disc) < 1e-4 * B * B) {
+                    grazing++;
+                    continue;
+                }
+                float got = aov[(row * W + x) * AOV + 3];
+                double tol = 2e-5 * (isinf(t) ? 0 : t) + 0.5;
+                bool ok = isinf(t) ? isinf(got) : fabs(got - t) <= tol;
+                if (isfinite(t) && isfinite(got))
+                    worst = fmax(worst, fabs(got - t));
+                if (!ok && bad++ < 3)
+                    fprintf(stderr, "  %s pixel (%d,%d): depth %.2f, the curved ground's %.2f\n", water ? "water" : "plain", x,
+                            row, (double)got, t);
+                hits += isfinite(t), misses += isinf(t);
+            }
+        fprintf(stderr, "curvature (%g m texels, x%g)%s: %d hits (worst %.3f m), %d misses above the horizon, %d grazing, "
+                "%d disagree\n", spacing, ex, water ? " with water" : "", hits, worst, misses, grazing, bad);
+        assert_int_equal(bad, 0);
+        assert_true(hits > 500 && misses > 500);
+        scene_free(&s);
+    }
+    unlink(exr);
+    unlink(json);
+    rmdir(dir);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -210,6 +279,7 @@ int main(void)
         cmocka_unit_test(nodata_holes),
         cmocka_unit_test(patch_normals_are_exact),
         cmocka_unit_test(tiled_grids),
+        cmocka_unit_test(earth_curvature),
     };
     if (getenv("FATHOM_TEST_FILTER")) /* one test while working on it: FATHOM_TEST_FILTER='far*' */
         cmocka_set_test_filter(getenv("FATHOM_TEST_FILTER"));

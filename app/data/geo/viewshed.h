@@ -22,6 +22,7 @@
 #include "util.h"
 
 #define VIEWSHED_EARTH_RADIUS 6371000.0 /* m: the IUGG mean radius (as data/geo/dem.h's spacing) */
+#define VIEWSHED_REFRACTION 0.13        /* k: the surveyors' refraction coefficient, the defaults' (and the renderer's) */
 #define VIEWSHED_TIE 1e-6               /* m: a sight line this close to the surface still sees (grazing) */
 
 enum { VIEWSHED_HIDDEN = 0, VIEWSHED_VISIBLE = 1, VIEWSHED_NODATA = 255 };
