@@ -256,7 +256,7 @@ static bool water_texture(const scene *s, heightfield *hf, float **pyramid, err_
     size_t n = (size_t)hf->width * (size_t)hf->height;
     float *w = util_alloc(n * sizeof *w, "the terrain's water"), top;
     float ex = s->terrain.exaggeration > 0 ? s->terrain.exaggeration : 1.0f;
-    if (!water_grid(hf->h, hf->width, hf->height, s->terrain.heightmap,
+    if (!water_grid(hf->h, hf->width, hf->height, hf->dx, hf->dz, s->terrain.heightmap,
                     s->terrain.water_mode == WATER_RASTER ? s->terrain.water_raster : NULL, ex, w, &top, err)) {
         free(w);
         return false;

@@ -90,17 +90,26 @@ vec3 rayCurve(vec3 ro, vec3 rd)
 #endif
 }
 float curveAt(vec3 e, float t) { return e.x + (e.y + e.z * t) * t; }
+// The roots lo ≤ hi of A t² + B t + C (A ≠ 0), without cancellation; false when there are none.
+bool quadRoots(float A, float B, float C, out float lo, out float hi)
+{
+    float disc = B * B - 4.0 * A * C;
+    lo = hi = -1.0;
+    if (disc < 0.0)
+        return false;
+    float q = -0.5 * (B + (B >= 0.0 ? 1.0 : -1.0) * sqrt(disc));
+    float r1 = q / A, r2 = q != 0.0 ? C / q : r1;
+    lo = min(r1, r2), hi = max(r1, r2);
+    return true;
+}
 // The smallest root in (0, ∞) of A t² + B t + C (C > 0: the ray starts above), −1 if none.
 float firstRoot(float A, float B, float C)
 {
     if (abs(A) < 1e-30)
         return B < 0.0 ? -C / B : -1.0;
-    float disc = B * B - 4.0 * A * C;
-    if (disc < 0.0)
+    float lo, hi;
+    if (!quadRoots(A, B, C, lo, hi))
         return -1.0;
-    float q = -0.5 * (B + (B >= 0.0 ? 1.0 : -1.0) * sqrt(disc)); // no cancellation
-    float r1 = q / A, r2 = q != 0.0 ? C / q : -1.0;
-    float lo = min(r1, r2), hi = max(r1, r2);
     return lo > 0.0 ? lo : hi > 0.0 ? hi : -1.0;
 }
 
@@ -143,16 +152,18 @@ bool cellSolid(ivec2 cell)
     return !isHole(min(min(h.x, h.y), min(h.z, h.w)));
 }
 
+// The bilinear patch with corners k (h00, h10, h01, h11) at f in the cell.
+float bilinear(vec4 k, vec2 f) { return mix(mix(k.x, k.y, f.x), mix(k.z, k.w, f.x), f.y); }
+
 float heightAtCell(vec2 c)
 {
     c = clamp(c, vec2(0.0), vec2(uTerrainSize - 1));
     ivec2 i = min(ivec2(floor(c)), uTerrainSize - 2);
     vec2 f = c - vec2(i);
     vec4 k = cellCorners(i);
-    float h00 = k.x, h10 = k.y, h01 = k.z, h11 = k.w;
-    if (isHole(min(min(h00, h10), min(h01, h11))))
+    if (isHole(min(min(k.x, k.y), min(k.z, k.w))))
         return -1e30; // no surface in a cell with a nodata corner, even on its edges
-    return mix(mix(h00, h10, f.x), mix(h01, h11, f.x), f.y);
+    return bilinear(k, f);
 }
 
 float terrainHeight(vec2 xz) { return heightAtCell(toCell(xz)); }
@@ -179,11 +190,8 @@ vec2 terrainSlab(vec3 ro, vec3 rd)
     tmax = mix(tmax, vec3(1e30), isnan(tmax));
 #if TERRAIN_CURVATURE // the ray's effective height rises: it is under hmax between the roots of e(t) = hmax
     vec3 e = rayCurve(ro, rd);
-    float disc = e.y * e.y - 4.0 * e.z * (e.x - uTerrainHeightMax);
-    if (disc < 0.0)
-        return vec2(1.0, 0.0);
-    float q = -0.5 * (e.y + (e.y >= 0.0 ? 1.0 : -1.0) * sqrt(disc)), r1 = q / e.z, r2 = q != 0.0 ? (e.x - uTerrainHeightMax) / q : r1;
-    tmin.y = min(r1, r2), tmax.y = max(r1, r2); // (no floor: a curved ground has none to meet from below)
+    if (!quadRoots(e.z, e.y, e.x - uTerrainHeightMax, tmin.y, tmax.y))
+        return vec2(1.0, 0.0); // (no floor: a curved ground has none to meet from below)
 #endif
     float enter = max(max(max(tmin.x, tmin.y), tmin.z), 0.0);
     // The terrain is solid from hmin up to the ground: a ray that comes in through a side wall in the
@@ -268,8 +276,7 @@ float waterAtCell(vec2 c)
     ivec2 i = clamp(ivec2(floor(c)), ivec2(0), uTerrainSize - 2);
     if (!cellWater(i, k))
         return -1e30;
-    vec2 f = clamp(c - vec2(i), 0.0, 1.0);
-    return mix(mix(k.x, k.y, f.x), mix(k.z, k.w, f.x), f.y);
+    return bilinear(k, clamp(c - vec2(i), 0.0, 1.0));
 }
 
 // Where the ray meets cell `cell`'s water in [0, sEnd], from above or from below; −1 if it does not.
@@ -279,8 +286,7 @@ float waterCell(ivec2 cell, vec2 c0, vec2 cd, float y0, float dy, float ddy, flo
     if (!cellWater(cell, k))
         return -1.0;
     vec2 uv = c0 - vec2(cell);
-    float level = mix(mix(k.x, k.y, uv.x), mix(k.z, k.w, uv.x), uv.y);
-    return patchRoot(k, uv, cd, y0, dy, ddy, sEnd, y0 < level);
+    return patchRoot(k, uv, cd, y0, dy, ddy, sEnd, y0 < bilinear(k, uv));
 }
 #endif
 

@@ -323,7 +323,7 @@ static void lakes_from_the_dem(void **st)
     heightfield hf = load_hf(&s);
     float *lv = malloc(sizeof(float) * (size_t)hf.width * (size_t)hf.height), top;
     err_t e;
-    assert_true(water_grid(hf.h, hf.width, hf.height, NULL, NULL, 1, lv, &top, &e));
+    assert_true(water_grid(hf.h, hf.width, hf.height, hf.dx, hf.dz, NULL, NULL, 1, lv, &top, &e));
     int wet = 0;
     for (int k = 0; k < hf.width * hf.height; k++)
         wet += lv[k] > -1e20f;

@@ -175,8 +175,8 @@ bool water_is_vector(const char *file)
     return false;
 }
 
-bool water_grid(const float *ground, int w, int h, const char *dem, const char *raster, float ex, float *out, float *top,
-                err_t *err)
+bool water_grid(const float *ground, int w, int h, double dx, double dz, const char *dem, const char *raster, float ex,
+                float *out, float *top, err_t *err)
 {
     size_t n = (size_t)w * (size_t)h;
     *top = WATER_DRY;
@@ -187,12 +187,6 @@ bool water_grid(const float *ground, int w, int h, const char *dem, const char *
             return false;
         for (size_t c = 0; c < n; c++)
             out[c] = isnan(out[c]) || ground[c] < -1e20f ? WATER_DRY : out[c] * ex;
-        double dx = 1, dz = 1, range[2]; /* metres a texel: the DEM's own spacing */
-        dem_info info;
-        int dw, dh;
-        err_t ignore;
-        if (n_rivers && dem_probe(dem, &dw, &dh, range, &info, &ignore) && info.georeferenced)
-            dx = info.spacing[0], dz = info.spacing[1];
         water_rivers(ground, w, h, dx, dz, ex, rivers, n_rivers, out);
         geo_rivers_free(rivers, n_rivers);
     } else if (raster) {

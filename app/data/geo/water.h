@@ -38,13 +38,13 @@ bool water_fill(const water_fill_desc *d, float *surface, water_fill_stats *st, 
 
 /* A terrain's water to draw (shaders/terrain/terrain.glsl TERRAIN_WATER_GRID): each texel's water level in
  * out (w × h), or WATER_DRY; ground is the grid as drawn (heights times the exaggeration ex, nodata as
- * TERRAIN_HOLE, −1e30). file NULL: the lakes the ground implies (water_fill, every lake); a vector file
+ * TERRAIN_HOLE, −1e30; dx, dz metres a texel: rivers' widths). file NULL: the lakes the ground implies (water_fill, every lake); a vector file
  * (water_is_vector): its polygons with their levels on dem's grid (geo_water_polygons); else band 1 of that
  * raster, water-surface heights in metres on the DEM's own grid (the same size: a flood model's output, or
  * fathom water's). Levels times ex, nodata dry. *top: the highest level (−1e30 when all is dry). */
 #define WATER_DRY (-1e30f)
-bool water_grid(const float *ground, int w, int h, const char *dem, const char *file, float ex, float *out, float *top,
-                err_t *err);
+bool water_grid(const float *ground, int w, int h, double dx, double dz, const char *dem, const char *file, float ex,
+                float *out, float *top, err_t *err);
 /* Rivers (data/geo/geo.h geo_river: courses in texel coordinates, width and depth in metres) into out (w × h,
  * water levels or WATER_DRY; a texel already wet keeps the higher level): each course followed downhill,
  * from its higher end, in steps of at most half a texel, its surface `depth` above the ground there (times
